@@ -1,0 +1,27 @@
+# Two commands set everything up on a fresh machine:
+#   make run   - create .venv, install softimpact, run the whole paper into results/paper
+#   make test  - create .venv, install softimpact with its test extras, run the tests
+PYTHON ?= python3
+VENV := .venv
+BIN := $(VENV)/bin
+OUT ?= results/paper
+
+.PHONY: run test bench clean
+
+$(BIN)/softimpact: pyproject.toml
+	$(PYTHON) -m venv $(VENV)
+	$(BIN)/pip install --quiet --upgrade pip
+	$(BIN)/pip install --quiet -e '.[test]'
+	touch $@
+
+run: $(BIN)/softimpact
+	MPLBACKEND=Agg $(BIN)/softimpact paper --out $(OUT)
+
+test: $(BIN)/softimpact
+	MPLBACKEND=Agg $(BIN)/python -m pytest -q
+
+bench: $(BIN)/softimpact
+	$(BIN)/python benchmarks/bench_bar.py
+
+clean:
+	rm -rf $(VENV) results build src/*.egg-info

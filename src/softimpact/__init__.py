@@ -1,0 +1,20 @@
+"""softimpact: the impact of soft projectiles on structures.
+
+Implements the method of J.E. Grady, "Contact Force History and Dynamic Response
+Due to the Impact of a Soft Projectile" (NASA Lewis):
+
+- :mod:`softimpact.models` — materials, Hertz contact (eqs 1–3), pulses (eq 15),
+  the empirical soft-projectile model (eqs 4–7), laminates.
+- :mod:`softimpact.fem` — Hermite rod and plane-strain matrices (scikit-fem),
+  Newmark time stepping.
+- :mod:`softimpact.workflows` — bar impact, record reduction, scaling fit,
+  beam impact, calibration.
+- :mod:`softimpact.cases`, :mod:`softimpact.io`, :mod:`softimpact.plots`,
+  :mod:`softimpact.report`, :mod:`softimpact.cli` — the edges.
+
+Everything inside is SI; units are parsed at the edges (:mod:`softimpact.units`).
+"""
+
+__version__ = "0.1.0"
+
+__all__ = ["__version__"]

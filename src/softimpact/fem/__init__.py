@@ -1,0 +1,1 @@
+"""Finite elements: matrices (scikit-fem) and Newmark time stepping."""

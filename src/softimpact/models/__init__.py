@@ -1,0 +1,1 @@
+"""Physical models: materials, contact laws, pulses. Pure, SI, no I/O."""

@@ -1,0 +1,1 @@
+"""Workflows: the paper's steps, composed from models and fem, returning results."""

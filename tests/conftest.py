@@ -1,0 +1,9 @@
+"""Shared problems for the tests (inch units converted here, independently of the package)."""
+
+import os
+
+os.environ.setdefault("MPLBACKEND", "Agg")
+
+INCH = 0.0254  # m, exact by definition
+PSI = 4.4482216152605 / INCH**2  # Pa: 1 lbf / in²
+LB_PER_IN3 = 0.45359237 / INCH**3  # kg/m³
