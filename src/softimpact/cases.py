@@ -9,6 +9,7 @@ name as well as by path.
 from __future__ import annotations
 
 import tomllib
+from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 
@@ -17,8 +18,9 @@ from .errors import InputError
 from .fem.newmark import NewmarkParameters
 from .models.materials import Material, lookup, sphere_mass
 from .workflows.bar_impact import BarImpactProblem, BarSpec, EndCap, Gauge, Projectile, SolverSpec
+from .workflows.reduction import Bridge
 
-__all__ = ["Table", "builtin_cases", "locate", "load_toml", "read_material", "read_bar", "bar_problem", "load_bar_case"]
+__all__ = ["Series", "SeriesTest", "load_series", "Table", "builtin_cases", "locate", "load_toml", "read_material", "read_bar", "bar_problem", "load_bar_case"]
 
 _MISSING = object()
 
@@ -212,3 +214,71 @@ def load_bar_case(case: str) -> tuple[BarImpactProblem, Path]:
     """Read a bar case by path or built-in name; returns the problem and its file."""
     path = locate(case)
     return bar_problem(load_toml(path)), path
+
+
+@dataclass(frozen=True)
+class SeriesTest:
+    """One test of a bar series: its record file, V [m/s], d [m], m [kg]."""
+
+    name: str
+    record: Path
+    velocity: float
+    diameter: float
+    mass: float
+
+
+@dataclass(frozen=True)
+class Series:
+    """A series of bar tests: the bar, the gauge (and its bridge, for voltage records), the tests."""
+
+    title: str
+    units: str
+    bar: BarSpec
+    gauge_position: float
+    bridge: Bridge | None
+    tests: tuple[SeriesTest, ...]
+    path: Path
+    synthetic: str = ""
+
+
+def load_series(arg: str) -> Series:
+    """Read a bar test series (path or built-in name); record paths are relative to the file."""
+    path = locate(arg)
+    top = Table(load_toml(path))
+    title = top.string("title", path.stem)
+    system = top.string("units", "in-lbf-s", choices=tuple(units.DISPLAY_SYSTEMS))
+    synthetic = top.string("synthetic", "")
+    bar = read_bar(top.table("bar"))
+    g = top.table("gauge")
+    position = g.quantity("position", "length", positive=False)
+    if not 0 <= position < bar.length:
+        raise InputError(f"gauge.position: {g.raw('position')!r} is not on the bar (0 to {bar.length:.6g} m)")
+    bridge = None
+    if "gauge_factor" in g:
+        arms = g.raw("bridge", "quarter")
+        if arms not in Bridge.ARMS:
+            raise InputError(f"gauge.bridge: {arms!r} is not one of {', '.join(Bridge.ARMS)}")
+        bridge = Bridge(
+            g.number("gauge_factor"), Bridge.ARMS[arms], g.quantity("excitation", "voltage"), g.number("gain", 1.0), g.number("polarity", 1.0)
+        )
+    g.done()
+    tests = []
+    for t in top.tables("test"):
+        record = t.string("record")
+        tests.append(
+            SeriesTest(
+                t.string("name", Path(record).stem),
+                (path.parent / record),
+                t.quantity("velocity", "velocity"),
+                t.quantity("diameter", "length"),
+                t.quantity("mass", "mass"),
+            )
+        )
+        t.done()
+    if not tests:
+        raise InputError(f"{path}: no [[test]] entries")
+    names = [t.name for t in tests]
+    if len(set(names)) != len(names):
+        raise InputError(f"test: names must be unique, got duplicates in {names}")
+    top.done()
+    return Series(title, system, bar, position, bridge, tuple(tests), path, synthetic)

@@ -89,6 +89,93 @@ def bar_cmd(case, out, figures):
     )
 
 
+def _series_progress(series, label):
+    return click.progressbar(length=len(series.tests), label=label, file=sys.stderr)
+
+
+@main.command("reduce")
+@click.argument("series")
+@_out_option("reduce")
+@_figures_option
+@_guarded
+def reduce_cmd(series, out, figures):
+    """Bar strain records of a SERIES file → force histories and pulse parameters."""
+    from .cases import load_series
+    from .io import json_text, write_outputs
+    from .report import reduction_files
+    from .runs import reduce_series
+
+    spec = load_series(series)
+    with _series_progress(spec, "reducing") as bar:
+        reduced = reduce_series(spec, progress=lambda name: bar.update(1))
+    _report_bad(reduced)
+    files = reduction_files(spec, reduced, figures)
+    files["summary.json"] = json_text({"series": str(spec.path), "synthetic": spec.synthetic, "reduced": sum(r.reduction is not None for r in reduced), "failed": {r.test.name: r.error for r in reduced if r.reduction is None}})
+    write_outputs(out, files, inputs=[spec.path] + [t.record for t in spec.tests])
+    click.echo(f"{sum(r.reduction is not None for r in reduced)} of {len(reduced)} records reduced; tests.csv in {out}")
+
+
+def _report_bad(reduced):
+    bad = [r for r in reduced if r.reduction is None]
+    for r in bad:
+        click.echo(f"softimpact: warning: {r.error}", err=True)
+    if len(bad) == len(reduced):
+        raise InputError("no record of the series could be reduced")
+
+
+@main.command("fit")
+@click.argument("series")
+@_out_option("fit")
+@_figures_option
+@_guarded
+def fit_cmd(series, out, figures):
+    """Reduce a SERIES, then fit the scaling constants α1–α4 of eqs (4)–(7)."""
+    from .cases import load_series
+    from .io import write_outputs
+    from .report import reduction_files, scaling_files
+    from .runs import fit_series, reduce_series
+
+    spec = load_series(series)
+    with _series_progress(spec, "reducing") as bar:
+        reduced = reduce_series(spec, progress=lambda name: bar.update(1))
+    _report_bad(reduced)
+    fits = fit_series(reduced)
+    files = reduction_files(spec, reduced, figures)
+    files.update(scaling_files(fits, spec.units, figures))
+    write_outputs(out, files, inputs=[spec.path] + [t.record for t in spec.tests])
+    for label, g in fits.items():
+        a = {k: f.slope for k, f in g.origin.items()}
+        click.echo(f"{label:>10s}: alpha1 {a['alpha1']:.3f}  alpha2 {a['alpha2']:.3f}  alpha3 {a['alpha3']:.3f}  alpha4 {a['alpha4']:.3f}  ({len(g.points)} tests)")
+    click.echo(f"scaling.json in {out}")
+
+
+@main.command("predict")
+@click.option("--projectile", help="A named projectile (rubber-1/2in, rubber-3/8in), or give --mass and --diameter.")
+@click.option("--mass", help='Projectile mass, e.g. "1.1 g".')
+@click.option("--diameter", help='Projectile diameter, e.g. "0.5 in".')
+@click.option("--velocity", required=True, help='Impact velocity, e.g. "1166 in/s".')
+@click.option("--model", type=click.Choice(["empirical", "hertz", "wilbeck"]), default="empirical", show_default=True)
+@click.option("--constants", help="Scaling constants: a preset (silicone-1/2in, silicone-3/8in) or a scaling.json from `softimpact fit`.")
+@click.option("--group", default="pooled", show_default=True, help="Group of a scaling.json to use (a diameter such as '0.5 in', or pooled).")
+@click.option("--tail/--no-tail", default=False, show_default=True, help="Empirical model: add the tail that carries the rest of eq (7)'s impulse.")
+@click.option("--material", default="silicone rubber", show_default=True, help="Projectile material (hertz and wilbeck models).")
+@click.option("--target", default="Al 6061-T6", show_default=True, help="Target material (hertz model).")
+@click.option("--bar", "bar_case", help="Drive the bar of this bar case (file or built-in name) with the predicted force.")
+@click.option("--units", "system", type=click.Choice(["in-lbf-s", "SI"]), default="in-lbf-s", show_default=True)
+@_out_option("predict")
+@_figures_option
+@_guarded
+def predict_cmd(projectile, mass, diameter, velocity, model, constants, group, tail, material, target, bar_case, system, out, figures):
+    """Force history of a projectile at a velocity, from the empirical model (eqs 4-7, 15) or a classical one."""
+    from .predict import predict
+
+    files, note = predict(projectile, mass, diameter, velocity, model, constants, group, tail, material, target, bar_case, system, figures)
+    from .io import write_outputs
+
+    write_outputs(out, files)
+    click.echo(note + f"; files in {out}")
+
+
 @main.command("paper")
 @_out_option("paper")
 @_figures_option

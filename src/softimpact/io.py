@@ -22,7 +22,11 @@ import numpy as np
 from . import __version__
 from .errors import InputError
 
-__all__ = ["csv_text", "json_text", "write_outputs", "figure_bytes", "jsonable"]
+__all__ = ["csv_text", "json_text", "write_outputs", "figure_bytes", "jsonable", "read_record", "read_columns"]
+
+# Record headers understood, and their factor to SI.
+TIME_COLUMNS = {"time_s": 1.0, "time_ms": 1e-3, "time_us": 1e-6}
+SIGNAL_COLUMNS = {"strain": ("strain", 1.0), "microstrain": ("strain", 1e-6), "voltage_V": ("voltage", 1.0)}
 
 
 def csv_text(columns: dict[str, np.ndarray]) -> str:
@@ -115,3 +119,56 @@ def write_outputs(out_dir, files: dict[str, bytes | str], inputs=()) -> list[Pat
     finally:
         shutil.rmtree(staging, ignore_errors=True)
     return list(targets.values())
+
+
+def read_columns(path) -> tuple[list[str], np.ndarray]:
+    """A CSV file with a header row: (names, data of shape (n_rows, n_columns)).
+
+    Empty cells and 'nan' read as NaN (callers decide whether that is an error);
+    text that is not a number is an error naming the row and column.
+    """
+    import csv
+
+    path = Path(path)
+    try:
+        with open(path, newline="", encoding="utf-8") as fh:
+            rows = [r for r in csv.reader(fh) if r and not r[0].lstrip().startswith("#")]
+    except OSError as exc:
+        raise InputError(f"{path}: cannot read ({exc.strerror})") from None
+    except UnicodeDecodeError:
+        raise InputError(f"{path}: not a text (CSV) file") from None
+    if not rows:
+        raise InputError(f"{path}: empty file")
+    names = [c.strip() for c in rows[0]]
+    data = np.full((len(rows) - 1, len(names)), np.nan)
+    for i, row in enumerate(rows[1:]):
+        if len(row) != len(names):
+            raise InputError(f"{path}: row {i + 2} has {len(row)} cells, the header {len(names)}")
+        for j, cell in enumerate(row):
+            cell = cell.strip()
+            if cell == "":
+                continue
+            try:
+                data[i, j] = float(cell)
+            except ValueError:
+                raise InputError(f"{path}: row {i + 2}, column {names[j]!r}: {cell!r} is not a number") from None
+    return names, data
+
+
+def read_record(path) -> tuple[np.ndarray, np.ndarray, str]:
+    """A gauge record: (time [s], signal, kind) with kind 'strain' (SI) or 'voltage' [V].
+
+    The header names the units: a time column (time_s, time_ms, time_us) and a
+    signal column (strain, microstrain, voltage_V).
+    """
+    names, data = read_columns(path)
+    tcols = [n for n in names if n in TIME_COLUMNS]
+    scols = [n for n in names if n in SIGNAL_COLUMNS]
+    if len(tcols) != 1 or len(scols) != 1:
+        raise InputError(
+            f"{path}: header {','.join(names)!r} must have one time column ({', '.join(TIME_COLUMNS)}) "
+            f"and one signal column ({', '.join(SIGNAL_COLUMNS)})"
+        )
+    kind, factor = SIGNAL_COLUMNS[scols[0]]
+    t = data[:, names.index(tcols[0])] * TIME_COLUMNS[tcols[0]]
+    return t, data[:, names.index(scols[0])] * factor, kind

@@ -92,3 +92,123 @@ def bar_energy(result):
     ax.set_title("Energy balance of the bar impact")
     ax.legend()
     return fig
+
+
+def force_history(reduction, system: str, title: str = ""):
+    """Fig 7: a reduced force history with F0, t_F0 and T marked, and the eq-15 fit."""
+    tu, fu = display(system, "time"), display(system, "force")
+    fig, ax = _figure()
+    r = reduction
+    t = r.time * tu.factor
+    ax.plot(t, r.force * fu.factor, lw=0.8, color="0.35", label="force from the gauge record")
+    ax.plot(t, r.fit(r.time) * fu.factor, "--", color="C3", label="eq (15) fit")
+    ax.axvspan(r.direct_until * tu.factor, t[-1], color="C1", alpha=0.08, label="reflection-corrected")
+    F0, tp, T = r.peak_force * fu.factor, r.time_of_peak * tu.factor, r.duration * tu.factor
+    ax.plot([tp], [F0], "o", color="C3")
+    ax.annotate(f"F0 = {F0:.3g} {fu.label}", (tp, F0), xytext=(8, 4), textcoords="offset points")
+    ax.annotate("", xy=(tp, 0.45 * F0), xytext=(0, 0.45 * F0), arrowprops=dict(arrowstyle="<->"))
+    ax.text(tp * 1.05, 0.45 * F0, f" tF0 = {tp:.3g} {tu.label}", ha="left", va="center")
+    ax.annotate("", xy=(T, 0.2 * F0), xytext=(0, 0.2 * F0), arrowprops=dict(arrowstyle="<->"))
+    ax.text(T / 2, 0.23 * F0, f"T = {T:.3g} {tu.label}", ha="center")
+    ax.set_xlim(-0.05 * T, min(t[-1], 3.0 * T))
+    ax.set_xlabel(f"time since first contact [{tu.label}]")
+    ax.set_ylabel(f"contact force [{fu.label}]")
+    ax.set_title(title or f"Force history {r.name} (paper Fig 7)")
+    ax.legend(fontsize="small")
+    return fig
+
+
+def _groups(fits):
+    return [(label, f) for label, f in fits.items() if label != "pooled"] or list(fits.items())
+
+
+def scaling_peak_force(fits, system: str):
+    """Figs 8 and 12: F0 against mV²/(2d), with the fitted α1 lines."""
+    fu = display(system, "force")
+    fig, ax = _figure()
+    for i, (label, f) in enumerate(_groups(fits)):
+        x = np.array([p.mass * p.velocity**2 / (2 * p.diameter) for p in f.points]) * fu.factor
+        y = np.array([p.peak_force for p in f.points]) * fu.factor
+        a = f.origin["alpha1"]
+        ax.plot(x, y, "o", color=f"C{i}", label=f"d = {label}")
+        xx = np.linspace(0, x.max() * 1.05, 2)
+        ax.plot(xx, a.slope * xx, "-", color=f"C{i}", label=f"α1 = {a.slope:.3g} [{a.slope_ci[0]:.3g}, {a.slope_ci[1]:.3g}]")
+    ax.set_xlabel(f"mV²/(2d) [{fu.label}]")
+    ax.set_ylabel(f"peak force F0 [{fu.label}]")
+    ax.set_title("Peak force against mV²/(2d), eq (4) (paper Figs 8, 12)")
+    ax.legend(fontsize="small")
+    return fig
+
+
+def scaling_duration(fits, system: str):
+    """Figs 9 and 13: 1/T against V, with the fitted α2 (1/T = V/(α2·d))."""
+    vu = display(system, "velocity")
+    fig, ax = _figure()
+    for i, (label, f) in enumerate(_groups(fits)):
+        V = np.array([p.velocity for p in f.points])
+        inv = np.array([1 / p.duration for p in f.points])
+        a = f.origin["alpha2"]
+        d = f.points[0].diameter
+        ax.plot(V * vu.factor, inv * 1e-3, "o", color=f"C{i}", label=f"d = {label}")
+        vv = np.linspace(0, V.max() * 1.05, 2)
+        ax.plot(vv * vu.factor, vv / (a.slope * d) * 1e-3, color=f"C{i}", label=f"α2 = {a.slope:.3g} [{a.slope_ci[0]:.3g}, {a.slope_ci[1]:.3g}]")
+    ax.set_xlabel(f"impact velocity V [{vu.label}]")
+    ax.set_ylabel("1/T [1/ms]")
+    ax.set_title("Inverse contact time against velocity, eq (5) (paper Figs 9, 13)")
+    ax.legend(fontsize="small")
+    return fig
+
+
+def scaling_skewness(fits, system: str):
+    """Figs 10 and 14: t_F0/T against V, with the fitted α3."""
+    vu = display(system, "velocity")
+    fig, ax = _figure()
+    for i, (label, f) in enumerate(_groups(fits)):
+        V = np.array([p.velocity for p in f.points]) * vu.factor
+        ratio = np.array([p.time_of_peak / p.duration for p in f.points])
+        a = f.origin["alpha3"]
+        ax.plot(V, ratio, "o", color=f"C{i}", label=f"d = {label}")
+        ax.axhline(a.slope, color=f"C{i}", label=f"α3 = {a.slope:.3g} [{a.slope_ci[0]:.3g}, {a.slope_ci[1]:.3g}]")
+    ax.set_ylim(0, 0.6)
+    ax.axhline(0.5, color="k", ls=":", lw=0.8)
+    ax.text(ax.get_xlim()[0], 0.51, " symmetric (Hertzian) pulse", fontsize="small")
+    ax.set_xlabel(f"impact velocity V [{vu.label}]")
+    ax.set_ylabel("tF0 / T")
+    ax.set_title("Skewness of the force history, eq (6) (paper Figs 10, 14)")
+    ax.legend(fontsize="small", loc="lower right")
+    return fig
+
+
+def scaling_impulse(fits, system: str):
+    """Figs 11 and 15: I against 2mV, with the fitted α4 and the line I = 2mV."""
+    iu = display(system, "impulse")
+    fig, ax = _figure()
+    top = 0.0
+    for i, (label, f) in enumerate(_groups(fits)):
+        x = np.array([2 * p.mass * p.velocity for p in f.points]) * iu.factor
+        y = np.array([p.impulse for p in f.points]) * iu.factor
+        a = f.origin["alpha4"]
+        top = max(top, x.max())
+        ax.plot(x, y, "o", color=f"C{i}", label=f"d = {label}")
+        xx = np.linspace(0, x.max() * 1.05, 2)
+        ax.plot(xx, a.slope * xx, color=f"C{i}", label=f"α4 = {a.slope:.3g} [{a.slope_ci[0]:.3g}, {a.slope_ci[1]:.3g}]")
+    xx = np.linspace(0, top * 1.05, 2)
+    ax.plot(xx, xx, "k:", label="I = 2mV (elastic rebound from a rigid wall)")
+    ax.set_xlabel(f"incident momentum × 2, 2mV [{iu.label}]")
+    ax.set_ylabel(f"impulse I [{iu.label}]")
+    ax.set_title("Impulse against incident momentum, eq (7) (paper Figs 11, 15)")
+    ax.legend(fontsize="small")
+    return fig
+
+
+def predicted_forces(histories, system: str, title: str):
+    """Force histories of several models, one curve each: histories = [(label, t, F)]."""
+    tu, fu = display(system, "time"), display(system, "force")
+    fig, ax = _figure()
+    for label, t, F in histories:
+        ax.plot(t * tu.factor, F * fu.factor, label=label)
+    ax.set_xlabel(f"time since first contact [{tu.label}]")
+    ax.set_ylabel(f"contact force [{fu.label}]")
+    ax.set_title(title)
+    ax.legend(fontsize="small")
+    return fig

@@ -27,6 +27,7 @@ DIMENSIONS = {
     "density": "[mass] / [length] ** 3",
     "force": "[length] * [mass] / [time] ** 2",
     "impulse": "[length] * [mass] / [time]",
+    "voltage": "[mass] * [length] ** 2 / [time] ** 3 / [current]",
     "dimensionless": "dimensionless",
 }
 
@@ -74,6 +75,7 @@ _SI = {
     "density": "kg/m^3",
     "force": "N",
     "impulse": "N*s",
+    "voltage": "V",
     "dimensionless": "dimensionless",
 }
 
@@ -86,6 +88,7 @@ _EXAMPLE = {
     "density": "0.0975 lb/in^3",
     "force": "44 lbf",
     "impulse": "0.01 N*s",
+    "voltage": "5 V",
     "dimensionless": "0.3",
 }
 

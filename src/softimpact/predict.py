@@ -1,0 +1,119 @@
+"""``softimpact predict``: a force history from the empirical or a classical model."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import click
+import numpy as np
+
+from . import units
+from .errors import InputError
+from .io import csv_text, figure_bytes, json_text
+from .models.empirical import PRESETS, PROJECTILES, HertzModel, ScalingLaw, WilbeckModel
+from .models.materials import lookup
+
+__all__ = ["predict", "scaling_law"]
+
+
+def scaling_law(constants: str | None, group: str, projectile) -> ScalingLaw:
+    """The α's: a preset name, a scaling.json from `softimpact fit`, or the projectile's preset."""
+    if constants is None:
+        if projectile is None:
+            raise InputError("--constants: needed with --mass/--diameter (a preset or a scaling.json)")
+        return PRESETS[projectile.law]
+    if constants in PRESETS:
+        return PRESETS[constants]
+    path = Path(constants)
+    if not path.is_file():
+        raise InputError(f"--constants: {constants!r} is neither a preset ({', '.join(PRESETS)}) nor a file")
+    try:
+        data = json.loads(path.read_text())
+        g = data["pooled"] if group == "pooled" else data["groups"][group]
+        return ScalingLaw(*(float(g[f"alpha{i}"]["value"]) for i in range(1, 5)), name=f"{path.name}:{group}", source=str(path))
+    except (KeyError, TypeError, ValueError, json.JSONDecodeError):
+        raise InputError(f"--constants: {constants} is not a scaling.json with group {group!r}") from None
+
+
+def predict(projectile, mass, diameter, velocity, model, constants, group, tail, material, target, bar_case, system, figures):
+    """Returns (files, one-line note)."""
+    proj = None
+    if projectile is not None:
+        if projectile not in PROJECTILES:
+            raise InputError(f"--projectile: unknown {projectile!r} (known: {', '.join(PROJECTILES)})")
+        if mass is not None or diameter is not None:
+            raise InputError("--projectile: give either a named projectile or --mass and --diameter, not both")
+        proj = PROJECTILES[projectile]
+        m, d = proj.mass, proj.diameter
+    else:
+        if mass is None or diameter is None:
+            raise InputError("--projectile or both --mass and --diameter are required")
+        m, d = units.parse(mass, "mass", "--mass"), units.parse(diameter, "length", "--diameter")
+        if not (m > 0 and d > 0):
+            raise InputError(f"--mass and --diameter must be positive, got {mass!r}, {diameter!r}")
+    V = units.parse(velocity, "velocity", "--velocity")
+    if not V > 0:
+        raise InputError(f"--velocity must be positive, got {velocity!r}")
+    sphere = lookup(proj.material if proj else material, "--material")
+    density = m / (math.pi / 6 * d**3)
+    models = {
+        "hertz": HertzModel(sphere, lookup(target, "--target")),
+        "wilbeck": WilbeckModel(density),
+    }
+    notes = []
+    law = None
+    if model == "empirical" or constants is not None or proj is not None:
+        law = scaling_law(constants, group, proj)
+        models["empirical"] = law
+        if not law.in_range(V):
+            lo, hi = law.velocity_range
+            notes.append(f"velocity {V:.4g} m/s is outside the range of the constants ({lo:.4g}-{hi:.4g} m/s): extrapolated")
+    chosen = models[model]
+    pulse = chosen.pulse(m, d, V, tail=tail) if model == "empirical" else chosen.pulse(m, d, V)
+    params = chosen.parameters(m, d, V)
+    end = 1.5 * pulse.duration
+    t = np.linspace(0.0, end, 1501)
+    F = pulse(t)
+    cols = {"time_s": t, "force_N": F}
+    summary = {
+        "model": model,
+        "projectile": {"name": proj.name if proj else "", "mass_kg": m, "diameter_m": d, "velocity_m_s": V},
+        "peak_force_N": params.peak_force,
+        "time_of_peak_s": params.time_of_peak,
+        "duration_s": params.duration,
+        "impulse_N_s": params.impulse,
+        "impulse_of_history_N_s": float(np.trapezoid(F, t)),
+        "constants": None if law is None else {"alpha1": law.alpha1, "alpha2": law.alpha2, "alpha3": law.alpha3, "alpha4": law.alpha4, "name": law.name, "source": law.source},
+        "notes": notes,
+    }
+    files = {}
+    if bar_case is not None:
+        from .cases import load_bar_case
+        from .workflows.bar_impact import simulate_force
+
+        problem, _ = load_bar_case(bar_case)
+        res = simulate_force(problem.bar, problem.solver, problem.gauges, pulse)
+        cols = {"time_s": res.time, "force_N": res.force}
+        for g, eps in zip(problem.gauges, res.gauge_strain):
+            cols[f"strain_{g.name}"] = eps
+            k = int(np.argmin(eps))
+            summary.setdefault("gauges", {})[g.name] = {"peak_compressive_strain": float(eps[k]), "time_s": float(res.time[k])}
+    files["history.csv"] = csv_text(cols)
+    files["summary.json"] = json_text(summary)
+    if figures:
+        from . import plots
+
+        curves = []
+        for name, mod in models.items():
+            pl = mod.pulse(m, d, V, tail=tail) if name == "empirical" else mod.pulse(m, d, V)
+            tt = np.linspace(0, 1.5 * max(pl.duration, pulse.duration), 1501)
+            curves.append((f"{name}{' (chosen)' if name == model else ''}", tt, pl(tt)))
+        vu = units.display(system, "velocity")
+        files["force-history.png"] = figure_bytes(plots.predicted_forces(curves, system, f"Predicted force, V = {V * vu.factor:.4g} {vu.label}"))
+    for n in notes:
+        click.echo(f"softimpact: warning: {n}", err=True)
+    fu = units.display(system, "force")
+    tu = units.display(system, "time")
+    return files, f"{model}: F0 {params.peak_force * fu.factor:.4g} {fu.label} at {params.time_of_peak * tu.factor:.4g} {tu.label}, T {params.duration * tu.factor:.4g} {tu.label}, I {params.impulse:.4g} N·s"

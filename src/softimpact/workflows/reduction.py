@@ -1,0 +1,395 @@
+"""Bar strain records → contact force histories and pulse parameters (paper Figs 7–15).
+
+The bar is a non-dispersive, free–free rod (length L, wave speed c, gauge at x
+from the struck end). With G(t) = Σ_k F(t − k·P), P = 2L/c, the strain at the
+gauge is (d'Alembert, the struck end loaded by F, the far end free)
+
+    −EA·ε(x, t + x/c) = s(t) = G(t) − G(t − τ),   τ = 2(L − x)/c,
+
+so G(t) = s(t) + G(t − τ) and F(t) = G(t) − G(t − P): an exact, causal
+recursion that separates the incident wave from every reflection, however long
+the pulse. Up to τ after first contact the force is the shifted strain itself
+(F = EA·ε, the paper's reading); after τ it carries reflection corrections, and
+the noise of the result grows like the square root of the number of terms.
+
+The baseline comes from the pre-trigger part, refined by the mean strain over
+the whole periods P that end the record once the main pulse is over (on a plain
+free–free bar that mean is the baseline when no force acts); the two are pooled
+only when they agree within three standard errors, otherwise the force has not
+ended (a tail) and the pre-trigger value is kept and flagged. A baseline error
+δ biases the force by about δ·EA·L/(L − x) for the rest of the record, so the
+impulse's uncertainty grows with the record's length: it is reported.
+
+An end cap of mass m_c (lumped at the struck end) is corrected for: the contact
+force is the bar force plus m_c times the end acceleration, the end velocity
+being (G(t) + G(t − P))/(ρcA).
+
+Pulse parameters (time from first contact):
+- F0: maximum of a cubic fitted to the force over the crown of the pulse (where
+  the eq-15 fit is within 10 % of its peak): the largest raw sample is biased up
+  by the noise, the fit averages it;
+- T and t_F0: least-squares fit of the eq-(15) shape, with its start time t0,
+  to the force up to where it has fallen to 15 % of F0 after the peak (the tail
+  lives below that); t0 is first contact. T is thus the duration of the main
+  pulse, ignoring the tail, and t_F0 uses the whole rise (the location of the
+  maximum of a flat-topped, noisy peak is poorly determined; it is reported too,
+  as ``time_of_max``);
+- threshold duration: time until the smoothed force first falls below 5 % of F0;
+- I: trapezoidal integral of the whole force history, tail included.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import InputError
+from ..models.pulses import SkewedPulse
+from .bar_impact import BarSpec
+
+__all__ = ["Bridge", "Record", "ReductionSettings", "Reduction", "reduce_record", "fit_skewed", "wave_separation"]
+
+MIN_SAMPLES = 64  # fewer cannot hold a pre-trigger baseline and a pulse
+CLIP_RUN = 4  # this many equal consecutive extreme samples mean a saturated recorder
+
+
+@dataclass(frozen=True)
+class Bridge:
+    """Wheatstone bridge of strain gauges: V_out = gain·V_exc·(arms/4)·GF·ε (small strain).
+
+    ``active_arms``: 1 quarter, 2 half, 4 full bridge. ``polarity`` −1 for a
+    bridge wired so that compression reads positive.
+    """
+
+    gauge_factor: float
+    active_arms: int
+    excitation: float  # V
+    gain: float = 1.0
+    polarity: float = 1.0
+
+    ARMS = {"quarter": 1, "half": 2, "full": 4}
+
+    def __post_init__(self):
+        if not self.gauge_factor > 0:
+            raise InputError(f"gauge.gauge_factor must be positive, got {self.gauge_factor!r}")
+        if self.active_arms not in (1, 2, 4):
+            raise InputError(f"gauge.bridge: active arms must be 1, 2 or 4, got {self.active_arms!r}")
+        if not self.excitation > 0 or self.gain == 0:
+            raise InputError(f"gauge: excitation must be positive and gain non-zero, got {self.excitation!r}, {self.gain!r}")
+        if self.polarity not in (1.0, -1.0):
+            raise InputError(f"gauge.polarity must be 1 or -1, got {self.polarity!r}")
+
+    def strain(self, volts):
+        """ε = polarity·4·V/(arms·GF·V_exc·gain)."""
+        return self.polarity * 4.0 * np.asarray(volts) / (self.active_arms * self.gauge_factor * self.excitation * self.gain)
+
+
+@dataclass(frozen=True)
+class Record:
+    """A gauge record: time [s] on an arbitrary clock, strain [-] (tension +)."""
+
+    name: str
+    time: np.ndarray
+    strain: np.ndarray
+
+
+@dataclass(frozen=True)
+class ReductionSettings:
+    """Thresholds, as fractions of the peak (see the module docstring)."""
+
+    fit_cutoff: float = 0.15  # the eq-15 fit uses the pulse until it falls to this fraction of F0
+    duration_threshold: float = 0.05  # threshold-based duration
+    detection_sigmas: float = 8.0  # arrival: the signal leaves the noise by this many σ ...
+    detection_fraction: float = 0.05  # ... and by this fraction of its peak
+
+
+@dataclass(frozen=True)
+class Reduction:
+    """A reduced record. Times from first contact [s]; forces [N]."""
+
+    name: str
+    time: np.ndarray
+    force: np.ndarray
+    peak_force: float
+    time_of_peak: float  # eq-15 fit
+    time_of_max: float  # where the smoothed force is largest
+    duration: float  # eq-15 fit
+    duration_threshold: float
+    impulse: float
+    impulse_uncertainty: float  # from the baseline's uncertainty, accumulated by the reflection corrections
+    valid_until: float  # the record holds the force up to here
+    direct_until: float  # up to here no reflection correction was needed
+    first_contact_record_time: float  # first contact at the struck end, on the record's clock
+    arrival_record_time: float  # pulse arrival at the gauge, on the record's clock
+    baseline_strain: float
+    noise_strain: float
+    fit: SkewedPulse
+    fit_rms: float  # N, residual of the eq-15 fit over its window
+    flags: tuple[str, ...]
+
+
+def _fail(name, msg):
+    raise InputError(f"{name}: {msg}")
+
+
+def _validate(record: Record) -> tuple[np.ndarray, np.ndarray, float]:
+    """Checks and a uniform grid: returns t, y, dt."""
+    t = np.asarray(record.time, dtype=float)
+    y = np.asarray(record.strain, dtype=float)
+    name = record.name
+    if t.ndim != 1 or t.shape != y.shape:
+        _fail(name, "time and signal must be columns of equal length")
+    if t.size < MIN_SAMPLES:
+        _fail(name, f"too short: {t.size} samples (need at least {MIN_SAMPLES})")
+    bad = ~(np.isfinite(t) & np.isfinite(y))
+    if bad.any():
+        _fail(name, f"{bad.sum()} NaN or infinite values (first at row {int(np.argmax(bad)) + 1})")
+    d = np.diff(t)
+    if np.any(d <= 0):
+        k = int(np.argmax(d <= 0))
+        _fail(name, f"time is not strictly increasing at row {k + 2} ({t[k]!r} then {t[k + 1]!r})")
+    dt = float(np.median(d))
+    if np.max(np.abs(d - dt)) > 0.01 * dt:  # hand-digitised records: put them on a uniform grid
+        grid = np.arange(t[0], t[-1] + 0.5 * dt, dt)
+        y, t = np.interp(grid, t, y), grid
+    return t, y, dt
+
+
+def _check_clipping(name, y):
+    for extreme in (y.max(), y.min()):
+        at = np.isclose(y, extreme, rtol=0, atol=1e-9 * max(np.ptp(y), 1e-300))
+        runs = np.diff(np.flatnonzero(np.diff(np.concatenate(([0], at.astype(int), [0])))))[::2]
+        if runs.size and runs.max() >= CLIP_RUN:
+            _fail(name, f"signal clipped: {runs.max()} consecutive samples at {extreme:.6g} (recorder saturated?)")
+
+
+def _noise(y):
+    """σ of white noise from the first differences (robust: MAD), insensitive to a smooth pulse."""
+    d = np.diff(y)
+    return float(1.4826 * np.median(np.abs(d - np.median(d))) / math.sqrt(2.0))
+
+
+def wave_separation(s: np.ndarray, t: np.ndarray, tau: float, period: float) -> tuple[np.ndarray, np.ndarray]:
+    """Solve s(t) = G(t) − G(t − τ) for G, then F(t) = G(t) − G(t − P).
+
+    ``t`` increasing, zero at first contact; G = s before τ (no reflection has
+    come back yet). Returns (F, G), both on ``t``.
+    """
+    G = s.copy()
+    k = 1
+    while k * tau <= t[-1]:
+        block = (t >= k * tau) & (t < (k + 1) * tau)
+        done = t < k * tau
+        G[block] = s[block] + np.interp(t[block] - tau, t[done], G[done])
+        k += 1
+    F = G - np.interp(t - period, t, G, left=0.0)
+    return F, G
+
+
+def _smooth(y, dt, scale):
+    from scipy.signal import savgol_filter
+
+    window = max(7, int(round(scale / dt)) | 1)
+    if window >= y.size:
+        window = (y.size - 1) | 1 if (y.size - 1) % 2 else y.size - 2
+    return savgol_filter(y, window, 3)
+
+
+def fit_skewed(t, F, F0, tF0, T, t_end):
+    """Least-squares fit of eq (15), shifted by a start time t0, to (t, F) for t ≤ t_end.
+
+    Returns (pulse, t0, rms). Parameters are scaled to order one for the solver.
+    """
+    from scipy.optimize import least_squares
+
+    sel = t <= t_end
+    ts, Fs = t[sel], F[sel]
+
+    def residual(p):
+        t0, f0, tp, dur = p[0] * T, p[1] * F0, p[2] * T, p[3] * T
+        x = ts - t0
+        rise = f0 * np.sin(np.pi * x / (2 * tp))
+        fall = f0 * np.cos(np.pi * (x - tp) / (2 * (dur - tp)))
+        m = np.where(x <= 0, 0.0, np.where(x < tp, rise, np.where(x < dur, fall, 0.0)))
+        return (m - Fs) / F0
+
+    p0 = np.array([0.0, 1.0, tF0 / T, 1.0])
+    lo = np.array([-0.5, 0.5, 1e-3, 0.2])
+    hi = np.array([0.5, 2.0, 0.95, 5.0])
+    sol = least_squares(residual, p0, bounds=(lo, hi), x_scale=np.array([0.05, 1.0, 0.1, 1.0]))
+    t0, f0, tp, dur = sol.x[0] * T, sol.x[1] * F0, sol.x[2] * T, sol.x[3] * T
+    if not tp < dur:
+        tp = 0.5 * dur
+    rms = float(F0 * np.sqrt(np.mean(sol.fun**2)))
+    return SkewedPulse(f0, tp, dur), t0, rms
+
+
+def _bar_force(y, baseline, tt, tau, period, EA, cap_mass, Z, window, dt):
+    """Contact force at the struck end from the gauge strain (module docstring)."""
+    F, G = wave_separation(-EA * (y - baseline), tt, tau, period)
+    if cap_mass > 0:
+        from scipy.signal import savgol_filter
+
+        v_end = (G + np.interp(tt - period, tt, G, left=0.0)) / Z
+        F = F + cap_mass * savgol_filter(v_end, window, 3, deriv=1, delta=dt)
+    return F
+
+
+def _late_baseline(y, tt, start, period):
+    """Mean strain over the whole periods P = 2L/c after ``start`` that end the record.
+
+    Once the force is over, the strain at the gauge is a sum of waves bouncing
+    with period P whose mean over a period is zero, so this mean is the baseline.
+    Returns (mean, samples) or (nan, 0) when not even one period fits.
+    """
+    k = int((tt[-1] - start) // period)
+    if k < 1:
+        return math.nan, 0
+    sel = tt > tt[-1] - k * period
+    return float(np.mean(y[sel])), int(sel.sum())
+
+
+def reduce_record(
+    record: Record, bar: BarSpec, gauge_position: float, settings: ReductionSettings = ReductionSettings()
+) -> Reduction:
+    """Force history at the struck end and its pulse parameters (module docstring)."""
+    name = record.name
+    L, x = bar.length, gauge_position
+    if not 0 <= x < L:
+        _fail(name, f"gauge position {x!r} m must lie on the bar [0, {L!r}) m")
+    c = bar.material.wave_speed
+    EA = bar.material.youngs_modulus * bar.area
+    Z = bar.material.density * c * bar.area
+    tau, period = 2 * (L - x) / c, 2 * L / c
+    t, y, dt = _validate(record)
+    _check_clipping(name, y)
+    flags = []
+
+    sigma = _noise(y)
+    head = max(8, y.size // 20)
+    base0 = float(np.median(y[:head]))
+    dev = y - base0
+    peak_dev = dev[np.argmax(np.abs(dev))]
+    threshold = max(settings.detection_sigmas * sigma, settings.detection_fraction * abs(peak_dev))
+    if abs(peak_dev) < 10 * sigma or abs(peak_dev) <= threshold:
+        _fail(name, f"no pulse: largest excursion {abs(peak_dev):.3g} is within the noise (σ = {sigma:.3g})")
+    i_cross = int(np.argmax(np.abs(dev) > threshold))
+    if dev[i_cross] > 0:
+        flags.append("first excursion tensile: signal inverted (compression assumed first)")
+        y, dev, base0 = -y, -dev, -base0
+    # Rough arrival: extrapolate the rising edge (10 % to 40 % of the first peak) back to zero.
+    first = -dev
+    k90 = int(np.argmax(first >= 0.9 * first.max()))  # the incident pulse's first approach to its peak
+    local_peak = first[i_cross : k90 + 1].max()
+    low = np.flatnonzero(first[: k90 + 1] < 0.1 * local_peak)
+    i10 = int(low[-1]) + 1 if low.size else 0
+    i40 = i10 + int(np.argmax(first[i10 : k90 + 1] >= 0.4 * local_peak))
+    if i40 - i10 >= 2:
+        slope, icpt = np.polyfit(t[i10 : i40 + 1], first[i10 : i40 + 1], 1)
+        t_arrive = -icpt / slope if slope > 0 else t[i10]
+    else:
+        t_arrive = t[max(i10 - 1, 0)]
+    rise = max(t[k90] - t_arrive, 3 * dt)
+    pre = t < t_arrive - 0.5 * rise
+    if pre.sum() < 10:
+        _fail(name, f"no pre-trigger baseline: only {pre.sum()} samples before the pulse arrives")
+    baseline = float(np.mean(y[pre]))
+    noise = float(np.std(y[pre]))
+    n_base = int(pre.sum())
+
+    # Force at the struck end, on a clock from the (rough) first contact.
+    tt = t - t_arrive
+    cap_mass = 0.0 if bar.end_cap is None else bar.end_cap.mass
+    window = max(7, int(round(0.25 * rise / dt)) | 1)
+    if cap_mass > 0:
+        flags.append(f"end-cap inertia corrected (m = {cap_mass * 1e3:.2f} g, lag m/ρcA = {cap_mass / Z * 1e6:.1f} µs)")
+
+    def parameters(F):
+        Fs = _smooth(F, dt, 0.1 * rise)
+        Fs = _smooth(F, dt, 0.2 * max(tt[np.argmax(Fs)], 3 * dt))
+        k_pk = int(np.argmax(Fs))
+        F0_guess, t_pk_guess = float(Fs[k_pk]), float(tt[k_pk])
+        after = np.flatnonzero((np.arange(Fs.size) > k_pk) & (Fs < settings.fit_cutoff * F0_guess))
+        if after.size == 0:
+            _fail(name, "the record ends before the force falls to 15 % of its peak: the main pulse is truncated")
+        t_cut = float(tt[after[0]])
+        T_guess = t_pk_guess + (t_cut - t_pk_guess) / (2 / math.pi * math.acos(settings.fit_cutoff))
+        fit, t0, rms = fit_skewed(tt, F, F0_guess, max(t_pk_guess, dt), T_guess, t_cut)
+        # F0: the maximum of a cubic fitted to the crown, where the eq-15 fit is within
+        # 10 % of its peak: it averages the noise over the whole crown (< 0.3 % model
+        # error on eq-15 shapes) and follows the data where they depart from eq 15.
+        crown = np.flatnonzero(fit(tt - t0) >= 0.9 * fit.peak_force)
+        if crown.size >= 7:
+            tc = tt[crown] - t0 - fit.time_of_peak
+            coef = np.polyfit(tc, F[crown], 3)
+            fine = np.linspace(tc[0], tc[-1], 2001)
+            vals = np.polyval(coef, fine)
+            F0, t_pk = float(vals.max()), float(t0 + fit.time_of_peak + fine[np.argmax(vals)])
+        else:
+            F0, t_pk = F0_guess, t_pk_guess
+        below = np.flatnonzero((np.arange(Fs.size) > k_pk) & (Fs < settings.duration_threshold * F0))
+        t_thr = float(tt[below[0]]) - t0 if below.size else math.nan
+        return fit, t0, rms, F0, t_pk, t_thr
+
+    F = _bar_force(y, baseline, tt, tau, period, EA, cap_mass, Z, window, dt)
+    fit, t0, rms, F0, t_pk, t_thr = parameters(F)
+
+    # A baseline error δ adds about δ·EA·L/(L − x) to F for the rest of the record,
+    # so the impulse needs the baseline well. Where the record runs on for whole
+    # periods P after the main pulse, their mean strain is a second estimate.
+    # (Not with an end cap: a mass-loaded end breaks the P-periodicity.)
+    late, n_late = _late_baseline(y, tt, t0 + 3.0 * fit.duration, period) if cap_mass == 0 else (math.nan, 0)
+    if n_late:
+        se = noise * math.sqrt(1 / n_base + 1 / n_late)
+        if abs(late - baseline) <= 3 * se:
+            baseline = (n_base * baseline + n_late * late) / (n_base + n_late)
+            n_base += n_late
+            F = _bar_force(y, baseline, tt, tau, period, EA, cap_mass, Z, window, dt)
+            fit, t0, rms, F0, t_pk, t_thr = parameters(F)
+        else:
+            flags.append(
+                f"mean strain over the last {n_late} samples departs from the pre-trigger baseline by "
+                f"{abs(late - baseline) / se:.0f} standard errors: force not over (tail) or drift; pre-trigger baseline kept"
+            )
+
+    time = tt - t0
+    keep = time >= 0
+    time, force = time[keep], F[keep]
+    force_start = float(np.interp(0.0, tt - t0, F))
+    time = np.concatenate(([0.0], time))
+    force = np.concatenate(([force_start], force))
+    impulse = float(np.trapezoid(force, time))
+    valid_until = float(time[-1])
+    direct_until = tau - t0 if tau - t0 < valid_until else valid_until
+    if not math.isfinite(t_thr) or t_thr > direct_until:
+        flags.append(f"pulse longer than the reflection return 2(L-x)/c = {tau * 1e6:.0f} us: reflection-corrected beyond")
+    if not math.isfinite(t_thr):
+        flags.append("the force never falls below 5 % of F0 within the record: threshold duration undefined")
+    terms = 1 + int(valid_until // tau) + int(valid_until // period)
+    end_noise = EA * noise * math.sqrt(terms)
+    impulse_sd = EA * noise / math.sqrt(n_base) * L / (L - x) * valid_until
+    if end_noise > 0.05 * F0:
+        flags.append(f"reflection corrections amplify the noise to {end_noise / F0:.0%} of F0 by the end")
+    return Reduction(
+        name=name,
+        time=time,
+        force=force,
+        peak_force=F0,
+        time_of_peak=fit.time_of_peak,
+        time_of_max=t_pk - t0,
+        duration=fit.duration,
+        duration_threshold=t_thr,
+        impulse=impulse,
+        impulse_uncertainty=impulse_sd,
+        valid_until=valid_until,
+        direct_until=direct_until,
+        first_contact_record_time=float(t_arrive + t0 - x / c),
+        arrival_record_time=float(t_arrive + t0),
+        baseline_strain=baseline,
+        noise_strain=noise,
+        fit=fit,
+        fit_rms=rms,
+        flags=tuple(flags),
+    )

@@ -1,0 +1,145 @@
+"""Scaling laws of the pulse parameters against impact velocity, eqs (4)–(7), Table I.
+
+Each law is a straight line y = α·x through the origin, as the paper fits it:
+
+    α1: F0 against mV²/(2d)     α2: T against d/V
+    α3: t_F0 against T          α4: I against 2mV
+
+fitted by least squares, with a 95 % confidence interval from Student's t on
+n − 1 degrees of freedom, R² (centred: 1 − SS_res/SS_tot about the mean of y)
+and the residuals; the affine alternative y = a + b·x is fitted beside it (n − 2
+degrees of freedom). Fits are made per projectile diameter and pooled.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import InputError
+from ..models.empirical import ScalingLaw
+
+__all__ = ["TestPoint", "LineFit", "ScalingFit", "fit_line", "fit_scaling", "fit_groups", "REGRESSORS"]
+
+
+@dataclass(frozen=True)
+class TestPoint:
+    """One reduced test: V [m/s], m [kg], d [m], F0 [N], t_F0 [s], T [s], I [N·s]."""
+
+    __test__ = False  # not a pytest test class, despite its name
+
+    name: str
+    velocity: float
+    mass: float
+    diameter: float
+    peak_force: float
+    time_of_peak: float
+    duration: float
+    impulse: float
+
+
+@dataclass(frozen=True)
+class LineFit:
+    """y = slope·x (+ intercept for the affine fit), with 95 % intervals."""
+
+    slope: float
+    slope_ci: tuple[float, float]
+    intercept: float
+    intercept_ci: tuple[float, float]
+    r2: float
+    residuals: np.ndarray
+    through_origin: bool
+
+
+def _t95(dof: int) -> float:
+    from scipy.stats import t
+
+    return float(t.ppf(0.975, dof)) if dof > 0 else math.inf
+
+
+def fit_line(x, y, through_origin: bool = True) -> LineFit:
+    """Least-squares line, through the origin or affine, with 95 % intervals."""
+    x, y = np.asarray(x, float), np.asarray(y, float)
+    n = x.size
+    need = 1 if through_origin else 2
+    if n < need:
+        raise InputError(f"scaling fit: need at least {need} tests, got {n}")
+    ss_tot = float(np.sum((y - y.mean()) ** 2))
+    if through_origin:
+        sxx = float(x @ x)
+        slope = float(x @ y) / sxx
+        res = y - slope * x
+        dof = n - 1
+        s2 = float(res @ res) / dof if dof else math.nan
+        half = _t95(dof) * math.sqrt(s2 / sxx) if dof else math.inf
+        icpt, icpt_ci = 0.0, (0.0, 0.0)
+    else:
+        A = np.column_stack((np.ones(n), x))
+        coef, *_ = np.linalg.lstsq(A, y, rcond=None)
+        icpt, slope = float(coef[0]), float(coef[1])
+        res = y - A @ coef
+        dof = n - 2
+        s2 = float(res @ res) / dof if dof else math.nan
+        cov = s2 * np.linalg.inv(A.T @ A) if dof else np.full((2, 2), math.inf)
+        half = _t95(dof) * math.sqrt(cov[1, 1])
+        ih = _t95(dof) * math.sqrt(cov[0, 0])
+        icpt_ci = (icpt - ih, icpt + ih)
+    r2 = 1.0 - float(res @ res) / ss_tot if ss_tot > 0 else math.nan
+    return LineFit(slope, (slope - half, slope + half), icpt, icpt_ci, r2, res, through_origin)
+
+
+# Regressor x and response y of each law, from a test point.
+REGRESSORS = {
+    "alpha1": ("mV²/(2d)", lambda p: p.mass * p.velocity**2 / (2 * p.diameter), lambda p: p.peak_force),
+    "alpha2": ("d/V", lambda p: p.diameter / p.velocity, lambda p: p.duration),
+    "alpha3": ("T", lambda p: p.duration, lambda p: p.time_of_peak),
+    "alpha4": ("2mV", lambda p: 2 * p.mass * p.velocity, lambda p: p.impulse),
+}
+
+
+@dataclass(frozen=True)
+class ScalingFit:
+    """α1–α4 of one group of tests, through the origin and affine."""
+
+    label: str
+    points: tuple[TestPoint, ...]
+    origin: dict  # name → LineFit
+    affine: dict  # name → LineFit (absent where fewer than 3 tests)
+
+    def law(self) -> ScalingLaw:
+        """The fitted constants as an empirical model (eqs 4–7)."""
+        v = [p.velocity for p in self.points]
+        a = {k: f.slope for k, f in self.origin.items()}
+        return ScalingLaw(a["alpha1"], a["alpha2"], a["alpha3"], a["alpha4"], self.label, "fitted", (min(v), max(v)))
+
+
+def fit_scaling(points, label: str = "pooled") -> ScalingFit:
+    """Fit eqs (4)–(7) to a group of tests."""
+    points = tuple(points)
+    origin, affine = {}, {}
+    for name, (_, fx, fy) in REGRESSORS.items():
+        x = np.array([fx(p) for p in points])
+        y = np.array([fy(p) for p in points])
+        origin[name] = fit_line(x, y, True)
+        if len(points) >= 3:
+            affine[name] = fit_line(x, y, False)
+    return ScalingFit(label, points, origin, affine)
+
+
+def diameter_label(d: float) -> str:
+    """'0.5 in' style label of a diameter [m] (the paper's groups)."""
+    return f"{d / 0.0254:.4g} in"
+
+
+def fit_groups(points) -> dict[str, ScalingFit]:
+    """One fit per projectile diameter, and 'pooled' over all (when there are several diameters)."""
+    points = tuple(points)
+    groups: dict[float, list] = {}
+    for p in points:
+        groups.setdefault(round(p.diameter, 7), []).append(p)
+    fits = {diameter_label(d): fit_scaling(g, diameter_label(d)) for d, g in sorted(groups.items())}
+    if len(groups) > 1:
+        fits["pooled"] = fit_scaling(points, "pooled")
+    return fits
