@@ -22,6 +22,7 @@ test: $(BIN)/softimpact
 
 bench: $(BIN)/softimpact
 	$(BIN)/python benchmarks/bench_bar.py
+	$(BIN)/python benchmarks/bench_beam.py
 
 clean:
 	rm -rf $(VENV) results build src/*.egg-info

@@ -20,7 +20,7 @@ from .models.materials import Material, lookup, sphere_mass
 from .workflows.bar_impact import BarImpactProblem, BarSpec, EndCap, Gauge, Projectile, SolverSpec
 from .workflows.reduction import Bridge
 
-__all__ = ["Series", "SeriesTest", "load_series", "Table", "builtin_cases", "locate", "load_toml", "read_material", "read_bar", "bar_problem", "load_bar_case"]
+__all__ = ["load_beam_case", "beam_problem", "Series", "SeriesTest", "load_series", "Table", "builtin_cases", "locate", "load_toml", "read_material", "read_bar", "bar_problem", "load_bar_case"]
 
 _MISSING = object()
 
@@ -282,3 +282,156 @@ def load_series(arg: str) -> Series:
         raise InputError(f"test: names must be unique, got duplicates in {names}")
     top.done()
     return Series(title, system, bar, position, bridge, tuple(tests), path, synthetic)
+
+
+def read_ply(tbl: Table, name: str = "ply"):
+    from .models.laminate import PLIES, Ply
+
+    value = tbl.raw(name)
+    if isinstance(value, str):
+        if value not in PLIES:
+            raise InputError(f"{tbl.key(name)}: unknown ply {value!r} (catalogue: {', '.join(PLIES)})")
+        return PLIES[value]
+    p = Table(value, tbl.key(name))
+    mods = {k: p.quantity(k, "stress") for k in ("E1", "E2", "E3", "G12", "G13", "G23")}
+    ply = Ply(
+        p.string("name", "inline ply"), mods["E1"], mods["E2"], mods["E3"], mods["G12"], mods["G13"], mods["G23"],
+        p.number("nu12"), p.number("nu13"), p.number("nu23"), p.quantity("density", "density"), p.quantity("thickness", "length"),
+        p.string("source", "user input"),
+    )
+    p.done()
+    return ply
+
+
+def read_history(tbl: Table, name: str, base: Path):
+    """A force history: eq (15) ('skewed'), a CSV table ('table'), or the empirical model ('empirical')."""
+    from .models.empirical import PRESETS, PROJECTILES
+    from .models.pulses import SkewedPulse, TabulatedPulse
+
+    h = tbl.table(name)
+    shape = h.string("shape", "skewed", choices=("skewed", "table", "empirical"))
+    if shape == "skewed":
+        pulse = SkewedPulse(h.quantity("peak_force", "force"), h.quantity("time_of_peak", "time"), h.quantity("duration", "time"))
+    elif shape == "table":
+        from .io import read_columns
+
+        path = base / h.string("file")
+        names, data = read_columns(path)
+        if "time_s" not in names or "force_N" not in names:
+            raise InputError(f"{h.key('file')}: {path} needs columns time_s and force_N")
+        pulse = TabulatedPulse(data[:, names.index("time_s")], data[:, names.index("force_N")])
+    else:
+        proj = h.string("projectile", choices=tuple(PROJECTILES))
+        P = PROJECTILES[proj]
+        law = PRESETS[h.string("constants", P.law, choices=tuple(PRESETS))]
+        pulse = law.pulse(P.mass, P.diameter, h.quantity("velocity", "velocity"))
+    h.done()
+    return pulse
+
+
+def beam_problem(data: dict, base: Path = Path("."), history: int | None = None):
+    """A beam case (parsed TOML) as a BeamProblem; ``history`` picks a row of [[load.table]] (1-based)."""
+    from .models.laminate import Blend, Stack, parse_layup
+    from .models.pulses import SkewedPulse
+    from .workflows.beam_impact import BeamGauge, BeamLoad, BeamProblem, BeamSolver, BeamSpec
+
+    top = Table(data)
+    title = top.string("title", "")
+    system = top.string("units", "in-lbf-s", choices=tuple(units.DISPLAY_SYSTEMS))
+    b = top.table("beam")
+    elements = b.raw("elements", [200, 6])
+    if not (isinstance(elements, list) and len(elements) == 2 and all(isinstance(e, int) and not isinstance(e, bool) and e >= 1 for e in elements)):
+        raise InputError(f"beam.elements: expected [along the length, through the thickness], got {elements!r}")
+    lam = b.table("laminate", optional=True)
+    mat = b.table("material", optional=True)
+    if (lam is None) == (mat is None):
+        raise InputError("beam: give exactly one of [beam.laminate] and [beam.material]")
+    stack = material = None
+    thickness = 0.0
+    model = "smeared"
+    if lam is not None:
+        ply = read_ply(lam)
+        model = lam.string("model", "smeared", choices=("smeared", "layered"))
+        if "fractions" in lam:
+            fr = lam.raw("fractions")
+            if not isinstance(fr, dict) or not fr:
+                raise InputError(f"beam.laminate.fractions: expected a table of angle = fraction, got {fr!r}")
+            try:
+                pairs = tuple((float(k), float(v)) for k, v in fr.items())
+            except ValueError:
+                raise InputError(f"beam.laminate.fractions: angles and fractions must be numbers, got {fr!r}") from None
+            stack = Blend(ply, pairs, lam.quantity("thickness", "length"))
+        else:
+            stack = Stack(ply, parse_layup(lam.string("layup")))
+        lam.done()
+    else:
+        if "material" in mat:
+            material = read_material(mat)
+        else:
+            material = Material(mat.string("name", "inline material"), mat.quantity("youngs_modulus", "stress"), mat.number("poisson_ratio"), mat.quantity("density", "density"))
+        thickness = mat.quantity("thickness", "length")
+        mat.done()
+    damping = (0.0, 0.0)
+    d = b.table("damping", optional=True)
+    if d is not None:
+        ratio = d.number("ratio")
+        freqs = d.raw("frequencies")
+        if not (isinstance(freqs, list) and len(freqs) == 2):
+            raise InputError(f"beam.damping.frequencies: expected two frequencies, got {freqs!r}")
+        w1, w2 = (2 * 3.141592653589793 * units.parse(f, "frequency", "beam.damping.frequencies") for f in freqs)
+        # ζ(ω) = α/(2ω) + βω/2 equal to the ratio at both frequencies.
+        damping = (2 * ratio * w1 * w2 / (w1 + w2), 2 * ratio / (w1 + w2))
+        d.done()
+    spec = BeamSpec(
+        b.quantity("length", "length"), b.quantity("width", "length"), elements[0], elements[1],
+        b.string("support", "clamped-free", choices=("clamped-free", "clamped-clamped", "simply-supported")),
+        stack, model, material, thickness, b.string("plane", "strain", choices=("strain", "stress")),
+        b.string("mass", "consistent", choices=("consistent", "lumped")) == "lumped", damping,
+    )
+    b.done()
+    ld = top.table("load")
+    position = ld.quantity("position", "length")
+    radius = ld.quantity("contact_radius", "length")
+    pulse = read_history(ld, "history", base)
+    rows = ld.tables("table", optional=True)
+    if history is not None:
+        if not 1 <= history <= len(rows):
+            raise InputError(f"--history: {history} is not a row of [[load.table]] (1 to {len(rows)})")
+        row = rows[history - 1]
+        pulse = SkewedPulse(row.quantity("peak_force", "force"), row.quantity("time_of_peak", "time"), row.quantity("duration", "time"))
+        radius = row.quantity("contact_radius", "length", default=radius)
+        row.quantity("velocity", "velocity", default=None)
+        row.done()
+    else:
+        for row in rows:
+            row._used.update(row.data)
+    ld.done()
+    solver_tbl = top.table("solver")
+    solver = BeamSolver(solver_tbl.quantity("time_step", "time"), solver_tbl.quantity("duration", "time"))
+    solver_tbl.done()
+    gauges = []
+    for g in top.tables("gauges", optional=True):
+        gauges.append(BeamGauge(g.string("name"), g.quantity("position", "length", positive=False), g.string("surface", "bottom", choices=("top", "bottom")), g.quantity("length", "length", default=0.031 * 0.0254)))
+        g.done()
+    if len({g.name for g in gauges}) != len(gauges):
+        raise InputError("gauges: names must be unique")
+    top.done()
+    return BeamProblem(spec, BeamLoad(position, radius, pulse), solver, tuple(gauges), title, system)
+
+
+def load_beam_case(case: str, history: int | None = None):
+    path = locate(case)
+    return beam_problem(load_toml(path), path.parent, history), path
+
+
+def table_rows(case: str) -> list[dict]:
+    """The [[load.table]] rows of a beam case, in SI: velocity, F0, tF0, T, r0."""
+    path = locate(case)
+    out = []
+    for i, row in enumerate(Table(load_toml(path)).table("load").tables("table", optional=True)):
+        out.append({
+            "velocity": row.quantity("velocity", "velocity"), "peak_force": row.quantity("peak_force", "force"),
+            "time_of_peak": row.quantity("time_of_peak", "time"), "duration": row.quantity("duration", "time"),
+            "contact_radius": row.quantity("contact_radius", "length"),
+        })
+    return out

@@ -12,6 +12,7 @@ import sys
 import time
 
 import click
+import numpy as np
 
 from . import __version__
 from .errors import InputError
@@ -91,6 +92,37 @@ def bar_cmd(case, out, figures):
 
 def _series_progress(series, label):
     return click.progressbar(length=len(series.tests), label=label, file=sys.stderr)
+
+
+@main.command("beam")
+@click.argument("case")
+@click.option("--history", type=int, default=None, help="Row N of the case's [[load.table]] (Tables II/III for the built-ins).")
+@_out_option("beam")
+@_figures_option
+@_guarded
+def beam_cmd(case, history, out, figures):
+    """Transverse impact of a laminated beam (CASE: file or built-in name)."""
+    from .cases import load_beam_case
+    from .io import write_outputs
+    from .report import beam_files
+    from .workflows.beam_impact import BeamModel
+
+    problem, path = load_beam_case(case, history)
+    t0 = time.perf_counter()
+    model = BeamModel(problem)
+    with click.progressbar(length=problem.solver.steps, label="stepping", file=sys.stderr) as bar:
+        last = [0]
+
+        def progress(k):
+            bar.update(k - last[0])
+            last[0] = k
+
+        result = model.direct(progress=progress)
+        bar.update(problem.solver.steps - last[0])
+    files = beam_files(model, result, figures)
+    write_outputs(out, files, inputs=[path])
+    peaks = ", ".join(f"{g.name} {eps[np.argmax(np.abs(eps))] * 1e6:.0f} µε" for g, eps in zip(problem.gauges, result.strain))
+    click.echo(f"{model.plane.n} DOF, {problem.solver.steps} steps ({time.perf_counter() - t0:.1f} s); peak strains {peaks}; files in {out}")
 
 
 @main.command("reduce")

@@ -212,3 +212,93 @@ def predicted_forces(histories, system: str, title: str):
     ax.set_title(title)
     ax.legend(fontsize="small")
     return fig
+
+
+def beam_gauge_strains(result, system: str, measured=None, title: str = ""):
+    """Figs 21–22: strain at each gauge (and, if given, the measured strains as dashed lines)."""
+    import matplotlib.pyplot as plt
+
+    tu, su = display(system, "time"), display(system, "strain")
+    gauges = result.problem.gauges
+    fig, axes = plt.subplots(len(gauges), 1, figsize=(6.6, 2.6 * len(gauges) + 0.6), sharex=True, layout="constrained", squeeze=False)
+    for ax, g, eps in zip(axes[:, 0], gauges, result.strain):
+        ax.grid(True, alpha=0.3)
+        ax.plot(result.time * tu.factor, eps * su.factor, label="computed")
+        if measured is not None and g.name in measured:
+            t, y = measured[g.name]
+            ax.plot(t * tu.factor, y * su.factor, "--", color="k", lw=0.8, label="measured")
+        ax.axhline(0, color="k", lw=0.5)
+        ax.set_ylabel(f"strain [{su.label}]")
+        ax.set_title(f"gauge {g.name}: x = {g.position / 0.0254:.3g} in, {g.surface} face", fontsize="medium")
+        ax.legend(fontsize="small")
+    axes[-1, 0].set_xlabel(f"time since first contact [{tu.label}]")
+    fig.suptitle(title or "Strain histories at the gauges (paper Figs 21, 22)")
+    return fig
+
+
+def beam_load_distribution(model, result, system: str, instants):
+    """Fig 20: nodal forces of the contact patch at a few instants."""
+    lu, fu, tu = display(system, "length"), display(system, "force"), display(system, "time")
+    fig, ax = _figure()
+    loads = model.nodal_loads(result.force)
+    x = (model.patch.x - model.patch.center) * lu.factor
+    dt = result.time[1] - result.time[0]
+    for t in instants:
+        k = int(round(t / dt))
+        r = model.patch.half_width(result.force)[k]
+        ax.plot(x, loads[:, k] * fu.factor, "o-", ms=3, label=f"t = {result.time[k] * tu.factor:.0f} {tu.label}: F = {result.force[k] * fu.factor:.3g} {fu.label}, r = {r * lu.factor:.3g} {lu.label}")
+    ax.set_xlabel(f"distance from the impact point [{lu.label}]")
+    ax.set_ylabel(f"nodal force [{fu.label}]")
+    ax.set_title("Nodal force distribution of the contact patch (paper Fig 20)")
+    ax.legend(fontsize="x-small")
+    return fig
+
+
+def beam_mesh(model, system: str, span: float):
+    """Fig 18: a segment of the mesh around the impact point, with gauges and the patch."""
+    import matplotlib.pyplot as plt
+    from matplotlib.collections import LineCollection
+
+    lu = display(system, "length")
+    pm = model.plane
+    p, t = pm.basis.mesh.p * lu.factor, pm.basis.mesh.t
+    xc = model.problem.load.position * lu.factor
+    fig, ax = plt.subplots(figsize=(8, 2.4), layout="constrained")
+    segs = [p[:, [t[i, e], t[(i + 1) % 4, e]]].T for e in range(t.shape[1]) for i in range(4)]
+    ax.add_collection(LineCollection(segs, colors="0.4", linewidths=0.4))
+    r0 = model.problem.load.contact_radius * lu.factor
+    top = pm.beam.thickness * lu.factor
+    ax.plot([xc - r0, xc + r0], [top * 1.04] * 2, color="C3", lw=3, label="contact patch (r0)")
+    for g in model.problem.gauges:
+        z = 0 if g.surface == "bottom" else top
+        ax.plot([g.position * lu.factor], [z], "s", color="C2")
+        ax.annotate(g.name, (g.position * lu.factor, z), xytext=(0, -12 if z == 0 else 6), textcoords="offset points", ha="center", fontsize="small")
+    ax.set_xlim(xc - span * lu.factor, xc + span * lu.factor)
+    ax.set_ylim(-0.3 * top, 1.3 * top)
+    ax.set_aspect("equal")
+    ax.set_xlabel(f"x [{lu.label}]")
+    ax.set_ylabel(f"z [{lu.label}]")
+    ax.set_title(f"Mesh near the impact point ({pm.beam.nx} × {pm.beam.nz} elements, {pm.n} DOF) (paper Fig 18)")
+    ax.legend(fontsize="small", loc="upper right")
+    return fig
+
+
+def beam_deformed(model, result, system: str, instants):
+    """The beam's mid-plane deflection at a few instants."""
+    lu, tu = display(system, "length"), display(system, "time")
+    fig, ax = _figure(7.0, 3.6)
+    pm = model.plane
+    nodes = pm.top_nodes
+    x = pm.node_x[nodes]
+    full = pm.expand(result.displacement)
+    dofs = pm.basis.nodal_dofs[1, nodes]
+    dt = result.time[1] - result.time[0]
+    for t in instants:
+        k = int(round(t / dt))
+        ax.plot(x * lu.factor, full[dofs, k] * lu.factor, label=f"t = {result.time[k] * tu.factor:.0f} {tu.label}")
+    ax.axvline(model.problem.load.position * lu.factor, color="k", lw=0.6, ls=":")
+    ax.set_xlabel(f"x, from the clamp [{lu.label}]")
+    ax.set_ylabel(f"deflection of the top face [{lu.label}] (up +)")
+    ax.set_title("Flexural waves spreading from the impact")
+    ax.legend(fontsize="small")
+    return fig

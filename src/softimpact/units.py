@@ -28,6 +28,7 @@ DIMENSIONS = {
     "force": "[length] * [mass] / [time] ** 2",
     "impulse": "[length] * [mass] / [time]",
     "voltage": "[mass] * [length] ** 2 / [time] ** 3 / [current]",
+    "frequency": "1 / [time]",
     "dimensionless": "dimensionless",
 }
 
@@ -76,6 +77,7 @@ _SI = {
     "force": "N",
     "impulse": "N*s",
     "voltage": "V",
+    "frequency": "Hz",
     "dimensionless": "dimensionless",
 }
 
@@ -89,6 +91,7 @@ _EXAMPLE = {
     "force": "44 lbf",
     "impulse": "0.01 N*s",
     "voltage": "5 V",
+    "frequency": "1 kHz",
     "dimensionless": "0.3",
 }
 

@@ -20,11 +20,49 @@ import scipy.sparse.linalg
 
 from ..errors import InputError
 
-__all__ = ["NewmarkParameters", "NewmarkStepper"]
+__all__ = ["NewmarkParameters", "NewmarkStepper", "BandedCholesky"]
 
 # Systems up to this many DOFs are factored densely: a dense triangular solve
 # beats the sparse machinery's per-call overhead at this size.
 DENSE_LIMIT = 400
+
+
+class BandedCholesky:
+    """Cholesky factor of a sparse SPD matrix in LAPACK band storage.
+
+    The DOFs are renumbered by reverse Cuthill–McKee when that narrows the band
+    (structured meshes are often narrowest as numbered). For the beam meshes here
+    a banded solve is about twice as fast as a general sparse LU solve.
+    """
+
+    def __init__(self, A):
+        from scipy.sparse.csgraph import reverse_cuthill_mckee
+
+        A = scipy.sparse.csr_matrix(A)
+        n = A.shape[0]
+        natural = np.arange(n)
+        rcm = reverse_cuthill_mckee(A, symmetric_mode=True)
+        self.perm = min((natural, rcm), key=lambda p: self._bandwidth(A[p][:, p]))
+        self.identity = self.perm is natural
+        Ap = A[self.perm][:, self.perm].tocsr()
+        bw = self._bandwidth(Ap)
+        ab = np.zeros((bw + 1, n))
+        for d in range(bw + 1):
+            ab[bw - d, d:] = Ap.diagonal(d)
+        self.factor = scipy.linalg.cholesky_banded(ab, lower=False)
+        self.inverse_perm = np.argsort(self.perm)
+        self.bandwidth = bw
+
+    @staticmethod
+    def _bandwidth(A) -> int:
+        coo = scipy.sparse.coo_matrix(A)
+        return int(np.max(np.abs(coo.row - coo.col))) if coo.nnz else 0
+
+    def solve(self, rhs: np.ndarray) -> np.ndarray:
+        if self.identity:
+            return scipy.linalg.cho_solve_banded((self.factor, False), rhs, check_finite=False)
+        x = scipy.linalg.cho_solve_banded((self.factor, False), rhs[self.perm], check_finite=False)
+        return x[self.inverse_perm]
 
 
 @dataclass(frozen=True)
@@ -77,7 +115,7 @@ class NewmarkStepper:
         if self.dense:
             self._factor = scipy.linalg.cho_factor(K_eff)
         else:
-            self._factor = scipy.sparse.linalg.splu(scipy.sparse.csc_matrix(K_eff))
+            self._factor = BandedCholesky(K_eff)
         self.nsolve = 0
         self._H = None
 
@@ -140,9 +178,11 @@ class NewmarkStepper:
     def initial_acceleration(self, u, v, f):
         """a0 = M⁻¹(f − K u − C v), for a consistent start."""
         r = f - self.K @ u - (0.0 if self.C is None else self.C @ v)
+        if not np.any(r):
+            return np.zeros_like(r)
         if self.dense:
             return np.linalg.solve(self.M, r)
-        return scipy.sparse.linalg.spsolve(self.M, r)
+        return BandedCholesky(self.M).solve(r)
 
     def run(self, load: np.ndarray, u0=None, v0=None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """March a prescribed load history ``load`` of shape (n, n_steps + 1).
@@ -150,15 +190,16 @@ class NewmarkStepper:
         Returns u, v, a of shape (n, n_steps + 1); column k is time k·dt.
         """
         n, steps = load.shape[0], load.shape[1] - 1
-        u = np.zeros((n, steps + 1))
+        f = np.ascontiguousarray(load.T)  # time-major: each step reads and writes contiguous rows
+        u = np.zeros((steps + 1, n))
         v = np.zeros_like(u)
         acc = np.zeros_like(u)
         if u0 is not None:
-            u[:, 0] = u0
+            u[0] = u0
         if v0 is not None:
-            v[:, 0] = v0
-        acc[:, 0] = self.initial_acceleration(u[:, 0], v[:, 0], load[:, 0])
+            v[0] = v0
+        acc[0] = self.initial_acceleration(u[0], v[0], f[0])
         for k in range(steps):
-            u[:, k + 1] = self.solve(load[:, k + 1] + self.predictor(u[:, k], v[:, k], acc[:, k]))
-            v[:, k + 1], acc[:, k + 1] = self.correct(u[:, k + 1], u[:, k], v[:, k], acc[:, k])
-        return u, v, acc
+            u[k + 1] = self.solve(f[k + 1] + self.predictor(u[k], v[k], acc[k]))
+            v[k + 1], acc[k + 1] = self.correct(u[k + 1], u[k], v[k], acc[k])
+        return u.T, v.T, acc.T

@@ -44,6 +44,26 @@ class ImpulseResponse:
         self.kernel, self.velocity_kernel = self._run(first_step=1)
         self._start = None
 
+    @classmethod
+    def reciprocal(cls, stepper: NewmarkStepper, patterns, steps: int, outputs) -> "ImpulseResponse":
+        """The same kernel, computed with loads and outputs swapped (Maxwell–Betti).
+
+        For symmetric M, C, K the Newmark response matrix after k steps is
+        symmetric (it is Φ·diag(r_k(ω))·Φᵀ in the M-orthonormal modes), so the
+        response of outputs O to loads on patterns B equals, transposed, the
+        response at Bᵀ to loads shaped like the output rows Oᵀ. With few outputs
+        (gauges) and many loaded DOFs (a contact patch) this needs q, not p,
+        right-hand sides per step.
+        """
+        O = outputs.toarray() if scipy.sparse.issparse(outputs) else np.asarray(outputs, float)
+        B = patterns.toarray() if scipy.sparse.issparse(patterns) else np.asarray(patterns, float)
+        swapped = cls(stepper, O.T, steps, outputs=B.T)
+        swapped.kernel = np.ascontiguousarray(np.swapaxes(swapped.kernel, 0, 1))
+        swapped.B, swapped.O = B, O
+        swapped._start = None
+        swapped._reciprocal = True
+        return swapped
+
     def _observe(self, O, x):
         return x if O is None else O @ x
 
@@ -87,6 +107,8 @@ class ImpulseResponse:
         return h, hv
 
     def _start_kernels(self):
+        if getattr(self, "_reciprocal", False):
+            raise ValueError("a reciprocal engine needs loads that start from zero (F(0) = 0)")
         if self._start is None:
             self._start = self._run(first_step=0)
         return self._start

@@ -1,0 +1,286 @@
+"""Laminates: plies, layups, 3-D homogenisation and classical lamination theory.
+
+Axes: 1 along the beam (the 0° fibre direction), 2 across the width, 3 through
+the thickness. Voigt order (11, 22, 33, 23, 13, 12) with engineering shear
+strains. Stiffnesses in Pa, thicknesses in m.
+
+The effective stiffness of a stack (Chou, Carleone & Hsu 1972; Sun & Li 1988;
+the paper's ref 11) assumes the in-plane strains (ε11, ε22, γ12) uniform and
+the through-thickness stresses (σ33, τ23, τ13) uniform across the plies.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import InputError
+
+__all__ = ["Blend", "Ply", "PLIES", "parse_layup", "ply_stiffness", "rotate", "homogenise", "engineering_constants", "plane_matrix", "abd", "Stack"]
+
+INPLANE = [0, 1, 5]  # 11, 22, 12
+OUTPLANE = [2, 3, 4]  # 33, 23, 13
+
+
+@dataclass(frozen=True)
+class Ply:
+    """A transversely isotropic or orthotropic ply in its material axes."""
+
+    name: str
+    E1: float
+    E2: float
+    E3: float
+    G12: float
+    G13: float
+    G23: float
+    nu12: float
+    nu13: float
+    nu23: float
+    density: float
+    thickness: float
+    source: str = "user input"
+
+    def __post_init__(self):
+        for k in ("E1", "E2", "E3", "G12", "G13", "G23", "density", "thickness"):
+            v = getattr(self, k)
+            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+                raise InputError(f"ply {self.name}: {k} must be positive, got {v!r}")
+        try:
+            np.linalg.cholesky(ply_stiffness(self))
+        except np.linalg.LinAlgError:
+            raise InputError(f"ply {self.name}: Poisson ratios {self.nu12}, {self.nu13}, {self.nu23} give a stiffness that is not positive definite") from None
+
+
+def ply_stiffness(p: Ply) -> np.ndarray:
+    """6×6 stiffness of the ply in material axes (inverse of its compliance)."""
+    S = np.zeros((6, 6))
+    S[0, 0], S[1, 1], S[2, 2] = 1 / p.E1, 1 / p.E2, 1 / p.E3
+    S[0, 1] = S[1, 0] = -p.nu12 / p.E1
+    S[0, 2] = S[2, 0] = -p.nu13 / p.E1
+    S[1, 2] = S[2, 1] = -p.nu23 / p.E2
+    S[3, 3], S[4, 4], S[5, 5] = 1 / p.G23, 1 / p.G13, 1 / p.G12
+    return np.linalg.inv(S)
+
+
+_IN = 0.0254
+PLIES = {
+    "T300/934": Ply(
+        "T300/934", 120e9, 7.9e9, 7.9e9, 5.5e9, 5.5e9, 7.9e9 / (2 * 1.40), 0.30, 0.30, 0.40, 1580.0, 0.0055 * _IN,
+        "representative literature values (NOTES.md); the paper's ref 12 is not available",
+    )
+}
+
+
+def rotate(C: np.ndarray, angle_deg: float) -> np.ndarray:
+    """Stiffness of a ply turned by θ about axis 3 (fibres at θ from axis 1)."""
+    t = math.radians(angle_deg)
+    c, s = math.cos(t), math.sin(t)
+    # Stress transformation (Voigt, engineering strains): σ' = T σ, with C' = T⁻¹ C T⁻ᵀ.
+    T = np.array(
+        [
+            [c * c, s * s, 0, 0, 0, 2 * c * s],
+            [s * s, c * c, 0, 0, 0, -2 * c * s],
+            [0, 0, 1, 0, 0, 0],
+            [0, 0, 0, c, -s, 0],
+            [0, 0, 0, s, c, 0],
+            [-c * s, c * s, 0, 0, 0, c * c - s * s],
+        ]
+    )
+    Ti = np.linalg.inv(T)
+    return Ti @ C @ Ti.T
+
+
+_LAYUP = re.compile(r"^\[(?P<body>[^\]]+)\](?P<count>\d*)(?P<sym>s?)$")
+_ITEM = re.compile(r"^(?P<sign>±|\+-|∓|-\+)?(?P<angle>[+-]?\d+(\.\d+)?)(_(?P<n>\d+))?$")
+
+
+def parse_layup(text: str) -> tuple[float, ...]:
+    """Ply angles, top ply first: "[90/0]5s", "[0/±45/90]2s", "[0_2/90]s", "[0/90]".
+
+    ``±45`` is +45 then −45; ``_n`` repeats a ply; a count repeats the group; ``s``
+    appends the mirror image.
+    """
+    compact = str(text).replace(" ", "")
+    m = _LAYUP.match(compact)
+    if not m:
+        raise InputError(f"layup: cannot read {text!r} (expected e.g. \"[90/0]5s\", \"[0/±45/90]2s\", \"[0_2/90]s\")")
+    group = []
+    for item in m["body"].split("/"):
+        im = _ITEM.match(item)
+        if not im:
+            raise InputError(f"layup: cannot read the ply {item!r} in {text!r}")
+        angle = float(im["angle"])
+        n = int(im["n"] or 1)
+        if n < 1:
+            raise InputError(f"layup: repeat count must be >= 1 in {item!r}")
+        sign = im["sign"]
+        plies = [angle, -angle] if sign in ("±", "+-") else [-angle, angle] if sign in ("∓", "-+") else [angle]
+        group += plies * n
+    count = int(m["count"] or 1)
+    if count < 1:
+        raise InputError(f"layup: group count must be >= 1 in {text!r}")
+    angles = group * count
+    if m["sym"]:
+        angles = angles + angles[::-1]
+    return tuple(angles)
+
+
+def homogenise(Cs, fractions) -> np.ndarray:
+    """Effective 6×6 stiffness of plies with stiffnesses ``Cs`` and thickness ``fractions``.
+
+    Uniform in-plane strain and uniform out-of-plane stress (module docstring):
+    with i the in-plane and o the out-of-plane components and ⟨·⟩ the
+    thickness average,
+        C*_oo = ⟨C_oo⁻¹⟩⁻¹,  C*_oi = C*_oo ⟨C_oo⁻¹ C_oi⟩,
+        C*_ii = ⟨C_ii − C_io C_oo⁻¹ C_oi⟩ + ⟨C_io C_oo⁻¹⟩ C*_oo ⟨C_oo⁻¹ C_oi⟩.
+    """
+    f = np.asarray(fractions, float)
+    if np.any(f < 0) or not math.isclose(f.sum(), 1.0, rel_tol=1e-9):
+        raise InputError(f"laminate: ply fractions must be non-negative and add up to 1, got sum {f.sum()!r}")
+    i, o = INPLANE, OUTPLANE
+    inv_oo = np.zeros((3, 3))
+    inv_oo_oi = np.zeros((3, 3))
+    io_inv_oo = np.zeros((3, 3))
+    schur = np.zeros((3, 3))
+    for C, w in zip(Cs, f):
+        Coo_inv = np.linalg.inv(C[np.ix_(o, o)])
+        Coi, Cio, Cii = C[np.ix_(o, i)], C[np.ix_(i, o)], C[np.ix_(i, i)]
+        inv_oo += w * Coo_inv
+        inv_oo_oi += w * Coo_inv @ Coi
+        io_inv_oo += w * Cio @ Coo_inv
+        schur += w * (Cii - Cio @ Coo_inv @ Coi)
+    Coo = np.linalg.inv(inv_oo)
+    Coi = Coo @ inv_oo_oi
+    Cii = schur + io_inv_oo @ Coo @ inv_oo_oi
+    out = np.zeros((6, 6))
+    out[np.ix_(i, i)] = Cii
+    out[np.ix_(o, o)] = Coo
+    out[np.ix_(o, i)] = Coi
+    out[np.ix_(i, o)] = Coi.T
+    return 0.5 * (out + out.T)
+
+
+def engineering_constants(C: np.ndarray) -> dict[str, float]:
+    """E1, E2, E3 [Pa], G23, G13, G12 [Pa], ν12, ν13, ν23 from a 6×6 stiffness."""
+    S = np.linalg.inv(C)
+    return {
+        "E1": 1 / S[0, 0], "E2": 1 / S[1, 1], "E3": 1 / S[2, 2],
+        "G23": 1 / S[3, 3], "G13": 1 / S[4, 4], "G12": 1 / S[5, 5],
+        "nu12": -S[0, 1] / S[0, 0], "nu13": -S[0, 2] / S[0, 0], "nu23": -S[1, 2] / S[1, 1],
+    }
+
+
+def plane_matrix(C: np.ndarray, plane: str = "strain") -> np.ndarray:
+    """3×3 matrix of the axis–thickness plane, (σ11, σ33, τ13) = D·(ε11, ε33, γ13).
+
+    ``strain``: plane strain across the width (ε22 = γ12 = γ23 = 0), the paper's
+    elements; ``stress``: plane stress (σ22 = τ12 = τ23 = 0), for a narrow beam.
+    """
+    keep = [0, 2, 4]
+    if plane == "strain":
+        return C[np.ix_(keep, keep)].copy()
+    if plane == "stress":
+        return np.linalg.inv(np.linalg.inv(C)[np.ix_(keep, keep)])
+    raise InputError(f"beam.plane: {plane!r} is not 'strain' or 'stress'")
+
+
+def reduced_stiffness(C: np.ndarray) -> np.ndarray:
+    """Plane-stress reduced stiffness Q (11, 22, 12) of a ply: σ33 = τ23 = τ13 = 0."""
+    return np.linalg.inv(np.linalg.inv(C)[np.ix_(INPLANE, INPLANE)])
+
+
+def abd(Cs, thicknesses) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Classical lamination theory: A, B, D (3×3 each, per unit width), plies top first.
+
+    z is measured up from the mid-plane; the top ply lies at z = +h/2.
+    """
+    t = np.asarray(thicknesses, float)
+    h = t.sum()
+    tops = h / 2 - np.concatenate(([0.0], np.cumsum(t)[:-1]))
+    bottoms = tops - t
+    A, B, D = np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3))
+    for C, zt, zb in zip(Cs, tops, bottoms):
+        Q = reduced_stiffness(C)
+        A += Q * (zt - zb)
+        B += Q * (zt**2 - zb**2) / 2
+        D += Q * (zt**3 - zb**3) / 3
+    return A, B, D
+
+
+@dataclass(frozen=True)
+class Stack:
+    """A laminate: its ply material and angles (top ply first)."""
+
+    ply: Ply
+    angles: tuple[float, ...]
+
+    @property
+    def thickness(self) -> float:
+        return self.ply.thickness * len(self.angles)
+
+    def ply_stiffnesses(self) -> list[np.ndarray]:
+        C = ply_stiffness(self.ply)
+        return [rotate(C, a) for a in self.angles]
+
+    def effective(self) -> np.ndarray:
+        """Smeared 6×6 stiffness of the whole stack."""
+        n = len(self.angles)
+        return homogenise(self.ply_stiffnesses(), np.full(n, 1.0 / n))
+
+    def layer_stiffness(self, z_lo: float, z_hi: float) -> np.ndarray:
+        """Smeared stiffness of the part of the stack between heights z_lo < z_hi,
+        measured up from the bottom face (for the layered model)."""
+        n, tp = len(self.angles), self.ply.thickness
+        Cs, w = [], []
+        for k, C in enumerate(self.ply_stiffnesses()):
+            top = self.thickness - k * tp
+            overlap = min(top, z_hi) - max(top - tp, z_lo)
+            if overlap > 1e-15 * tp:
+                Cs.append(C)
+                w.append(overlap)
+        w = np.asarray(w)
+        return homogenise(Cs, w / w.sum())
+
+    def bending_stiffness(self, plane: str = "strain") -> dict[str, float]:
+        """Bending stiffness per unit width [N·m]: the smeared model's E·h³/12 against CLT's D11."""
+        D_sm = plane_matrix(self.effective(), plane)
+        E_beam = 1.0 / np.linalg.inv(D_sm)[0, 0]  # σ33 = τ13 = 0 in the beam
+        h = self.thickness
+        _, _, D = abd(self.ply_stiffnesses(), [self.ply.thickness] * len(self.angles))
+        d11 = 1.0 / np.linalg.inv(D)[0, 0] if plane == "stress" else D[0, 0]
+        return {"smeared_EI_per_width": E_beam * h**3 / 12, "clt_D11": float(D[0, 0]), "clt_1_over_d11": float(1 / np.linalg.inv(D)[0, 0]), "clt_beam": float(d11)}
+
+
+@dataclass(frozen=True)
+class Blend:
+    """A laminate known only by the thickness fractions of its ply angles (no stacking
+    order): enough for the smeared stiffness, not for the layered model or CLT bending."""
+
+    ply: Ply
+    fractions: tuple[tuple[float, float], ...]  # (angle, fraction)
+    total_thickness: float
+
+    def __post_init__(self):
+        f = np.array([w for _, w in self.fractions])
+        if np.any(f < 0) or not math.isclose(f.sum(), 1.0, rel_tol=1e-6):
+            raise InputError(f"beam.laminate.fractions: fractions must be non-negative and add up to 1, got {f.sum():.6g}")
+        if not self.total_thickness > 0:
+            raise InputError(f"beam.laminate.thickness must be positive, got {self.total_thickness!r}")
+
+    @property
+    def thickness(self) -> float:
+        return self.total_thickness
+
+    def effective(self) -> np.ndarray:
+        C = ply_stiffness(self.ply)
+        return homogenise([rotate(C, a) for a, _ in self.fractions], [w for _, w in self.fractions])
+
+    def layer_stiffness(self, z_lo, z_hi):
+        raise InputError("beam.laminate.model: 'layered' needs a layup (stacking order), not fractions")
+
+    def bending_stiffness(self, plane: str = "strain") -> dict[str, float]:
+        E_beam = 1.0 / np.linalg.inv(plane_matrix(self.effective(), plane))[0, 0]
+        return {"smeared_EI_per_width": E_beam * self.thickness**3 / 12}
