@@ -20,7 +20,7 @@ from .models.materials import Material, lookup, sphere_mass
 from .workflows.bar_impact import BarImpactProblem, BarSpec, EndCap, Gauge, Projectile, SolverSpec
 from .workflows.reduction import Bridge
 
-__all__ = ["load_beam_case", "beam_problem", "Series", "SeriesTest", "load_series", "Table", "builtin_cases", "locate", "load_toml", "read_material", "read_bar", "bar_problem", "load_bar_case"]
+__all__ = ["CalibrationSeries", "CalibrationTest", "load_calibration_series", "is_calibration_series", "load_beam_case", "beam_problem", "Series", "SeriesTest", "load_series", "Table", "builtin_cases", "locate", "load_toml", "read_material", "read_bar", "bar_problem", "load_bar_case"]
 
 _MISSING = object()
 
@@ -435,3 +435,68 @@ def table_rows(case: str) -> list[dict]:
             "contact_radius": row.quantity("contact_radius", "length"),
         })
     return out
+
+
+@dataclass(frozen=True)
+class CalibrationTest:
+    """One test of a calibration series: measured file, velocity [m/s], r0 [m] (None: the case's)."""
+
+    name: str
+    measured: Path
+    velocity: float
+    contact_radius: float | None
+    contact_time: float | None = None
+
+
+@dataclass(frozen=True)
+class CalibrationSeries:
+    title: str
+    case: str  # path or built-in name of the beam case
+    projectile: str
+    constants: str | None
+    tests: tuple[CalibrationTest, ...]
+    path: Path
+    synthetic: str = ""
+    reference: tuple = ()  # the paper's rows (Tables II/III): (V, F0, tF0, T, r0) in SI, if given
+
+
+def is_calibration_series(arg: str) -> bool:
+    try:
+        data = load_toml(locate(arg))
+    except InputError:
+        return False
+    return "case" in data and "test" in data
+
+
+def load_calibration_series(arg: str) -> CalibrationSeries:
+    """Read a calibration series: a beam case and its measured tests (paths relative to the file)."""
+    from .models.empirical import PRESETS, PROJECTILES
+
+    path = locate(arg)
+    top = Table(load_toml(path))
+    title = top.string("title", path.stem)
+    case = top.string("case")
+    case_path = path.parent / case
+    case_ref = str(case_path) if case_path.is_file() else case
+    locate(case_ref)
+    projectile = top.string("projectile", "rubber-1/2in", choices=tuple(PROJECTILES))
+    constants = top.raw("constants", None)
+    if constants is not None and constants not in PRESETS and not (path.parent / str(constants)).is_file():
+        raise InputError(f"constants: {constants!r} is neither a preset ({', '.join(PRESETS)}) nor a file")
+    synthetic = top.string("synthetic", "")
+    tests, reference = [], []
+    for t in top.tables("test"):
+        measured = t.string("measured")
+        tests.append(CalibrationTest(
+            t.string("name", Path(measured).stem), path.parent / measured, t.quantity("velocity", "velocity"),
+            t.quantity("contact_radius", "length", default=None), t.quantity("contact_time", "time", default=None, positive=False),
+        ))
+        ref = t.table("reference", optional=True)
+        if ref is not None:
+            reference.append((tests[-1].velocity, ref.quantity("peak_force", "force"), ref.quantity("time_of_peak", "time"), ref.quantity("duration", "time"), ref.quantity("contact_radius", "length")))
+            ref.done()
+        t.done()
+    top.done()
+    if not tests:
+        raise InputError(f"{path}: no [[test]] entries")
+    return CalibrationSeries(title, case_ref, projectile, constants if constants is None or constants in PRESETS else str(path.parent / constants), tuple(tests), path, synthetic, tuple(reference))

@@ -208,6 +208,72 @@ def predict_cmd(projectile, mass, diameter, velocity, model, constants, group, t
     click.echo(note + f"; files in {out}")
 
 
+@main.command("calibrate")
+@click.argument("case")
+@click.option("--measured", type=click.Path(dir_okay=False), help="CSV of measured strains: time_s and strain_<gauge> columns.")
+@click.option("--velocity", help='Impact velocity, e.g. "1166 in/s" (sets the bar-model start).')
+@click.option("--method", type=click.Choice(["least-squares", "paper", "deconvolve"]), default="least-squares", show_default=True)
+@click.option("--contact-radius", help='r0 from the imprint, e.g. "0.25 in" (default: the case\'s).')
+@click.option("--contact-time", help="First contact on the record's clock, e.g. \"100 us\" (default: estimated).")
+@click.option("--fit-radius/--no-fit-radius", default=False, show_default=True, help="Least squares: fit r0 too.")
+@click.option("--projectile", default="rubber-1/2in", show_default=True, help="Projectile of the bar-model start.")
+@click.option("--constants", help="Scaling constants of the start: a preset or a scaling.json (default: the projectile's).")
+@_out_option("calibrate")
+@_figures_option
+@_guarded
+def calibrate_cmd(case, measured, velocity, method, contact_radius, contact_time, fit_radius, projectile, constants, out, figures):
+    """Force history that makes computed gauge strains match measured ones.
+
+    CASE is a beam case (with --measured and --velocity) or a calibration series file.
+    """
+    from . import units
+    from .cases import CalibrationTest, is_calibration_series, load_beam_case, load_calibration_series
+    from .io import write_outputs
+    from .report import calibration_files, series_calibration_files
+    from .runs import calibrate_tests, calibration_model
+
+    t0 = time.perf_counter()
+    if is_calibration_series(case):
+        if measured or velocity:
+            raise InputError("--measured/--velocity: not used with a series file (its [[test]] entries give them)")
+        series = load_calibration_series(case)
+        problem, case_path = load_beam_case(series.case)
+        radii = [t.contact_radius or problem.load.contact_radius for t in series.tests]
+        model = calibration_model(problem, radii, fit_radius)
+        with click.progressbar(length=len(series.tests), label="calibrating", file=sys.stderr) as bar:
+            items = calibrate_tests(model, series.tests, series.projectile, series.constants, method, fit_radius, progress=lambda n: bar.update(1))
+        for i in items:
+            if i.calibration is None:
+                click.echo(f"softimpact: warning: {i.error}", err=True)
+        if all(i.calibration is None for i in items):
+            raise InputError("no test of the series could be calibrated")
+        files = series_calibration_files(model, series, items, figures)
+        write_outputs(out, files, inputs=[series.path, case_path] + [t.measured for t in series.tests])
+        click.echo(f"{sum(i.calibration is not None for i in items)} of {len(items)} tests calibrated ({time.perf_counter() - t0:.1f} s); calibration.json in {out}")
+        return
+    if not measured or not velocity:
+        raise InputError("--measured and --velocity are required with a beam case")
+    V = units.parse(velocity, "velocity", "--velocity")
+    r0 = units.parse(contact_radius, "length", "--contact-radius") if contact_radius else None
+    tc = units.parse(contact_time, "time", "--contact-time") if contact_time else None
+    problem, case_path = load_beam_case(case)
+    from pathlib import Path
+
+    test = CalibrationTest(Path(measured).stem, Path(measured), V, r0, tc)
+    model = calibration_model(problem, [r0 or problem.load.contact_radius], fit_radius)
+    items = calibrate_tests(model, [test], projectile, constants, method, fit_radius)
+    if items[0].calibration is None:
+        raise InputError(items[0].error)
+    files = calibration_files(model, items, figures, single=True)
+    write_outputs(out, files, inputs=[case_path, Path(measured)])
+    c = items[0].calibration
+    se = c.standard_errors.get("peak_force")
+    click.echo(
+        f"{c.method}: F0 {c.peak_force:.1f} N{f' ± {se:.2g}' if se else ''}, tF0 {c.time_of_peak * 1e6:.1f} us, T {c.duration * 1e6:.1f} us "
+        f"({c.message}); {time.perf_counter() - t0:.1f} s; files in {out}"
+    )
+
+
 @main.command("paper")
 @_out_option("paper")
 @_figures_option

@@ -22,7 +22,7 @@ import numpy as np
 from . import __version__
 from .errors import InputError
 
-__all__ = ["csv_text", "json_text", "write_outputs", "figure_bytes", "jsonable", "read_record", "read_columns"]
+__all__ = ["read_strains", "csv_text", "json_text", "write_outputs", "figure_bytes", "jsonable", "read_record", "read_columns"]
 
 # Record headers understood, and their factor to SI.
 TIME_COLUMNS = {"time_s": 1.0, "time_ms": 1e-3, "time_us": 1e-6}
@@ -172,3 +172,27 @@ def read_record(path) -> tuple[np.ndarray, np.ndarray, str]:
     kind, factor = SIGNAL_COLUMNS[scols[0]]
     t = data[:, names.index(tcols[0])] * TIME_COLUMNS[tcols[0]]
     return t, data[:, names.index(scols[0])] * factor, kind
+
+
+def read_strains(path) -> tuple[np.ndarray, dict]:
+    """Measured gauge strains: a time column (time_s, time_ms, time_us) and
+    ``strain_<gauge>`` (or ``microstrain_<gauge>``) columns. Returns (time [s], {gauge: strain})."""
+    names, data = read_columns(path)
+    tcols = [n for n in names if n in TIME_COLUMNS]
+    if len(tcols) != 1:
+        raise InputError(f"{path}: needs one time column ({', '.join(TIME_COLUMNS)}), header is {','.join(names)!r}")
+    strains = {}
+    for j, n in enumerate(names):
+        if n.startswith("strain_"):
+            strains[n[len("strain_"):]] = data[:, j]
+        elif n.startswith("microstrain_"):
+            strains[n[len("microstrain_"):]] = data[:, j] * 1e-6
+        elif n not in TIME_COLUMNS:
+            raise InputError(f"{path}: column {n!r} is neither time nor strain_<gauge>")
+    if not strains:
+        raise InputError(f"{path}: no strain_<gauge> columns")
+    t = data[:, names.index(tcols[0])] * TIME_COLUMNS[tcols[0]]
+    bad = ~np.isfinite(t) | np.any([~np.isfinite(v) for v in strains.values()], axis=0)
+    if bad.any():
+        raise InputError(f"{path}: {int(bad.sum())} NaN or empty values (first at row {int(np.argmax(bad)) + 2})")
+    return t, strains

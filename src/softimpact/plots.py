@@ -245,7 +245,7 @@ def beam_load_distribution(model, result, system: str, instants):
     dt = result.time[1] - result.time[0]
     for t in instants:
         k = int(round(t / dt))
-        r = model.patch.half_width(result.force)[k]
+        r = model.patch.half_width(result.force, model.problem.load.contact_radius)[k]
         ax.plot(x, loads[:, k] * fu.factor, "o-", ms=3, label=f"t = {result.time[k] * tu.factor:.0f} {tu.label}: F = {result.force[k] * fu.factor:.3g} {fu.label}, r = {r * lu.factor:.3g} {lu.label}")
     ax.set_xlabel(f"distance from the impact point [{lu.label}]")
     ax.set_ylabel(f"nodal force [{fu.label}]")
@@ -301,4 +301,78 @@ def beam_deformed(model, result, system: str, instants):
     ax.set_ylabel(f"deflection of the top face [{lu.label}] (up +)")
     ax.set_title("Flexural waves spreading from the impact")
     ax.legend(fontsize="small")
+    return fig
+
+
+def calibration_strains(cal, model, system: str, title: str):
+    """Measured against computed strain at each gauge."""
+    import matplotlib.pyplot as plt
+
+    tu, su = display(system, "time"), display(system, "strain")
+    gauges = model.problem.gauges
+    fig, axes = plt.subplots(len(gauges), 1, figsize=(6.6, 2.5 * len(gauges) + 0.6), sharex=True, layout="constrained", squeeze=False)
+    tm = model.problem.solver.times()
+    p = cal.prepared
+    for ax, g, y, c in zip(axes[:, 0], gauges, p.strains, cal.computed):
+        ax.grid(True, alpha=0.3)
+        ax.plot(p.time * tu.factor, y * su.factor, color="0.55", lw=0.6, label="measured (offset removed)")
+        ax.plot(tm * tu.factor, c * su.factor, color="C0", label=f"computed ({cal.method})")
+        ax.set_xlim(min(p.time[0], 0) * tu.factor, tm[-1] * tu.factor)
+        ax.set_ylabel(f"strain [{su.label}]")
+        ax.set_title(f"gauge {g.name}", fontsize="medium")
+        ax.legend(fontsize="small")
+    axes[-1, 0].set_xlabel(f"time since first contact [{tu.label}]")
+    fig.suptitle(title)
+    return fig
+
+
+def calibration_forces(cal, deconvolved, system: str, title: str, truth=None):
+    """The calibrated eq-15 force, the deconvolved force, the bar-model start (and the truth, when known)."""
+    tu, fu = display(system, "time"), display(system, "force")
+    fig, ax = _figure()
+    T = cal.duration if np.isfinite(cal.duration) else cal.start.duration
+    t = np.linspace(0, 1.6 * max(T, cal.start.duration), 800)
+    ax.plot(t * tu.factor, cal.start(t) * fu.factor, ":", color="0.5", label="start: bar model (eqs 4-6, 15)")
+    if deconvolved is not None:
+        ax.plot(deconvolved.pulse.time * tu.factor, deconvolved.pulse.force * fu.factor, color="C2", lw=1, label="deconvolved")
+    ax.plot(t * tu.factor, cal.pulse(t) * fu.factor, color="C0", lw=2, label=f"calibrated ({cal.method})")
+    if truth is not None:
+        ax.plot(t * tu.factor, truth(t) * fu.factor, "--", color="k", lw=1, label="history used to make the synthetic data")
+    ax.set_xlim(0, t[-1] * tu.factor)
+    ax.set_xlabel(f"time since first contact [{tu.label}]")
+    ax.set_ylabel(f"contact force [{fu.label}]")
+    ax.set_title(title)
+    ax.legend(fontsize="small")
+    return fig
+
+
+def beam_force_scaling(groups, system: str):
+    """Figs 23–25: F0 against V², 1/T against V, t_F0/T against V, for each beam (groups: label → rows
+    of (V, F0, tF0, T) in SI; labels ending in '(paper)' are drawn as open markers)."""
+    import matplotlib.pyplot as plt
+
+    vu, fu = display(system, "velocity"), display(system, "force")
+    fig, axes = plt.subplots(1, 3, figsize=(13, 3.8), layout="constrained")
+    for i, (label, rows) in enumerate(groups.items()):
+        rows = np.asarray(rows, float)
+        if rows.size == 0:
+            continue
+        V, F0, tp, T = rows.T
+        style = dict(marker="o", mfc="none" if label.endswith("(paper)") else None, ls="", color=f"C{i // 2}" if len(groups) > 2 else f"C{i}", label=label)
+        axes[0].plot((V * vu.factor) ** 2, F0 * fu.factor, **style)
+        axes[1].plot(V * vu.factor, 1e-3 / T, **style)
+        axes[2].plot(V * vu.factor, tp / T, **style)
+    axes[0].set_xlabel(f"V² [({vu.label})²]")
+    axes[0].set_ylabel(f"F0 [{fu.label}]")
+    axes[0].set_title("Fig 23: force amplitude against V²")
+    axes[1].set_xlabel(f"V [{vu.label}]")
+    axes[1].set_ylabel("1/T [1/ms]")
+    axes[1].set_title("Fig 24: inverse contact time against V")
+    axes[2].set_xlabel(f"V [{vu.label}]")
+    axes[2].set_ylabel("tF0 / T")
+    axes[2].set_ylim(0, 0.3)
+    axes[2].set_title("Fig 25: skewness against V")
+    for ax in axes:
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize="x-small")
     return fig

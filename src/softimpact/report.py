@@ -406,3 +406,102 @@ def beam_section(model, result, prefix: str) -> Section:
             (prefix + "deformed.png", "The beam's deflection at several instants"),
         ],
     )
+
+
+def calibration_entry(item, gauges) -> dict:
+    """One test of calibration.json."""
+    t, c = item.test, item.calibration
+    entry = {"name": t.name, "measured": str(t.measured.name), "velocity_m_s": t.velocity}
+    if c is None:
+        entry["error"] = item.error
+        return entry
+    se = c.standard_errors
+    entry.update({
+        "method": c.method,
+        "peak_force_N": c.peak_force,
+        "time_of_peak_s": c.time_of_peak,
+        "duration_s": c.duration,
+        "contact_radius_m": c.contact_radius,
+        "peak_force_se_N": se.get("peak_force"),
+        "time_of_peak_se_s": se.get("time_of_peak"),
+        "duration_se_s": se.get("duration"),
+        "contact_radius_se_m": se.get("contact_radius"),
+        "time_origin_se_s": se.get("time_origin"),
+        "iterations": c.iterations,
+        "converged": c.converged,
+        "message": str(c.message),
+        "residual_rms": {g: float(v) for g, v in zip(gauges, c.residual_rms)},
+        "first_contact_record_time_s": c.prepared.contact_time,
+        "offsets_removed": [float(v) for v in c.prepared.offsets],
+        "start_bar_model": {"peak_force_N": c.start.peak_force, "time_of_peak_s": c.start.time_of_peak, "duration_s": c.start.duration},
+    })
+    if c.method == "paper":
+        entry["paper_iterations"] = [{"peak_force_N": a, "time_of_peak_s": b, "duration_s": d} for a, b, d in c.history]
+    if item.deconvolved is not None:
+        d = item.deconvolved
+        entry["deconvolved"] = {"peak_force_N": d.peak_force, "eq15_fit_time_of_peak_s": d.time_of_peak, "eq15_fit_duration_s": d.duration, "message": str(d.message)}
+    return entry
+
+
+def calibration_files(model, items, figures: bool, prefix: str = "", truths=None, single: bool = False) -> dict[str, bytes | str]:
+    """calibration.json, a history CSV per test (history.csv for a single test), figures."""
+    from . import plots
+
+    system = model.problem.units
+    gauges = [g.name for g in model.problem.gauges]
+    files: dict[str, bytes | str] = {}
+    tm = model.problem.solver.times()
+    for k, item in enumerate(items):
+        c = item.calibration
+        if c is None:
+            continue
+        cols = {"time_s": tm, "force_N": c.pulse(tm)}
+        if item.deconvolved is not None:
+            cols["deconvolved_force_N"] = item.deconvolved.pulse(tm)
+        for g, y, comp in zip(gauges, c.prepared.strains, c.computed):
+            cols[f"measured_{g}"] = np.interp(tm, c.prepared.time, y, left=np.nan, right=np.nan)
+            cols[f"computed_{g}"] = comp
+        name = "history.csv" if single else f"history-{_stem(item.test.name)}.csv"
+        files[prefix + name] = csv_text(cols)
+        if figures:
+            stem = "" if single else f"-{_stem(item.test.name)}"
+            files[f"{prefix}strains{stem}.png"] = figure_bytes(plots.calibration_strains(c, model, system, f"{item.test.name}: measured and computed strains"))
+            truth = None if truths is None else truths[k]
+            files[f"{prefix}force{stem}.png"] = figure_bytes(plots.calibration_forces(c, item.deconvolved, system, f"{item.test.name}: calibrated force history", truth))
+    data = {"case": model.problem.title, "gauges": gauges, "tests": [calibration_entry(i, gauges) for i in items]}
+    files[prefix + "calibration.json"] = json_text(data)
+    return files
+
+
+def tables_rows(items):
+    """(V, F0, tF0, T, r0) of each calibrated test, SI."""
+    return [(i.test.velocity, i.calibration.peak_force, i.calibration.time_of_peak, i.calibration.duration, i.calibration.contact_radius) for i in items if i.calibration is not None]
+
+
+def series_calibration_files(model, series, items, figures: bool, prefix: str = "", truths=None) -> dict[str, bytes | str]:
+    """Per-test files, the Tables II/III layout, the scaling fit of the calibrated histories, Figs 23–25."""
+    from . import plots
+    from .models.empirical import PROJECTILES
+    from .workflows.scaling import TestPoint, fit_groups
+
+    files = calibration_files(model, items, figures, prefix, truths)
+    rows = tables_rows(items)
+    cols = {k: [] for k in ("test", "velocity_m_s", "peak_force_N", "time_of_peak_s", "duration_s", "contact_radius_m")}
+    for item in items:
+        if item.calibration is None:
+            continue
+        c = item.calibration
+        for k, v in zip(cols, (item.test.name, item.test.velocity, c.peak_force, c.time_of_peak, c.duration, c.contact_radius)):
+            cols[k].append(v)
+    files[prefix + "tables.csv"] = csv_text({k: np.array(v, dtype=object) for k, v in cols.items()})
+    P = PROJECTILES[series.projectile]
+    points = [TestPoint(n, V, P.mass, P.diameter, F0, tp, T, 2 * F0 * T / math.pi) for n, (V, F0, tp, T, _) in zip(cols["test"], rows)]
+    if len(points) >= 2:
+        fits = fit_groups(points)
+        files[prefix + "scaling.json"] = json_text(scaling_summary(fits))
+    if figures and rows:
+        groups = {"calibrated": [r[:4] for r in rows]}
+        if series.reference:
+            groups["Table II/III (paper)"] = [r[:4] for r in series.reference]
+        files[prefix + "fig23-25-force-scaling.png"] = figure_bytes(plots.beam_force_scaling(groups, model.problem.units))
+    return files

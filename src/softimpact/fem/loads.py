@@ -49,14 +49,20 @@ class PatchLoad:
         self.nearest = int(np.argmin(np.abs(self.x - center)))
         self.half_spacing = 0.5 * float(np.min(np.diff(x)))
 
-    def forces(self, F: np.ndarray) -> np.ndarray:
-        """Nodal forces, shape (n_patch_nodes, n_t), for the history F (n_t,) [N], compression +."""
+    def forces(self, F: np.ndarray, radius: float | None = None) -> np.ndarray:
+        """Nodal forces, shape (n_patch_nodes, n_t), for the history F (n_t,) [N], compression +.
+
+        ``radius``: r0 of this history, at most the patch's own (its nodes cover that).
+        """
         F = np.asarray(F, float)
+        r0 = self.radius if radius is None else radius
+        if not 0 < r0 <= self.radius * (1 + 1e-12):
+            raise InputError(f"contact radius {r0!r} m must be positive and at most the patch's {self.radius!r} m")
         F0 = F.max()
         out = np.zeros((self.nodes.size, F.size))
         if F0 <= 0:
             return out
-        r = self.radius * np.sqrt(np.maximum(F, 0.0) / F0)
+        r = r0 * np.sqrt(np.maximum(F, 0.0) / F0)
         wide = r >= self.half_spacing
         rw = r[wide]
         a = np.clip(self.lo[:, None], -rw, rw)
@@ -65,10 +71,10 @@ class PatchLoad:
         out[self.nearest, ~wide] = F[~wide]
         return out
 
-    def half_width(self, F: np.ndarray) -> np.ndarray:
+    def half_width(self, F: np.ndarray, radius: float | None = None) -> np.ndarray:
         """r(t) = r0·sqrt(F/F0), eq (10)."""
         F = np.asarray(F, float)
-        return self.radius * np.sqrt(np.maximum(F, 0.0) / F.max())
+        return (self.radius if radius is None else radius) * np.sqrt(np.maximum(F, 0.0) / F.max())
 
 
 def patch_nodes(node_x, center, radius) -> np.ndarray:

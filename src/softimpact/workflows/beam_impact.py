@@ -169,7 +169,8 @@ class BeamResult:
 class BeamModel:
     """Assembled beam with its stepper, patch and output rows, for one (mesh, dt)."""
 
-    def __init__(self, problem: BeamProblem):
+    def __init__(self, problem: BeamProblem, patch_radius: float | None = None):
+        """``patch_radius``: the widest contact radius the model must load (for fits of r0)."""
         self.problem = problem
         self.plane = PlaneModel(problem.beam.plane_beam())
         pm = self.plane
@@ -178,7 +179,7 @@ class BeamModel:
         C = None if a == 0 and b == 0 else a * M + b * K
         self.stepper = NewmarkStepper(M, K, problem.solver.time_step, C=C, params=problem.solver.newmark)
         top_x = pm.node_x[pm.top_nodes]
-        self.patch = PatchLoad(top_x, problem.load.position, problem.load.contact_radius)
+        self.patch = PatchLoad(top_x, problem.load.position, patch_radius or problem.load.contact_radius)
         # Patch loads push the top face down (−z).
         self.load_dofs = np.array([pm.dof(node, 1) for node in pm.top_nodes[self.patch.nodes]])
         self.B = np.zeros((pm.n, self.load_dofs.size))
@@ -196,9 +197,10 @@ class BeamModel:
     def steps(self) -> int:
         return self.problem.solver.steps
 
-    def nodal_loads(self, force: np.ndarray) -> np.ndarray:
-        """Patch loads (p, n_t) for a force history sampled at the solver's times."""
-        return self.patch.forces(force)
+    def nodal_loads(self, force: np.ndarray, radius: float | None = None) -> np.ndarray:
+        """Patch loads (p, n_t) for a force history sampled at the solver's times (r0 = ``radius``
+        or the problem's contact radius)."""
+        return self.patch.forces(force, self.problem.load.contact_radius if radius is None else radius)
 
     def _split(self, y: np.ndarray):
         ng = len(self.problem.gauges)
@@ -215,12 +217,12 @@ class BeamModel:
         h = self.problem.load.history if history is None else history
         return np.asarray(h(self.problem.solver.times()) if callable(h) else h, float)
 
-    def respond(self, history=None) -> BeamResult:
+    def respond(self, history=None, radius: float | None = None) -> BeamResult:
         """Gauge strains for a force history through the response engine."""
         F = self.force_samples(history)
         if F[0] != 0.0:
             raise InputError("load.history: the force must be zero at first contact (t = 0)")
-        y = self.engine().respond(self.nodal_loads(F))
+        y = self.engine().respond(self.nodal_loads(F, radius))
         strain, bending, defl = self._split(y)
         return BeamResult(self.problem, self.problem.solver.times(), F, strain, bending, defl)
 

@@ -70,3 +70,21 @@ def synthetic_record(
     y = np.interp(ts, t, eps)
     y = y + noise * np.max(np.abs(y)) * rng.standard_normal(ts.size) + offset
     return ts + clock_start, y
+
+
+def beam_measurement(model, pulse, *, pre_trigger: float, noise: float, offsets, rng: np.random.Generator, sample_interval: float | None = None):
+    """Synthetic measured gauge strains of a beam model (direct stepping) driven by ``pulse``.
+
+    Returns (time [s] on a record clock starting ``pre_trigger`` before contact, {gauge: strain}).
+    ``noise``: σ as a fraction of each gauge's peak |strain|; ``offsets``: one per gauge.
+    """
+    result = model.direct(pulse, energy=False)
+    dt = model.problem.solver.time_step
+    step = sample_interval or dt
+    t_model = result.time
+    t = np.arange(-pre_trigger, t_model[-1] + 0.5 * step, step)
+    out = {}
+    for g, eps, off in zip(model.problem.gauges, result.strain, offsets):
+        y = np.interp(t, t_model, eps, left=0.0)
+        out[g.name] = y + noise * np.max(np.abs(eps)) * rng.standard_normal(t.size) + off
+    return t + pre_trigger, out

@@ -1,0 +1,389 @@
+"""Calibrate the transverse force history against measured gauge strains (paper
+"Impact force history", steps 1–3; Tables II, III; Figs 21–25).
+
+All three methods run the beam through its response engine, so one evaluation
+of a force history costs milliseconds.
+
+- ``paper``: the paper's procedure, automated. Start from the bar-model history
+  for the velocity (eqs 4–6 with eq 15); scale F0 by the ratio of the measured to
+  the computed peak strain of the first gauge's first main lobe; scale T, keeping t_F0/T, by the
+  ratio of the measured to the computed first zero crossing of that gauge's
+  strain (after its first excursion beyond a quarter of its peak); re-align the
+  clocks; repeat until both ratios are within ``tol`` of one. It keeps the
+  starting t_F0/T, so it can only be as right as that ratio.
+- ``least-squares`` (default): fit F0, t_F0, T (and optionally r0 and the time
+  origin) of eq (15) to the whole records of all gauges, each weighted by its
+  noise; standard errors from the Jacobian, s²·(JᵀJ)⁻¹ with s² the residual
+  variance (they cover the noise, not a mismatch of the model).
+- ``deconvolve``: a non-parametric force history. With the patch frozen at r0
+  the strains are linear in F: y_g = h_g * F. F is sought as hat functions on a
+  coarse grid, with Tikhonov regularisation of its second difference (λ by
+  generalised cross-validation), non-negative, and zero before first contact.
+
+Measured strains arrive with an offset per gauge and on their own clock: the
+offsets are the means of the pre-impact part; the instant of first contact is
+given or estimated by matching the time at which the first gauge leaves the
+noise with the same instant in the model.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import InputError
+from ..models.pulses import SkewedPulse, TabulatedPulse
+
+__all__ = ["Measured", "Prepared", "Calibration", "prepare", "calibrate", "METHODS", "first_zero_crossing"]
+
+METHODS = ("least-squares", "paper", "deconvolve")
+DEPARTURE_SIGMAS = 6.0  # a gauge "leaves the noise" at this many σ of its pre-impact part
+
+
+@dataclass(frozen=True)
+class Measured:
+    """Measured strains: time [s] on the record's clock, strain per gauge name."""
+
+    name: str
+    time: np.ndarray
+    strains: dict
+
+
+@dataclass(frozen=True)
+class Prepared:
+    """Measured strains, offsets removed, on a clock from first contact."""
+
+    name: str
+    time: np.ndarray  # (n,) s from first contact (negative before)
+    strains: np.ndarray  # (n_gauges, n), model's gauge order
+    noise: np.ndarray  # (n_gauges,) σ of the pre-impact part
+    offsets: np.ndarray  # (n_gauges,) removed
+    contact_time: float  # first contact on the record's clock
+    window: np.ndarray  # (n,) bool: samples used (0 ≤ t ≤ end of the model's run)
+
+
+@dataclass(frozen=True)
+class Calibration:
+    """A calibrated force history and how it was found."""
+
+    method: str
+    pulse: object  # SkewedPulse (paper, least-squares) or TabulatedPulse (deconvolve)
+    contact_radius: float
+    standard_errors: dict  # name → SE (SI); empty where not estimated
+    iterations: int
+    converged: bool
+    message: str
+    residual_rms: np.ndarray  # (n_gauges,) strain
+    computed: np.ndarray  # (n_gauges, n_model_steps + 1) on the model grid
+    prepared: Prepared
+    start: SkewedPulse
+    history: list = field(default_factory=list)  # per iteration (paper method): (F0, tF0, T)
+    fit_pulse: object = None  # deconvolve: the eq-15 least-squares pulse beside it
+
+    @property
+    def peak_force(self) -> float:
+        """F0; for a deconvolved history, its maximum."""
+        if isinstance(self.pulse, TabulatedPulse):
+            return float(np.max(self.pulse.force))
+        return float(self.pulse.peak_force)
+
+    @property
+    def time_of_peak(self) -> float:
+        """t_F0; for a deconvolved history, that of its eq-15 fit (the regularised peak is rounded)."""
+        p = self.fit_pulse if isinstance(self.pulse, TabulatedPulse) else self.pulse
+        return math.nan if p is None else float(p.time_of_peak)
+
+    @property
+    def duration(self) -> float:
+        """T; for a deconvolved history, that of its eq-15 fit."""
+        p = self.fit_pulse if isinstance(self.pulse, TabulatedPulse) else self.pulse
+        return math.nan if p is None else float(p.duration)
+
+
+def first_zero_crossing(t, y, fraction: float = 0.25) -> float:
+    """Time at which y first changes sign after its first excursion beyond ``fraction``·max|y|."""
+    big = np.flatnonzero(np.abs(y) > fraction * np.max(np.abs(y)))
+    if big.size == 0:
+        return math.nan
+    k0 = big[0]
+    later = np.flatnonzero(np.sign(y[k0:]) == -np.sign(y[k0]))
+    if later.size == 0:
+        return math.nan
+    k = k0 + later[0]
+    return float(t[k - 1] + (t[k] - t[k - 1]) * y[k - 1] / (y[k - 1] - y[k]))
+
+
+def first_lobe_peak(t, y, fraction: float = 0.25) -> float:
+    """Largest |y| of the first main lobe: from the first excursion beyond ``fraction``·max|y|
+    to the first zero crossing after it (the strain amplitude the paper compares)."""
+    z = first_zero_crossing(t, y, fraction)
+    sel = t <= z if math.isfinite(z) else np.ones(t.size, bool)
+    return float(np.max(np.abs(y[sel])))
+
+
+def _departure(t, y, sigma, level=None):
+    """First time |y| exceeds ``level`` (default DEPARTURE_SIGMAS·σ), linearly interpolated."""
+    level = DEPARTURE_SIGMAS * sigma if level is None else level
+    k = np.flatnonzero(np.abs(y) > level)
+    if k.size == 0:
+        return math.nan
+    k = k[0]
+    if k == 0:
+        return float(t[0])
+    a, b = abs(y[k - 1]), abs(y[k])
+    return float(t[k - 1] + (t[k] - t[k - 1]) * (level - a) / (b - a)) if b != a else float(t[k])
+
+
+def prepare(model, measured: Measured, start: SkewedPulse, contact_time: float | None = None, radius: float | None = None) -> Prepared:
+    """Offsets removed, gauges in the model's order, first contact located (module docstring)."""
+    names = [g.name for g in model.problem.gauges]
+    missing = [n for n in names if n not in measured.strains]
+    unknown = [n for n in measured.strains if n not in names]
+    if unknown:
+        raise InputError(f"{measured.name}: gauge(s) {', '.join(unknown)} are not in the case (its gauges: {', '.join(names)})")
+    if missing:
+        raise InputError(f"{measured.name}: no column strain_<name> for gauge(s) {', '.join(missing)}")
+    t = np.asarray(measured.time, float)
+    Y = np.array([np.asarray(measured.strains[n], float) for n in names])
+    if t.ndim != 1 or t.size < 32:
+        raise InputError(f"{measured.name}: too short ({t.size} samples)")
+    if not (np.all(np.isfinite(t)) and np.all(np.isfinite(Y))):
+        raise InputError(f"{measured.name}: contains NaN or infinite values")
+    if np.any(np.diff(t) <= 0):
+        raise InputError(f"{measured.name}: time is not strictly increasing")
+    # Pre-impact part: before any gauge leaves a robust noise band around its first samples.
+    head = max(16, t.size // 20)
+    d = np.diff(Y, axis=1)
+    sig0 = 1.4826 * np.median(np.abs(d - np.median(d, axis=1, keepdims=True)), axis=1) / math.sqrt(2)
+    sig0 = np.maximum(sig0, 1e-15)
+    starts = [_departure(t, y - np.median(y[:head]), s) for y, s in zip(Y, sig0)]
+    t_dep = np.nanmin(starts) if np.any(np.isfinite(starts)) else math.nan
+    if not math.isfinite(t_dep):
+        raise InputError(f"{measured.name}: no gauge leaves the noise: no impact in the record")
+    pre = t < t_dep - 0.1 * (t_dep - t[0])
+    if pre.sum() >= 10:
+        offsets = Y[:, pre].mean(axis=1)
+        noise = np.maximum(Y[:, pre].std(axis=1), 1e-15)
+    else:
+        offsets = np.median(Y[:, :head], axis=1)
+        noise = sig0
+    Y = Y - offsets[:, None]
+    if contact_time is None:
+        # The model, driven by the starting history, leaves the same noise level at t_m after contact.
+        model_y = model.respond(start, radius).strain
+        tm = model.problem.solver.times()
+        lags = []
+        for y_meas, y_mod, s in zip(Y, model_y, noise):
+            level = max(DEPARTURE_SIGMAS * s, 0.05 * np.max(np.abs(y_mod)))
+            a, b = _departure(t, y_meas, s, level), _departure(tm, y_mod, s, level)
+            if math.isfinite(a) and math.isfinite(b):
+                lags.append(a - b)
+        if not lags:
+            raise InputError(f"{measured.name}: cannot locate first contact; give it (--contact-time)")
+        contact_time = float(lags[0])
+    rel = t - contact_time
+    end = model.problem.solver.duration
+    window = (rel >= 0) & (rel <= end)
+    return Prepared(measured.name, rel, Y, noise, offsets, contact_time, window)
+
+
+def _residual_rms(model, prep, computed):
+    tm = model.problem.solver.times()
+    w = prep.window
+    return np.array([np.sqrt(np.mean((np.interp(prep.time[w], tm, c) - y[w]) ** 2)) for c, y in zip(computed, prep.strains)])
+
+
+def calibrate(model, measured: Measured, start: SkewedPulse, method: str = "least-squares", *, contact_time=None,
+              radius: float | None = None, fit_radius: bool = False, fit_origin: bool = True, tol: float = 1e-4,
+              max_iterations: int = 200) -> Calibration:
+    """Calibrate the force history by ``method`` (module docstring); ``radius``: r0 of the test
+    (default the case's), at most the model's patch radius."""
+    r0 = model.problem.load.contact_radius if radius is None else radius
+    if not 0 < r0 <= model.patch.radius * (1 + 1e-12):
+        raise InputError(f"contact_radius: {r0!r} m must be positive and within the model's patch ({model.patch.radius!r} m)")
+    if method not in METHODS:
+        raise InputError(f"--method: {method!r} is not one of {', '.join(METHODS)}")
+    prep = prepare(model, measured, start, contact_time, r0)
+    record_after = prep.time[-1]
+    if record_after < start.duration:
+        raise InputError(
+            f"{measured.name}: the record runs {record_after * 1e6:.0f} us after first contact, shorter than the pulse ({start.duration * 1e6:.0f} us)"
+        )
+    if method == "paper":
+        return _paper(model, prep, start, r0, tol, max_iterations, contact_time is not None)
+    if method == "least-squares":
+        return _least_squares(model, prep, start, r0, fit_radius, fit_origin)
+    return _deconvolve(model, prep, start, r0)
+
+
+def _strains(model, pulse, radius=None):
+    return model.respond(pulse, radius).strain
+
+
+def _realign(model, prep, computed, given: bool):
+    """Re-estimate first contact: the first gauge leaves 10 % of its peak at the same time
+    after contact in the record as in the model."""
+    if given:
+        return prep
+    tm = model.problem.solver.times()
+    y = prep.strains[0]
+    level = 0.1 * np.max(np.abs(y[prep.window]))
+    lag = _departure(prep.time, y, 0.0, level) - _departure(tm, computed[0], 0.0, level)
+    if not math.isfinite(lag):
+        return prep
+    rel = prep.time - lag
+    return Prepared(prep.name, rel, prep.strains, prep.noise, prep.offsets, prep.contact_time + lag, (rel >= 0) & (rel <= tm[-1]))
+
+
+PAPER_SMOOTHING = 20e-6  # s: the measured trace is smoothed over this before its peak and zero crossing are read
+
+
+def _paper(model, prep, start, r0, tol, max_iterations, given_contact=False):
+    from scipy.signal import savgol_filter
+
+    tm = model.problem.solver.times()
+    dt_meas = float(np.median(np.diff(prep.time)))
+    window = max(5, int(round(PAPER_SMOOTHING / dt_meas)) | 1)
+    # Peaks and zero crossings of a noisy trace are biased (the largest noise sample,
+    # the first noise-induced crossing): read them off a smoothed trace, as off a scope.
+    meas = savgol_filter(prep.strains[0], window, 3) if window < prep.strains[0].size else prep.strains[0]
+    F0, T, skew = start.peak_force, start.duration, start.time_of_peak / start.duration
+    history = []
+    converged, it = False, 0
+    f_ratio = t_ratio = math.nan
+    for it in range(1, max_iterations + 1):
+        pulse = SkewedPulse(F0, skew * T, T)
+        c = _strains(model, pulse, r0)
+        prep = _realign(model, prep, c, given_contact)
+        w = prep.window
+        peak_m = first_lobe_peak(prep.time[w], meas[w])
+        zero_m = first_zero_crossing(prep.time[w], meas[w])
+        zero_c = first_zero_crossing(tm, c[0])
+        if not (math.isfinite(zero_m) and math.isfinite(zero_c)):
+            raise InputError(f"{prep.name}: the first gauge's strain has no zero crossing in the record or the model: the paper method needs one")
+        f_ratio, t_ratio = peak_m / first_lobe_peak(tm, c[0]), zero_m / zero_c
+        history.append((F0, skew * T, T))
+        F0, T = F0 * f_ratio, T * t_ratio
+        if abs(f_ratio - 1) < tol and abs(t_ratio - 1) < tol:
+            converged = True
+            break
+    pulse = SkewedPulse(F0, skew * T, T)
+    computed = model.respond(pulse, r0).strain
+    msg = f"converged in {it} iterations" if converged else f"not converged after {it} iterations (ratios {f_ratio:.4f}, {t_ratio:.4f})"
+    return Calibration("paper", pulse, r0, {}, it, converged, msg, _residual_rms(model, prep, computed), computed, prep, start, history)
+
+
+def _least_squares(model, prep, start, r0, fit_radius, fit_origin):
+    from scipy.optimize import least_squares
+
+    tm = model.problem.solver.times()
+    w = prep.window
+    ts, ys = prep.time[w], prep.strains[:, w]
+    weights = 1.0 / prep.noise[:, None]
+    names = ["peak_force", "time_of_peak", "duration"] + (["contact_radius"] if fit_radius else []) + (["time_origin"] if fit_origin else [])
+    scale = np.array([start.peak_force, start.time_of_peak, start.duration] + ([r0] if fit_radius else []) + ([10e-6] if fit_origin else []))
+
+    def unpack(p):
+        v = p * scale
+        F0, tp, T = v[0], v[1], v[2]
+        r = v[3] if fit_radius else r0
+        shift = v[-1] if fit_origin else 0.0
+        return F0, tp, T, r, shift
+
+    def residual(p):
+        F0, tp, T, r, shift = unpack(p)
+        if not (0 < tp < T) or F0 <= 0 or r <= 0:
+            return np.full(ys.size, 1e6)
+        c = _strains(model, SkewedPulse(F0, tp, T), r)
+        comp = np.array([np.interp(ts - shift, tm, ci, left=0.0) for ci in c])
+        return ((comp - ys) * weights).ravel()
+
+    lo = [1e-3, 1e-3, 1e-3] + ([0.2] if fit_radius else []) + ([-10.0] if fit_origin else [])
+    hi = [100.0, 50.0, 50.0] + ([model.patch.radius / r0] if fit_radius else []) + ([10.0] if fit_origin else [])
+    p0 = np.ones(len(names))
+    if fit_origin:
+        p0[-1] = 0.0
+    sol = least_squares(residual, p0, bounds=(lo, hi), x_scale="jac", diff_step=1e-4)
+    dof = max(sol.fun.size - len(names), 1)
+    s2 = float(sol.fun @ sol.fun) / dof
+    try:
+        cov = np.linalg.inv(sol.jac.T @ sol.jac) * s2
+        se = {n: float(math.sqrt(max(cov[i, i], 0.0)) * scale[i]) for i, n in enumerate(names)}
+    except np.linalg.LinAlgError:
+        se = {}
+    F0, tp, T, r, shift = unpack(sol.x)
+    pulse = SkewedPulse(F0, tp, T)
+    comp = _strains(model, pulse, r)
+    if fit_origin:  # report on the refined clock
+        prep = Prepared(prep.name, prep.time - shift, prep.strains, prep.noise, prep.offsets, prep.contact_time + shift, (prep.time - shift >= 0) & (prep.time - shift <= tm[-1]))
+    return Calibration("least-squares", pulse, r, se, int(sol.nfev), bool(sol.success), sol.message, _residual_rms(model, prep, comp), comp, prep, start)
+
+
+def _deconvolve(model, prep, start, r0, knots: int = 160):
+    """Tikhonov-regularised, non-negative deconvolution through the impulse responses (module docstring)."""
+    from scipy.optimize import lsq_linear
+
+    tm = model.problem.solver.times()
+    N = tm.size
+    # Patch frozen at r0: the load pattern of unit total force.
+    shape = model.nodal_loads(np.array([0.0, 1.0]), r0)[:, 1]
+    eng = model.engine()
+    n_g = len(model.problem.gauges)
+    h = np.tensordot(eng.kernel[0 : 2 * n_g : 2], shape, axes=([1], [0]))  # (n_g, N-1): strain per unit force at step 1
+    # Basis: hat functions on a coarse grid over the window where the force may act.
+    span = min(tm[-1], 2.5 * start.duration)
+    grid = np.linspace(0.0, span, knots + 1)
+    Phi = np.clip(1.0 - np.abs(tm[:, None] - grid[None, 1:]) / (grid[1] - grid[0]), 0.0, None)  # (N, knots); F(0) = 0
+    # Columns: the gauge response to each hat, y = conv(h, φ).
+    from scipy.signal import fftconvolve
+
+    cols = []
+    for g in range(n_g):
+        resp = fftconvolve(h[g][:, None], Phi[1:], axes=0)[: N - 1]
+        cols.append(np.vstack((np.zeros((1, knots)), resp)))
+    A_full = np.stack(cols)  # (n_g, N, knots)
+    w = prep.window
+    ts = prep.time[w]
+    # Linear interpolation from the model grid to the measured samples, as one sparse-free matrix.
+    k = np.clip(np.searchsorted(tm, ts) - 1, 0, N - 2)
+    frac = ((ts - tm[k]) / (tm[k + 1] - tm[k]))[:, None]
+    rows, rhs = [], []
+    for g in range(n_g):
+        rows.append(((1 - frac) * A_full[g, k] + frac * A_full[g, k + 1]) / prep.noise[g])
+        rhs.append(prep.strains[g, w] / prep.noise[g])
+    A = np.vstack(rows)
+    y = np.concatenate(rhs)
+    L = np.diff(np.eye(knots), 2, axis=0)
+    # GCV over λ (unconstrained problem).
+    AtA, Aty, LtL = A.T @ A, A.T @ y, L.T @ L
+    best = None
+    scale = np.trace(AtA) / np.trace(LtL)
+    for lam in scale * np.logspace(-8, 1, 37):
+        Ainv = np.linalg.inv(AtA + lam * LtL)
+        c = Ainv @ Aty
+        res = A @ c - y
+        trace_h = float(np.sum(Ainv * AtA))  # trace(A (AᵀA + λLᵀL)⁻¹ Aᵀ) = trace((AᵀA + λLᵀL)⁻¹ AᵀA)
+        gcv = y.size * float(res @ res) / (y.size - trace_h) ** 2
+        if best is None or gcv < best[0]:
+            best = (gcv, lam)
+    lam = best[1]
+    sol = lsq_linear(np.vstack((A, math.sqrt(lam) * L)), np.concatenate((y, np.zeros(L.shape[0]))), bounds=(0.0, np.inf))
+    F = Phi @ sol.x
+    pulse = TabulatedPulse(tm, F)
+    computed = np.array([np.convolve(h[g], F[1:])[: N - 1] for g in range(n_g)])
+    computed = np.hstack((np.zeros((n_g, 1)), computed))
+    # Beside it, the eq-15 fit to the deconvolved force.
+    k = int(np.argmax(F))
+    fit_pulse = None
+    try:
+        from .reduction import fit_skewed
+
+        fit_pulse, _, _ = fit_skewed(tm, F, F[k], max(tm[k], tm[1]), start.duration, tm[-1])
+    except Exception:  # a degenerate deconvolution has no eq-15 shape; the history stands alone
+        fit_pulse = None
+    return Calibration(
+        "deconvolve", pulse, r0, {}, int(sol.nit), bool(sol.success), f"λ = {lam:.3g} by GCV; {sol.message}",
+        _residual_rms(model, prep, computed), computed, prep, start, fit_pulse=fit_pulse,
+    )
