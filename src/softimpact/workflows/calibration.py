@@ -9,12 +9,14 @@ of a force history costs milliseconds.
   the computed peak strain of the first gauge's first main lobe; scale T, keeping t_F0/T, by the
   ratio of the measured to the computed first zero crossing of that gauge's
   strain (after its first excursion beyond a quarter of its peak); re-align the
-  clocks; repeat until both ratios are within ``tol`` of one. It keeps the
+  clocks (the shift that best matches the early strains); repeat until both
+  ratios are within ``tol`` of one. It keeps the
   starting t_F0/T, so it can only be as right as that ratio.
 - ``least-squares`` (default): fit F0, t_F0, T (and optionally r0 and the time
-  origin) of eq (15) to the whole records of all gauges, each weighted by its
-  noise; standard errors from the Jacobian, s²·(JᵀJ)⁻¹ with s² the residual
-  variance (they cover the noise, not a mismatch of the model).
+  origin) of eq (15), with a baseline correction per gauge, to the whole records
+  of all gauges (pre-impact part included), each weighted by its noise; standard
+  errors from the Jacobian, s²·(JᵀJ)⁻¹ with s² the residual variance (they cover
+  the noise, not a mismatch of the model).
 - ``deconvolve``: a non-parametric force history. With the patch frozen at r0
   the strains are linear in F: y_g = h_g * F. F is sought as hat functions on a
   coarse grid, with Tikhonov regularisation of its second difference (λ by
@@ -222,19 +224,31 @@ def _strains(model, pulse, radius=None):
     return model.respond(pulse, radius).strain
 
 
+ALIGN_RANGE = 30e-6  # s: the clock correction searched for on each realignment
+
+
 def _realign(model, prep, computed, given: bool):
-    """Re-estimate first contact: the first gauge leaves 10 % of its peak at the same time
-    after contact in the record as in the model."""
+    """Re-estimate first contact: the shift s that best matches the measured strains to
+    the computed ones (each scaled freely) over the early part of the record."""
     if given:
         return prep
+    from scipy.optimize import minimize_scalar
+
     tm = model.problem.solver.times()
-    y = prep.strains[0]
-    level = 0.1 * np.max(np.abs(y[prep.window]))
-    lag = _departure(prep.time, y, 0.0, level) - _departure(tm, computed[0], 0.0, level)
-    if not math.isfinite(lag):
-        return prep
-    rel = prep.time - lag
-    return Prepared(prep.name, rel, prep.strains, prep.noise, prep.offsets, prep.contact_time + lag, (rel >= 0) & (rel <= tm[-1]))
+    early = (prep.time > -ALIGN_RANGE) & (prep.time < 0.4 * tm[-1])
+    ts, ys = prep.time[early], prep.strains[:, early]
+
+    def misfit(shift):
+        total = 0.0
+        for y, c in zip(ys, computed):
+            m = np.interp(ts - shift, tm, c, left=0.0)
+            a = (m @ y) / max(m @ m, 1e-300)
+            total += float(np.sum((y - a * m) ** 2))
+        return total
+
+    shift = minimize_scalar(misfit, bounds=(-ALIGN_RANGE, ALIGN_RANGE), method="bounded", options={"xatol": 1e-9}).x
+    rel = prep.time - shift
+    return Prepared(prep.name, rel, prep.strains, prep.noise, prep.offsets, prep.contact_time + shift, (rel >= 0) & (rel <= tm[-1]))
 
 
 PAPER_SMOOTHING = 20e-6  # s: the measured trace is smoothed over this before its peak and zero crossing are read
@@ -276,36 +290,43 @@ def _paper(model, prep, start, r0, tol, max_iterations, given_contact=False):
 
 
 def _least_squares(model, prep, start, r0, fit_radius, fit_origin):
+    """Eq (15) fitted to every sample up to the end of the model's run, pre-impact part
+    included, with a baseline correction per gauge fitted alongside: the offsets' own
+    uncertainty then reaches the standard errors instead of biasing F0 unseen."""
     from scipy.optimize import least_squares
 
     tm = model.problem.solver.times()
-    w = prep.window
-    ts, ys = prep.time[w], prep.strains[:, w]
+    n_g = len(prep.noise)
+    use = prep.time <= tm[-1]
+    ts, ys = prep.time[use], prep.strains[:, use]
     weights = 1.0 / prep.noise[:, None]
     names = ["peak_force", "time_of_peak", "duration"] + (["contact_radius"] if fit_radius else []) + (["time_origin"] if fit_origin else [])
-    scale = np.array([start.peak_force, start.time_of_peak, start.duration] + ([r0] if fit_radius else []) + ([10e-6] if fit_origin else []))
+    names += [f"offset_{g.name}" for g in model.problem.gauges]
+    scale = np.array([start.peak_force, start.time_of_peak, start.duration] + ([r0] if fit_radius else []) + ([10e-6] if fit_origin else []) + list(prep.noise))
+    n_main = len(names) - n_g
 
     def unpack(p):
         v = p * scale
         F0, tp, T = v[0], v[1], v[2]
         r = v[3] if fit_radius else r0
-        shift = v[-1] if fit_origin else 0.0
-        return F0, tp, T, r, shift
+        shift = v[n_main - 1] if fit_origin else 0.0
+        return F0, tp, T, r, shift, v[n_main:]
 
     def residual(p):
-        F0, tp, T, r, shift = unpack(p)
+        F0, tp, T, r, shift, offs = unpack(p)
         if not (0 < tp < T) or F0 <= 0 or r <= 0:
             return np.full(ys.size, 1e6)
         c = _strains(model, SkewedPulse(F0, tp, T), r)
-        comp = np.array([np.interp(ts - shift, tm, ci, left=0.0) for ci in c])
+        comp = np.array([np.interp(ts - shift, tm, ci, left=0.0) for ci in c]) + offs[:, None]
         return ((comp - ys) * weights).ravel()
 
-    lo = [1e-3, 1e-3, 1e-3] + ([0.2] if fit_radius else []) + ([-10.0] if fit_origin else [])
-    hi = [100.0, 50.0, 50.0] + ([model.patch.radius / r0] if fit_radius else []) + ([10.0] if fit_origin else [])
+    lo = [1e-3, 1e-3, 1e-3] + ([0.2] if fit_radius else []) + ([-10.0] if fit_origin else []) + [-np.inf] * n_g
+    hi = [100.0, 50.0, 50.0] + ([model.patch.radius / r0] if fit_radius else []) + ([10.0] if fit_origin else []) + [np.inf] * n_g
     p0 = np.ones(len(names))
     if fit_origin:
-        p0[-1] = 0.0
-    sol = least_squares(residual, p0, bounds=(lo, hi), x_scale="jac", diff_step=1e-4)
+        p0[n_main - 1] = 0.0
+    p0[n_main:] = 0.0
+    sol = least_squares(residual, p0, bounds=(lo, hi), x_scale="jac", diff_step=1e-6, ftol=1e-12, xtol=1e-10, gtol=1e-12)
     dof = max(sol.fun.size - len(names), 1)
     s2 = float(sol.fun @ sol.fun) / dof
     try:
@@ -313,11 +334,11 @@ def _least_squares(model, prep, start, r0, fit_radius, fit_origin):
         se = {n: float(math.sqrt(max(cov[i, i], 0.0)) * scale[i]) for i, n in enumerate(names)}
     except np.linalg.LinAlgError:
         se = {}
-    F0, tp, T, r, shift = unpack(sol.x)
+    F0, tp, T, r, shift, offs = unpack(sol.x)
     pulse = SkewedPulse(F0, tp, T)
     comp = _strains(model, pulse, r)
-    if fit_origin:  # report on the refined clock
-        prep = Prepared(prep.name, prep.time - shift, prep.strains, prep.noise, prep.offsets, prep.contact_time + shift, (prep.time - shift >= 0) & (prep.time - shift <= tm[-1]))
+    rel = prep.time - shift
+    prep = Prepared(prep.name, rel, prep.strains - offs[:, None], prep.noise, prep.offsets + offs, prep.contact_time + shift, (rel >= 0) & (rel <= tm[-1]))
     return Calibration("least-squares", pulse, r, se, int(sol.nfev), bool(sol.success), sol.message, _residual_rms(model, prep, comp), comp, prep, start)
 
 

@@ -1,0 +1,44 @@
+"""`softimpact paper`: the whole paper into one report, every figure and table present."""
+
+import re
+
+import pytest
+from click.testing import CliRunner
+
+from softimpact.cli import main
+
+
+@pytest.fixture(scope="module")
+def report(tmp_path_factory):
+    out = tmp_path_factory.mktemp("paper")
+    result = CliRunner().invoke(main, ["paper", "--out", str(out)])
+    assert result.exit_code == 0, result.output
+    return out, (out / "report.html").read_text()
+
+
+@pytest.mark.parametrize("fig", ["Fig 4", "Fig 5", "Fig 6", "Fig 7", "Figs 8 and 12", "Figs 9 and 13", "Figs 10 and 14", "Figs 11 and 15",
+                                 "Fig 18", "Fig 20", "Figs 21-22", "Figs 23-25"])
+def test_every_figure_is_in_the_report(report, fig):
+    """Each of the paper's figures is captioned in report.html."""
+    assert fig in report[1]
+
+
+def test_every_linked_image_exists(report):
+    """Every <img> of the report points at a PNG that was written."""
+    out, html = report
+    images = re.findall(r"<img src='([^']+)'", html)
+    assert len(images) >= 20
+    for src in images:
+        assert (out / src).read_bytes()[:4] == b"\x89PNG"
+
+
+@pytest.mark.parametrize("table", ["Table I", "Table II", "Table III"])
+def test_tables(report, table):
+    """Table I (fitted beside the paper's) and Tables II, III (the paper's beside ours) are in the report."""
+    assert table in report[1]
+
+
+def test_assumptions_and_synthetic_labels(report):
+    """The report lists the NOTES.md assumptions and labels synthetic data as such."""
+    html = report[1]
+    assert "Assumptions and errata" in html and html.count("SYNTHETIC") >= 2
