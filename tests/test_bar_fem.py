@@ -1,7 +1,6 @@
 """The Hermite rod: interpolation, rigid-body mode, free-free frequencies."""
 
 import numpy as np
-import pytest
 
 from softimpact.fem.bar import Rod, assemble_rod
 

@@ -10,7 +10,6 @@ from scipy.integrate import solve_ivp
 from softimpact.cases import load_bar_case
 from softimpact.models.materials import Material
 from softimpact.workflows.bar_impact import (
-    BarSpec,
     Gauge,
     SolverSpec,
     simulate_force,

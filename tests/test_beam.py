@@ -15,7 +15,8 @@ from softimpact.fem.loads import PatchLoad
 from softimpact.fem.plane import PlaneBeam, PlaneModel
 from softimpact.models.laminate import PLIES, Stack, parse_layup, plane_matrix
 from softimpact.models.pulses import SkewedPulse
-from softimpact.workflows.beam_impact import BeamModel, BeamSolver
+from softimpact.fem.newmark import SolverSpec as BeamSolver
+from softimpact.workflows.beam_impact import BeamModel
 
 from conftest import INCH
 

@@ -11,7 +11,8 @@ from softimpact.cli import main
 from softimpact.errors import InputError
 from softimpact.models.empirical import PRESETS, PROJECTILES
 from softimpact.models.pulses import SkewedPulse
-from softimpact.workflows.beam_impact import BeamModel, BeamSolver
+from softimpact.fem.newmark import SolverSpec as BeamSolver
+from softimpact.workflows.beam_impact import BeamModel
 from softimpact.workflows.calibration import Measured, calibrate
 from softimpact.workflows.synthetic import beam_measurement
 

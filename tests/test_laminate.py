@@ -1,6 +1,5 @@
 """Laminate homogenisation (uniform in-plane strain, uniform through-thickness stress), layups, CLT."""
 
-import math
 
 import numpy as np
 import pytest
@@ -94,6 +93,7 @@ def test_clt_of_unidirectional_stack():
     A, B, D = abd(stack.ply_stiffnesses(), [T300.thickness] * 10)
     Q11 = 1 / np.linalg.inv(ply_stiffness(T300))[np.ix_([0, 1, 5], [0, 1, 5])][0, 0]
     assert np.allclose(B, 0, atol=1e-9 * D.max())
+    assert D[0, 0] == pytest.approx(Q11 * h**3 / 12, rel=1e-12)
     bs = stack.bending_stiffness("stress")
     assert bs["clt_1_over_d11"] == pytest.approx(T300.E1 * h**3 / 12, rel=1e-9)
     assert bs["smeared_EI_per_width"] == pytest.approx(T300.E1 * h**3 / 12, rel=1e-9)

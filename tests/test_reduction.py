@@ -1,6 +1,5 @@
 """Bar records → force histories (paper Figs 7-15), against records made by the bar FE."""
 
-import math
 
 import numpy as np
 import pytest

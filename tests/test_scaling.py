@@ -1,6 +1,5 @@
 """Scaling laws, eqs (4)-(7): fits recover known constants; intervals are honest."""
 
-import math
 
 import numpy as np
 import pytest

@@ -14,7 +14,8 @@ import numpy as np
 
 from softimpact.cases import load_beam_case, table_rows
 from softimpact.models.pulses import SkewedPulse
-from softimpact.workflows.beam_impact import BeamLoad, BeamModel, BeamSolver
+from softimpact.fem.newmark import SolverSpec
+from softimpact.workflows.beam_impact import BeamLoad, BeamModel
 from softimpact.workflows.synthetic import beam_measurement
 
 IN, LBF = 0.0254, 4.4482216152605
@@ -44,7 +45,7 @@ def main():
             p = replace(
                 problem,
                 beam=replace(problem.beam, nx=300, nz=8),
-                solver=BeamSolver(0.5e-6, problem.solver.duration),
+                solver=SolverSpec(0.5e-6, problem.solver.duration),
                 load=BeamLoad(problem.load.position, row["contact_radius"], pulse),
             )
             t, strains = beam_measurement(

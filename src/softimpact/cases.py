@@ -17,7 +17,8 @@ from . import units
 from .errors import InputError
 from .fem.newmark import NewmarkParameters
 from .models.materials import Material, lookup, sphere_mass
-from .workflows.bar_impact import BarImpactProblem, BarSpec, EndCap, Gauge, Projectile, SolverSpec
+from .fem.newmark import SolverSpec
+from .workflows.bar_impact import BarImpactProblem, BarSpec, EndCap, Gauge, Projectile
 from .workflows.reduction import Bridge
 
 __all__ = ["CalibrationSeries", "CalibrationTest", "load_calibration_series", "is_calibration_series", "load_beam_case", "beam_problem", "Series", "SeriesTest", "load_series", "Table", "builtin_cases", "locate", "load_toml", "read_material", "read_bar", "bar_problem", "load_bar_case"]
@@ -333,7 +334,7 @@ def beam_problem(data: dict, base: Path = Path("."), history: int | None = None)
     """A beam case (parsed TOML) as a BeamProblem; ``history`` picks a row of [[load.table]] (1-based)."""
     from .models.laminate import Blend, Stack, parse_layup
     from .models.pulses import SkewedPulse
-    from .workflows.beam_impact import BeamGauge, BeamLoad, BeamProblem, BeamSolver, BeamSpec
+    from .workflows.beam_impact import BeamGauge, BeamLoad, BeamProblem, BeamSpec
 
     top = Table(data)
     title = top.string("title", "")
@@ -406,9 +407,7 @@ def beam_problem(data: dict, base: Path = Path("."), history: int | None = None)
         for row in rows:
             row._used.update(row.data)
     ld.done()
-    solver_tbl = top.table("solver")
-    solver = BeamSolver(solver_tbl.quantity("time_step", "time"), solver_tbl.quantity("duration", "time"))
-    solver_tbl.done()
+    solver = read_solver(top.table("solver"))
     gauges = []
     for g in top.tables("gauges", optional=True):
         gauges.append(BeamGauge(g.string("name"), g.quantity("position", "length", positive=False), g.string("surface", "bottom", choices=("top", "bottom")), g.quantity("length", "length", default=0.031 * 0.0254)))

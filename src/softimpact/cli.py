@@ -132,27 +132,30 @@ def beam_cmd(case, history, out, figures):
 @_guarded
 def reduce_cmd(series, out, figures):
     """Bar strain records of a SERIES file → force histories and pulse parameters."""
-    from .cases import load_series
     from .io import json_text, write_outputs
     from .report import reduction_files
-    from .runs import reduce_series
 
-    spec = load_series(series)
-    with _series_progress(spec, "reducing") as bar:
-        reduced = reduce_series(spec, progress=lambda name: bar.update(1))
-    _report_bad(reduced)
+    spec, reduced = _reduce(series)
     files = reduction_files(spec, reduced, figures)
     files["summary.json"] = json_text({"series": str(spec.path), "synthetic": spec.synthetic, "reduced": sum(r.reduction is not None for r in reduced), "failed": {r.test.name: r.error for r in reduced if r.reduction is None}})
     write_outputs(out, files, inputs=[spec.path] + [t.record for t in spec.tests])
     click.echo(f"{sum(r.reduction is not None for r in reduced)} of {len(reduced)} records reduced; tests.csv in {out}")
 
 
-def _report_bad(reduced):
+def _reduce(series):
+    """Read a series and reduce its records with a progress bar; warn about the bad ones."""
+    from .cases import load_series
+    from .runs import reduce_series
+
+    spec = load_series(series)
+    with _series_progress(spec, "reducing") as bar:
+        reduced = reduce_series(spec, progress=lambda name: bar.update(1))
     bad = [r for r in reduced if r.reduction is None]
     for r in bad:
         click.echo(f"softimpact: warning: {r.error}", err=True)
     if len(bad) == len(reduced):
         raise InputError("no record of the series could be reduced")
+    return spec, reduced
 
 
 @main.command("fit")
@@ -162,15 +165,11 @@ def _report_bad(reduced):
 @_guarded
 def fit_cmd(series, out, figures):
     """Reduce a SERIES, then fit the scaling constants α1–α4 of eqs (4)–(7)."""
-    from .cases import load_series
     from .io import write_outputs
     from .report import reduction_files, scaling_files
-    from .runs import fit_series, reduce_series
+    from .runs import fit_series
 
-    spec = load_series(series)
-    with _series_progress(spec, "reducing") as bar:
-        reduced = reduce_series(spec, progress=lambda name: bar.update(1))
-    _report_bad(reduced)
+    spec, reduced = _reduce(series)
     fits = fit_series(reduced)
     files = reduction_files(spec, reduced, figures)
     files.update(scaling_files(fits, spec.units, figures))

@@ -20,7 +20,7 @@ import scipy.sparse.linalg
 
 from ..errors import InputError
 
-__all__ = ["NewmarkParameters", "NewmarkStepper", "BandedCholesky"]
+__all__ = ["NewmarkParameters", "NewmarkStepper", "BandedCholesky", "SolverSpec"]
 
 # Systems up to this many DOFs are factored densely: a dense triangular solve
 # beats the sparse machinery's per-call overhead at this size.
@@ -78,6 +78,29 @@ class NewmarkParameters:
                 f"solver: Newmark parameters beta={self.beta}, gamma={self.gamma} are not "
                 "unconditionally stable (need 2*beta >= gamma >= 1/2)"
             )
+
+
+@dataclass(frozen=True)
+class SolverSpec:
+    """Time step and duration [s], Newmark parameters."""
+
+    time_step: float
+    duration: float
+    newmark: NewmarkParameters = NewmarkParameters()
+
+    def __post_init__(self):
+        if not (math.isfinite(self.time_step) and self.time_step > 0):
+            raise InputError(f"solver.time_step must be positive, got {self.time_step!r} s")
+        if not (math.isfinite(self.duration) and self.duration > self.time_step):
+            raise InputError(f"solver.duration must exceed the time step, got {self.duration!r} s")
+
+    @property
+    def steps(self) -> int:
+        return int(round(self.duration / self.time_step))
+
+    def times(self) -> np.ndarray:
+        """t_k = k·dt, k = 0 … steps [s]."""
+        return np.arange(self.steps + 1) * self.time_step
 
 
 class NewmarkStepper:

@@ -233,7 +233,7 @@ class Stack:
     def layer_stiffness(self, z_lo: float, z_hi: float) -> np.ndarray:
         """Smeared stiffness of the part of the stack between heights z_lo < z_hi,
         measured up from the bottom face (for the layered model)."""
-        n, tp = len(self.angles), self.ply.thickness
+        tp = self.ply.thickness
         Cs, w = [], []
         for k, C in enumerate(self.ply_stiffnesses()):
             top = self.thickness - k * tp

@@ -31,7 +31,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..fem.bar import Rod, assemble_rod
-from ..fem.newmark import NewmarkParameters, NewmarkStepper
+from ..fem.newmark import NewmarkStepper, SolverSpec
 from ..fem.response import ImpulseResponse
 from ..models.contact import Hertz
 from ..models.materials import Material, sphere_mass
@@ -116,25 +116,6 @@ class Gauge:
 
     name: str
     position: float
-
-
-@dataclass(frozen=True)
-class SolverSpec:
-    """Time step and duration [s], Newmark parameters."""
-
-    time_step: float
-    duration: float
-    newmark: NewmarkParameters = NewmarkParameters()
-
-    def __post_init__(self):
-        if not (math.isfinite(self.time_step) and self.time_step > 0):
-            raise InputError(f"solver.time_step must be positive, got {self.time_step!r} s")
-        if not (math.isfinite(self.duration) and self.duration > self.time_step):
-            raise InputError(f"solver.duration must exceed the time step, got {self.duration!r} s")
-
-    @property
-    def steps(self) -> int:
-        return int(round(self.duration / self.time_step))
 
 
 @dataclass(frozen=True)

@@ -14,20 +14,19 @@ computed once by reciprocity; milliseconds per force history).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..errors import InputError
 from ..fem.loads import PatchLoad
-from ..fem.newmark import NewmarkParameters, NewmarkStepper
+from ..fem.newmark import NewmarkStepper, SolverSpec
 from ..fem.plane import PlaneBeam, PlaneModel
 from ..fem.response import ImpulseResponse
 from ..models.laminate import Stack, engineering_constants, plane_matrix
 from ..models.materials import Material
 
-__all__ = ["BeamGauge", "BeamSpec", "BeamLoad", "BeamSolver", "BeamProblem", "BeamModel", "BeamResult", "isotropic_matrix"]
+__all__ = ["BeamGauge", "BeamSpec", "BeamLoad", "BeamProblem", "BeamModel", "BeamResult", "isotropic_matrix"]
 
 MIN_STEPS_PER_RISE = 4  # a pulse rising in fewer time steps than this is not resolved
 
@@ -109,30 +108,10 @@ class BeamLoad:
 
 
 @dataclass(frozen=True)
-class BeamSolver:
-    time_step: float
-    duration: float
-    newmark: NewmarkParameters = NewmarkParameters()
-
-    def __post_init__(self):
-        if not (math.isfinite(self.time_step) and self.time_step > 0):
-            raise InputError(f"solver.time_step must be positive, got {self.time_step!r} s")
-        if not self.duration > self.time_step:
-            raise InputError(f"solver.duration must exceed the time step, got {self.duration!r} s")
-
-    @property
-    def steps(self) -> int:
-        return int(round(self.duration / self.time_step))
-
-    def times(self) -> np.ndarray:
-        return np.arange(self.steps + 1) * self.time_step
-
-
-@dataclass(frozen=True)
 class BeamProblem:
     beam: BeamSpec
     load: BeamLoad
-    solver: BeamSolver
+    solver: SolverSpec
     gauges: tuple[BeamGauge, ...]
     title: str = ""
     units: str = "in-lbf-s"
