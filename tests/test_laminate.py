@@ -91,7 +91,7 @@ def test_clt_of_unidirectional_stack():
     stack = Stack(T300, (0.0,) * 10)
     h = stack.thickness
     A, B, D = abd(stack.ply_stiffnesses(), [T300.thickness] * 10)
-    Q11 = 1 / np.linalg.inv(ply_stiffness(T300))[np.ix_([0, 1, 5], [0, 1, 5])][0, 0]
+    Q11 = T300.E1 / (1 - T300.nu12**2 * T300.E2 / T300.E1)  # E1/(1 − ν12·ν21), the textbook reduced stiffness
     assert np.allclose(B, 0, atol=1e-9 * D.max())
     assert D[0, 0] == pytest.approx(Q11 * h**3 / 12, rel=1e-12)
     bs = stack.bending_stiffness("stress")
