@@ -207,8 +207,19 @@ def bar_problem(data: dict) -> BarImpactProblem:
         contact_tbl.done()
     solver = read_solver(top.table("solver"))
     gauges = read_gauges(top, bar.length)
+    snapshots = ()
+    output = top.table("output", optional=True)
+    if output is not None:
+        raw = output.raw("snapshots", [])
+        if not isinstance(raw, list):
+            raise InputError(f"output.snapshots: expected a list of times, got {raw!r}")
+        snapshots = tuple(units.parse(v, "time", f"output.snapshots[{i}]") for i, v in enumerate(raw))
+        for i, t in enumerate(snapshots):
+            if not 0 <= t <= solver.duration:
+                raise InputError(f"output.snapshots[{i}]: {raw[i]!r} is outside the run (0 to {solver.duration * 1e6:.6g} us)")
+        output.done()
     top.done()
-    return BarImpactProblem(bar, projectile, solver, gauges, law, title, system)
+    return BarImpactProblem(bar, projectile, solver, gauges, law, title, system, snapshots)
 
 
 def load_bar_case(case: str) -> tuple[BarImpactProblem, Path]:

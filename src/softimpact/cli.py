@@ -192,15 +192,16 @@ def fit_cmd(series, out, figures):
 @click.option("--material", default="silicone rubber", show_default=True, help="Projectile material (hertz and wilbeck models).")
 @click.option("--target", default="Al 6061-T6", show_default=True, help="Target material (hertz model).")
 @click.option("--bar", "bar_case", help="Drive the bar of this bar case (file or built-in name) with the predicted force.")
+@click.option("--beam", "beam_case", help="Drive this beam case (file or built-in name) with the predicted force.")
 @click.option("--units", "system", type=click.Choice(["in-lbf-s", "SI"]), default="in-lbf-s", show_default=True)
 @_out_option("predict")
 @_figures_option
 @_guarded
-def predict_cmd(projectile, mass, diameter, velocity, model, constants, group, tail, material, target, bar_case, system, out, figures):
+def predict_cmd(projectile, mass, diameter, velocity, model, constants, group, tail, material, target, bar_case, beam_case, system, out, figures):
     """Force history of a projectile at a velocity, from the empirical model (eqs 4-7, 15) or a classical one."""
     from .predict import predict
 
-    files, note = predict(projectile, mass, diameter, velocity, model, constants, group, tail, material, target, bar_case, system, figures)
+    files, note = predict(projectile, mass, diameter, velocity, model, constants, group, tail, material, target, bar_case, system, figures, beam_case)
     from .io import write_outputs
 
     write_outputs(out, files)

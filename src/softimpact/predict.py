@@ -37,7 +37,7 @@ def scaling_law(constants: str | None, group: str, projectile) -> ScalingLaw:
         raise InputError(f"--constants: {constants} is not a scaling.json with group {group!r}") from None
 
 
-def predict(projectile, mass, diameter, velocity, model, constants, group, tail, material, target, bar_case, system, figures):
+def predict(projectile, mass, diameter, velocity, model, constants, group, tail, material, target, bar_case, system, figures, beam_case=None):
     """Returns (files, one-line note)."""
     proj = None
     if projectile is not None:
@@ -100,6 +100,22 @@ def predict(projectile, mass, diameter, velocity, model, constants, group, tail,
             cols[f"strain_{g.name}"] = eps
             k = int(np.argmin(eps))
             summary.setdefault("gauges", {})[g.name] = {"peak_compressive_strain": float(eps[k]), "time_s": float(res.time[k])}
+    if beam_case is not None:
+        if bar_case is not None:
+            raise InputError("--bar and --beam: drive one structure at a time")
+        from dataclasses import replace
+
+        from .cases import load_beam_case
+        from .workflows.beam_impact import BeamLoad, BeamModel
+
+        problem, _ = load_beam_case(beam_case)
+        problem = replace(problem, load=BeamLoad(problem.load.position, problem.load.contact_radius, pulse))
+        res = BeamModel(problem).direct(energy=False)
+        cols = {"time_s": res.time, "force_N": res.force}
+        for g, eps in zip(problem.gauges, res.strain):
+            cols[f"strain_{g.name}"] = eps
+            k = int(np.argmax(np.abs(eps)))
+            summary.setdefault("gauges", {})[g.name] = {"peak_strain": float(eps[k]), "time_s": float(res.time[k])}
     files["history.csv"] = csv_text(cols)
     files["summary.json"] = json_text(summary)
     if figures:

@@ -99,6 +99,15 @@ def bar_files(result, plain=None, figures: bool = True, prefix: str = "") -> dic
             "contact_duration_s": plain.contact_duration,
         }
     files = {prefix + "history.csv": csv_text(cols), prefix + "summary.json": json_text(summary)}
+    L_over_c = p.bar.length / p.bar.rod().wave_speed
+    chosen = [t for t in p.snapshots if t <= result.time[-1]]
+    instants = np.array(chosen) if chosen else np.linspace(0.0, min(result.time[-1], 2.0 * L_over_c), 7)[1:]
+    dt = result.time[1] - result.time[0]
+    along = {"x_m": result.bar_x}
+    for t in instants:
+        k = int(round(t / dt))
+        along[f"strain_t{result.time[k] * 1e6:.1f}us"] = result.bar_strain[:, k]
+    files[prefix + "strain-along-bar.csv"] = csv_text(along)
     if figures:
         system = p.units
         files[prefix + "fig04-gauge-strain.png"] = figure_bytes(plots.bar_gauge_strain(result, system))
@@ -107,9 +116,6 @@ def bar_files(result, plain=None, figures: bool = True, prefix: str = "") -> dic
             t, f = inferred_force(result, 0)
             inferred = (t, f, p.gauges[0].name)
         files[prefix + "fig05-contact-force.png"] = figure_bytes(plots.bar_contact_force(result, plain, inferred, system))
-        L_over_c = p.bar.length / p.bar.rod().wave_speed
-        span = min(result.time[-1], 2.0 * L_over_c)
-        instants = np.linspace(0.0, span, 7)[1:]
         files[prefix + "fig06-strain-along-bar.png"] = figure_bytes(plots.bar_strain_profiles(result, instants, system))
         files[prefix + "energy.png"] = figure_bytes(plots.bar_energy(result))
     return files

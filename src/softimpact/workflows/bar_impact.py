@@ -129,6 +129,7 @@ class BarImpactProblem:
     contact: str = "hertz"
     title: str = ""
     units: str = "in-lbf-s"
+    snapshots: tuple[float, ...] = ()  # instants [s] at which the strain along the bar is reported (those in the run)
 
     def __post_init__(self):
         for g in self.gauges:
