@@ -184,10 +184,6 @@ def render_report(title: str, sections: list[Section], notes: list[str] = ()) ->
     return "\n".join(out)
 
 
-def fmt(x: float, digits: int = 4) -> str:
-    return "—" if x is None or (isinstance(x, float) and math.isnan(x)) else f"{x:.{digits}g}"
-
-
 def _stem(name: str) -> str:
     return "".join(ch if ch.isalnum() or ch in "-_." else "_" for ch in name)
 

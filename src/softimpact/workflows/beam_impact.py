@@ -109,6 +109,8 @@ class BeamLoad:
 
 @dataclass(frozen=True)
 class BeamProblem:
+    """Everything that defines a beam run (SI); checks that the load, gauges and time step fit."""
+
     beam: BeamSpec
     load: BeamLoad
     solver: SolverSpec
