@@ -155,6 +155,14 @@ def read_columns(path) -> tuple[list[str], np.ndarray]:
     return names, data
 
 
+def _time_column(path, names, data) -> np.ndarray:
+    """The record's one time column (time_s, time_ms or time_us), in seconds."""
+    tcols = [n for n in names if n in TIME_COLUMNS]
+    if len(tcols) != 1:
+        raise InputError(f"{path}: needs one time column ({', '.join(TIME_COLUMNS)}), header is {','.join(names)!r}")
+    return data[:, names.index(tcols[0])] * TIME_COLUMNS[tcols[0]]
+
+
 def read_record(path) -> tuple[np.ndarray, np.ndarray, str]:
     """A gauge record: (time [s], signal, kind) with kind 'strain' (SI) or 'voltage' [V].
 
@@ -162,15 +170,11 @@ def read_record(path) -> tuple[np.ndarray, np.ndarray, str]:
     signal column (strain, microstrain, voltage_V).
     """
     names, data = read_columns(path)
-    tcols = [n for n in names if n in TIME_COLUMNS]
+    t = _time_column(path, names, data)
     scols = [n for n in names if n in SIGNAL_COLUMNS]
-    if len(tcols) != 1 or len(scols) != 1:
-        raise InputError(
-            f"{path}: header {','.join(names)!r} must have one time column ({', '.join(TIME_COLUMNS)}) "
-            f"and one signal column ({', '.join(SIGNAL_COLUMNS)})"
-        )
+    if len(scols) != 1:
+        raise InputError(f"{path}: needs one signal column ({', '.join(SIGNAL_COLUMNS)}), header is {','.join(names)!r}")
     kind, factor = SIGNAL_COLUMNS[scols[0]]
-    t = data[:, names.index(tcols[0])] * TIME_COLUMNS[tcols[0]]
     return t, data[:, names.index(scols[0])] * factor, kind
 
 
@@ -178,9 +182,7 @@ def read_strains(path) -> tuple[np.ndarray, dict]:
     """Measured gauge strains: a time column (time_s, time_ms, time_us) and
     ``strain_<gauge>`` (or ``microstrain_<gauge>``) columns. Returns (time [s], {gauge: strain})."""
     names, data = read_columns(path)
-    tcols = [n for n in names if n in TIME_COLUMNS]
-    if len(tcols) != 1:
-        raise InputError(f"{path}: needs one time column ({', '.join(TIME_COLUMNS)}), header is {','.join(names)!r}")
+    t = _time_column(path, names, data)
     strains = {}
     for j, n in enumerate(names):
         if n.startswith("strain_"):
@@ -191,7 +193,6 @@ def read_strains(path) -> tuple[np.ndarray, dict]:
             raise InputError(f"{path}: column {n!r} is neither time nor strain_<gauge>")
     if not strains:
         raise InputError(f"{path}: no strain_<gauge> columns")
-    t = data[:, names.index(tcols[0])] * TIME_COLUMNS[tcols[0]]
     bad = ~np.isfinite(t) | np.any([~np.isfinite(v) for v in strains.values()], axis=0)
     if bad.any():
         raise InputError(f"{path}: {int(bad.sum())} NaN or empty values (first at row {int(np.argmax(bad)) + 2})")

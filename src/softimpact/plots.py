@@ -122,17 +122,28 @@ def _groups(fits):
     return [(label, f) for label, f in fits.items() if label != "pooled"] or list(fits.items())
 
 
+def _through_origin(ax, fits, name: str, factor: float) -> float:
+    """Points and fitted line y = α·x of one law of :data:`REGRESSORS`, per group; returns the largest x shown."""
+    from .workflows.scaling import REGRESSORS
+
+    _, fx, fy = REGRESSORS[name]
+    top = 0.0
+    for i, (label, f) in enumerate(_groups(fits)):
+        x = np.array([fx(p) for p in f.points]) * factor
+        y = np.array([fy(p) for p in f.points]) * factor
+        a = f.origin[name]
+        top = max(top, x.max())
+        ax.plot(x, y, "o", color=f"C{i}", label=f"d = {label}")
+        xx = np.linspace(0, x.max() * 1.05, 2)
+        ax.plot(xx, a.slope * xx, "-", color=f"C{i}", label=f"α{name[-1]} = {a.slope:.3g} [{a.slope_ci[0]:.3g}, {a.slope_ci[1]:.3g}]")
+    return top
+
+
 def scaling_peak_force(fits, system: str):
     """Figs 8 and 12: F0 against mV²/(2d), with the fitted α1 lines."""
     fu = display(system, "force")
     fig, ax = _figure()
-    for i, (label, f) in enumerate(_groups(fits)):
-        x = np.array([p.mass * p.velocity**2 / (2 * p.diameter) for p in f.points]) * fu.factor
-        y = np.array([p.peak_force for p in f.points]) * fu.factor
-        a = f.origin["alpha1"]
-        ax.plot(x, y, "o", color=f"C{i}", label=f"d = {label}")
-        xx = np.linspace(0, x.max() * 1.05, 2)
-        ax.plot(xx, a.slope * xx, "-", color=f"C{i}", label=f"α1 = {a.slope:.3g} [{a.slope_ci[0]:.3g}, {a.slope_ci[1]:.3g}]")
+    _through_origin(ax, fits, "alpha1", fu.factor)
     ax.set_xlabel(f"mV²/(2d) [{fu.label}]")
     ax.set_ylabel(f"peak force F0 [{fu.label}]")
     ax.set_title("Peak force against mV²/(2d), eq (4) (paper Figs 8, 12)")
@@ -183,15 +194,7 @@ def scaling_impulse(fits, system: str):
     """Figs 11 and 15: I against 2mV, with the fitted α4 and the line I = 2mV."""
     iu = display(system, "impulse")
     fig, ax = _figure()
-    top = 0.0
-    for i, (label, f) in enumerate(_groups(fits)):
-        x = np.array([2 * p.mass * p.velocity for p in f.points]) * iu.factor
-        y = np.array([p.impulse for p in f.points]) * iu.factor
-        a = f.origin["alpha4"]
-        top = max(top, x.max())
-        ax.plot(x, y, "o", color=f"C{i}", label=f"d = {label}")
-        xx = np.linspace(0, x.max() * 1.05, 2)
-        ax.plot(xx, a.slope * xx, color=f"C{i}", label=f"α4 = {a.slope:.3g} [{a.slope_ci[0]:.3g}, {a.slope_ci[1]:.3g}]")
+    top = _through_origin(ax, fits, "alpha4", iu.factor)
     xx = np.linspace(0, top * 1.05, 2)
     ax.plot(xx, xx, "k:", label="I = 2mV (elastic rebound from a rigid wall)")
     ax.set_xlabel(f"incident momentum × 2, 2mV [{iu.label}]")
