@@ -1,12 +1,13 @@
 # Two commands set everything up on a fresh machine:
 #   make run   - create .venv, install softimpact, run the whole paper into results/paper
-#   make test  - create .venv, install softimpact with its test extras, run the tests
+#   make test  - create .venv, install softimpact with its test extras, run the tests (all of them, slow ones too)
+#   make lint  - ruff: lint and format check
 PYTHON ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
 OUT ?= results/paper
 
-.PHONY: run test bench clean
+.PHONY: run test lint bench clean
 
 $(BIN)/softimpact: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -19,6 +20,10 @@ run: $(BIN)/softimpact
 
 test: $(BIN)/softimpact
 	MPLBACKEND=Agg $(BIN)/python -m pytest -q
+
+lint: $(BIN)/softimpact
+	$(BIN)/ruff check .
+	$(BIN)/ruff format --check .
 
 bench: $(BIN)/softimpact
 	$(BIN)/python benchmarks/bench_bar.py

@@ -9,8 +9,8 @@ import time
 
 import numpy as np
 
-from softimpact.cases import load_bar_case
 from softimpact.fem.bar import assemble_rod
+from softimpact.input.bar_case import load_bar_case
 from softimpact.workflows.bar_impact import simulate_impact
 
 

@@ -14,7 +14,7 @@ import time
 import numpy as np
 import scipy.sparse.linalg as spl
 
-from softimpact.cases import load_beam_case
+from softimpact.input.beam_case import load_beam_case
 from softimpact.models.pulses import SkewedPulse
 from softimpact.workflows.beam_impact import BeamModel
 

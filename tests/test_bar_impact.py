@@ -7,11 +7,11 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from softimpact.cases import load_bar_case
+from softimpact.fem.newmark import SolverSpec
+from softimpact.input.bar_case import load_bar_case
 from softimpact.models.materials import Material
+from softimpact.models.specimens import Gauge
 from softimpact.workflows.bar_impact import (
-    Gauge,
-    SolverSpec,
     simulate_force,
     simulate_impact,
     without_end_cap,

@@ -6,19 +6,18 @@ from dataclasses import replace
 import numpy as np
 import pytest
 import scipy.sparse.linalg as spl
+from conftest import INCH
 from scipy.integrate import quad
 from scipy.linalg import expm
 from scipy.optimize import brentq
 
-from softimpact.cases import load_beam_case
 from softimpact.fem.loads import PatchLoad
+from softimpact.fem.newmark import SolverSpec as BeamSolver
 from softimpact.fem.plane import PlaneBeam, PlaneModel
+from softimpact.input.beam_case import load_beam_case
 from softimpact.models.laminate import PLIES, Stack, parse_layup, plane_matrix
 from softimpact.models.pulses import SkewedPulse
-from softimpact.fem.newmark import SolverSpec as BeamSolver
 from softimpact.workflows.beam_impact import BeamModel
-
-from conftest import INCH
 
 STACK = Stack(PLIES["T300/934"], parse_layup("[90/0]5s"))
 D = plane_matrix(STACK.effective())

@@ -5,18 +5,17 @@ from dataclasses import replace
 import numpy as np
 import pytest
 from click.testing import CliRunner
+from conftest import INCH
 
-from softimpact.cases import load_beam_case
 from softimpact.cli import main
 from softimpact.errors import InputError
+from softimpact.fem.newmark import SolverSpec as BeamSolver
+from softimpact.input.beam_case import load_beam_case
 from softimpact.models.empirical import PRESETS, PROJECTILES
 from softimpact.models.pulses import SkewedPulse
-from softimpact.fem.newmark import SolverSpec as BeamSolver
 from softimpact.workflows.beam_impact import BeamModel
 from softimpact.workflows.calibration import Measured, calibrate
 from softimpact.workflows.synthetic import beam_measurement
-
-from conftest import INCH
 
 TRUE = SkewedPulse(44 * 4.4482216152605, 30e-6, 355e-6)  # Table II, history 1
 V = 1166 * INCH
@@ -73,7 +72,10 @@ def test_standard_errors_are_honest():
     start = SkewedPulse(0.8 * TRUE.peak_force, 40e-6, 420e-6)
     hits = 0
     for _ in range(30):
-        strains = {g.name: np.interp(t, clean.time, s, left=0.0) + 0.015 * np.max(np.abs(s)) * rng.standard_normal(t.size) for g, s in zip(problem.gauges, clean.strain)}
+        strains = {
+            g.name: np.interp(t, clean.time, s, left=0.0) + 0.015 * np.max(np.abs(s)) * rng.standard_normal(t.size)
+            for g, s in zip(problem.gauges, clean.strain)
+        }
         c = calibrate(model, Measured("draw", t, strains), start, "least-squares", contact_time=-1e-12, fit_origin=False)
         hits += abs(c.peak_force - TRUE.peak_force) <= 2 * c.standard_errors["peak_force"]
     assert hits >= 27

@@ -60,7 +60,7 @@ def test_bar_writes_the_contract_files(tmp_path):
         ('length = "36 in"', 'length = "-36 in"', "bar.length"),
         ('position = "18 in"', 'position = "40 in"', "gauges[0].position"),
         ('time_step = "1 us"', 'time_step = "0 us"', "solver.time_step"),
-        ('elements = 20', 'elements = 20\ncolour = "red"', "bar.colour"),
+        ("elements = 20", 'elements = 20\ncolour = "red"', "bar.colour"),
         ('velocity = "62.1 in/s"', 'velocity = "62.1 in"', "projectile.velocity"),
     ],
 )

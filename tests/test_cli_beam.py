@@ -5,8 +5,8 @@ import json
 import pytest
 from click.testing import CliRunner
 
-from softimpact.cases import locate
 from softimpact.cli import main
+from softimpact.input.toml import locate
 
 BASE = locate("paper-short-beam").read_text()
 

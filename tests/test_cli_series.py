@@ -7,8 +7,9 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from softimpact.cases import builtin_cases, load_series
 from softimpact.cli import main
+from softimpact.input.series import load_series
+from softimpact.input.toml import builtin_cases
 
 LBF = 4.4482216152605
 
@@ -16,8 +17,18 @@ LBF = 4.4482216152605
 def _mini_series(tmp_path, extra_record=None):
     """Two built-in synthetic records (and optionally a third, given as text) in a series file."""
     src = load_series("paper-rubber-series")
-    lines = ['[bar]', 'material = "Al 6061-T6"', 'length = "36 in"', 'diameter = "0.5 in"', '[bar.end_cap]',
-             'material = "Al 6061-T6"', 'diameter = "1.0 in"', 'length = "0.25 in"', '[gauge]', 'position = "18 in"']
+    lines = [
+        "[bar]",
+        'material = "Al 6061-T6"',
+        'length = "36 in"',
+        'diameter = "0.5 in"',
+        "[bar.end_cap]",
+        'material = "Al 6061-T6"',
+        'diameter = "1.0 in"',
+        'length = "0.25 in"',
+        "[gauge]",
+        'position = "18 in"',
+    ]
     tests = [t for t in src.tests if t.name in ("1_2in-2000", "1_2in-4000")]
     for t in tests:
         shutil.copy(t.record, tmp_path / t.record.name)
@@ -55,8 +66,10 @@ def test_all_records_bad_exits_2_and_writes_nothing(tmp_path):
     """When no record can be reduced: exit 2, a message, and nothing in the output folder."""
     (tmp_path / "bad.csv").write_text("time_us,strain\n1,0\n0,0\n")
     series = tmp_path / "s.toml"
-    series.write_text('[bar]\nmaterial = "steel"\nlength = "1 m"\ndiameter = "1 cm"\n[gauge]\nposition = "0.5 m"\n'
-                      '[[test]]\nrecord = "bad.csv"\nvelocity = "10 m/s"\ndiameter = "1 cm"\nmass = "1 g"\n')
+    series.write_text(
+        '[bar]\nmaterial = "steel"\nlength = "1 m"\ndiameter = "1 cm"\n[gauge]\nposition = "0.5 m"\n'
+        '[[test]]\nrecord = "bad.csv"\nvelocity = "10 m/s"\ndiameter = "1 cm"\nmass = "1 g"\n'
+    )
     out = tmp_path / "out"
     result = CliRunner().invoke(main, ["reduce", str(series), "--out", str(out)])
     assert result.exit_code == 2

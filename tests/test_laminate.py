@@ -1,6 +1,5 @@
 """Laminate homogenisation (uniform in-plane strain, uniform through-thickness stress), layups, CLT."""
 
-
 import numpy as np
 import pytest
 

@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from softimpact.fem.newmark import NewmarkParameters, NewmarkStepper
 from softimpact.errors import InputError
+from softimpact.fem.newmark import NewmarkParameters, NewmarkStepper
 
 OMEGA = 2 * np.pi * 1000.0  # rad/s
 

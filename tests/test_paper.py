@@ -1,11 +1,14 @@
 """`softimpact paper`: the whole paper into one report, every figure and table present."""
 
+import base64
 import re
 
 import pytest
 from click.testing import CliRunner
 
 from softimpact.cli import main
+
+pytestmark = pytest.mark.slow  # the whole paper: about 20 s
 
 
 @pytest.fixture(scope="module")
@@ -16,20 +19,23 @@ def report(tmp_path_factory):
     return out, (out / "report.html").read_text()
 
 
-@pytest.mark.parametrize("fig", ["Fig 4", "Fig 5", "Fig 6", "Fig 7", "Figs 8 and 12", "Figs 9 and 13", "Figs 10 and 14", "Figs 11 and 15",
-                                 "Fig 18", "Fig 20", "Figs 21-22", "Figs 23-25"])
+@pytest.mark.parametrize(
+    "fig",
+    ["Fig 4", "Fig 5", "Fig 6", "Fig 7", "Figs 8 and 12", "Figs 9 and 13", "Figs 10 and 14", "Figs 11 and 15", "Fig 18", "Fig 20", "Figs 21-22", "Figs 23-25"],
+)
 def test_every_figure_is_in_the_report(report, fig):
     """Each of the paper's figures is captioned in report.html."""
     assert fig in report[1]
 
 
-def test_every_linked_image_exists(report):
-    """Every <img> of the report points at a PNG that was written."""
+def test_every_image_is_embedded_and_written(report):
+    """Every <img> of the report is an embedded PNG (the page opens on its own when mailed), also written beside it."""
     out, html = report
-    images = re.findall(r"<img src='([^']+)'", html)
-    assert len(images) >= 20
-    for src in images:
-        assert (out / src).read_bytes()[:4] == b"\x89PNG"
+    images = re.findall(r"<img src='data:image/png;base64,([^']+)' alt='([^']*)'", html)
+    assert len(images) >= 20 and len(images) == html.count("<img ")
+    for data, _ in images:
+        assert base64.b64decode(data)[:4] == b"\x89PNG"
+    assert len(list(out.rglob("*.png"))) >= len(images)
 
 
 @pytest.mark.parametrize("table", ["Table I", "Table II", "Table III"])
@@ -39,6 +45,6 @@ def test_tables(report, table):
 
 
 def test_assumptions_and_synthetic_labels(report):
-    """The report lists the NOTES.md assumptions and labels synthetic data as such."""
+    """The report lists the assumptions of docs/modelling-notes.md and labels synthetic data as such."""
     html = report[1]
     assert "Assumptions and errata" in html and html.count("SYNTHETIC") >= 2

@@ -1,17 +1,15 @@
 """Bar records → force histories (paper Figs 7-15), against records made by the bar FE."""
 
-
 import numpy as np
 import pytest
+from conftest import INCH
 
 from softimpact.errors import InputError
 from softimpact.models.materials import lookup
 from softimpact.models.pulses import SkewedPulse, TailedPulse
-from softimpact.workflows.bar_impact import BarSpec, EndCap
-from softimpact.workflows.reduction import Bridge, Record, reduce_record, wave_separation
+from softimpact.models.specimens import BarSpec, Bridge, EndCap
+from softimpact.workflows.reduction import Record, reduce_record, wave_separation
 from softimpact.workflows.synthetic import gauge_model, synthetic_record
-
-from conftest import INCH
 
 AL = lookup("Al 6061-T6")
 PLAIN = BarSpec(AL, 36 * INCH, 0.5 * INCH, 96)
@@ -32,8 +30,15 @@ def _record(gauge, pulse, seed):
     length = min(2.4e-3, 250e-6 + max(5 * main.duration, pulse.duration))
     rng = np.random.default_rng(seed)
     t, y = synthetic_record(
-        gauge, pulse, pre_trigger=250e-6, length=length, sample_interval=1e-6, noise=0.01,
-        offset=rng.normal(0, 2e-5), clock_start=rng.uniform(-1, 1), rng=rng,
+        gauge,
+        pulse,
+        pre_trigger=250e-6,
+        length=length,
+        sample_interval=1e-6,
+        noise=0.01,
+        offset=rng.normal(0, 2e-5),
+        clock_start=rng.uniform(-1, 1),
+        rng=rng,
     )
     return Record(f"seed{seed}", t, y)
 
@@ -125,3 +130,17 @@ def test_clean_record_reduces():
     t, y = _clean()
     r = reduce_record(Record("rec-7", t, y), PLAIN, GAUGE)
     assert r.peak_force == pytest.approx(1e-4 * AL.youngs_modulus * PLAIN.area, rel=0.02)
+
+
+def test_noise_free_record_reduces():
+    """A record without noise (zero standard errors) reduces to its pulse instead of dividing by zero."""
+    al = lookup("Al 6061-T6")
+    bar = BarSpec(al, 36 * INCH, 0.5 * INCH, 144)
+    gauge = gauge_model(bar, 18 * INCH, 0.25e-6, 1.0e-3)
+    pulse = SkewedPulse(200.0, 10e-6, 60e-6)
+    t, y = synthetic_record(
+        gauge, pulse, pre_trigger=50e-6, length=0.9e-3, sample_interval=0.5e-6, noise=0.0, offset=0.0, clock_start=0.0, rng=np.random.default_rng(1)
+    )
+    r = reduce_record(Record("clean", t, y), bar, 18 * INCH)
+    assert r.peak_force == pytest.approx(pulse.peak_force, rel=0.01)
+    assert r.impulse == pytest.approx(pulse.impulse, rel=0.01)

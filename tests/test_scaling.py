@@ -1,17 +1,15 @@
 """Scaling laws, eqs (4)-(7): fits recover known constants; intervals are honest."""
 
-
 import numpy as np
 import pytest
+from conftest import INCH
 
 from softimpact.models.empirical import ScalingLaw
 from softimpact.models.materials import lookup
-from softimpact.workflows.bar_impact import BarSpec
+from softimpact.models.specimens import BarSpec
 from softimpact.workflows.reduction import Record, reduce_record
 from softimpact.workflows.scaling import TestPoint, fit_groups, fit_line
 from softimpact.workflows.synthetic import gauge_model, synthetic_record
-
-from conftest import INCH
 
 KNOWN = {0.5 * INCH: (ScalingLaw(4.25, 0.93, 0.25, 0.68), 1.1e-3), 0.375 * INCH: (ScalingLaw(4.0, 1.03, 0.20, 0.74), 0.46e-3)}
 
@@ -28,7 +26,17 @@ def series_fit():
             V = v_in * INCH
             pulse = law.pulse(m, d, V, tail=True)
             length = min(2.4e-3, 250e-6 + max(5 * pulse.main.duration, pulse.duration))
-            t, y = synthetic_record(gauge, pulse, pre_trigger=250e-6, length=length, sample_interval=1e-6, noise=0.01, offset=rng.normal(0, 1e-5), clock_start=rng.uniform(0, 1), rng=rng)
+            t, y = synthetic_record(
+                gauge,
+                pulse,
+                pre_trigger=250e-6,
+                length=length,
+                sample_interval=1e-6,
+                noise=0.01,
+                offset=rng.normal(0, 1e-5),
+                clock_start=rng.uniform(0, 1),
+                rng=rng,
+            )
             r = reduce_record(Record(f"{d}-{v_in}", t, y), bar, 18 * INCH)
             points.append(TestPoint(r.name, V, m, d, r.peak_force, r.time_of_peak, r.duration, r.impulse))
     return fit_groups(points)
@@ -65,3 +73,17 @@ def test_confidence_intervals_cover_95_percent(origin):
         lo, hi = fit_line(x, y, origin).slope_ci
         hits += lo <= 1.5 <= hi
     assert 0.93 <= hits / 2000 <= 0.97
+
+
+def test_repeat_shots_at_one_velocity():
+    """Repeat shots at one velocity leave the affine fit undetermined (NaN), not a math error; the fit through the origin stands."""
+    x, y = [2.0, 2.0, 2.0], [3.9, 4.0, 4.1]
+    origin, affine = fit_line(x, y), fit_line(x, y, through_origin=False)
+    assert origin.slope == pytest.approx(2.0)
+    assert np.isnan(affine.slope) and np.isnan(affine.intercept)
+
+
+def test_exact_data_gives_zero_width_intervals():
+    """Data exactly on a line through the origin: the slope is exact and its interval has zero width."""
+    fit = fit_line([1.0, 2.0, 3.0], [2.0, 4.0, 6.0])
+    assert fit.slope == 2.0 and fit.slope_ci == (2.0, 2.0) and fit.r2 == 1.0

@@ -3,11 +3,10 @@
 import math
 
 import pytest
+from conftest import INCH, LB_PER_IN3, PSI
 
 from softimpact.errors import InputError
 from softimpact.units import display, parse
-
-from conftest import INCH, LB_PER_IN3, PSI
 
 
 @pytest.mark.parametrize(

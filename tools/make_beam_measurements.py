@@ -12,9 +12,9 @@ from pathlib import Path
 
 import numpy as np
 
-from softimpact.cases import load_beam_case, table_rows
-from softimpact.models.pulses import SkewedPulse
 from softimpact.fem.newmark import SolverSpec
+from softimpact.input.beam_case import load_beam_case, table_rows
+from softimpact.models.pulses import SkewedPulse
 from softimpact.workflows.beam_impact import BeamLoad, BeamModel
 from softimpact.workflows.synthetic import beam_measurement
 

@@ -12,7 +12,7 @@ import numpy as np
 
 from softimpact.models.empirical import PRESETS, PROJECTILES
 from softimpact.models.materials import lookup
-from softimpact.workflows.bar_impact import BarSpec, EndCap
+from softimpact.models.specimens import BarSpec, EndCap
 from softimpact.workflows.synthetic import gauge_model, synthetic_record
 
 IN = 0.0254

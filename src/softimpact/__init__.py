@@ -9,8 +9,10 @@ Due to the Impact of a Soft Projectile" (NASA Lewis):
   Newmark time stepping.
 - :mod:`softimpact.workflows` — bar impact, record reduction, scaling fit,
   beam impact, calibration.
-- :mod:`softimpact.cases`, :mod:`softimpact.io`, :mod:`softimpact.plots`,
-  :mod:`softimpact.report`, :mod:`softimpact.cli` — the edges.
+- :mod:`softimpact.input` (case, series and record files),
+  :mod:`softimpact.output` (the file contract, figures, the HTML report),
+  :mod:`softimpact.app` (one function per command) and :mod:`softimpact.cli`
+  (click only) — the edges. Imports point down only.
 
 Everything inside is SI; units are parsed at the edges (:mod:`softimpact.units`).
 """

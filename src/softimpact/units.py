@@ -11,11 +11,20 @@ quantity.
 from __future__ import annotations
 
 import functools
+import math
+import re
 from dataclasses import dataclass
 
 from .errors import InputError
 
-__all__ = ["registry", "parse", "display", "DisplayUnit", "DISPLAY_SYSTEMS", "DIMENSIONS"]
+__all__ = ["registry", "parse", "display", "DisplayUnit", "DISPLAY_SYSTEMS", "DIMENSIONS", "INCH", "POUND_FORCE", "POUND_MASS", "PSI"]
+
+# Exact definitions (NIST SP 811), for catalogue data written in US customary units
+# without building the unit registry; nothing else in the package converts units.
+INCH = 0.0254  # m
+POUND_MASS = 0.45359237  # kg
+POUND_FORCE = POUND_MASS * 9.80665  # N
+PSI = POUND_FORCE / INCH**2  # Pa
 
 # Dimension of each kind of quantity a case may hold, in pint's notation.
 DIMENSIONS = {
@@ -27,6 +36,7 @@ DIMENSIONS = {
     "density": "[mass] / [length] ** 3",
     "force": "[length] * [mass] / [time] ** 2",
     "impulse": "[length] * [mass] / [time]",
+    "energy": "[length] ** 2 * [mass] / [time] ** 2",
     "voltage": "[mass] * [length] ** 2 / [time] ** 3 / [current]",
     "frequency": "1 / [time]",
     "dimensionless": "dimensionless",
@@ -35,36 +45,69 @@ DIMENSIONS = {
 
 @functools.cache
 def registry():
-    """The package's single pint registry (built on first use, not at import)."""
+    """The package's single pint registry (built on first use, not at import).
+
+    It holds only the units of ``data/units.txt`` (SI, US customary, their
+    prefixes): it builds in milliseconds, and a name that is not a unit is an error.
+    """
+    from importlib import resources
+
     import pint
 
-    return pint.UnitRegistry()
+    ureg = pint.UnitRegistry(None)
+    ureg.load_definitions(str(resources.files("softimpact") / "data" / "units.txt"))
+    return ureg
+
+
+# A quantity is a number and a unit expression: unit names joined by * or /, each
+# with an optional one-digit power. Nothing else is evaluated (no 9**9**9).
+_NUMBER = re.compile(r"^\s*(?P<number>[+-]?(\d+(\.\d*)?|\.\d+)([eE][+-]?\d+)?)\s*(?P<unit>.*?)\s*$")
+_NAME = r"[^\W\d]+"
+_POWER = r"(\^|\*\*)[+-]?\d"
+_UNIT = re.compile(rf"^{_NAME}({_POWER})?(\s*[*/]\s*{_NAME}({_POWER})?)*$")
 
 
 def parse(value, kind: str, key: str) -> float:
-    """Parse ``value`` (a string with a unit) as a quantity of ``kind``; return SI.
+    """Parse ``value`` (a number and a unit, ``"0.5 in"``) as a quantity of ``kind``; return SI.
 
-    ``key`` names the case entry for the error message. Plain numbers are
-    accepted only for ``kind == "dimensionless"``.
+    ``key`` names the case entry for the error message, which echoes the value
+    as typed. Plain numbers are accepted only for ``kind == "dimensionless"``.
+    Infinite, NaN and overflowing values are refused.
     """
     if kind not in DIMENSIONS:
         raise ValueError(f"unknown kind of quantity {kind!r}")
     if isinstance(value, bool) or not isinstance(value, (str, int, float)):
         raise InputError(f"{key}: expected a quantity with a unit, got {value!r}")
+    example = f'(expected a {kind}, e.g. "{_EXAMPLE[kind]}")'
     if isinstance(value, (int, float)):
+        if kind != "dimensionless":
+            raise InputError(f"{key}: missing unit in {value!r} {example}")
+        if not math.isfinite(value):
+            raise InputError(f"{key}: {value!r} is not a finite number")
+        return float(value)
+    m = _NUMBER.match(value)
+    if m is None:
+        raise InputError(f"{key}: cannot read {value!r} as a number and a unit {example}")
+    number, unit = float(m["number"]), m["unit"]
+    if not math.isfinite(number):
+        raise InputError(f"{key}: {value!r} is not a finite number")
+    if not unit:
         if kind == "dimensionless":
-            return float(value)
-        raise InputError(f"{key}: missing unit in {value!r} (expected a {kind}, e.g. \"{_EXAMPLE[kind]}\")")
+            return number
+        raise InputError(f"{key}: missing unit in {value!r} {example}")
+    if not _UNIT.match(unit.replace(" ", "")):
+        raise InputError(f"{key}: cannot read the unit {unit!r} of {value!r} (unit names joined by * and /, powers as ^2) {example}")
     ureg = registry()
     try:
-        q = ureg.Quantity(value.strip())
-    except Exception as exc:  # pint raises several unrelated types for bad text
-        raise InputError(f"{key}: cannot read {value!r} as a quantity ({exc.__class__.__name__})") from None
-    if not hasattr(q, "dimensionality") or q.unitless and kind != "dimensionless":
-        raise InputError(f"{key}: missing unit in {value!r} (expected a {kind}, e.g. \"{_EXAMPLE[kind]}\")")
+        q = ureg.Quantity(number, ureg.parse_units(unit.replace(" ", "").replace("**", "^")))
+    except Exception:  # pint raises several unrelated types for unknown names
+        raise InputError(f"{key}: unknown unit {unit!r} in {value!r} {example}") from None
     if q.dimensionality != ureg.Quantity(1, _SI[kind]).dimensionality:
         raise InputError(f"{key}: {value!r} is not a {kind} (its dimension is {q.dimensionality})")
-    return float(q.to(_SI[kind]).magnitude)
+    si = float(q.to(_SI[kind]).magnitude)
+    if not math.isfinite(si):
+        raise InputError(f"{key}: {value!r} is not a finite {kind}")
+    return si
 
 
 _SI = {
@@ -76,6 +119,7 @@ _SI = {
     "density": "kg/m^3",
     "force": "N",
     "impulse": "N*s",
+    "energy": "J",
     "voltage": "V",
     "frequency": "Hz",
     "dimensionless": "dimensionless",
@@ -90,6 +134,7 @@ _EXAMPLE = {
     "density": "0.0975 lb/in^3",
     "force": "44 lbf",
     "impulse": "0.01 N*s",
+    "energy": "1 J",
     "voltage": "5 V",
     "frequency": "1 kHz",
     "dimensionless": "0.3",
@@ -115,6 +160,7 @@ DISPLAY_SYSTEMS = {
         "density": "lb/in^3",
         "force": "lbf",
         "impulse": "lbf*s",
+        "energy": "mJ",
         "strain": "microstrain",
     },
     "SI": {
@@ -126,6 +172,7 @@ DISPLAY_SYSTEMS = {
         "density": "kg/m^3",
         "force": "N",
         "impulse": "N*s",
+        "energy": "mJ",
         "strain": "microstrain",
     },
 }

@@ -43,11 +43,11 @@ class Rod:
     def __post_init__(self):
         for name in ("length", "area", "youngs_modulus", "density"):
             if not getattr(self, name) > 0:
-                raise InputError(f"bar.{name} must be positive, got {getattr(self, name)!r}")
+                raise InputError(f"{name} must be positive, got {getattr(self, name)!r}", name)
         if not (isinstance(self.elements, int) and self.elements >= 1):
-            raise InputError(f"bar.elements must be a positive integer, got {self.elements!r}")
+            raise InputError(f"elements must be a positive integer, got {self.elements!r}", "elements")
         if self.end_mass < 0:
-            raise InputError(f"bar.end_cap: mass must be non-negative, got {self.end_mass!r}")
+            raise InputError(f"end mass must be non-negative, got {self.end_mass!r}", "end_mass")
 
     @property
     def wave_speed(self) -> float:
@@ -111,9 +111,7 @@ class RodModel:
             rows.append(np.arange(x.size))
             cols.append(basis.element_dofs[k, cells])
             vals.append(grad.ravel())
-        P = scipy.sparse.coo_matrix(
-            (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(x.size, self.n)
-        )
+        P = scipy.sparse.coo_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(x.size, self.n))
         return P.tocsr()
 
 

@@ -4,7 +4,7 @@ The contact half-width follows the force, r(t) = r0·sqrt(F(t)/F0), eq (10), wit
 F0 the peak of the history. Over the strip the pressure has the cosine shape of
 eq (11), f(s, t) = Fmax(t)·cos(π s / (2 r(t))), |s| < r(t), s = x − x_c, with
 Fmax = π F/(4 r) so that it integrates to F(t), eq (13). (Eq (14) writes r0;
-the distribution is meant over the instantaneous r(t): NOTES.md, errata.)
+the distribution is meant over the instantaneous r(t): docs/modelling-notes.md, errata.)
 
 Node i receives the exact integral of f over its tributary segment [a_i, b_i]
 (half-way to its neighbours), clipped at ±r(t):
@@ -36,11 +36,9 @@ class PatchLoad:
     def __init__(self, node_x: np.ndarray, center: float, radius: float):
         x = np.asarray(node_x, float)
         if not radius > 0:
-            raise InputError(f"load.contact_radius must be positive, got {radius!r}")
+            raise InputError(f"contact radius must be positive, got {radius!r}", "contact_radius")
         if center - radius < x[0] - 1e-12 or center + radius > x[-1] + 1e-12:
-            raise InputError(
-                f"load: the contact patch {center - radius:.4g} to {center + radius:.4g} m is wider than the beam ({x[0]:.4g} to {x[-1]:.4g} m)"
-            )
+            raise InputError(f"load: the contact patch {center - radius:.4g} to {center + radius:.4g} m is wider than the beam ({x[0]:.4g} to {x[-1]:.4g} m)")
         lo, hi = _tributaries(x)
         self.nodes = np.flatnonzero((hi > center - radius) & (lo < center + radius))
         self.lo, self.hi = lo[self.nodes] - center, hi[self.nodes] - center

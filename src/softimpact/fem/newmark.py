@@ -74,10 +74,7 @@ class NewmarkParameters:
 
     def __post_init__(self):
         if not (self.gamma >= 0.5 and 2.0 * self.beta >= self.gamma):
-            raise InputError(
-                f"solver: Newmark parameters beta={self.beta}, gamma={self.gamma} are not "
-                "unconditionally stable (need 2*beta >= gamma >= 1/2)"
-            )
+            raise InputError(f"Newmark parameters beta={self.beta}, gamma={self.gamma} are not unconditionally stable (need 2*beta >= gamma >= 1/2)")
 
 
 @dataclass(frozen=True)
@@ -90,9 +87,9 @@ class SolverSpec:
 
     def __post_init__(self):
         if not (math.isfinite(self.time_step) and self.time_step > 0):
-            raise InputError(f"solver.time_step must be positive, got {self.time_step!r} s")
+            raise InputError(f"time_step must be positive, got {self.time_step!r} s", "time_step")
         if not (math.isfinite(self.duration) and self.duration > self.time_step):
-            raise InputError(f"solver.duration must exceed the time step, got {self.duration!r} s")
+            raise InputError(f"duration must exceed the time step, got {self.duration!r} s", "duration")
 
     @property
     def steps(self) -> int:
@@ -115,7 +112,7 @@ class NewmarkStepper:
 
     def __init__(self, M, K, dt: float, C=None, params: NewmarkParameters = NewmarkParameters()):
         if not (math.isfinite(dt) and dt > 0):
-            raise InputError(f"solver.time_step must be positive, got {dt!r}")
+            raise InputError(f"time_step must be positive, got {dt!r}", "time_step")
         b, g = params.beta, params.gamma
         self.dt, self.params = dt, params
         self.a0 = 1.0 / (b * dt * dt)
@@ -129,9 +126,7 @@ class NewmarkStepper:
         n = M.shape[0]
         self.n = n
         self.dense = n <= DENSE_LIMIT
-        conv = (lambda A: A.toarray() if scipy.sparse.issparse(A) else np.asarray(A)) if self.dense else (
-            lambda A: scipy.sparse.csc_matrix(A)
-        )
+        conv = (lambda A: A.toarray() if scipy.sparse.issparse(A) else np.asarray(A)) if self.dense else (lambda A: scipy.sparse.csc_matrix(A))
         self.M, self.K = conv(M), conv(K)
         self.C = None if C is None else conv(C)
         K_eff = self.K + self.a0 * self.M + (0.0 if self.C is None else self.a1 * self.C)

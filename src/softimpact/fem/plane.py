@@ -48,13 +48,13 @@ class PlaneBeam:
     def __post_init__(self):
         for k in ("length", "thickness", "width", "density"):
             if not getattr(self, k) > 0:
-                raise InputError(f"beam.{k} must be positive, got {getattr(self, k)!r}")
+                raise InputError(f"{k} must be positive, got {getattr(self, k)!r}", k)
         if not (isinstance(self.nx, int) and isinstance(self.nz, int) and self.nx >= 1 and self.nz >= 1):
-            raise InputError(f"beam.elements must be two positive integers, got [{self.nx!r}, {self.nz!r}]")
+            raise InputError(f"elements must be two positive integers, got [{self.nx!r}, {self.nz!r}]", "elements")
         if self.support not in SUPPORTS:
-            raise InputError(f"beam.support: {self.support!r} is not one of {', '.join(SUPPORTS)}")
+            raise InputError(f"support: {self.support!r} is not one of {', '.join(SUPPORTS)}", "support")
         if len(self.layers) not in (1, self.nz):
-            raise InputError(f"beam: {len(self.layers)} layer matrices for {self.nz} element layers")
+            raise InputError(f"{len(self.layers)} layer matrices for {self.nz} element layers")
 
 
 class PlaneModel:

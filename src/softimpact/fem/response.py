@@ -17,7 +17,6 @@ shape (n, p)); outputs y of shape (q, n_steps + 1) for q output rows (O of shape
 from __future__ import annotations
 
 import numpy as np
-import scipy.signal
 import scipy.sparse
 
 from .newmark import NewmarkStepper
@@ -45,7 +44,7 @@ class ImpulseResponse:
         self._start = None
 
     @classmethod
-    def reciprocal(cls, stepper: NewmarkStepper, patterns, steps: int, outputs) -> "ImpulseResponse":
+    def reciprocal(cls, stepper: NewmarkStepper, patterns, steps: int, outputs) -> ImpulseResponse:
         """The same kernel, computed with loads and outputs swapped (Maxwell–Betti).
 
         For symmetric M, C, K the Newmark response matrix after k steps is
@@ -129,7 +128,9 @@ class ImpulseResponse:
             raise ValueError("no velocity outputs were requested for this engine")
         y = np.zeros((h.shape[0], N + 1))
         # y[k] = Σ_j h[k − j] F[j] (j ≥ 1), summed over the load patterns.
-        conv = scipy.signal.fftconvolve(h, F[None, :, 1:], axes=-1)[:, :, :N]
+        from scipy.signal import fftconvolve  # imported on use: scipy.signal is slow to import
+
+        conv = fftconvolve(h, F[None, :, 1:], axes=-1)[:, :, :N]
         y[:, 1:] = conv.sum(axis=1)
         if np.any(F[:, 0] != 0.0):
             h0 = self._start_kernels()[1 if velocity else 0]

@@ -45,7 +45,7 @@ class Hertz:
             raise InputError(f"contact: exponent must be >= 1, got {self.exponent!r}")
 
     @classmethod
-    def sphere_on_sphere(cls, r1: float, r2: float, m1: Material, m2: Material) -> "Hertz":
+    def sphere_on_sphere(cls, r1: float, r2: float, m1: Material, m2: Material) -> Hertz:
         """Eq (2): K = 4/3·sqrt(R1R2/(R1+R2))·k1k2/(k1+k2); radii in m."""
         if r1 <= 0 or r2 <= 0:
             raise InputError(f"contact: radii must be positive, got {r1!r}, {r2!r}")
@@ -53,7 +53,7 @@ class Hertz:
         return cls(4.0 / 3.0 * math.sqrt(radius) * effective_modulus(m1, m2))
 
     @classmethod
-    def sphere_on_flat(cls, radius: float, sphere: Material, flat: Material) -> "Hertz":
+    def sphere_on_flat(cls, radius: float, sphere: Material, flat: Material) -> Hertz:
         """Eq (3): the flat target, R2 → ∞: K = 4/3·sqrt(R1)·k1k2/(k1+k2)."""
         if radius <= 0:
             raise InputError(f"contact: sphere radius must be positive, got {radius!r}")

@@ -20,11 +20,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
+from ..units import INCH
 from .contact import Hertz
 from .materials import Material
 from .pulses import SkewedPulse, TabulatedPulse, TailedPulse
 
-__all__ = ["PulseParameters", "ScalingLaw", "HertzModel", "WilbeckModel", "PRESETS", "PROJECTILES", "Projectile"]
+__all__ = ["PulseParameters", "ScalingLaw", "HertzModel", "WilbeckModel", "PRESETS", "PROJECTILES", "ProjectilePreset"]
 
 
 @dataclass(frozen=True)
@@ -84,22 +85,20 @@ class ScalingLaw:
 
 TAIL_LEVEL = 0.04  # fraction of F0 where the synthetic tail takes over from eq (15)
 
-_IN_S = 0.0254  # m/s per in/s
 _TABLE_I = "Table I of the paper (longitudinal bar tests, 1000-5000 in/s)"
 
 PRESETS = {
-    "silicone-3/8in": ScalingLaw(4.00, 1.03, 0.25, 0.74, "silicone-3/8in", _TABLE_I, (1000 * _IN_S, 5000 * _IN_S)),
+    "silicone-3/8in": ScalingLaw(4.00, 1.03, 0.25, 0.74, "silicone-3/8in", _TABLE_I, (1000 * INCH, 5000 * INCH)),
     # α3 of the 1/2-in ball did not survive in Table I; the 3/8-in value is used, as
     # the paper finds the trends characteristic of the material, not the size.
-    "silicone-1/2in": ScalingLaw(
-        4.25, 0.93, 0.25, 0.66, "silicone-1/2in", _TABLE_I + "; alpha3 missing, 0.25 (3/8-in value) used", (1000 * _IN_S, 5000 * _IN_S)
-    ),
+    "silicone-1/2in": ScalingLaw(4.25, 0.93, 0.25, 0.66, "silicone-1/2in", _TABLE_I + "; alpha3 missing, 0.25 (3/8-in value) used", (1000 * INCH, 5000 * INCH)),
 }
 
 
 @dataclass(frozen=True)
-class Projectile:
-    """A named projectile: diameter [m], mass [kg], its material and scaling law."""
+class ProjectilePreset:
+    """A named projectile of the paper: diameter [m], mass [kg], its material and scaling law
+    (the sphere that strikes, with its velocity, is :class:`softimpact.models.specimens.Projectile`)."""
 
     name: str
     diameter: float
@@ -109,9 +108,9 @@ class Projectile:
 
 
 PROJECTILES = {
-    "rubber-1/2in": Projectile("rubber-1/2in", 0.5 * 0.0254, 1.1e-3, "silicone rubber", "silicone-1/2in"),
-    # 0.46 g: the same density as the 1.1-g half-inch ball (NOTES.md).
-    "rubber-3/8in": Projectile("rubber-3/8in", 0.375 * 0.0254, 1.1e-3 * 0.75**3, "silicone rubber", "silicone-3/8in"),
+    "rubber-1/2in": ProjectilePreset("rubber-1/2in", 0.5 * INCH, 1.1e-3, "silicone rubber", "silicone-1/2in"),
+    # 0.46 g: the same density as the 1.1-g half-inch ball (docs/modelling-notes.md).
+    "rubber-3/8in": ProjectilePreset("rubber-3/8in", 0.375 * INCH, 1.1e-3 * 0.75**3, "silicone rubber", "silicone-3/8in"),
 }
 
 
@@ -169,5 +168,3 @@ class WilbeckModel:
         t = np.linspace(0, d / V, samples)
         s = V * t
         return TabulatedPulse(t, self.density * V**2 * math.pi * np.maximum(d * s - s * s, 0.0))
-
-

@@ -18,8 +18,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
+from ..units import INCH
 
-__all__ = ["Blend", "Ply", "PLIES", "parse_layup", "ply_stiffness", "rotate", "homogenise", "engineering_constants", "plane_matrix", "abd", "Stack"]
+__all__ = ["PLANES", "Blend", "Ply", "PLIES", "parse_layup", "ply_stiffness", "rotate", "homogenise", "engineering_constants", "plane_matrix", "abd", "Stack"]
 
 INPLANE = [0, 1, 5]  # 11, 22, 12
 OUTPLANE = [2, 3, 4]  # 33, 23, 13
@@ -65,11 +66,21 @@ def ply_stiffness(p: Ply) -> np.ndarray:
     return np.linalg.inv(S)
 
 
-_IN = 0.0254
 PLIES = {
     "T300/934": Ply(
-        "T300/934", 120e9, 7.9e9, 7.9e9, 5.5e9, 5.5e9, 7.9e9 / (2 * 1.40), 0.30, 0.30, 0.40, 1580.0, 0.0055 * _IN,
-        "representative literature values (NOTES.md); the paper's ref 12 is not available",
+        "T300/934",
+        120e9,
+        7.9e9,
+        7.9e9,
+        5.5e9,
+        5.5e9,
+        7.9e9 / (2 * 1.40),
+        0.30,
+        0.30,
+        0.40,
+        1580.0,
+        0.0055 * INCH,
+        "representative literature values (docs/modelling-notes.md); the paper's ref 12 is not available",
     )
 }
 
@@ -106,7 +117,7 @@ def parse_layup(text: str) -> tuple[float, ...]:
     compact = str(text).replace(" ", "")
     m = _LAYUP.match(compact)
     if not m:
-        raise InputError(f"layup: cannot read {text!r} (expected e.g. \"[90/0]5s\", \"[0/±45/90]2s\", \"[0_2/90]s\")")
+        raise InputError(f'layup: cannot read {text!r} (expected e.g. "[90/0]5s", "[0/±45/90]2s", "[0_2/90]s")')
     group = []
     for item in m["body"].split("/"):
         im = _ITEM.match(item)
@@ -167,10 +178,19 @@ def engineering_constants(C: np.ndarray) -> dict[str, float]:
     """E1, E2, E3 [Pa], G23, G13, G12 [Pa], ν12, ν13, ν23 from a 6×6 stiffness."""
     S = np.linalg.inv(C)
     return {
-        "E1": 1 / S[0, 0], "E2": 1 / S[1, 1], "E3": 1 / S[2, 2],
-        "G23": 1 / S[3, 3], "G13": 1 / S[4, 4], "G12": 1 / S[5, 5],
-        "nu12": -S[0, 1] / S[0, 0], "nu13": -S[0, 2] / S[0, 0], "nu23": -S[1, 2] / S[1, 1],
+        "E1": 1 / S[0, 0],
+        "E2": 1 / S[1, 1],
+        "E3": 1 / S[2, 2],
+        "G23": 1 / S[3, 3],
+        "G13": 1 / S[4, 4],
+        "G12": 1 / S[5, 5],
+        "nu12": -S[0, 1] / S[0, 0],
+        "nu13": -S[0, 2] / S[0, 0],
+        "nu23": -S[1, 2] / S[1, 1],
     }
+
+
+PLANES = ("strain", "stress")  # the beam's plane assumption across its width
 
 
 def plane_matrix(C: np.ndarray, plane: str = "strain") -> np.ndarray:
@@ -184,7 +204,7 @@ def plane_matrix(C: np.ndarray, plane: str = "strain") -> np.ndarray:
         return C[np.ix_(keep, keep)].copy()
     if plane == "stress":
         return np.linalg.inv(np.linalg.inv(C)[np.ix_(keep, keep)])
-    raise InputError(f"beam.plane: {plane!r} is not 'strain' or 'stress'")
+    raise InputError(f"plane: {plane!r} is not one of {', '.join(PLANES)}", "plane")
 
 
 def reduced_stiffness(C: np.ndarray) -> np.ndarray:
@@ -251,7 +271,12 @@ class Stack:
         h = self.thickness
         _, _, D = abd(self.ply_stiffnesses(), [self.ply.thickness] * len(self.angles))
         d11 = 1.0 / np.linalg.inv(D)[0, 0] if plane == "stress" else D[0, 0]
-        return {"smeared_EI_per_width": E_beam * h**3 / 12, "clt_D11": float(D[0, 0]), "clt_1_over_d11": float(1 / np.linalg.inv(D)[0, 0]), "clt_beam": float(d11)}
+        return {
+            "smeared_EI_per_width": E_beam * h**3 / 12,
+            "clt_D11": float(D[0, 0]),
+            "clt_1_over_d11": float(1 / np.linalg.inv(D)[0, 0]),
+            "clt_beam": float(d11),
+        }
 
 
 @dataclass(frozen=True)
@@ -266,9 +291,9 @@ class Blend:
     def __post_init__(self):
         f = np.array([w for _, w in self.fractions])
         if np.any(f < 0) or not math.isclose(f.sum(), 1.0, rel_tol=1e-6):
-            raise InputError(f"beam.laminate.fractions: fractions must be non-negative and add up to 1, got {f.sum():.6g}")
+            raise InputError(f"fractions must be non-negative and add up to 1, got {f.sum():.6g}", "fractions")
         if not self.total_thickness > 0:
-            raise InputError(f"beam.laminate.thickness must be positive, got {self.total_thickness!r}")
+            raise InputError(f"thickness must be positive, got {self.total_thickness!r}", "thickness")
 
     @property
     def thickness(self) -> float:
@@ -279,7 +304,7 @@ class Blend:
         return homogenise([rotate(C, a) for a, _ in self.fractions], [w for _, w in self.fractions])
 
     def layer_stiffness(self, z_lo, z_hi):
-        raise InputError("beam.laminate.model: 'layered' needs a layup (stacking order), not fractions")
+        raise InputError("'layered' needs a layup (stacking order), not fractions", "model")
 
     def bending_stiffness(self, plane: str = "strain") -> dict[str, float]:
         E_beam = 1.0 / np.linalg.inv(plane_matrix(self.effective(), plane))[0, 0]

@@ -9,6 +9,7 @@ import math
 from dataclasses import dataclass
 
 from ..errors import InputError
+from ..units import INCH, POUND_MASS, PSI
 
 __all__ = ["Material", "CATALOGUE", "lookup", "sphere_mass"]
 
@@ -49,25 +50,24 @@ class Material:
         return self.youngs_modulus / (1.0 - self.poisson_ratio**2)
 
 
-_PSI = 6894.757293168361  # Pa
-_LB_PER_IN3 = 27679.904710203125  # kg/m³
+_LB_PER_IN3 = POUND_MASS / INCH**3  # kg/m³
 
 CATALOGUE = {
     m.name: m
     for m in (
         Material(
             "Al 6061-T6",
-            10.0e6 * _PSI,
+            10.0e6 * PSI,
             0.33,
             0.0975 * _LB_PER_IN3,
-            "handbook values (MIL-HDBK-5), as in NOTES.md",
+            "handbook values (MIL-HDBK-5), as in docs/modelling-notes.md",
         ),
         Material(
             "steel",
-            30.0e6 * _PSI,
+            30.0e6 * PSI,
             0.29,
             0.283 * _LB_PER_IN3,
-            "handbook values for carbon/bearing steel, as in NOTES.md",
+            "handbook values for carbon/bearing steel, as in docs/modelling-notes.md",
         ),
         Material(
             "silicone rubber",

@@ -11,7 +11,7 @@ import numpy as np
 
 from ..errors import InputError
 
-__all__ = ["SkewedPulse", "TailedPulse", "TabulatedPulse"]
+__all__ = ["SkewedPulse", "TailedPulse", "TabulatedPulse", "fit_skewed"]
 
 
 @dataclass(frozen=True)
@@ -31,9 +31,7 @@ class SkewedPulse:
         if not (math.isfinite(self.peak_force) and self.peak_force > 0):
             raise InputError(f"pulse: peak_force must be positive, got {self.peak_force!r}")
         if not (0 < self.time_of_peak < self.duration and math.isfinite(self.duration)):
-            raise InputError(
-                f"pulse: need 0 < time_of_peak < duration, got time_of_peak={self.time_of_peak!r}, duration={self.duration!r}"
-            )
+            raise InputError(f"pulse: need 0 < time_of_peak < duration, got time_of_peak={self.time_of_peak!r}, duration={self.duration!r}")
 
     def __call__(self, t):
         t = np.asarray(t, dtype=float)
@@ -97,7 +95,7 @@ class TailedPulse:
         return self.tail_start + self.decay * math.log(1e3)
 
     @classmethod
-    def with_impulse(cls, main: SkewedPulse, level: float, impulse: float) -> "TailedPulse":
+    def with_impulse(cls, main: SkewedPulse, level: float, impulse: float) -> TailedPulse:
         """The tail whose decay makes the total impulse ``impulse`` (≥ the main pulse's)."""
         probe = cls(main, level, 1.0)
         cut = level * main.peak_force * 1.0 - probe.extra_impulse
@@ -133,3 +131,32 @@ class TabulatedPulse:
     @property
     def duration(self) -> float:
         return float(self.time[-1])
+
+
+def fit_skewed(t, F, F0, tF0, T, t_end):
+    """Least-squares fit of eq (15), shifted by a start time t0, to (t, F) for t ≤ t_end.
+
+    Returns (pulse, t0, rms). Parameters are scaled to order one for the solver.
+    """
+    from scipy.optimize import least_squares
+
+    sel = t <= t_end
+    ts, Fs = t[sel], F[sel]
+
+    def residual(p):
+        t0, f0, tp, dur = p[0] * T, p[1] * F0, p[2] * T, p[3] * T
+        x = ts - t0
+        rise = f0 * np.sin(np.pi * x / (2 * tp))
+        fall = f0 * np.cos(np.pi * (x - tp) / (2 * (dur - tp)))
+        m = np.where(x <= 0, 0.0, np.where(x < tp, rise, np.where(x < dur, fall, 0.0)))
+        return (m - Fs) / F0
+
+    p0 = np.array([0.0, 1.0, tF0 / T, 1.0])
+    lo = np.array([-0.5, 0.5, 1e-3, 0.2])
+    hi = np.array([0.5, 2.0, 0.95, 5.0])
+    sol = least_squares(residual, p0, bounds=(lo, hi), x_scale=np.array([0.05, 1.0, 0.1, 1.0]))
+    t0, f0, tp, dur = sol.x[0] * T, sol.x[1] * F0, sol.x[2] * T, sol.x[3] * T
+    if not tp < dur:
+        tp = 0.5 * dur
+    rms = float(F0 * np.sqrt(np.mean(sol.fun**2)))
+    return SkewedPulse(f0, tp, dur), t0, rms

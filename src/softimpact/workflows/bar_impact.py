@@ -34,14 +34,10 @@ from ..fem.bar import Rod, assemble_rod
 from ..fem.newmark import NewmarkStepper, SolverSpec
 from ..fem.response import ImpulseResponse
 from ..models.contact import Hertz
-from ..models.materials import Material, sphere_mass
+from ..models.specimens import BarSpec, Gauge, Projectile
 
 __all__ = [
-    "EndCap",
-    "BarSpec",
-    "Projectile",
-    "Gauge",
-    "SolverSpec",
+    "CONTACT_LAWS",
     "BarImpactProblem",
     "BarImpactResult",
     "BarForceResult",
@@ -49,73 +45,12 @@ __all__ = [
     "simulate_force",
     "refine_peak",
     "without_end_cap",
+    "force_from_gauge",
 ]
 
+CONTACT_LAWS = ("hertz",)  # laws of the impactor–bar contact
 NEWTON_TOL = 1e-13  # relative tolerance on the approach α in the contact Newton iteration
 NEWTON_MAXITER = 50  # the monotone Newton converges in < 10; this only guards bugs
-
-
-@dataclass(frozen=True)
-class EndCap:
-    """A cylindrical cap on the struck end, modelled as a lumped mass."""
-
-    material: Material
-    diameter: float
-    length: float
-
-    @property
-    def mass(self) -> float:
-        """ρ·π d²/4·L [kg]."""
-        return self.material.density * math.pi * self.diameter**2 / 4.0 * self.length
-
-
-@dataclass(frozen=True)
-class BarSpec:
-    """A uniform circular bar; positions are measured from the struck end."""
-
-    material: Material
-    length: float
-    diameter: float
-    elements: int = 39
-    end_cap: EndCap | None = None
-
-    @property
-    def area(self) -> float:
-        return math.pi * self.diameter**2 / 4.0
-
-    def rod(self) -> Rod:
-        """The FE rod, with the end cap's mass lumped at x = 0."""
-        return Rod(
-            self.length,
-            self.area,
-            self.material.youngs_modulus,
-            self.material.density,
-            self.elements,
-            0.0 if self.end_cap is None else self.end_cap.mass,
-        )
-
-
-@dataclass(frozen=True)
-class Projectile:
-    """A sphere: material, diameter [m], impact velocity [m/s], mass [kg]."""
-
-    material: Material
-    diameter: float
-    velocity: float
-    mass: float
-
-    @classmethod
-    def solid(cls, material: Material, diameter: float, velocity: float) -> "Projectile":
-        """A solid sphere whose mass follows from density and diameter."""
-        return cls(material, diameter, velocity, sphere_mass(material, diameter))
-
-
-@dataclass(frozen=True)
-class Gauge:
-    """A strain gauge at ``position`` [m] from the struck end."""
-
-    name: str
-    position: float
 
 
 @dataclass(frozen=True)
@@ -134,11 +69,9 @@ class BarImpactProblem:
     def __post_init__(self):
         for g in self.gauges:
             if not (0.0 <= g.position <= self.bar.length):
-                raise InputError(
-                    f"gauges.{g.name}.position: {g.position!r} m is outside the bar (length {self.bar.length!r} m)"
-                )
-        if self.contact != "hertz":
-            raise InputError(f"contact.law: unknown law {self.contact!r} (known: hertz)")
+                raise InputError(f"gauge {g.name!r}: position {g.position!r} m is outside the bar (length {self.bar.length!r} m)", "gauges")
+        if self.contact not in CONTACT_LAWS:
+            raise InputError(f"unknown contact law {self.contact!r} (known: {', '.join(CONTACT_LAWS)})", "contact")
 
     def contact_law(self) -> Hertz:
         """Eq (3): the sphere on the flat end of the bar (or of the end cap)."""
@@ -331,7 +264,7 @@ def simulate_force(bar: BarSpec, solver: SolverSpec, gauges, force) -> BarForceR
         raise InputError(f"force history has {f.shape} samples, expected {t.shape}")
     for gg in gauges:
         if not 0.0 <= gg.position <= bar.length:
-            raise InputError(f"gauge.position: {gg.position!r} m is outside the bar (length {bar.length!r} m)")
+            raise InputError(f"gauge {gg.name!r}: position {gg.position!r} m is outside the bar (length {bar.length!r} m)", "gauges")
     stepper = NewmarkStepper(model.M, model.K, dt, params=solver.newmark)
     e0 = np.zeros(model.n)
     e0[model.end_dof] = 1.0
@@ -339,6 +272,19 @@ def simulate_force(bar: BarSpec, solver: SolverSpec, gauges, force) -> BarForceR
     gauge_strain = model.strain_probe([gg.position for gg in gauges]) @ u if gauges else np.zeros((0, t.size))
     bar_x = _field_points(rod)
     return BarForceResult(t, f, gauge_strain, bar_x, model.strain_probe(bar_x) @ u)
+
+
+def force_from_gauge(result: BarImpactResult, gauge_index: int = 0) -> tuple[np.ndarray, np.ndarray]:
+    """F(t) = −EA·ε(t + x/c): the force at the struck end read from a gauge (paper, Fig 5).
+
+    Returns (time, force) on the result's grid, NaN where t + x/c is past the record.
+    """
+    bar = result.problem.bar
+    rod = bar.rod()
+    x = result.problem.gauges[gauge_index].position
+    t = result.time
+    shifted = np.interp(t + x / rod.wave_speed, t, result.gauge_strain[gauge_index], right=np.nan)
+    return t, -rod.axial_stiffness * shifted
 
 
 def without_end_cap(problem: BarImpactProblem) -> BarImpactProblem:

@@ -25,10 +25,12 @@ from ..fem.plane import PlaneBeam, PlaneModel
 from ..fem.response import ImpulseResponse
 from ..models.laminate import Stack, engineering_constants, plane_matrix
 from ..models.materials import Material
+from ..units import INCH
 
-__all__ = ["BeamGauge", "BeamSpec", "BeamLoad", "BeamProblem", "BeamModel", "BeamResult", "isotropic_matrix"]
+__all__ = ["LAMINATE_MODELS", "BeamGauge", "BeamSpec", "BeamLoad", "BeamProblem", "BeamModel", "BeamResult", "isotropic_matrix"]
 
 MIN_STEPS_PER_RISE = 4  # a pulse rising in fewer time steps than this is not resolved
+LAMINATE_MODELS = ("smeared", "layered")  # homogenised through the thickness, or ply group by ply group
 
 
 @dataclass(frozen=True)
@@ -38,7 +40,7 @@ class BeamGauge:
     name: str
     position: float
     surface: str = "bottom"
-    length: float = 0.031 * 0.0254
+    length: float = 0.031 * INCH
 
 
 @dataclass(frozen=True)
@@ -62,9 +64,9 @@ class BeamSpec:
 
     def __post_init__(self):
         if (self.stack is None) == (self.material is None):
-            raise InputError("beam: give exactly one of [beam.laminate] and [beam.material]")
-        if self.model not in ("smeared", "layered"):
-            raise InputError(f"beam.laminate.model: {self.model!r} is not 'smeared' or 'layered'")
+            raise InputError("give exactly one of a laminate (stack) and an isotropic material", "stack")
+        if self.model not in LAMINATE_MODELS:
+            raise InputError(f"model: {self.model!r} is not one of {', '.join(LAMINATE_MODELS)}", "model")
 
     @property
     def thickness(self) -> float:
@@ -121,15 +123,15 @@ class BeamProblem:
     def __post_init__(self):
         L = self.beam.length
         if not 0 < self.load.position < L:
-            raise InputError(f"load.position: {self.load.position!r} m is not on the beam (0 to {L!r} m)")
+            raise InputError(f"load position {self.load.position!r} m is not on the beam (0 to {L!r} m)", "position")
         for g in self.gauges:
             if not (0 <= g.position - g.length / 2 and g.position + g.length / 2 <= L):
-                raise InputError(f"gauges.{g.name}.position: {g.position!r} m puts the gauge off the beam (0 to {L!r} m)")
+                raise InputError(f"gauge {g.name!r}: position {g.position!r} m puts the gauge off the beam (0 to {L!r} m)", "gauges")
         rise = getattr(self.load.history, "time_of_peak", None)
         if rise is not None and rise < MIN_STEPS_PER_RISE * self.solver.time_step:
             raise InputError(
-                f"solver.time_step: {self.solver.time_step * 1e6:.3g} us cannot resolve a pulse rising in "
-                f"{rise * 1e6:.3g} us (need at most time_of_peak/{MIN_STEPS_PER_RISE})"
+                f"time step {self.solver.time_step!r} s cannot resolve a pulse rising in {rise!r} s (need at most time_of_peak/{MIN_STEPS_PER_RISE})",
+                "time_step",
             )
 
 
@@ -202,7 +204,7 @@ class BeamModel:
         """Gauge strains for a force history through the response engine."""
         F = self.force_samples(history)
         if F[0] != 0.0:
-            raise InputError("load.history: the force must be zero at first contact (t = 0)")
+            raise InputError("the force must be zero at first contact (t = 0)", "history")
         y = self.engine().respond(self.nodal_loads(F, radius))
         strain, bending, defl = self._split(y)
         return BeamResult(self.problem, self.problem.solver.times(), F, strain, bending, defl)

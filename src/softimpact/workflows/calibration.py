@@ -36,7 +36,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import InputError
-from ..models.pulses import SkewedPulse, TabulatedPulse
+from ..models.noise import white_noise_sigma
+from ..models.pulses import SkewedPulse, TabulatedPulse, fit_skewed
 
 __all__ = ["Measured", "Prepared", "Calibration", "prepare", "calibrate", "METHODS", "first_zero_crossing"]
 
@@ -157,8 +158,7 @@ def prepare(model, measured: Measured, start: SkewedPulse, contact_time: float |
         raise InputError(f"{measured.name}: time is not strictly increasing")
     # Pre-impact part: before any gauge leaves a robust noise band around its first samples.
     head = max(16, t.size // 20)
-    d = np.diff(Y, axis=1)
-    sig0 = 1.4826 * np.median(np.abs(d - np.median(d, axis=1, keepdims=True)), axis=1) / math.sqrt(2)
+    sig0 = white_noise_sigma(Y, axis=1)
     sig0 = np.maximum(sig0, 1e-15)
     starts = [_departure(t, y - np.median(y[:head]), s) for y, s in zip(Y, sig0)]
     t_dep = np.nanmin(starts) if np.any(np.isfinite(starts)) else math.nan
@@ -183,7 +183,7 @@ def prepare(model, measured: Measured, start: SkewedPulse, contact_time: float |
             if math.isfinite(a) and math.isfinite(b):
                 lags.append(a - b)
         if not lags:
-            raise InputError(f"{measured.name}: cannot locate first contact; give it (--contact-time)")
+            raise InputError(f"{measured.name}: cannot locate first contact; give the contact time", "contact_time")
         contact_time = float(lags[0])
     rel = t - contact_time
     end = model.problem.solver.duration
@@ -197,21 +197,31 @@ def _residual_rms(model, prep, computed):
     return np.array([np.sqrt(np.mean((np.interp(prep.time[w], tm, c) - y[w]) ** 2)) for c, y in zip(computed, prep.strains)])
 
 
-def calibrate(model, measured: Measured, start: SkewedPulse, method: str = "least-squares", *, contact_time=None,
-              radius: float | None = None, fit_radius: bool = False, fit_origin: bool = True, tol: float = 1e-4,
-              max_iterations: int = 200) -> Calibration:
+def calibrate(
+    model,
+    measured: Measured,
+    start: SkewedPulse,
+    method: str = "least-squares",
+    *,
+    contact_time=None,
+    radius: float | None = None,
+    fit_radius: bool = False,
+    fit_origin: bool = True,
+    tol: float = 1e-4,
+    max_iterations: int = 200,
+) -> Calibration:
     """Calibrate the force history by ``method`` (module docstring); ``radius``: r0 of the test
     (default the case's), at most the model's patch radius."""
     r0 = model.problem.load.contact_radius if radius is None else radius
     if not 0 < r0 <= model.patch.radius * (1 + 1e-12):
         raise InputError(f"contact_radius: {r0!r} m must be positive and within the model's patch ({model.patch.radius!r} m)")
     if method not in METHODS:
-        raise InputError(f"--method: {method!r} is not one of {', '.join(METHODS)}")
+        raise InputError(f"method: {method!r} is not one of {', '.join(METHODS)}", "method")
     prep = prepare(model, measured, start, contact_time, r0)
     record_after = prep.time[-1]
     if record_after < start.duration:
         raise InputError(
-            f"{measured.name}: the record runs {record_after * 1e6:.0f} us after first contact, shorter than the pulse ({start.duration * 1e6:.0f} us)"
+            f"{measured.name}: the record runs {record_after * 1e6:.0f} µs after first contact, shorter than the pulse ({start.duration * 1e6:.0f} us)"
         )
     if method == "paper":
         return _paper(model, prep, start, r0, tol, max_iterations, contact_time is not None)
@@ -267,7 +277,7 @@ def _paper(model, prep, start, r0, tol, max_iterations, given_contact=False):
     history = []
     converged, it = False, 0
     f_ratio = t_ratio = math.nan
-    for it in range(1, max_iterations + 1):
+    for it in range(1, max_iterations + 1):  # noqa: B007 (the count is reported after the loop)
         pulse = SkewedPulse(F0, skew * T, T)
         c = _strains(model, pulse, r0)
         prep = _realign(model, prep, c, given_contact)
@@ -399,12 +409,20 @@ def _deconvolve(model, prep, start, r0, knots: int = 160):
     k = int(np.argmax(F))
     fit_pulse = None
     try:
-        from .reduction import fit_skewed
-
         fit_pulse, _, _ = fit_skewed(tm, F, F[k], max(tm[k], tm[1]), start.duration, tm[-1])
     except Exception:  # a degenerate deconvolution has no eq-15 shape; the history stands alone
         fit_pulse = None
     return Calibration(
-        "deconvolve", pulse, r0, {}, int(sol.nit), bool(sol.success), f"λ = {lam:.3g} by GCV; {sol.message}",
-        _residual_rms(model, prep, computed), computed, prep, start, fit_pulse=fit_pulse,
+        "deconvolve",
+        pulse,
+        r0,
+        {},
+        int(sol.nit),
+        bool(sol.success),
+        f"λ = {lam:.3g} by GCV; {sol.message}",
+        _residual_rms(model, prep, computed),
+        computed,
+        prep,
+        start,
+        fit_pulse=fit_pulse,
     )

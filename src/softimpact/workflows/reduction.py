@@ -46,44 +46,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
-from ..models.pulses import SkewedPulse
-from .bar_impact import BarSpec
+from ..models.noise import white_noise_sigma
+from ..models.pulses import SkewedPulse, fit_skewed
+from ..models.specimens import BarSpec
 
-__all__ = ["Bridge", "Record", "ReductionSettings", "Reduction", "reduce_record", "fit_skewed", "wave_separation"]
+__all__ = ["Record", "ReductionSettings", "Reduction", "reduce_record", "wave_separation"]
 
 MIN_SAMPLES = 64  # fewer cannot hold a pre-trigger baseline and a pulse
+BASELINE_RESOLUTION = 1e-6  # of the peak strain: the finest resolution a record can claim (noise-free data)
 CLIP_RUN = 4  # this many equal consecutive extreme samples mean a saturated recorder
-
-
-@dataclass(frozen=True)
-class Bridge:
-    """Wheatstone bridge of strain gauges: V_out = gain·V_exc·(arms/4)·GF·ε (small strain).
-
-    ``active_arms``: 1 quarter, 2 half, 4 full bridge. ``polarity`` −1 for a
-    bridge wired so that compression reads positive.
-    """
-
-    gauge_factor: float
-    active_arms: int
-    excitation: float  # V
-    gain: float = 1.0
-    polarity: float = 1.0
-
-    ARMS = {"quarter": 1, "half": 2, "full": 4}
-
-    def __post_init__(self):
-        if not self.gauge_factor > 0:
-            raise InputError(f"gauge.gauge_factor must be positive, got {self.gauge_factor!r}")
-        if self.active_arms not in (1, 2, 4):
-            raise InputError(f"gauge.bridge: active arms must be 1, 2 or 4, got {self.active_arms!r}")
-        if not self.excitation > 0 or self.gain == 0:
-            raise InputError(f"gauge: excitation must be positive and gain non-zero, got {self.excitation!r}, {self.gain!r}")
-        if self.polarity not in (1.0, -1.0):
-            raise InputError(f"gauge.polarity must be 1 or -1, got {self.polarity!r}")
-
-    def strain(self, volts):
-        """ε = polarity·4·V/(arms·GF·V_exc·gain)."""
-        return self.polarity * 4.0 * np.asarray(volts) / (self.active_arms * self.gauge_factor * self.excitation * self.gain)
 
 
 @dataclass(frozen=True)
@@ -165,12 +136,6 @@ def _check_clipping(name, y):
             _fail(name, f"signal clipped: {runs.max()} consecutive samples at {extreme:.6g} (recorder saturated?)")
 
 
-def _noise(y):
-    """σ of white noise from the first differences (robust: MAD), insensitive to a smooth pulse."""
-    d = np.diff(y)
-    return float(1.4826 * np.median(np.abs(d - np.median(d))) / math.sqrt(2.0))
-
-
 def wave_separation(s: np.ndarray, t: np.ndarray, tau: float, period: float) -> tuple[np.ndarray, np.ndarray]:
     """Solve s(t) = G(t) − G(t − τ) for G, then F(t) = G(t) − G(t − P).
 
@@ -195,35 +160,6 @@ def _smooth(y, dt, scale):
     if window >= y.size:
         window = (y.size - 1) | 1 if (y.size - 1) % 2 else y.size - 2
     return savgol_filter(y, window, 3)
-
-
-def fit_skewed(t, F, F0, tF0, T, t_end):
-    """Least-squares fit of eq (15), shifted by a start time t0, to (t, F) for t ≤ t_end.
-
-    Returns (pulse, t0, rms). Parameters are scaled to order one for the solver.
-    """
-    from scipy.optimize import least_squares
-
-    sel = t <= t_end
-    ts, Fs = t[sel], F[sel]
-
-    def residual(p):
-        t0, f0, tp, dur = p[0] * T, p[1] * F0, p[2] * T, p[3] * T
-        x = ts - t0
-        rise = f0 * np.sin(np.pi * x / (2 * tp))
-        fall = f0 * np.cos(np.pi * (x - tp) / (2 * (dur - tp)))
-        m = np.where(x <= 0, 0.0, np.where(x < tp, rise, np.where(x < dur, fall, 0.0)))
-        return (m - Fs) / F0
-
-    p0 = np.array([0.0, 1.0, tF0 / T, 1.0])
-    lo = np.array([-0.5, 0.5, 1e-3, 0.2])
-    hi = np.array([0.5, 2.0, 0.95, 5.0])
-    sol = least_squares(residual, p0, bounds=(lo, hi), x_scale=np.array([0.05, 1.0, 0.1, 1.0]))
-    t0, f0, tp, dur = sol.x[0] * T, sol.x[1] * F0, sol.x[2] * T, sol.x[3] * T
-    if not tp < dur:
-        tp = 0.5 * dur
-    rms = float(F0 * np.sqrt(np.mean(sol.fun**2)))
-    return SkewedPulse(f0, tp, dur), t0, rms
 
 
 def _bar_force(y, baseline, tt, tau, period, EA, cap_mass, Z, window, dt):
@@ -251,9 +187,7 @@ def _late_baseline(y, tt, start, period):
     return float(np.mean(y[sel])), int(sel.sum())
 
 
-def reduce_record(
-    record: Record, bar: BarSpec, gauge_position: float, settings: ReductionSettings = ReductionSettings()
-) -> Reduction:
+def reduce_record(record: Record, bar: BarSpec, gauge_position: float, settings: ReductionSettings = ReductionSettings()) -> Reduction:
     """Force history at the struck end and its pulse parameters (module docstring)."""
     name = record.name
     L, x = bar.length, gauge_position
@@ -267,7 +201,7 @@ def reduce_record(
     _check_clipping(name, y)
     flags = []
 
-    sigma = _noise(y)
+    sigma = white_noise_sigma(y)
     head = max(8, y.size // 20)
     base0 = float(np.median(y[:head]))
     dev = y - base0
@@ -342,7 +276,9 @@ def reduce_record(
     # (Not with an end cap: a mass-loaded end breaks the P-periodicity.)
     late, n_late = _late_baseline(y, tt, t0 + 3.0 * fit.duration, period) if cap_mass == 0 else (math.nan, 0)
     if n_late:
-        se = noise * math.sqrt(1 / n_base + 1 / n_late)
+        # The standard error of the difference, floored at the resolution a record can
+        # claim, so that a noise-free record (σ = 0) does not divide by zero.
+        se = max(noise * math.sqrt(1 / n_base + 1 / n_late), BASELINE_RESOLUTION * abs(peak_dev))
         if abs(late - baseline) <= 3 * se:
             baseline = (n_base * baseline + n_late * late) / (n_base + n_late)
             n_base += n_late
@@ -364,7 +300,7 @@ def reduce_record(
     valid_until = float(time[-1])
     direct_until = tau - t0 if tau - t0 < valid_until else valid_until
     if not math.isfinite(t_thr) or t_thr > direct_until:
-        flags.append(f"pulse longer than the reflection return 2(L-x)/c = {tau * 1e6:.0f} us: reflection-corrected beyond")
+        flags.append(f"pulse longer than the reflection return 2(L-x)/c = {tau * 1e6:.0f} µs: reflection-corrected beyond")
     if not math.isfinite(t_thr):
         flags.append("the force never falls below 5 % of F0 within the record: threshold duration undefined")
     terms = 1 + int(valid_until // tau) + int(valid_until // period)

@@ -20,6 +20,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..models.empirical import ScalingLaw
+from ..units import INCH
 
 __all__ = ["TestPoint", "LineFit", "ScalingFit", "fit_line", "fit_scaling", "fit_groups", "REGRESSORS"]
 
@@ -75,6 +76,11 @@ def fit_line(x, y, through_origin: bool = True) -> LineFit:
         s2 = float(res @ res) / dof if dof else math.nan
         half = _t95(dof) * math.sqrt(s2 / sxx) if dof else math.inf
         icpt, icpt_ci = 0.0, (0.0, 0.0)
+    elif np.ptp(x) <= 1e-12 * np.max(np.abs(x)):
+        # Every test at one regressor value (repeat shots at one velocity): the
+        # intercept and the slope cannot be told apart.
+        nan = math.nan
+        return LineFit(nan, (nan, nan), nan, (nan, nan), nan, y - y.mean(), through_origin)
     else:
         A = np.column_stack((np.ones(n), x))
         coef, *_ = np.linalg.lstsq(A, y, rcond=None)
@@ -83,8 +89,8 @@ def fit_line(x, y, through_origin: bool = True) -> LineFit:
         dof = n - 2
         s2 = float(res @ res) / dof if dof else math.nan
         cov = s2 * np.linalg.inv(A.T @ A) if dof else np.full((2, 2), math.inf)
-        half = _t95(dof) * math.sqrt(cov[1, 1])
-        ih = _t95(dof) * math.sqrt(cov[0, 0])
+        half = _t95(dof) * math.sqrt(max(cov[1, 1], 0.0))
+        ih = _t95(dof) * math.sqrt(max(cov[0, 0], 0.0))
         icpt_ci = (icpt - ih, icpt + ih)
     r2 = 1.0 - float(res @ res) / ss_tot if ss_tot > 0 else math.nan
     return LineFit(slope, (slope - half, slope + half), icpt, icpt_ci, r2, res, through_origin)
@@ -130,7 +136,7 @@ def fit_scaling(points, label: str = "pooled") -> ScalingFit:
 
 def diameter_label(d: float) -> str:
     """'0.5 in' style label of a diameter [m] (the paper's groups)."""
-    return f"{d / 0.0254:.4g} in"
+    return f"{d / INCH:.4g} in"
 
 
 def fit_groups(points) -> dict[str, ScalingFit]:

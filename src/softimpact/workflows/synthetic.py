@@ -15,7 +15,7 @@ import numpy as np
 from ..fem.bar import assemble_rod
 from ..fem.newmark import NewmarkStepper
 from ..fem.response import ImpulseResponse
-from .bar_impact import BarSpec
+from ..models.specimens import BarSpec
 
 __all__ = ["GaugeModel", "gauge_model", "synthetic_record"]
 

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .units import display
+from ..units import display
 
 __all__ = ["bar_gauge_strain", "bar_contact_force", "bar_strain_profiles", "bar_energy"]
 
@@ -61,7 +61,7 @@ def bar_contact_force(result, plain=None, inferred=None, system: str = "SI"):
 def bar_strain_profiles(result, instants, system: str):
     """Fig 6: strain along the bar at several instants."""
     tu, lu, su = display(system, "time"), display(system, "length"), display(system, "strain")
-    fig, ax = _figure(7.0, 4.2)
+    fig, ax = _figure(8.0, 4.2)
     for t in instants:
         k = int(round(t / (result.time[1] - result.time[0])))
         ax.plot(result.bar_x * lu.factor, result.bar_strain[:, k] * su.factor, label=f"t = {result.time[k] * tu.factor:.0f} {tu.label}")
@@ -70,15 +70,20 @@ def bar_strain_profiles(result, instants, system: str):
     ax.set_xlabel(f"distance from the struck end [{lu.label}]")
     ax.set_ylabel(f"axial strain [{su.label}] (tension +)")
     ax.set_title("Propagation and free-end reflection of the strain pulse (paper Fig 6)")
-    ax.legend(fontsize="small", ncol=2)
+    _legend_outside(ax, fontsize="small")
     return fig
 
 
-def bar_energy(result):
+def _legend_outside(ax, **kwargs):
+    """A legend to the right of the axes, where it cannot cover the data."""
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, **kwargs)
+
+
+def bar_energy(result, system: str = "SI"):
     """Energy terms and their sum (the sum should stay flat)."""
-    fig, ax = _figure()
+    tu, eu = display(system, "time"), display(system, "energy")
+    fig, ax = _figure(7.4, 4.0)
     e = result.energies
-    us = 1e6
     for label, y in (
         ("impactor kinetic", e.impactor_kinetic),
         ("bar kinetic", e.bar_kinetic),
@@ -86,11 +91,11 @@ def bar_energy(result):
         ("contact", e.contact),
         ("total", e.total),
     ):
-        ax.plot(result.time * us, y * 1e3, label=label, lw=2 if label == "total" else 1)
-    ax.set_xlabel("time since first contact [µs]")
-    ax.set_ylabel("energy [mJ]")
+        ax.plot(result.time * tu.factor, y * eu.factor, label=label, lw=2 if label == "total" else 1)
+    ax.set_xlabel(f"time since first contact [{tu.label}]")
+    ax.set_ylabel(f"energy [{eu.label}]")
     ax.set_title("Energy balance of the bar impact")
-    ax.legend()
+    _legend_outside(ax)
     return fig
 
 
@@ -113,7 +118,7 @@ def force_history(reduction, system: str, title: str = ""):
     ax.set_xlim(-0.05 * T, min(t[-1], 3.0 * T))
     ax.set_xlabel(f"time since first contact [{tu.label}]")
     ax.set_ylabel(f"contact force [{fu.label}]")
-    ax.set_title(title or f"Force history {r.name} (paper Fig 7)")
+    ax.set_title(title or "Force history at the struck end (paper Fig 7)")
     ax.legend(fontsize="small")
     return fig
 
@@ -124,7 +129,7 @@ def _groups(fits):
 
 def _through_origin(ax, fits, name: str, factor: float) -> float:
     """Points and fitted line y = α·x of one law of :data:`REGRESSORS`, per group; returns the largest x shown."""
-    from .workflows.scaling import REGRESSORS
+    from ..workflows.scaling import REGRESSORS
 
     _, fx, fy = REGRESSORS[name]
     top = 0.0
@@ -153,18 +158,18 @@ def scaling_peak_force(fits, system: str):
 
 def scaling_duration(fits, system: str):
     """Figs 9 and 13: 1/T against V, with the fitted α2 (1/T = V/(α2·d))."""
-    vu = display(system, "velocity")
+    vu, tu = display(system, "velocity"), display(system, "time")
     fig, ax = _figure()
     for i, (label, f) in enumerate(_groups(fits)):
         V = np.array([p.velocity for p in f.points])
-        inv = np.array([1 / p.duration for p in f.points])
+        inv = np.array([1 / (p.duration * tu.factor) for p in f.points])
         a = f.origin["alpha2"]
         d = f.points[0].diameter
-        ax.plot(V * vu.factor, inv * 1e-3, "o", color=f"C{i}", label=f"d = {label}")
+        ax.plot(V * vu.factor, inv, "o", color=f"C{i}", label=f"d = {label}")
         vv = np.linspace(0, V.max() * 1.05, 2)
-        ax.plot(vv * vu.factor, vv / (a.slope * d) * 1e-3, color=f"C{i}", label=f"α2 = {a.slope:.3g} [{a.slope_ci[0]:.3g}, {a.slope_ci[1]:.3g}]")
+        ax.plot(vv * vu.factor, vv / (a.slope * d * tu.factor), color=f"C{i}", label=f"α2 = {a.slope:.3g} [{a.slope_ci[0]:.3g}, {a.slope_ci[1]:.3g}]")
     ax.set_xlabel(f"impact velocity V [{vu.label}]")
-    ax.set_ylabel("1/T [1/ms]")
+    ax.set_ylabel(f"1/T [1/{tu.label}]")
     ax.set_title("Inverse contact time against velocity, eq (5) (paper Figs 9, 13)")
     ax.legend(fontsize="small")
     return fig
@@ -221,7 +226,7 @@ def beam_gauge_strains(result, system: str, measured=None, title: str = ""):
     """Figs 21–22: strain at each gauge (and, if given, the measured strains as dashed lines)."""
     import matplotlib.pyplot as plt
 
-    tu, su = display(system, "time"), display(system, "strain")
+    tu, su, lu = display(system, "time"), display(system, "strain"), display(system, "length")
     gauges = result.problem.gauges
     fig, axes = plt.subplots(len(gauges), 1, figsize=(6.6, 2.6 * len(gauges) + 0.6), sharex=True, layout="constrained", squeeze=False)
     for ax, g, eps in zip(axes[:, 0], gauges, result.strain):
@@ -232,7 +237,7 @@ def beam_gauge_strains(result, system: str, measured=None, title: str = ""):
             ax.plot(t * tu.factor, y * su.factor, "--", color="k", lw=0.8, label="measured")
         ax.axhline(0, color="k", lw=0.5)
         ax.set_ylabel(f"strain [{su.label}]")
-        ax.set_title(f"gauge {g.name}: x = {g.position / 0.0254:.3g} in, {g.surface} face", fontsize="medium")
+        ax.set_title(f"gauge {g.name}: x = {g.position * lu.factor:.3g} {lu.label} from the support, {g.surface} face", fontsize="medium")
         ax.legend(fontsize="small")
     axes[-1, 0].set_xlabel(f"time since first contact [{tu.label}]")
     fig.suptitle(title or "Strain histories at the gauges (paper Figs 21, 22)")
@@ -242,18 +247,24 @@ def beam_gauge_strains(result, system: str, measured=None, title: str = ""):
 def beam_load_distribution(model, result, system: str, instants):
     """Fig 20: nodal forces of the contact patch at a few instants."""
     lu, fu, tu = display(system, "length"), display(system, "force"), display(system, "time")
-    fig, ax = _figure()
+    fig, ax = _figure(9.0, 4.0)
     loads = model.nodal_loads(result.force)
     x = (model.patch.x - model.patch.center) * lu.factor
     dt = result.time[1] - result.time[0]
     for t in instants:
         k = int(round(t / dt))
         r = model.patch.half_width(result.force, model.problem.load.contact_radius)[k]
-        ax.plot(x, loads[:, k] * fu.factor, "o-", ms=3, label=f"t = {result.time[k] * tu.factor:.0f} {tu.label}: F = {result.force[k] * fu.factor:.3g} {fu.label}, r = {r * lu.factor:.3g} {lu.label}")
+        ax.plot(
+            x,
+            loads[:, k] * fu.factor,
+            "o-",
+            ms=3,
+            label=f"t = {result.time[k] * tu.factor:.0f} {tu.label}: F = {result.force[k] * fu.factor:.3g} {fu.label}, r = {r * lu.factor:.3g} {lu.label}",
+        )
     ax.set_xlabel(f"distance from the impact point [{lu.label}]")
     ax.set_ylabel(f"nodal force [{fu.label}]")
     ax.set_title("Nodal force distribution of the contact patch (paper Fig 20)")
-    ax.legend(fontsize="x-small")
+    _legend_outside(ax, fontsize="x-small")
     return fig
 
 
@@ -266,23 +277,29 @@ def beam_mesh(model, system: str, span: float):
     pm = model.plane
     p, t = pm.basis.mesh.p * lu.factor, pm.basis.mesh.t
     xc = model.problem.load.position * lu.factor
-    fig, ax = plt.subplots(figsize=(8, 2.4), layout="constrained")
+    fig, ax = plt.subplots(figsize=(8, 3.0), layout="constrained")
     segs = [p[:, [t[i, e], t[(i + 1) % 4, e]]].T for e in range(t.shape[1]) for i in range(4)]
     ax.add_collection(LineCollection(segs, colors="0.4", linewidths=0.4))
     r0 = model.problem.load.contact_radius * lu.factor
     top = pm.beam.thickness * lu.factor
     ax.plot([xc - r0, xc + r0], [top * 1.04] * 2, color="C3", lw=3, label="contact patch (r0)")
+    lo, hi = xc - span * lu.factor, xc + span * lu.factor
     for g in model.problem.gauges:
+        x = g.position * lu.factor
+        if not lo <= x <= hi:
+            continue
         z = 0 if g.surface == "bottom" else top
-        ax.plot([g.position * lu.factor], [z], "s", color="C2")
-        ax.annotate(g.name, (g.position * lu.factor, z), xytext=(0, -12 if z == 0 else 6), textcoords="offset points", ha="center", fontsize="small")
-    ax.set_xlim(xc - span * lu.factor, xc + span * lu.factor)
-    ax.set_ylim(-0.3 * top, 1.3 * top)
+        dz = -0.12 * top if z == 0 else 0.12 * top
+        ax.plot([x], [z + dz], "^" if z == 0 else "v", color="C2", ms=7, label="gauge" if g is model.problem.gauges[0] else None)
+        ax.annotate(g.name, (x, z + dz), xytext=(8, 0), textcoords="offset points", va="center", fontsize="small", color="C2")
+    ax.plot([xc], [top * 1.25], "v", color="C3", ms=8, label="impact point")
+    ax.set_xlim(lo, hi)
+    ax.set_ylim(-0.45 * top, 1.5 * top)
     ax.set_aspect("equal")
     ax.set_xlabel(f"x [{lu.label}]")
     ax.set_ylabel(f"z [{lu.label}]")
     ax.set_title(f"Mesh near the impact point ({pm.beam.nx} × {pm.beam.nz} elements, {pm.n} DOF) (paper Fig 18)")
-    ax.legend(fontsize="small", loc="upper right")
+    ax.legend(fontsize="small", loc="upper center", bbox_to_anchor=(0.5, -0.35), ncol=3, frameon=False)
     return fig
 
 
@@ -351,25 +368,35 @@ def calibration_forces(cal, deconvolved, system: str, title: str, truth=None):
 
 def beam_force_scaling(groups, system: str):
     """Figs 23–25: F0 against V², 1/T against V, t_F0/T against V, for each beam (groups: label → rows
-    of (V, F0, tF0, T) in SI; labels ending in '(paper)' are drawn as open markers)."""
+    of (V, F0, tF0, T) in SI; labels ending in '(paper)' are drawn as open markers), each with its
+    line through the origin (eqs 4-6)."""
     import matplotlib.pyplot as plt
 
-    vu, fu = display(system, "velocity"), display(system, "force")
+    vu, fu, tu = display(system, "velocity"), display(system, "force"), display(system, "time")
     fig, axes = plt.subplots(1, 3, figsize=(13, 3.8), layout="constrained")
     for i, (label, rows) in enumerate(groups.items()):
         rows = np.asarray(rows, float)
         if rows.size == 0:
             continue
         V, F0, tp, T = rows.T
-        style = dict(marker="o", mfc="none" if label.endswith("(paper)") else None, ls="", color=f"C{i // 2}" if len(groups) > 2 else f"C{i}", label=label)
-        axes[0].plot((V * vu.factor) ** 2, F0 * fu.factor, **style)
-        axes[1].plot(V * vu.factor, 1e-3 / T, **style)
-        axes[2].plot(V * vu.factor, tp / T, **style)
+        paper = label.endswith("(paper)")
+        color = f"C{i // 2}" if len(groups) > 2 else f"C{i}"
+        style = dict(marker="o", mfc="none" if paper else None, ls="", color=color, label=label)
+        line = dict(color=color, ls=":" if paper else "-", lw=0.8)
+        x, v = (V * vu.factor) ** 2, V * vu.factor
+        axes[0].plot(x, F0 * fu.factor, **style)
+        axes[1].plot(v, 1 / (T * tu.factor), **style)
+        axes[2].plot(v, tp / T, **style)
+        # Eqs (4)-(6) through the origin: F0 ∝ V², 1/T ∝ V, tF0/T constant.
+        xs, vs = np.linspace(0, x.max() * 1.05, 50), np.linspace(0, v.max() * 1.05, 50)
+        axes[0].plot(xs, xs * (x @ (F0 * fu.factor)) / (x @ x), **line)
+        axes[1].plot(vs, vs * (v @ (1 / (T * tu.factor))) / (v @ v), **line)
+        axes[2].plot(vs, np.full_like(vs, np.mean(tp / T)), **line)
     axes[0].set_xlabel(f"V² [({vu.label})²]")
     axes[0].set_ylabel(f"F0 [{fu.label}]")
     axes[0].set_title("Fig 23: force amplitude against V²")
     axes[1].set_xlabel(f"V [{vu.label}]")
-    axes[1].set_ylabel("1/T [1/ms]")
+    axes[1].set_ylabel(f"1/T [1/{tu.label}]")
     axes[1].set_title("Fig 24: inverse contact time against V")
     axes[2].set_xlabel(f"V [{vu.label}]")
     axes[2].set_ylabel("tF0 / T")

@@ -2,20 +2,22 @@
 
 from __future__ import annotations
 
-import json
 import math
 from pathlib import Path
 
-import click
 import numpy as np
 
-from . import units
-from .errors import InputError
-from .io import csv_text, figure_bytes, json_text
-from .models.empirical import PRESETS, PROJECTILES, HertzModel, ScalingLaw, WilbeckModel
-from .models.materials import lookup
+from .. import units
+from ..errors import InputError
+from ..models.empirical import PRESETS, PROJECTILES, HertzModel, ScalingLaw, WilbeckModel
+from ..models.materials import lookup
+from ..output.files import csv_text, figure_bytes, json_text
+from ..output.scaling_json import read_scaling_law
+from . import Outcome
 
-__all__ = ["predict", "scaling_law"]
+__all__ = ["MODELS", "predict", "scaling_law"]
+
+MODELS = ("empirical", "hertz", "wilbeck")  # eqs (4)-(7) with (15); elastic impact, eqs (1)-(3); steady flow ρV²A
 
 
 def scaling_law(constants: str | None, group: str, projectile) -> ScalingLaw:
@@ -29,16 +31,30 @@ def scaling_law(constants: str | None, group: str, projectile) -> ScalingLaw:
     path = Path(constants)
     if not path.is_file():
         raise InputError(f"--constants: {constants!r} is neither a preset ({', '.join(PRESETS)}) nor a file")
-    try:
-        data = json.loads(path.read_text())
-        g = data["pooled"] if group == "pooled" else data["groups"][group]
-        return ScalingLaw(*(float(g[f"alpha{i}"]["value"]) for i in range(1, 5)), name=f"{path.name}:{group}", source=str(path))
-    except (KeyError, TypeError, ValueError, json.JSONDecodeError):
-        raise InputError(f"--constants: {constants} is not a scaling.json with group {group!r}") from None
+    return read_scaling_law(path, group)
 
 
-def predict(projectile, mass, diameter, velocity, model, constants, group, tail, material, target, bar_case, system, figures, beam_case=None):
-    """Returns (files, one-line note)."""
+def predict(
+    projectile: str | None,
+    mass: str | None,
+    diameter: str | None,
+    velocity: str,
+    model: str = "empirical",
+    constants: str | None = None,
+    group: str = "pooled",
+    tail: bool = False,
+    material: str = "silicone rubber",
+    target: str = "Al 6061-T6",
+    bar_case: str | None = None,
+    system: str = "in-lbf-s",
+    figures: bool = True,
+    beam_case: str | None = None,
+) -> Outcome:
+    """Force history of a projectile at a velocity; quantities are strings with units, as typed."""
+    if model not in MODELS:
+        raise InputError(f"--model: {model!r} is not one of {', '.join(MODELS)}")
+    if bar_case is not None and beam_case is not None:
+        raise InputError("--bar and --beam: drive one structure at a time")
     proj = None
     if projectile is not None:
         if projectile not in PROJECTILES:
@@ -69,7 +85,8 @@ def predict(projectile, mass, diameter, velocity, model, constants, group, tail,
         models["empirical"] = law
         if not law.in_range(V):
             lo, hi = law.velocity_range
-            notes.append(f"velocity {V:.4g} m/s is outside the range of the constants ({lo:.4g}-{hi:.4g} m/s): extrapolated")
+            vu = units.display(system, "velocity")
+            notes.append(f"velocity {velocity} is outside the range of the constants ({lo * vu.factor:.4g}-{hi * vu.factor:.4g} {vu.label}): extrapolated")
     chosen = models[model]
     pulse = chosen.pulse(m, d, V, tail=tail) if model == "empirical" else chosen.pulse(m, d, V)
     params = chosen.parameters(m, d, V)
@@ -85,15 +102,19 @@ def predict(projectile, mass, diameter, velocity, model, constants, group, tail,
         "duration_s": params.duration,
         "impulse_N_s": params.impulse,
         "impulse_of_history_N_s": float(np.trapezoid(F, t)),
-        "constants": None if law is None else {"alpha1": law.alpha1, "alpha2": law.alpha2, "alpha3": law.alpha3, "alpha4": law.alpha4, "name": law.name, "source": law.source},
+        "constants": None
+        if law is None
+        else {"alpha1": law.alpha1, "alpha2": law.alpha2, "alpha3": law.alpha3, "alpha4": law.alpha4, "name": law.name, "source": law.source},
         "notes": notes,
     }
     files = {}
+    inputs = []
     if bar_case is not None:
-        from .cases import load_bar_case
-        from .workflows.bar_impact import simulate_force
+        from ..input.bar_case import load_bar_case
+        from ..workflows.bar_impact import simulate_force
 
-        problem, _ = load_bar_case(bar_case)
+        problem, path = load_bar_case(bar_case)
+        inputs.append(path)
         res = simulate_force(problem.bar, problem.solver, problem.gauges, pulse)
         cols = {"time_s": res.time, "force_N": res.force}
         for g, eps in zip(problem.gauges, res.gauge_strain):
@@ -101,14 +122,13 @@ def predict(projectile, mass, diameter, velocity, model, constants, group, tail,
             k = int(np.argmin(eps))
             summary.setdefault("gauges", {})[g.name] = {"peak_compressive_strain": float(eps[k]), "time_s": float(res.time[k])}
     if beam_case is not None:
-        if bar_case is not None:
-            raise InputError("--bar and --beam: drive one structure at a time")
         from dataclasses import replace
 
-        from .cases import load_beam_case
-        from .workflows.beam_impact import BeamLoad, BeamModel
+        from ..input.beam_case import load_beam_case
+        from ..workflows.beam_impact import BeamLoad, BeamModel
 
-        problem, _ = load_beam_case(beam_case)
+        problem, path = load_beam_case(beam_case)
+        inputs.append(path)
         problem = replace(problem, load=BeamLoad(problem.load.position, problem.load.contact_radius, pulse))
         res = BeamModel(problem).direct(energy=False)
         cols = {"time_s": res.time, "force_N": res.force}
@@ -119,7 +139,7 @@ def predict(projectile, mass, diameter, velocity, model, constants, group, tail,
     files["history.csv"] = csv_text(cols)
     files["summary.json"] = json_text(summary)
     if figures:
-        from . import plots
+        from ..output import plots
 
         curves = []
         for name, mod in models.items():
@@ -128,8 +148,9 @@ def predict(projectile, mass, diameter, velocity, model, constants, group, tail,
             curves.append((f"{name}{' (chosen)' if name == model else ''}", tt, pl(tt)))
         vu = units.display(system, "velocity")
         files["force-history.png"] = figure_bytes(plots.predicted_forces(curves, system, f"Predicted force, V = {V * vu.factor:.4g} {vu.label}"))
-    for n in notes:
-        click.echo(f"softimpact: warning: {n}", err=True)
-    fu = units.display(system, "force")
-    tu = units.display(system, "time")
-    return files, f"{model}: F0 {params.peak_force * fu.factor:.4g} {fu.label} at {params.time_of_peak * tu.factor:.4g} {tu.label}, T {params.duration * tu.factor:.4g} {tu.label}, I {params.impulse:.4g} N·s"
+    fu, tu, iu = units.display(system, "force"), units.display(system, "time"), units.display(system, "impulse")
+    line = (
+        f"{model}: F0 {params.peak_force * fu.factor:.4g} {fu.label} at {params.time_of_peak * tu.factor:.4g} {tu.label}, "
+        f"T {params.duration * tu.factor:.4g} {tu.label}, I {params.impulse * iu.factor:.4g} {iu.label}"
+    )
+    return Outcome(files, line, tuple(inputs), tuple(notes))

@@ -2,17 +2,37 @@
 
 from __future__ import annotations
 
-import sys
 import time
 
-import click
+import numpy as np
 
-from .io import write_outputs
-from .report import Section, bar_files, bar_section, render_report, reduction_files, scaling_files, scaling_section
+from ..input.bar_case import load_bar_case
+from ..input.beam_case import load_beam_case
+from ..input.records import read_strains
+from ..input.series import load_calibration_series, load_series
+from ..models.empirical import PRESETS, PROJECTILES, HertzModel, WilbeckModel
+from ..models.materials import lookup
+from ..models.pulses import SkewedPulse
+from ..output import plots
+from ..output.bar import bar_files, bar_section
+from ..output.beam import beam_files, beam_section
+from ..output.calibration import calibration_section, series_calibration_files, tables_rows
+from ..output.files import figure_bytes
+from ..output.report import Section, render_report
+from ..output.series import reduction_files, scaling_files, scaling_section
+from ..units import INCH, display
+from ..workflows.beam_impact import BeamModel
+from ..workflows.calibration import Measured, calibrate
+from . import Outcome, Progress, no_progress
+from .bar import gauge_lag, run_bar
+from .calibrate import calibrate_tests, calibration_model, comparison, series_fits, start_pulse
+from .series import fit_series, reduce_series
 
-__all__ = ["run_paper", "NOTES"]
+__all__ = ["paper", "NOTES"]
 
-# The assumptions and errata the report lists (from shared/paper/NOTES.md).
+SYSTEM = "in-lbf-s"  # the paper's units, for the report's own tables and figures
+
+# The assumptions and errata the report lists (from docs/modelling-notes.md).
 NOTES = [
     "Bar: Al 6061-T6, E = 10.0e6 psi, ν = 0.33, 0.0975 lb/in³ (handbook). End cap: Al 6061-T6, 1.0 in diameter, "
     "0.25 in long (length assumed), modelled as a mass lumped at the struck end.",
@@ -42,13 +62,7 @@ NOTES = [
 
 def _comparison_section(figures: bool, files: dict) -> Section:
     """The empirical model beside the classical ones it replaces."""
-    import numpy as np
-
-    from . import plots
-    from .io import figure_bytes
-    from .models.empirical import PRESETS, PROJECTILES, HertzModel, WilbeckModel
-    from .models.materials import lookup
-
+    fu, tu, vu = display(SYSTEM, "force"), display(SYSTEM, "time"), display(SYSTEM, "velocity")
     proj = PROJECTILES["rubber-1/2in"]
     m, d = proj.mass, proj.diameter
     models = {
@@ -58,48 +72,47 @@ def _comparison_section(figures: bool, files: dict) -> Section:
     }
     rows = []
     for v_in in (1000, 2000, 3000, 4000, 5000):
-        V = v_in * 0.0254
-        row = [f"{v_in}"]
+        V = v_in * INCH
+        row = [f"{V * vu.factor:.0f}"]
         for mod in models.values():
             p = mod.parameters(m, d, V)
-            row += [f"{p.peak_force / 4.4482216152605:.1f}", f"{p.duration * 1e6:.0f}"]
+            row += [f"{p.peak_force * fu.factor:.1f}", f"{p.duration * tu.factor:.0f}"]
         rows.append(row)
     figs = []
     if figures:
-        V = 1166 * 0.0254
+        V = 1166 * INCH
         curves = []
         for label, mod in models.items():
             pl = mod.pulse(m, d, V)
             t = np.linspace(0, 1.3 * pl.duration, 800)
             curves.append((label, t, pl(t)))
-        files["models/force-models-1166.png"] = figure_bytes(plots.predicted_forces(curves, "in-lbf-s", "1/2-in rubber ball at 1166 in/s: empirical vs classical models"))
+        files["models/force-models-1166.png"] = figure_bytes(
+            plots.predicted_forces(curves, SYSTEM, "1/2-in rubber ball at 1166 in/s: empirical vs classical models")
+        )
         figs.append(("models/force-models-1166.png", "The skewed empirical pulse beside the classical models at 1166 in/s"))
-    header = ["V [in/s]"] + [f"{name}: {q}" for name in models for q in ("F0 [lbf]", "T [µs]")]
+    header = [f"V [{vu.label}]"] + [f"{name}: {q}" for name in models for q in (f"F0 [{fu.label}]", f"T [{tu.label}]")]
     return Section(
         "Empirical model against the classical ones",
-        ["The paper's finding: F0 grows like V² and T like 1/V, where elastic (Hertz) impact predicts V^1.2 and V^-0.2. "
-         "The hydrodynamic (Wilbeck) model shares the empirical V² and 1/V trends."],
+        [
+            "The paper's finding: F0 grows like V² and T like 1/V, where elastic (Hertz) impact predicts V^1.2 and V^-0.2. "
+            "The hydrodynamic (Wilbeck) model shares the empirical V² and 1/V trends."
+        ],
         [("1/2-in silicone ball", header, rows)],
         figs,
     )
 
 
-def run_paper(out, figures: bool = True, echo=print) -> None:
-    """Run every section, then write all files and report.html atomically."""
-    from .cases import load_bar_case, load_series
-    from .runs import fit_series, reduce_series
-    from .workflows.bar_impact import simulate_impact, without_end_cap
-
+def paper(figures: bool = True, progress: Progress = no_progress) -> Outcome:
+    """Run every section of the paper on the built-in cases; the outcome holds report.html and its files."""
     t0 = time.perf_counter()
     files: dict[str, bytes | str] = {}
     sections = []
 
     def bar_calibration():
         problem, _ = load_bar_case("paper-calibration")
-        result = simulate_impact(problem)
-        plain = simulate_impact(without_end_cap(problem))
-        files.update(bar_files(result, plain, figures, prefix="bar-calibration/"))
-        sections.append(bar_section(result, plain, "bar-calibration/"))
+        result, plain, inferred = run_bar(problem)
+        files.update(bar_files(result, plain, inferred, figures, prefix="bar-calibration/"))
+        sections.append(bar_section(result, plain, gauge_lag(result, inferred), "bar-calibration/"))
 
     def rubber_series():
         series = load_series("paper-rubber-series")
@@ -111,10 +124,6 @@ def run_paper(out, figures: bool = True, echo=print) -> None:
         sections.append(_comparison_section(figures, files))
 
     def beams():
-        from .cases import load_beam_case
-        from .report import beam_files, beam_section
-        from .workflows.beam_impact import BeamModel
-
         for name in ("paper-long-beam", "paper-short-beam"):
             problem, _ = load_beam_case(name, 1)
             model = BeamModel(problem)
@@ -124,16 +133,6 @@ def run_paper(out, figures: bool = True, echo=print) -> None:
             sections.append(beam_section(model, result, prefix))
 
     def calibrations():
-        from .cases import load_beam_case, load_calibration_series
-        from .models.pulses import SkewedPulse
-        from .report import calibration_section, series_calibration_files
-        from .runs import calibrate_tests, calibration_model, start_pulse
-        from .workflows.calibration import Measured, calibrate
-
-        from . import plots
-        from .io import figure_bytes
-        from .report import tables_rows
-
         groups = {}
         for beam in ("long", "short"):
             series = load_calibration_series(f"paper-{beam}-calibration")
@@ -142,30 +141,34 @@ def run_paper(out, figures: bool = True, echo=print) -> None:
             items = calibrate_tests(model, series.tests, series.projectile, series.constants, "least-squares")
             truths = [SkewedPulse(r[1], r[2], r[3]) for r in series.reference] if len(series.reference) == len(items) else None
             prefix = f"calibration-{beam}/"
-            files.update(series_calibration_files(model, series, items, figures, prefix, truths))
+            fits = series_fits(series, items)
+            files.update(series_calibration_files(model, series, items, fits, figures, prefix, truths))
             paper_method = None
             if beam == "long":
                 # The paper's procedure on history 1, from the bar model with the Table's tF0/T (see NOTES).
-                from .io import read_strains
-
                 test = series.tests[0]
                 bar = start_pulse(series.projectile, series.constants, test.velocity)
                 ref = series.reference[0]
                 start = SkewedPulse(bar.peak_force, ref[2] / ref[3] * bar.duration, bar.duration)
                 t, strains = read_strains(test.measured)
                 paper_method = calibrate(model, Measured(test.measured.name, t, strains), start, "paper", radius=test.contact_radius)
-            sections.append(calibration_section(model, series, items, prefix, figures, paper_method))
+            sections.append(calibration_section(model, series, items, comparison(model, series, items, fits), prefix, figures, paper_method))
             groups[f"{beam} beam, calibrated"] = [r[:4] for r in tables_rows(items)]
             groups[f"{beam} beam, Table {'II' if beam == 'long' else 'III'} (paper)"] = [r[:4] for r in series.reference]
         if figures:
-            files["calibration-fig23-25.png"] = figure_bytes(plots.beam_force_scaling(groups, "in-lbf-s"))
-            sections.append(Section(
-                "Long against short beam (Figs 23-25)",
-                ["The shorter beam takes a lower, longer force at a given velocity (the paper's finding: flexural waves "
-                 "reflected from the boundaries shape the force history). Filled: calibrated here; open: the paper's tables."],
-                [],
-                [("calibration-fig23-25.png", "Figs 23-25: F0 against V², 1/T against V and tF0/T against V, long and short beams")],
-            ))
+            files["calibration-fig23-25.png"] = figure_bytes(plots.beam_force_scaling(groups, SYSTEM))
+            sections.append(
+                Section(
+                    "Long against short beam (Figs 23-25)",
+                    [
+                        "The shorter beam takes a lower, longer force at a given velocity (the paper's finding: flexural waves "
+                        "reflected from the boundaries shape the force history). Filled: calibrated here; open: the paper's tables; "
+                        "lines: fits through the origin of eqs (4)-(6)."
+                    ],
+                    [],
+                    [("calibration-fig23-25.png", "Figs 23-25: F0 against V², 1/T against V and tF0/T against V, long and short beams")],
+                )
+            )
 
     steps = [
         ("bar calibration (Figs 4-6)", bar_calibration),
@@ -173,12 +176,12 @@ def run_paper(out, figures: bool = True, echo=print) -> None:
         ("laminated beams (Figs 16-22)", beams),
         ("calibration, Tables II and III (Figs 23-25)", calibrations),
     ]
-    with click.progressbar(steps, label="softimpact paper", item_show_func=lambda s: s[0] if s else "", file=sys.stderr) as bar:
-        for _, step in bar:
-            step()
+    for k, (label, step) in enumerate(steps):
+        progress(k, len(steps), label)
+        step()
+    progress(len(steps), len(steps), "report")
     if not figures:
         for s in sections:
             s.figures = []
-    files["report.html"] = render_report("softimpact: the paper, end to end", sections, NOTES)
-    write_outputs(out, files)
-    echo(f"report: {out}/report.html ({len(files)} files, {time.perf_counter() - t0:.1f} s)")
+    files["report.html"] = render_report("softimpact: the paper, end to end", sections, NOTES, files)
+    return Outcome(files, f"report.html ({len(files)} files, {time.perf_counter() - t0:.1f} s)")

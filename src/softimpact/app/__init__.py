@@ -1,0 +1,34 @@
+"""One function per command: arguments in, an :class:`Outcome` out (files, inputs, one line).
+
+The app layer reads the inputs (:mod:`softimpact.input`), runs the workflows,
+and turns results into the file contract (:mod:`softimpact.output`); the
+command line (:mod:`softimpact.cli`) only parses arguments, writes the
+outcome's files and prints its line. Long runs report progress through a
+callback ``progress(done, total, label)``; nothing here prints or writes.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+__all__ = ["Outcome", "Progress", "no_progress"]
+
+Progress = Callable[[int, int, str], None]
+
+
+def no_progress(done: int, total: int, label: str) -> None:
+    """The default progress callback: silent."""
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """What a command made: ``files`` (relative name → content) to write into the
+    output folder, the ``inputs`` they must never overwrite, the one ``line`` to
+    print, and ``warnings`` to show before it."""
+
+    files: dict[str, bytes | str]
+    line: str
+    inputs: tuple[Path, ...] = ()
+    warnings: tuple[str, ...] = field(default_factory=tuple)

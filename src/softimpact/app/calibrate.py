@@ -1,0 +1,176 @@
+"""``softimpact calibrate``: the force history that makes computed gauge strains match measured ones.
+
+One beam case with one measured file, or a calibration series (a beam case and
+several measured tests, laid out as the paper's Tables II and III).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .. import units
+from ..errors import InputError
+from ..input.beam_case import load_beam_case
+from ..input.records import read_strains
+from ..input.series import CalibrationSeries, CalibrationTest, is_calibration_series, load_calibration_series
+from ..models.empirical import PRESETS, PROJECTILES
+from ..models.pulses import SkewedPulse
+from ..output.calibration import SeriesComparison, calibration_files, series_calibration_files
+from ..workflows.beam_impact import BeamModel
+from ..workflows.calibration import METHODS, Calibration, Measured, calibrate
+from ..workflows.scaling import TestPoint, fit_groups
+from . import Outcome, Progress, no_progress
+from .predict import scaling_law
+
+__all__ = ["CalibratedTest", "start_pulse", "calibration_model", "calibrate_tests", "series_fits", "comparison", "calibrate_command"]
+
+
+@dataclass(frozen=True)
+class CalibratedTest:
+    """A calibration test with its result (and the deconvolved history beside it), or its error."""
+
+    test: CalibrationTest
+    calibration: Calibration | None
+    deconvolved: Calibration | None = None
+    error: str = ""
+
+
+def start_pulse(projectile: str, constants: str | None, velocity: float, system: str = "in-lbf-s") -> SkewedPulse:
+    """The bar-model history at ``velocity``: eqs (4)–(6) with eq (15); refuses velocities out of the constants' range."""
+    if projectile not in PROJECTILES:
+        raise InputError(f"--projectile: unknown {projectile!r} (known: {', '.join(PROJECTILES)})")
+    P = PROJECTILES[projectile]
+    law = scaling_law(constants, "pooled", P)
+    if not law.in_range(velocity):
+        lo, hi = law.velocity_range
+        vu = units.display(system, "velocity")
+        raise InputError(
+            f"velocity: {velocity * vu.factor:.0f} {vu.label} is outside the range of the bar model {law.name} "
+            f"({lo * vu.factor:.0f}-{hi * vu.factor:.0f} {vu.label})"
+        )
+    return law.pulse(P.mass, P.diameter, velocity)
+
+
+def calibration_model(problem, radii, fit_radius: bool) -> BeamModel:
+    """A beam model whose contact patch covers every r0 to be used (and 1.5 r0 when r0 is fitted)."""
+    reach = max(radii) * (1.5 if fit_radius else 1.0)
+    x, L = problem.load.position, problem.beam.length
+    return BeamModel(problem, patch_radius=min(reach, x, L - x))
+
+
+def calibrate_tests(model, tests, projectile, constants, method, fit_radius=False, deconvolve=True, progress: Progress = no_progress) -> list[CalibratedTest]:
+    """Calibrate each test; a bad test is reported and the others go on."""
+    out = []
+    for i, test in enumerate(tests):
+        try:
+            start = start_pulse(projectile, constants, test.velocity, model.problem.units)
+            t, strains = read_strains(test.measured)
+            measured = Measured(test.measured.name, t, strains)
+            r0 = test.contact_radius or model.problem.load.contact_radius
+            cal = calibrate(model, measured, start, method, contact_time=test.contact_time, radius=r0, fit_radius=fit_radius)
+            dec = None
+            if deconvolve and method != "deconvolve":
+                dec = calibrate(model, measured, start, "deconvolve", contact_time=cal.prepared.contact_time, radius=r0)
+            out.append(CalibratedTest(test, cal, dec))
+        except InputError as exc:
+            out.append(CalibratedTest(test, None, None, str(exc)))
+        progress(i + 1, len(tests), "calibrating")
+    return out
+
+
+def _points(rows, projectile) -> list[TestPoint]:
+    """(name, V, F0, tF0, T) rows as scaling test points of the series' projectile (I of eq 15: 2F0T/π)."""
+    P = PROJECTILES[projectile]
+    return [TestPoint(n, V, P.mass, P.diameter, F0, tp, T, 2 * F0 * T / math.pi) for n, V, F0, tp, T in rows]
+
+
+def series_fits(series: CalibrationSeries, items: list[CalibratedTest]):
+    """The scaling fit of the calibrated histories (None for fewer than two)."""
+    rows = [
+        (i.test.name, i.test.velocity, i.calibration.peak_force, i.calibration.time_of_peak, i.calibration.duration) for i in items if i.calibration is not None
+    ]
+    return fit_groups(_points(rows, series.projectile)) if len(rows) >= 2 else None
+
+
+def comparison(model: BeamModel, series: CalibrationSeries, items: list[CalibratedTest], fits) -> SeriesComparison:
+    """The bar law's histories, the strains under the paper's histories and both scaling fits."""
+    P = PROJECTILES[series.projectile]
+    law = PRESETS[P.law]
+    ref = {round(r[0], 6): r for r in series.reference}
+    bar_models, strains = [], []
+    for item in items:
+        V = item.test.velocity
+        bar_models.append(law.parameters(P.mass, P.diameter, V))
+        r = ref.get(round(V, 6))
+        if r is None:
+            strains.append(None)
+        else:
+            res = model.respond(SkewedPulse(r[1], r[2], r[3]), r[4])
+            strains.append(tuple(float(np.max(np.abs(s))) for s in res.strain))
+    groups = {}
+    if len(series.reference) >= 2:
+        paper_rows = [(str(i), r[0], r[1], r[2], r[3]) for i, r in enumerate(series.reference)]
+        groups["paper's table"] = next(iter(fit_groups(_points(paper_rows, series.projectile)).values()))
+    if fits is not None:
+        groups["calibrated"] = next(iter(fits.values()))
+    return SeriesComparison(tuple(bar_models), tuple(strains), groups, law)
+
+
+def calibrate_command(
+    case: str,
+    measured: str | None = None,
+    velocity: str | None = None,
+    method: str = "least-squares",
+    contact_radius: str | None = None,
+    contact_time: str | None = None,
+    fit_radius: bool = False,
+    projectile: str = "rubber-1/2in",
+    constants: str | None = None,
+    figures: bool = True,
+    progress: Progress = no_progress,
+) -> Outcome:
+    """Calibrate a beam case against one measured file, or every test of a calibration series."""
+    if method not in METHODS:
+        raise InputError(f"--method: {method!r} is not one of {', '.join(METHODS)}")
+    if projectile not in PROJECTILES:
+        raise InputError(f"--projectile: unknown {projectile!r} (known: {', '.join(PROJECTILES)})")
+    t0 = time.perf_counter()
+    if is_calibration_series(case):
+        if measured or velocity:
+            raise InputError("--measured/--velocity: not used with a series file (its [[test]] entries give them)")
+        series = load_calibration_series(case)
+        problem, case_path = load_beam_case(series.case)
+        radii = [t.contact_radius or problem.load.contact_radius for t in series.tests]
+        model = calibration_model(problem, radii, fit_radius)
+        items = calibrate_tests(model, series.tests, series.projectile, series.constants, method, fit_radius, progress=progress)
+        warnings = tuple(i.error for i in items if i.calibration is None)
+        if len(warnings) == len(items):
+            raise InputError("no test of the series could be calibrated")
+        files = series_calibration_files(model, series, items, series_fits(series, items), figures)
+        line = f"{len(items) - len(warnings)} of {len(items)} tests calibrated ({time.perf_counter() - t0:.1f} s); calibration.json"
+        return Outcome(files, line, (series.path, case_path, *(t.measured for t in series.tests)), warnings)
+    if not measured or not velocity:
+        raise InputError("--measured and --velocity are required with a beam case")
+    V = units.parse(velocity, "velocity", "--velocity")
+    r0 = units.parse(contact_radius, "length", "--contact-radius") if contact_radius else None
+    tc = units.parse(contact_time, "time", "--contact-time") if contact_time else None
+    problem, case_path = load_beam_case(case)
+    test = CalibrationTest(Path(measured).stem, Path(measured), V, r0, tc)
+    model = calibration_model(problem, [r0 or problem.load.contact_radius], fit_radius)
+    items = calibrate_tests(model, [test], projectile, constants, method, fit_radius)
+    if items[0].calibration is None:
+        raise InputError(items[0].error)
+    files = calibration_files(model, items, figures, single=True)
+    c = items[0].calibration
+    fu, tu = units.display(problem.units, "force"), units.display(problem.units, "time")
+    se = c.standard_errors.get("peak_force")
+    line = (
+        f"{c.method}: F0 {c.peak_force * fu.factor:.1f} {fu.label}{f' ± {se * fu.factor:.2g}' if se else ''}, "
+        f"tF0 {c.time_of_peak * tu.factor:.1f} {tu.label}, T {c.duration * tu.factor:.1f} {tu.label} ({c.message}); {time.perf_counter() - t0:.1f} s"
+    )
+    return Outcome(files, line, (case_path, Path(measured)))

@@ -1,0 +1,94 @@
+"""Bar case files (``softimpact bar``): TOML → :class:`BarImpactProblem`.
+
+``[bar]`` (with ``[bar.end_cap]``), ``[projectile]``, ``[contact]``,
+``[solver]``, ``[[gauges]]`` and ``[output]``; see README.md for the format.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from .. import units
+from ..errors import InputError
+from ..models.materials import sphere_mass
+from ..models.specimens import BarSpec, EndCap, Gauge, Projectile
+from ..workflows.bar_impact import CONTACT_LAWS, BarImpactProblem
+from .toml import Table, load_toml, locate, naming, read_material, read_solver, read_units
+
+__all__ = ["read_bar", "read_gauges", "bar_problem", "load_bar_case"]
+
+
+def read_bar(tbl: Table, default_elements: int = 39) -> BarSpec:
+    """The ``[bar]`` table (with its optional ``[bar.end_cap]``)."""
+    cap_tbl = tbl.table("end_cap", optional=True)
+    cap = None
+    if cap_tbl is not None:
+        cap = EndCap(read_material(cap_tbl), cap_tbl.quantity("diameter", "length"), cap_tbl.quantity("length", "length"))
+        cap_tbl.done()
+    bar = BarSpec(
+        read_material(tbl),
+        tbl.quantity("length", "length"),
+        tbl.quantity("diameter", "length"),
+        tbl.integer("elements", default_elements),
+        cap,
+    )
+    with naming({"elements": tbl.key("elements"), "end_mass": tbl.key("end_cap")}):
+        bar.rod()
+    tbl.done()
+    return bar
+
+
+def read_gauges(top: Table, length: float) -> tuple[Gauge, ...]:
+    """The ``[[gauges]]`` of a bar: name and position from the struck end, on the bar."""
+    gauges = []
+    for g in top.tables("gauges", optional=True):
+        gauge = Gauge(g.string("name"), g.quantity("position", "length", positive=False))
+        if not 0.0 <= gauge.position <= length:
+            raise InputError(f"{g.key('position')}: {g.raw('position')!r} is outside the bar (0 to {length:.6g} m)")
+        g.done()
+        gauges.append(gauge)
+    names = [g.name for g in gauges]
+    if len(set(names)) != len(names):
+        raise InputError(f"gauges: names must be unique, got {names}")
+    return tuple(gauges)
+
+
+def bar_problem(data: dict) -> BarImpactProblem:
+    """A bar case (already parsed TOML) as a :class:`BarImpactProblem`."""
+    top = Table(data)
+    title = top.string("title", "")
+    system = read_units(top)
+    bar = read_bar(top.table("bar"))
+    p = top.table("projectile")
+    material = read_material(p)
+    diameter = p.quantity("diameter", "length")
+    mass = p.quantity("mass", "mass", default=None)
+    projectile = Projectile(material, diameter, p.quantity("velocity", "velocity"), sphere_mass(material, diameter) if mass is None else mass)
+    p.done()
+    contact_tbl = top.table("contact", optional=True)
+    law = CONTACT_LAWS[0]
+    if contact_tbl is not None:
+        law = contact_tbl.string("law", law, choices=CONTACT_LAWS)
+        contact_tbl.done()
+    solver = read_solver(top.table("solver"))
+    gauges = read_gauges(top, bar.length)
+    snapshots = ()
+    output = top.table("output", optional=True)
+    if output is not None:
+        raw = output.raw("snapshots", [])
+        if not isinstance(raw, list):
+            raise InputError(f"output.snapshots: expected a list of times, got {raw!r}")
+        snapshots = tuple(units.parse(v, "time", f"output.snapshots[{i}]") for i, v in enumerate(raw))
+        for i, t in enumerate(snapshots):
+            if not 0 <= t <= solver.duration:
+                raise InputError(f"output.snapshots[{i}]: {raw[i]!r} is outside the run (0 to {top.raw('solver')['duration']})")
+        output.done()
+    top.done()
+    with naming({"gauges": "gauges", "contact": "contact.law"}):
+        return BarImpactProblem(bar, projectile, solver, gauges, law, title, system, snapshots)
+
+
+def load_bar_case(case: str) -> tuple[BarImpactProblem, Path]:
+    """Read a bar case by path or built-in name; returns the problem and its file."""
+    path = locate(case)
+    return bar_problem(load_toml(path)), path

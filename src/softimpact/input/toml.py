@@ -1,0 +1,174 @@
+"""Case files in TOML: the reader shared by every file format.
+
+:class:`Table` reads a TOML table key by key, parsing quantities with units
+once (:mod:`softimpact.units`), and rejects keys nobody asked for. Errors name
+the file key and the value the user wrote. :func:`naming` turns the core's
+errors, which name a Python argument (``InputError.argument``), into errors
+that name the key of the file. Built-in cases (``softimpact cases``) are
+addressed by name as well as by path.
+"""
+
+from __future__ import annotations
+
+import tomllib
+from collections.abc import Iterator
+from contextlib import contextmanager
+from importlib import resources
+from pathlib import Path
+
+from .. import units
+from ..errors import InputError
+from ..fem.newmark import NewmarkParameters, SolverSpec
+from ..models.materials import Material, lookup
+
+__all__ = ["Table", "naming", "builtin_cases", "locate", "load_toml", "read_material", "read_solver", "read_units"]
+
+_MISSING = object()
+
+
+@contextmanager
+def naming(keys: dict[str, str]) -> Iterator[None]:
+    """Re-raise a core :class:`InputError` whose ``argument`` is in ``keys`` as one naming the file key."""
+    try:
+        yield
+    except InputError as exc:
+        key = keys.get(exc.argument)
+        if key is None:
+            raise
+        raise InputError(f"{key}: {exc}") from None
+
+
+class Table:
+    """A TOML table read key by key; :meth:`done` rejects keys nobody asked for."""
+
+    def __init__(self, data: dict, path: str = ""):
+        if not isinstance(data, dict):
+            raise InputError(f"{path or 'case'}: expected a table, got {data!r}")
+        self.data, self.path, self._used = data, path, set()
+
+    def key(self, name: str) -> str:
+        return f"{self.path}.{name}" if self.path else name
+
+    def __contains__(self, name: str) -> bool:
+        return name in self.data
+
+    def raw(self, name: str, default=_MISSING):
+        self._used.add(name)
+        if name not in self.data:
+            if default is _MISSING:
+                raise InputError(f"{self.key(name)}: missing (required)")
+            return default
+        return self.data[name]
+
+    def quantity(self, name: str, kind: str, default=_MISSING, positive: bool = True) -> float:
+        value = self.raw(name, default)
+        if value is default and default is not _MISSING:
+            return value
+        q = units.parse(value, kind, self.key(name))
+        if positive and not q > 0:
+            raise InputError(f"{self.key(name)}: must be positive, got {value!r}")
+        return q
+
+    def number(self, name: str, default=_MISSING) -> float:
+        value = self.raw(name, default)
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise InputError(f"{self.key(name)}: expected a number, got {value!r}")
+        return float(value)
+
+    def integer(self, name: str, default=_MISSING, minimum: int = 1) -> int:
+        value = self.raw(name, default)
+        if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
+            raise InputError(f"{self.key(name)}: expected an integer >= {minimum}, got {value!r}")
+        return value
+
+    def string(self, name: str, default=_MISSING, choices=None) -> str:
+        value = self.raw(name, default)
+        if not isinstance(value, str):
+            raise InputError(f"{self.key(name)}: expected text, got {value!r}")
+        if choices is not None and value not in choices:
+            raise InputError(f"{self.key(name)}: {value!r} is not one of {', '.join(map(str, choices))}")
+        return value
+
+    def table(self, name: str, optional: bool = False) -> Table | None:
+        value = self.raw(name, None if optional else _MISSING)
+        return None if value is None else Table(value, self.key(name))
+
+    def tables(self, name: str, optional: bool = False) -> list[Table]:
+        value = self.raw(name, [] if optional else _MISSING)
+        if not isinstance(value, list):
+            raise InputError(f"{self.key(name)}: expected an array of tables ([[{name}]]), got {value!r}")
+        return [Table(v, f"{self.key(name)}[{i}]") for i, v in enumerate(value)]
+
+    def done(self) -> None:
+        unknown = sorted(set(self.data) - self._used)
+        if unknown:
+            raise InputError(f"{self.key(unknown[0])}: unknown key (value {self.data[unknown[0]]!r})")
+
+
+def builtin_cases() -> dict[str, Path]:
+    """Built-in case and series files by name (file stem)."""
+    found = {}
+    root = resources.files("softimpact") / "data"
+    for folder in ("cases", "series"):
+        d = root / folder
+        if d.is_dir():
+            for entry in d.iterdir():
+                if entry.name.endswith(".toml"):
+                    found[entry.name[: -len(".toml")]] = Path(str(entry))
+    return dict(sorted(found.items()))
+
+
+def locate(case: str) -> Path:
+    """A case argument as a path: an existing file, or a built-in name."""
+    path = Path(case)
+    if path.is_file():
+        return path
+    known = builtin_cases()
+    if case in known:
+        return known[case]
+    raise InputError(f"CASE: {case!r} is neither a file nor a built-in case (built-ins: {', '.join(known)})")
+
+
+def load_toml(path: Path) -> dict:
+    try:
+        with open(path, "rb") as fh:
+            return tomllib.load(fh)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(f"{path}: not valid TOML ({exc})") from None
+    except OSError as exc:
+        raise InputError(f"{path}: cannot read ({exc.strerror})") from None
+
+
+def read_material(tbl: Table, name: str = "material") -> Material:
+    """A catalogue name, or an inline table of E, ν, ρ."""
+    value = tbl.raw(name)
+    if isinstance(value, str):
+        return lookup(value, tbl.key(name))
+    inline = Table(value, tbl.key(name))
+    mat = Material(
+        inline.string("name", "inline material"),
+        inline.quantity("youngs_modulus", "stress"),
+        inline.number("poisson_ratio"),
+        inline.quantity("density", "density"),
+        inline.string("source", "user input"),
+    )
+    inline.done()
+    return mat
+
+
+def read_solver(tbl: Table) -> SolverSpec:
+    """The ``[solver]`` table: time step, duration, Newmark β and γ."""
+    keys = {"time_step": tbl.key("time_step"), "duration": tbl.key("duration"), None: tbl.path}
+    with naming(keys):
+        spec = SolverSpec(
+            tbl.quantity("time_step", "time"),
+            tbl.quantity("duration", "time"),
+            NewmarkParameters(tbl.number("beta", 0.25), tbl.number("gamma", 0.5)),
+        )
+    tbl.done()
+    return spec
+
+
+def read_units(top: Table) -> str:
+    """The display system of a case (``units = "in-lbf-s" | "SI"``)."""
+    return top.string("units", "in-lbf-s", choices=tuple(units.DISPLAY_SYSTEMS))

@@ -1,0 +1,141 @@
+"""Outputs of ``softimpact bar``: history.csv, summary.json, strain-along-bar.csv, Figs 4–6."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..units import display
+from .files import csv_text, figure_bytes, json_text
+from .report import Section
+
+__all__ = ["bar_summary", "bar_files", "bar_section"]
+
+MICROSECOND = 1e-6  # s: the column names of strain-along-bar.csv give the instant in µs (file contract)
+
+
+def bar_summary(result) -> dict:
+    """The scalars of a bar run, SI with unit-suffixed keys, and the resolved case."""
+    p = result.problem
+    gauges = {}
+    for g, eps in zip(p.gauges, result.gauge_strain):
+        kc, kt = int(np.argmin(eps)), int(np.argmax(eps))
+        gauges[g.name] = {
+            "position_m": g.position,
+            "peak_compressive_strain": float(eps[kc]),
+            "time_of_peak_compressive_strain_s": float(result.time[kc]),
+            "peak_tensile_strain": float(eps[kt]),
+            "time_of_peak_tensile_strain_s": float(result.time[kt]),
+        }
+    e = result.energies.total
+    return {
+        "title": p.title,
+        "peak_force_N": result.peak_force,
+        "time_of_peak_s": result.time_of_peak,
+        "contact_duration_s": result.contact_duration,
+        "impulse_N_s": result.impulse,
+        "rebound_velocity_m_s": result.rebound_velocity,
+        "rebound_velocity_note": "impactor velocity after separation, positive toward the bar (negative = bounced back)",
+        "contact_intervals": result.contacts,
+        "projectile_mass_kg": p.projectile.mass,
+        "end_cap_mass_kg": 0.0 if p.bar.end_cap is None else p.bar.end_cap.mass,
+        "hertz_constant_N_per_m1_5": p.contact_law().K,
+        "bar_wave_speed_m_s": p.bar.rod().wave_speed,
+        "energy_drift_relative": float((e.max() - e.min()) / e[0]),
+        "newton_iterations": result.newton_iterations,
+        "gauges": gauges,
+        "case_SI": p,
+    }
+
+
+def bar_files(result, plain=None, inferred=None, figures: bool = True, prefix: str = "") -> dict[str, bytes | str]:
+    """history.csv, summary.json, strain-along-bar.csv and (optionally) Figs 4–6 and the energy plot.
+
+    ``plain``: the same run without the end cap (Fig 5); ``inferred``: (time, force,
+    gauge name), the force read from a gauge (Fig 5).
+    """
+    from . import plots
+
+    p = result.problem
+    cols = {
+        "time_s": result.time,
+        "contact_force_N": result.contact_force,
+        "impactor_velocity_m_s": result.impactor_velocity,
+        "impactor_displacement_m": result.impactor_displacement,
+        "approach_m": result.approach,
+    }
+    for g, eps in zip(p.gauges, result.gauge_strain):
+        cols[f"strain_{g.name}"] = eps
+    cols["energy_total_J"] = result.energies.total
+    summary = bar_summary(result)
+    if plain is not None:
+        summary["without_end_cap"] = {
+            "peak_force_N": plain.peak_force,
+            "time_of_peak_s": plain.time_of_peak,
+            "contact_duration_s": plain.contact_duration,
+        }
+    files = {prefix + "history.csv": csv_text(cols), prefix + "summary.json": json_text(summary)}
+    L_over_c = p.bar.length / p.bar.rod().wave_speed
+    chosen = [t for t in p.snapshots if t <= result.time[-1]]
+    instants = np.array(chosen) if chosen else np.linspace(0.0, min(result.time[-1], 2.0 * L_over_c), 7)[1:]
+    dt = result.time[1] - result.time[0]
+    along = {"x_m": result.bar_x}
+    for t in instants:
+        k = int(round(t / dt))
+        along[f"strain_t{result.time[k] / MICROSECOND:.1f}us"] = result.bar_strain[:, k]
+    files[prefix + "strain-along-bar.csv"] = csv_text(along)
+    if figures:
+        system = p.units
+        files[prefix + "fig04-gauge-strain.png"] = figure_bytes(plots.bar_gauge_strain(result, system))
+        files[prefix + "fig05-contact-force.png"] = figure_bytes(plots.bar_contact_force(result, plain, inferred, system))
+        files[prefix + "fig06-strain-along-bar.png"] = figure_bytes(plots.bar_strain_profiles(result, instants, system))
+        files[prefix + "energy.png"] = figure_bytes(plots.bar_energy(result, system))
+    return files
+
+
+def bar_section(result, plain, lag, prefix: str) -> Section:
+    """The report section of the calibration test; ``lag``: the gauge-derived force's
+    (peak ratio, time lag [s]) against the contact force, or None without a gauge."""
+    p = result.problem
+    sysname = p.units
+    fu, tu, su = display(sysname, "force"), display(sysname, "time"), display(sysname, "strain")
+    iu, vu = display(sysname, "impulse"), display(sysname, "velocity")
+    reading = "The force read from the gauge is F = −EA·ε(t + x/c)."
+    if lag is not None:
+        ratio, delay = lag
+        reading = (
+            f"The force read from the gauge, F = −EA·ε(t + x/c), peaks {abs(1 - ratio):.1%} {'below' if ratio < 1 else 'above'} the contact force "
+            f"and {delay * tu.factor:.1f} {tu.label} {'later' if delay >= 0 else 'earlier'}"
+            + (
+                ": the end cap's inertia sits between the contact and the bar, so the bar carries the force less the cap's "
+                "m·a, delayed by the cap. A record reduced without the end-cap correction would understate F0 by this much."
+                if p.bar.end_cap is not None
+                else "."
+            )
+        )
+    rows = [
+        ["peak contact force", f"{result.peak_force * fu.factor:.1f} {fu.label}"],
+        ["time of peak", f"{result.time_of_peak * tu.factor:.1f} {tu.label}"],
+        ["contact duration", f"{result.contact_duration * tu.factor:.1f} {tu.label}"],
+        ["impulse", f"{result.impulse * iu.factor:.4g} {iu.label}"],
+        ["rebound velocity (toward bar +)", f"{result.rebound_velocity * vu.factor:.3g} {vu.label}"],
+    ]
+    if plain is not None:
+        rows.append(["peak force without end cap", f"{plain.peak_force * fu.factor:.1f} {fu.label}"])
+        rows.append(["contact duration without end cap", f"{plain.contact_duration * tu.factor:.1f} {tu.label}"])
+    for g, eps in zip(p.gauges, result.gauge_strain):
+        k = int(np.argmin(eps))
+        rows.append([f"peak compressive strain at {g.name}", f"{eps[k] * su.factor:.1f} {su.label} at {result.time[k] * tu.factor:.1f} {tu.label}"])
+    return Section(
+        p.title or "Bar impact",
+        [
+            "Hermite rod elements (u, du/dx per node), Hertz contact (eq 3) to a lumped impactor mass, "
+            "Newmark average acceleration with Newton iterations on the contact. The end cap is lumped mass at the struck end. " + reading
+        ],
+        [("Calibration test results", ["quantity", "value"], rows)],
+        [
+            (prefix + "fig04-gauge-strain.png", "Fig 4: strain history at the gauge"),
+            (prefix + "fig05-contact-force.png", "Fig 5: contact force with and without end cap, and as read from the gauge"),
+            (prefix + "fig06-strain-along-bar.png", "Fig 6: strain along the bar; the compressive pulse returns from the free end as tension"),
+            (prefix + "energy.png", "Energy balance (the total stays flat)"),
+        ],
+    )
