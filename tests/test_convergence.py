@@ -153,6 +153,7 @@ def test_refinement_keeps_the_physics():
         refine_bar(bar, 1.5)
 
 
+@pytest.mark.slow
 def test_beam_time_step_order_is_two():
     """Fixed 50 × 2 mesh, dt = 0.5, 0.25, 0.125 µs, smooth sin² load: gauge-strain histories converge at order ≈ 2
     (Newmark average acceleration). A smooth load is used because eq 15's kinks excite mesh modes that are not
