@@ -1,0 +1,253 @@
+"""Tail-aware fit of eq (15) to a measured force history.
+
+A soft projectile leaves a long, low tail after the main pulse (paper Fig 7);
+the paper's T is "the duration of the main pulse, ignoring the tail". Fitting
+eq (15) to the whole record lets the tail pull T (and t_F0) long and F0 low.
+Here the fit is done in two stages:
+
+1. **Locate the tail** with a composite model over the whole record:
+   eq (15) until its falling quarter cosine reaches a level ℓ·F0 (the knee
+   t_k), then an exponential decay ℓ·F0·exp(−(t − t_k)/τ) (the
+   :class:`~softimpact.models.pulses.TailedPulse`). The exponential is chosen
+   because it is the simplest monotone decay with a level and a time scale, the
+   two things needed to find the knee; it is *not* trusted for the tail's shape.
+2. **Fit the main pulse** — eq (15) with a start time t0 — only to the samples
+   before the fall reaches max(KNEE_MARGIN·ℓ, ℓ + KNEE_GAP)·F0, safely above the
+   knee, so that whatever shape the tail has (linear, power law, a second low
+   lobe) it cannot bias F0, t_F0 and T.
+
+The impulse is the trapezoidal integral of the whole record (tail included),
+as the paper's I. The whole-record eq-15 fit is returned beside the main-pulse
+fit, and ``differs`` flags when their T, t_F0 or F0 differ by more than
+``FLAG_SIGMAS`` standard errors (from the Jacobian, s²(JᵀJ)⁻¹ with s the
+residual RMS) plus ``FLAG_FLOOR`` relative: the tail matters.
+
+Times [s] from first contact, forces [N]. Parameters are scaled to order one
+for the solver, as in ``workflows.reduction.fit_skewed``, whose
+(pulse, t0, rms) triple :meth:`PulseFit.as_tuple` reproduces.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import InputError
+from .pulses import SkewedPulse, TailedPulse
+
+__all__ = ["PulseFit", "TailAwareFit", "fit_pulse", "fit_tail_aware", "skewed_shape"]
+
+KNEE_MARGIN = 1.5  # the main-pulse window ends where the fall reaches 1.5·ℓ·F0 ...
+KNEE_GAP = 0.05  # ... or (ℓ + 0.05)·F0 if higher: clear of the knee's misfit
+FLAG_SIGMAS = 3.0  # the two fits "differ" beyond this many standard errors ...
+FLAG_FLOOR = 0.01  # ... plus this relative amount (model error of eq 15 on real pulses)
+MIN_WINDOW_SAMPLES = 12  # fewer samples cannot determine four parameters
+
+
+def skewed_shape(t, t0, F0, tp, T):
+    """Eq (15) started at t0: quarter sine to t0 + t_F0, quarter cosine to t0 + T, zero elsewhere."""
+    x = np.asarray(t, float) - t0
+    rise = F0 * np.sin(np.pi * x / (2 * tp))
+    fall = F0 * np.cos(np.pi * (x - tp) / (2 * (T - tp)))
+    return np.where(x <= 0, 0.0, np.where(x < tp, rise, np.where(x < T, fall, 0.0)))
+
+
+def _tailed_shape(t, t0, F0, tp, T, level, decay):
+    x = np.asarray(t, float) - t0
+    tk = tp + 2 * (T - tp) / np.pi * math.acos(level)
+    tail = level * F0 * np.exp(-np.maximum(x - tk, 0.0) / decay)
+    return np.where(x < tk, skewed_shape(x, 0.0, F0, tp, T), tail)
+
+
+@dataclass(frozen=True)
+class PulseFit:
+    """An eq-(15) least-squares fit: the pulse (time from t0), its start t0 [s], the residual
+    RMS [N] over the window t ≤ ``window_end``, and standard errors of (F0, t_F0, T)."""
+
+    pulse: SkewedPulse
+    start: float
+    rms: float
+    window_end: float
+    samples: int
+    se_peak_force: float
+    se_time_of_peak: float
+    se_duration: float
+
+    def as_tuple(self) -> tuple[SkewedPulse, float, float]:
+        """(pulse, t0, rms), the return of ``workflows.reduction.fit_skewed``."""
+        return self.pulse, self.start, self.rms
+
+
+@dataclass(frozen=True)
+class TailAwareFit:
+    """Main-pulse and whole-record fits of eq (15), the tail, and the impulse (module docstring)."""
+
+    main: PulseFit
+    whole: PulseFit
+    tail: TailedPulse  # composite model of stage 1 (its main part is not the reported one)
+    impulse: float  # N·s, ∫F dt over the whole record
+    noise: float  # N, σ of the residual of the main fit
+    differs: bool
+    message: str
+
+    @property
+    def peak_force(self) -> float:
+        return self.main.pulse.peak_force
+
+    @property
+    def time_of_peak(self) -> float:
+        return self.main.pulse.time_of_peak
+
+    @property
+    def duration(self) -> float:
+        return self.main.pulse.duration
+
+    @property
+    def tail_impulse(self) -> float:
+        """What the main pulse's 2F0T/π leaves out of the impulse [N·s]."""
+        return self.impulse - self.main.pulse.impulse
+
+
+def _validate(t, F):
+    t = np.asarray(t, float)
+    F = np.asarray(F, float)
+    if t.ndim != 1 or t.shape != F.shape:
+        raise InputError(f"pulse fit: time and force must be 1-D of equal length, got {t.shape} and {F.shape}")
+    if t.size < MIN_WINDOW_SAMPLES:
+        raise InputError(f"pulse fit: {t.size} samples, need at least {MIN_WINDOW_SAMPLES}")
+    if not (np.all(np.isfinite(t)) and np.all(np.isfinite(F))):
+        raise InputError("pulse fit: time or force contains NaN or infinite values")
+    if not np.all(np.diff(t) > 0):
+        raise InputError("pulse fit: time must increase strictly")
+    return t, F
+
+
+def _guess(t, F):
+    """Rough F0, t_F0, T from a lightly smoothed copy (peak, and the fall to half of it)."""
+    from scipy.ndimage import uniform_filter1d
+
+    Fs = uniform_filter1d(F, max(3, t.size // 200))
+    k = int(np.argmax(Fs))
+    F0, tp = float(Fs[k]), float(max(t[k], t[1]))
+    half = np.flatnonzero((np.arange(t.size) > k) & (Fs < 0.5 * F0))
+    t_half = float(t[half[0]]) if half.size else float(t[-1])
+    # On eq 15 the fall reaches F0/2 at t_F0 + (T − t_F0)·(2/π)·acos(1/2) = t_F0 + (T − t_F0)·2/3.
+    T = tp + 1.5 * max(t_half - tp, 2 * (t[1] - t[0]))
+    return F0, tp, T
+
+
+def _errors(sol, scales, n):
+    """Standard errors of the scaled parameters from the Jacobian: s²(JᵀJ)⁻¹."""
+    J = sol.jac
+    dof = max(n - J.shape[1], 1)
+    s2 = float(sol.fun @ sol.fun) / dof
+    try:
+        cov = np.linalg.inv(J.T @ J) * s2
+    except np.linalg.LinAlgError:
+        return np.full(J.shape[1], math.nan)
+    return np.sqrt(np.maximum(np.diag(cov), 0.0)) * scales
+
+
+def fit_pulse(t, F, t_end: float | None = None, guess: tuple[float, float, float] | None = None,
+              fit_start: bool = True) -> PulseFit:
+    """Least-squares fit of eq (15) (with a start time t0 if ``fit_start``) to the samples t ≤ ``t_end``.
+
+    ``guess``: (F0, t_F0, T) to start from (default: from the record).
+    """
+    from scipy.optimize import least_squares
+
+    t, F = _validate(t, F)
+    t_end = float(t[-1]) if t_end is None else float(t_end)
+    sel = t <= t_end
+    if sel.sum() < MIN_WINDOW_SAMPLES:
+        raise InputError(f"pulse fit: only {int(sel.sum())} samples up to t_end = {t_end!r} s")
+    ts, Fs = t[sel], F[sel]
+    F0, tp, T = guess if guess is not None else _guess(t, F)
+    scales = np.array([T, F0, T, T])
+
+    def unpack(p):
+        t0 = p[0] * T if fit_start else 0.0
+        return t0, p[1] * F0, p[2] * T, p[3] * T
+
+    def residual(p):
+        t0, f0, tpk, dur = unpack(p)
+        return (skewed_shape(ts, t0, f0, min(tpk, 0.999 * dur), dur) - Fs) / F0
+
+    p0 = np.array([0.0, 1.0, tp / T, 1.0])
+    lo = np.array([-0.2, 0.3, 1e-3, 0.2])
+    hi = np.array([0.2, 3.0, 0.95, 5.0])
+    if not fit_start:
+        lo[0], hi[0] = -1e-12, 1e-12
+    p0 = np.clip(p0, lo + 1e-9, hi - 1e-9)
+    sol = least_squares(residual, p0, bounds=(lo, hi), x_scale=np.array([0.02, 1.0, 0.1, 1.0]))
+    t0, f0, tpk, dur = unpack(sol.x)
+    tpk = min(tpk, 0.999 * dur)
+    se = _errors(sol, scales, ts.size)
+    rms = float(F0 * np.sqrt(np.mean(sol.fun**2)))
+    return PulseFit(SkewedPulse(f0, tpk, dur), t0, rms, t_end, int(ts.size), float(se[1]), float(se[2]), float(se[3]))
+
+
+def _fit_tailed(t, F, main: PulseFit) -> tuple[TailedPulse, float]:
+    """Stage 1: eq (15) to the knee, then an exponential tail, over the whole record."""
+    from scipy.optimize import least_squares
+
+    m = main.pulse
+    F0, T = m.peak_force, m.duration
+    after = t > main.start + T
+    tail_mean = float(np.mean(F[after])) if after.any() else 0.0
+    level0 = float(np.clip(tail_mean / F0 * 2.0, 0.05, 0.5))
+    decay0 = max(float(t[-1] - main.start - T) / 3.0, 0.1 * T)
+
+    def unpack(p):
+        return p[0] * T, p[1] * F0, p[2] * T, p[3] * T, p[4], p[5] * T
+
+    def residual(p):
+        t0, f0, tpk, dur, lev, dec = unpack(p)
+        return (_tailed_shape(t, t0, f0, min(tpk, 0.999 * dur), dur, lev, dec) - F) / F0
+
+    p0 = np.array([main.start / T, 1.0, m.time_of_peak / T, 1.0, level0, decay0 / T])
+    lo = np.array([-0.2, 0.3, 1e-3, 0.2, 0.005, 0.01])
+    hi = np.array([0.2, 3.0, 0.95, 5.0, 0.7, 50.0])
+    p0 = np.clip(p0, lo + 1e-9, hi - 1e-9)
+    sol = least_squares(residual, p0, bounds=(lo, hi), x_scale=np.array([0.02, 1.0, 0.1, 1.0, 0.05, 0.5]))
+    t0, f0, tpk, dur, lev, dec = unpack(sol.x)
+    return TailedPulse(SkewedPulse(f0, min(tpk, 0.999 * dur), dur), lev, dec), t0
+
+
+def fit_tail_aware(t, F, fit_start: bool = True) -> TailAwareFit:
+    """Main-pulse eq-(15) fit that ignores the tail, the whole-record fit, and the impulse (module docstring).
+
+    ``t`` [s] increasing, from (about) first contact; ``F`` [N] the whole record, tail included.
+    """
+    t, F = _validate(t, F)
+    whole = fit_pulse(t, F, fit_start=fit_start)
+    # A first, rough main-pulse fit (down to a quarter of the peak) seeds the composite fit.
+    g = whole.pulse
+    seed_end = whole.start + g.time_of_peak + (g.duration - g.time_of_peak) * 2 / math.pi * math.acos(0.25)
+    seed = fit_pulse(t, F, seed_end, (g.peak_force, g.time_of_peak, g.duration), fit_start)
+    tailed, t0_tail = _fit_tailed(t, F, seed)
+    level = min(max(KNEE_MARGIN * tailed.level, tailed.level + KNEE_GAP), 0.9)
+    m = tailed.main
+    t_end = t0_tail + m.time_of_peak + (m.duration - m.time_of_peak) * 2 / math.pi * math.acos(level)
+    main = fit_pulse(t, F, t_end, (m.peak_force, m.time_of_peak, m.duration), fit_start)
+    noise = float(main.rms)
+    impulse = float(np.trapezoid(np.where(t >= main.start, F, 0.0), t))
+
+    diffs = []
+    for label, a, b, se in (
+        ("T", main.pulse.duration, whole.pulse.duration, main.se_duration),
+        ("t_F0", main.pulse.time_of_peak, whole.pulse.time_of_peak, main.se_time_of_peak),
+        ("F0", main.pulse.peak_force, whole.pulse.peak_force, main.se_peak_force),
+    ):
+        allowed = FLAG_SIGMAS * (se if math.isfinite(se) else 0.0) + FLAG_FLOOR * abs(a)
+        if abs(b - a) > allowed:
+            diffs.append(f"{label} {(b - a) / a:+.1%}")
+    differs = bool(diffs)
+    if differs:
+        message = f"whole-record fit differs from the main-pulse fit ({', '.join(diffs)}): the tail biases it"
+    else:
+        message = "whole-record and main-pulse fits agree within the noise"
+    message += f"; tail from {tailed.level:.0%} of F0, main pulse fitted down to {level:.0%} of F0"
+    return TailAwareFit(main, whole, tailed, impulse, noise, differs, message)

@@ -1,0 +1,50 @@
+"""Refined copies of a problem for a convergence study (see ``convergence``).
+
+Duck-typed on the problem's attributes so that this module imports no other
+workflow: a bar problem has ``bar.elements`` and ``solver.time_step``; a beam
+problem has ``beam.nx``, ``beam.nz`` and ``solver.time_step``. Only the
+discretisation changes; the physics, the run's duration and its outputs do not.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+from ..errors import InputError
+
+__all__ = ["refine_bar", "refine_beam", "refine_solver"]
+
+
+def _check(factor) -> int:
+    if isinstance(factor, bool) or not isinstance(factor, int) or factor < 1:
+        raise InputError(f"refinement factor must be a positive integer, got {factor!r}")
+    return factor
+
+
+def refine_solver(solver, factor: int):
+    """The solver with time step dt/factor and the same duration (so the coarse
+    time grid is every factor-th sample of the fine one)."""
+    return replace(solver, time_step=solver.time_step / _check(factor))
+
+
+def refine_bar(problem, factor: int, *, space: bool = True, time: bool = True):
+    """A bar impact problem with factor × the elements and/or dt/factor."""
+    factor = _check(factor)
+    out = problem
+    if space:
+        out = replace(out, bar=replace(out.bar, elements=out.bar.elements * factor))
+    if time:
+        out = replace(out, solver=refine_solver(out.solver, factor))
+    return out
+
+
+def refine_beam(problem, factor: int, *, space: bool = True, time: bool = True):
+    """A beam problem with factor × the elements along and through the thickness
+    and/or dt/factor (the contact patch, gauges and load are unchanged)."""
+    factor = _check(factor)
+    out = problem
+    if space:
+        out = replace(out, beam=replace(out.beam, nx=out.beam.nx * factor, nz=out.beam.nz * factor))
+    if time:
+        out = replace(out, solver=refine_solver(out.solver, factor))
+    return out
