@@ -242,7 +242,8 @@ def integrate_impact(
         target = x_pred - float(c @ u_free)
         q = r1 * ald[k] + r2 * ala - kappa * al[k]  # α̇_{k+1} = κ·α + q
         if target > 0.0:
-            a_new, f, sh, its = _solve_contact(branch, patch, cG, hm, kappa, q, target)
+            guess = 2.0 * al[k] - al[k - 1] if k >= 1 else target
+            a_new, f, sh, its = _solve_contact(branch, patch, cG, hm, kappa, q, target, guess)
             iterations += its
             r = branch.radius(a_new)
         else:
@@ -303,13 +304,14 @@ def integrate_impact(
     )
 
 
-def _solve_contact(law, patch: ContactPatch, cG, hm, kappa, q, target):
+def _solve_contact(law, patch: ContactPatch, cG, hm, kappa, q, target, guess):
     """Root of R(α) = α − α̃ + F(α, κα + q)·h(a(α)) in (0, α̃] (module docstring).
 
+    Starts from ``guess`` (the linear extrapolation of α) when it lies in the bracket, else α̃.
     Returns (α, F, shares s(a), iterations).
     """
     lo, hi = 0.0, target
-    a = target
+    a = guess if 0.0 < guess < target else target
     its = 0
     for its in range(1, NEWTON_MAXITER + 1):
         rate = kappa * a + q
@@ -328,12 +330,15 @@ def _solve_contact(law, patch: ContactPatch, cG, hm, kappa, q, target):
             dr = (law.radius(a + da) - law.radius(a - da)) / (2.0 * da)
             dR += f * float(cG @ ds) * dr
         step = R / dR
-        a_next = a - step
-        if not lo < a_next < hi or (hi - lo) <= 0.0:
-            a_next = 0.5 * (lo + hi)  # bisection safeguard
-        if abs(a_next - a) <= NEWTON_TOL * target:
-            a = a_next
+        if abs(step) <= NEWTON_TOL * target:
+            a -= step
             break
+        a_next = a - step
+        if not lo < a_next < hi:
+            a_next = 0.5 * (lo + hi)  # bisection safeguard
+            if hi - lo <= NEWTON_TOL * target:
+                a = a_next
+                break
         a = a_next
     else:
         raise RuntimeError(f"contact iteration did not converge (approach bracket [{lo:.6g}, {hi:.6g}] m)")
