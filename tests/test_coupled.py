@@ -62,13 +62,12 @@ def test_rigid_wall_matches_hertz_closed_form():
     assert r.rebound_velocity == pytest.approx(-V, rel=1e-4)
 
 
-def test_rigid_wall_duration_converges_at_second_order():
-    """The observed order of the contact-duration error in dt is 2 (average acceleration)."""
+def test_rigid_wall_peak_force_converges_at_second_order():
+    """The observed order of the peak-force error in dt is 2 (average acceleration)."""
     d, m = _ball(0.5)
     V = 100 * INCH
     law = HertzLaw.sphere_on_laminate(d / 2, STEEL, E2)
     _, _, T = _hertz_closed_form(law.K, m, V)
-    # duration read where the impactor velocity has recovered (no interpolation error at the end)
     errs = []
     for n in (50, 100, 200):
         r = simulate_coupled(_wall(), law, Impactor(m, d, V), SolverSpec(T / n, 1.2 * T))
