@@ -1,0 +1,348 @@
+"""A rigid impactor on a linear structure through a contact law: Newmark + scalar Newton.
+
+The structure M·ü + C·u̇ + K·u = f is any linear FE model (beam, plate, bar).
+The contact force F ≥ 0 acts along the impact direction on the surface nodes
+near the impact point, spread over the contact half-width a = law.radius(α)
+with the cosine distribution of eq (11) and exact nodal integrals (eq 14 with
+the errata of NOTES.md): node i with tributary segment [lo_i, hi_i] (relative
+to the impact point, clipped at ±a) receives F·s_i(a),
+
+    s_i(a) = ½·[sin(π·hi_i/(2a)) − sin(π·lo_i/(2a))],   Σ s_i = 1,
+
+and the nearest node takes all of F while a is below half a node spacing. The
+approach is α = x − w, x the impactor's displacement and w the structure's
+displacement along the impact direction at the impact point as given by the
+``approach_row`` (for a beam or plate: the MID-SURFACE, so that the local
+indentation is the contact law's and not counted twice).
+
+One step of Newmark (β, γ) from t_k to t_{k+1}:
+
+1. u_free = K_eff⁻¹·predictor(u_k, v_k, a_k): the structure with no contact force
+   (one back-substitution, as in a prescribed-force step);
+2. the structure's response to unit forces on the patch nodes, G = K_eff⁻¹·B
+   (solved ONCE), gives u_{k+1} = u_free + F·G·s(a);
+3. the impactor, m·ẍ = −F, gives x_{k+1} = x̃ − β·dt²·F/m;
+4. hence one scalar equation in α_{k+1}:
+
+       R(α) = α − α̃ + F(α, α̇(α))·h(a(α)) = 0,   h = β·dt²/m + c·G·s(a),
+
+   with α̃ = x̃ − c·u_free and, because impactor and structure share the Newmark
+   rule, α̇_{k+1} = κ·(α − α_k) + (1 − γ/β)·α̇_k + dt·(1 − γ/(2β))·α̈_k, κ = γ/(β·dt).
+   R(0) = −α̃ < 0 ≤ R(α̃) when α̃ > 0, so the root is bracketed in (0, α̃];
+   Newton with R' = 1 + (∂F/∂α + κ·∂F/∂α̇)·h + F·c·G·(ds/da)·(da/dα), safeguarded
+   by bisection (laws with kinks: clipping, unloading branches). When α̃ ≤ 0 the
+   bodies are apart: F = 0, α = α̃. Separation and re-contact need no special case.
+
+Energy bookkeeping (exact for average acceleration, undamped): the impactor's
+kinetic energy change equals −Σ½(F_k + F_{k+1})·Δx; the structure's kinetic +
+strain energy equals the work Σ½(f_k + f_{k+1})·Δu of the nodal forces; the
+contact work is Σ½(F_k + F_{k+1})·Δα. These close except for the difference
+between the work of F on the loaded (top) surface nodes and on the mid-surface,
+Σ½(F_k + F_{k+1})·(s̄·Δu_patch − Δw): the structure's own through-thickness
+squeeze under the patch, reported as ``surface_mismatch``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import InputError
+from ..models.contact_laws import HistoryLaw, branch_of
+from .newmark import NewmarkParameters, NewmarkStepper
+
+__all__ = ["ContactStructure", "ContactPatch", "ImpactHistory", "integrate_impact", "NEWTON_TOL"]
+
+NEWTON_TOL = 1e-12  # relative tolerance on α (and on R) in the contact iteration
+NEWTON_MAXITER = 60  # Newton with bisection safeguard; typically 3–6 iterations
+RADIUS_STEP = 1e-7  # relative step of the finite difference da/dα
+
+
+@dataclass(frozen=True)
+class ContactStructure:
+    """What the coupled solver needs from a linear structure (SI; n DOFs).
+
+    ``M``, ``K`` (n, n) sparse or dense, ``C`` optional damping.
+    ``surface_x`` (p,): sorted positions [m] along the struck surface of the nodes
+    the contact may load; ``surface_dofs`` (p,): their DOF along the impact line;
+    ``load_sign``: +1 if a positive DOF displacement points along the impact
+    direction (away from the impactor), −1 if against it.
+    ``center``: the impact point on that surface coordinate [m].
+    ``approach_row`` (n,): w = approach_row·u, the displacement along the impact
+    direction used in α (mid-surface for beams and plates).
+    ``outputs`` (n_out, n): rows for output histories (gauge strains); ``output_names``.
+    """
+
+    M: object
+    K: object
+    surface_x: np.ndarray
+    surface_dofs: np.ndarray
+    load_sign: float
+    center: float
+    approach_row: np.ndarray
+    outputs: np.ndarray
+    output_names: tuple[str, ...] = ()
+    C: object = None
+
+    def __post_init__(self):
+        n = self.M.shape[0]
+        x = np.asarray(self.surface_x, float)
+        if x.ndim != 1 or x.size < 1 or np.any(np.diff(x) <= 0):
+            raise InputError("structure.surface_x must be a sorted 1-D array of node positions")
+        if np.shape(self.surface_dofs) != x.shape:
+            raise InputError("structure.surface_dofs must have one DOF per surface node")
+        if self.load_sign not in (1.0, -1.0, 1, -1):
+            raise InputError(f"structure.load_sign must be +1 or -1, got {self.load_sign!r}")
+        if np.shape(self.approach_row) != (n,):
+            raise InputError(f"structure.approach_row must have shape ({n},)")
+        if np.ndim(self.outputs) != 2 or np.shape(self.outputs)[1] != n:
+            raise InputError(f"structure.outputs must have shape (n_out, {n})")
+
+
+class ContactPatch:
+    """Nodal shares s(a) of a unit contact force over half-width a, and ds/da (module docstring)."""
+
+    def __init__(self, node_x: np.ndarray, center: float):
+        x = np.asarray(node_x, float)
+        if x.size == 1:
+            lo, hi = np.array([-np.inf]), np.array([np.inf])
+        else:
+            mid = 0.5 * (x[1:] + x[:-1])
+            lo = np.concatenate(([x[0]], mid)) - center
+            hi = np.concatenate((mid, [x[-1]])) - center
+        self.lo, self.hi = lo, hi
+        self.n = x.size
+        self.nearest = int(np.argmin(np.abs(x - center)))
+        self.half_spacing = math.inf if x.size == 1 else 0.5 * float(np.min(np.diff(x)))
+        self.extent = (x[0] - center, x[-1] - center)
+        self._point = np.zeros(self.n)
+        self._point[self.nearest] = 1.0
+
+    def shares(self, a: float) -> tuple[np.ndarray, np.ndarray]:
+        """(s, ds/da), each of shape (p,)."""
+        if a < self.half_spacing:
+            return self._point, np.zeros(self.n)
+        if -a < self.extent[0] - 1e-12 * a or a > self.extent[1] + 1e-12 * a:
+            raise InputError(f"contact radius {a:.4g} m runs past the loadable surface nodes")
+        lo, hi = np.clip(self.lo, -a, a), np.clip(self.hi, -a, a)
+        w = math.pi / (2.0 * a)
+        s = 0.5 * (np.sin(w * hi) - np.sin(w * lo))
+        # d/da sin(π b/(2a)) = −cos(π b/(2a))·π b/(2a²); zero where b is clipped to ±a.
+        ds = 0.5 * (-np.cos(w * hi) * w * hi + np.cos(w * lo) * w * lo) / a
+        return s, ds
+
+
+@dataclass(frozen=True)
+class ImpactHistory:
+    """Histories at t_k = k·dt (shape (steps + 1,) unless stated); SI; compression +."""
+
+    time: np.ndarray
+    contact_force: np.ndarray
+    approach: np.ndarray
+    approach_rate: np.ndarray
+    contact_radius: np.ndarray
+    impactor_displacement: np.ndarray  # along the impact direction
+    impactor_velocity: np.ndarray  # positive toward the structure
+    target_displacement: np.ndarray  # w = approach_row·u
+    outputs: np.ndarray  # (n_out, steps + 1)
+    structure_kinetic: np.ndarray  # ½vᵀMv (nan when energies were not asked for)
+    structure_strain: np.ndarray  # ½uᵀKu
+    structure_work: np.ndarray  # Σ½(f_k + f_{k+1})·Δu, work of the nodal contact forces
+    contact_work: np.ndarray  # Σ½(F_k + F_{k+1})·Δα
+    contact_energy: np.ndarray  # recoverable energy stored in the contact law
+    surface_mismatch: np.ndarray  # structure_work − Σ½(F_k + F_{k+1})·Δw
+    newton_iterations: int
+    solves: int
+
+
+def integrate_impact(
+    structure: ContactStructure,
+    law,
+    mass: float,
+    velocity: float,
+    time_step: float,
+    steps: int,
+    newmark: NewmarkParameters = NewmarkParameters(),
+    energy: bool = True,
+    stepper: NewmarkStepper | None = None,
+    stop_after: float | None = None,
+) -> ImpactHistory:
+    """March the impactor and the structure together (module docstring).
+
+    Time zero is first contact: α = 0, impactor at ``velocity`` > 0 toward the
+    structure, structure at rest. ``law``: a ContactLaw or a HistoryLaw.
+    ``stepper``: a NewmarkStepper already factored for (M, K, C, dt) to reuse.
+    ``stop_after``: stop this long [s] after the impactor has left for good
+    (separated and moving away faster than the target point), else run ``steps``.
+    """
+    if not (math.isfinite(mass) and mass > 0):
+        raise InputError(f"impactor.mass must be positive, got {mass!r}")
+    if not (math.isfinite(velocity) and velocity > 0):
+        raise InputError(f"impactor.velocity must be positive (toward the structure), got {velocity!r}")
+    if not (isinstance(steps, (int, np.integer)) and steps >= 1):
+        raise InputError(f"steps must be a positive integer, got {steps!r}")
+    dt = float(time_step)
+    st = stepper or NewmarkStepper(structure.M, structure.K, dt, C=structure.C, params=newmark)
+    if not math.isclose(st.dt, dt, rel_tol=1e-12):
+        raise InputError(f"stepper time step {st.dt!r} differs from time_step {dt!r}")
+    beta, gamma = st.params.beta, st.params.gamma
+    n = st.n
+    c = np.asarray(structure.approach_row, float)
+    dofs = np.asarray(structure.surface_dofs, int)
+    sign = float(structure.load_sign)
+    patch = ContactPatch(structure.surface_x, structure.center)
+    B = np.zeros((n, dofs.size))
+    B[dofs, np.arange(dofs.size)] = sign
+    G = st.solve(B)  # (n, p): displacement per unit force on each patch node, solved once
+    G = G.reshape(n, dofs.size)
+    cG = c @ G  # (p,)
+    hm = beta * dt * dt / mass
+    kappa = gamma / (beta * dt)
+    r1, r2 = 1.0 - gamma / beta, dt * (1.0 - gamma / (2.0 * beta))
+    O = np.asarray(structure.outputs, float)
+    M, K = st.M, st.K
+
+    N = int(steps)
+    t = np.arange(N + 1) * dt
+    F = np.zeros(N + 1)
+    al = np.zeros(N + 1)
+    ald = np.zeros(N + 1)
+    rad = np.zeros(N + 1)
+    x = np.zeros(N + 1)
+    xv = np.zeros(N + 1)
+    w = np.zeros(N + 1)
+    y = np.zeros((O.shape[0], N + 1))
+    ek = np.full(N + 1, np.nan)
+    es = np.full(N + 1, np.nan)
+    if energy:
+        ek[0] = es[0] = 0.0
+    work = np.zeros(N + 1)
+    cwork = np.zeros(N + 1)
+    cen = np.zeros(N + 1)
+    mism = np.zeros(N + 1)
+
+    xv[0] = velocity
+    ald[0] = velocity
+    u = np.zeros(n)
+    v = np.zeros(n)
+    acc = np.zeros(n)
+    xa = 0.0
+    ala = 0.0  # α̈
+    state = law.initial_state() if isinstance(law, HistoryLaw) else None
+    s_prev = np.zeros(dofs.size)  # shares × F at the previous step (nodal forces / sign)
+    iterations = 0
+    last = N
+    left_at = None
+    for k in range(N):
+        branch = branch_of(law, state)
+        u_free = st.solve(st.predictor(u, v, acc))
+        x_pred = x[k] + dt * xv[k] + dt * dt * (0.5 - beta) * xa
+        target = x_pred - float(c @ u_free)
+        q = r1 * ald[k] + r2 * ala - kappa * al[k]  # α̇_{k+1} = κ·α + q
+        if target > 0.0:
+            guess = 2.0 * al[k] - al[k - 1] if k >= 1 else target
+            a_new, f, sh, its = _solve_contact(branch, patch, cG, hm, kappa, q, target, guess)
+            iterations += its
+            r = branch.radius(a_new)
+        else:
+            a_new, f, sh, r = target, 0.0, patch._point, 0.0
+        fs = f * sh
+        u1 = u_free + G @ fs if f != 0.0 else u_free
+        v1, acc1 = st.correct(u1, u, v, acc)
+        x[k + 1] = x_pred - hm * f
+        xa1 = -f / mass
+        xv[k + 1] = xv[k] + dt * ((1.0 - gamma) * xa + gamma * xa1)
+        F[k + 1], al[k + 1], rad[k + 1] = f, a_new, r
+        ald[k + 1] = kappa * a_new + q
+        ala = xa1 - float(c @ acc1)
+        w[k + 1] = float(c @ u1)
+        y[:, k + 1] = O @ u1
+        du = u1[dofs] - u[dofs]
+        work[k + 1] = work[k] + 0.5 * sign * float((s_prev + fs) @ du)
+        mid = 0.5 * (F[k] + f)
+        cwork[k + 1] = cwork[k] + mid * (a_new - al[k])
+        mism[k + 1] = mism[k] + 0.5 * sign * float((s_prev + fs) @ du) - mid * (w[k + 1] - w[k])
+        if energy:
+            ek[k + 1] = 0.5 * float(v1 @ (M @ v1))
+            es[k + 1] = 0.5 * float(u1 @ (K @ u1))
+        if state is not None:
+            state = law.advance(state, a_new, ald[k + 1])
+            cen[k + 1] = law.branch(state).energy(a_new)
+        else:
+            cen[k + 1] = branch.energy(a_new)
+        u, v, acc, xa, s_prev = u1, v1, acc1, xa1, fs
+        if stop_after is not None:
+            away = f == 0.0 and a_new < 0.0 and xv[k + 1] < float(c @ v1)
+            if away and left_at is None:
+                left_at = t[k + 1]
+            elif not away:
+                left_at = None
+            if left_at is not None and t[k + 1] - left_at >= stop_after:
+                last = k + 1
+                break
+    sl = slice(0, last + 1)
+    return ImpactHistory(
+        time=t[sl],
+        contact_force=F[sl],
+        approach=al[sl],
+        approach_rate=ald[sl],
+        contact_radius=rad[sl],
+        impactor_displacement=x[sl],
+        impactor_velocity=xv[sl],
+        target_displacement=w[sl],
+        outputs=y[:, sl],
+        structure_kinetic=ek[sl],
+        structure_strain=es[sl],
+        structure_work=work[sl],
+        contact_work=cwork[sl],
+        contact_energy=cen[sl],
+        surface_mismatch=mism[sl],
+        newton_iterations=iterations,
+        solves=st.nsolve,
+    )
+
+
+def _solve_contact(law, patch: ContactPatch, cG, hm, kappa, q, target, guess):
+    """Root of R(α) = α − α̃ + F(α, κα + q)·h(a(α)) in (0, α̃] (module docstring).
+
+    Starts from ``guess`` (the linear extrapolation of α) when it lies in the bracket, else α̃.
+    Returns (α, F, shares s(a), iterations).
+    """
+    lo, hi = 0.0, target
+    a = guess if 0.0 < guess < target else target
+    its = 0
+    for its in range(1, NEWTON_MAXITER + 1):
+        rate = kappa * a + q
+        f = law.force(a, rate)
+        r = law.radius(a)
+        s, ds = patch.shares(r)
+        h = hm + float(cG @ s)
+        R = a - target + f * h
+        if R > 0.0:
+            hi = a
+        else:
+            lo = a
+        dR = 1.0 + (law.stiffness(a, rate) + kappa * law.damping(a, rate)) * h
+        if f != 0.0 and r >= patch.half_spacing:
+            da = RADIUS_STEP * a
+            dr = (law.radius(a + da) - law.radius(a - da)) / (2.0 * da)
+            dR += f * float(cG @ ds) * dr
+        step = R / dR
+        if abs(step) <= NEWTON_TOL * target:
+            a -= step
+            break
+        a_next = a - step
+        if not lo < a_next < hi:
+            a_next = 0.5 * (lo + hi)  # bisection safeguard
+            if hi - lo <= NEWTON_TOL * target:
+                a = a_next
+                break
+        a = a_next
+    else:
+        raise RuntimeError(f"contact iteration did not converge (approach bracket [{lo:.6g}, {hi:.6g}] m)")
+    rate = kappa * a + q
+    f = law.force(a, rate)
+    s, _ = patch.shares(law.radius(a))
+    return a, f, s, its

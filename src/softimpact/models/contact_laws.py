@@ -1,0 +1,374 @@
+"""Contact laws for coupled impact: force, tangent, contact radius, stored energy.
+
+A contact law maps the approach α [m] (positive when the bodies overlap) and its
+rate α̇ [m/s] to a compressive force F [N] ≥ 0 (no tension, ever). Every law has
+
+- ``force(alpha, rate)``      F [N]
+- ``stiffness(alpha, rate)``  ∂F/∂α [N/m]   (Newton's tangent)
+- ``damping(alpha, rate)``    ∂F/∂α̇ [N·s/m] (zero for rate-independent laws; the
+  coupled solver needs it because α̇ at the new step is affine in α)
+- ``radius(alpha)``           contact radius a [m] (the loaded patch follows it)
+- ``energy(alpha)``           the recoverable (elastic) energy stored at α [J]
+
+(:class:`ContactLaw`). Scalars in, scalars out; α ≤ 0 gives zero force.
+
+A law with memory (:class:`HistoryLaw`, e.g. Yang–Sun unloading) keeps its
+history in an explicit frozen state: ``initial_state()``; ``branch(state)``
+returns a memoryless :class:`ContactLaw` valid within one time step;
+``advance(state, alpha, rate)`` returns the state after a converged step. Nothing
+is mutated. Memoryless laws are their own branch (:func:`branch_of`).
+
+Laws
+----
+:class:`HertzLaw`
+    F = K·α^n, n = 3/2 (Hertz 1882; paper eqs 1–3), a = sqrt(R·α). On a laminate,
+    Sun's form (Sun 1977, NASA CR-1977; Tan & Sun 1985, J. Appl. Mech. 52:6–12)
+    uses the laminate's transverse modulus: K = (4/3)·sqrt(R)·E*,
+    1/E* = (1 − ν_s²)/E_s + 1/E_2.
+:class:`YangSunLaw`
+    Hertz loading with permanent indentation on unloading (Yang & Sun 1982, ASTM
+    STP 787:425–449; Tan & Sun 1985): unloading F = F_m·((α − α_p)/(α_m − α_p))^q,
+    q = 5/2, with α_p = 0 for α_m < α_cr and α_p = α_m·(1 − (α_cr/α_m)^(2/5))
+    otherwise. Reloading follows the unloading curve back up to (α_m, F_m) (the
+    elastic reload of the same form; Tan & Sun's exponent-1.5 reload is not used).
+:class:`HuntCrossleyLaw`
+    F = K·α^n·(1 + D·α̇), clipped at zero: Hunt & Crossley 1975 (J. Appl. Mech.
+    42:440–445), D = 3(1 − e)/(2·v⁻), or Lankarani & Nikravesh 1990 (J. Mech.
+    Des. 112:369–376), D = 3(1 − e²)/(4·v⁻), with e the coefficient of
+    restitution and v⁻ the impact velocity.
+:class:`SoftProjectileLaw`
+    F = (m·V²/d)·k·(α/d)^p·(1 + c·α̇/V), clipped at zero, a = sqrt(d·α)
+    (flattening of a sphere, a² = 2Rα − α² ≈ d·α). Why this family: Table I's
+    scaling laws F0 = α1·mV²/(2d) and T = α2·d/V say the pulse, written in
+    α/d and t·V/d, is the same at every V; of m·α̈ = −F that is true exactly when
+    F·d/(mV²) is a function of α/d and α̇/V only. Physically the ball is in
+    the hydrodynamic regime: pressure ∝ ρV² (Wilbeck 1978, AFML-TR-77-134) over a
+    flattened area ∝ d·α, which is p = 1; the rate term makes the pulse rise fast
+    and fall slowly (tF0/T ≈ 0.25) and dissipates energy (rebound e < 1), the
+    role of the Hunt–Crossley term. k and c may scale with the diameter,
+    k = k_ref·(d/d_ref)^{q_k}, c = c_ref·(d/d_ref)^{q_c}; q = 0 is pure geometric
+    similarity. Its parameters are identified from bar tests
+    (:mod:`softimpact.workflows.identification`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Protocol, runtime_checkable
+
+from ..errors import InputError
+from .materials import Material
+
+__all__ = [
+    "ContactLaw",
+    "HistoryLaw",
+    "HertzLaw",
+    "YangSunLaw",
+    "YangSunState",
+    "YangSunBranch",
+    "HuntCrossleyLaw",
+    "SoftProjectileLaw",
+    "laminate_modulus",
+    "branch_of",
+]
+
+
+@runtime_checkable
+class ContactLaw(Protocol):
+    """A memoryless contact law (module docstring); SI scalars."""
+
+    def force(self, alpha: float, rate: float = 0.0) -> float: ...
+
+    def stiffness(self, alpha: float, rate: float = 0.0) -> float: ...
+
+    def damping(self, alpha: float, rate: float = 0.0) -> float: ...
+
+    def radius(self, alpha: float) -> float: ...
+
+    def energy(self, alpha: float) -> float: ...
+
+
+@runtime_checkable
+class HistoryLaw(Protocol):
+    """A law with memory: explicit frozen state, a memoryless branch per step."""
+
+    def initial_state(self): ...
+
+    def branch(self, state) -> ContactLaw: ...
+
+    def advance(self, state, alpha: float, rate: float): ...
+
+
+def branch_of(law, state) -> ContactLaw:
+    """The memoryless law to use in a step: ``law.branch(state)`` or ``law`` itself."""
+    return law.branch(state) if isinstance(law, HistoryLaw) else law
+
+
+def _positive(name: str, value: float) -> None:
+    if not (math.isfinite(value) and value > 0):
+        raise InputError(f"contact: {name} must be positive, got {value!r}")
+
+
+def laminate_modulus(sphere: Material, transverse_modulus: float) -> float:
+    """E* of a sphere on a laminate, 1/E* = (1 − ν_s²)/E_s + 1/E_2 [Pa] (Sun's form)."""
+    _positive("transverse modulus E2", transverse_modulus)
+    return 1.0 / ((1.0 - sphere.poisson_ratio**2) / sphere.youngs_modulus + 1.0 / transverse_modulus)
+
+
+@dataclass(frozen=True)
+class HertzLaw:
+    """F = K·α^n (n = 3/2), a = sqrt(R·α); K [N/m^n], R the sphere radius [m]."""
+
+    K: float
+    R: float
+    exponent: float = 1.5
+
+    def __post_init__(self):
+        _positive("Hertz constant K", self.K)
+        _positive("sphere radius R", self.R)
+        if not self.exponent >= 1.0:
+            raise InputError(f"contact: exponent must be >= 1, got {self.exponent!r}")
+
+    @classmethod
+    def sphere_on_flat(cls, radius: float, sphere: Material, flat: Material) -> "HertzLaw":
+        """Eq (3) for an isotropic flat target: K = (4/3)·sqrt(R)·E*."""
+        _positive("sphere radius", radius)
+        k1, k2 = sphere.plane_modulus, flat.plane_modulus
+        return cls(4.0 / 3.0 * math.sqrt(radius) * k1 * k2 / (k1 + k2), radius)
+
+    @classmethod
+    def sphere_on_laminate(cls, radius: float, sphere: Material, transverse_modulus: float) -> "HertzLaw":
+        """Sun's form on a laminate: K = (4/3)·sqrt(R)·E*, 1/E* = (1 − ν_s²)/E_s + 1/E_2."""
+        _positive("sphere radius", radius)
+        return cls(4.0 / 3.0 * math.sqrt(radius) * laminate_modulus(sphere, transverse_modulus), radius)
+
+    def force(self, alpha: float, rate: float = 0.0) -> float:
+        return self.K * alpha**self.exponent if alpha > 0.0 else 0.0
+
+    def stiffness(self, alpha: float, rate: float = 0.0) -> float:
+        return self.exponent * self.K * alpha ** (self.exponent - 1.0) if alpha > 0.0 else 0.0
+
+    def damping(self, alpha: float, rate: float = 0.0) -> float:
+        return 0.0
+
+    def radius(self, alpha: float) -> float:
+        """Hertz contact radius a = sqrt(R·α) [m]."""
+        return math.sqrt(self.R * alpha) if alpha > 0.0 else 0.0
+
+    def energy(self, alpha: float) -> float:
+        return self.K * alpha ** (self.exponent + 1.0) / (self.exponent + 1.0) if alpha > 0.0 else 0.0
+
+    def rigid_impact(self, mass: float, velocity: float) -> tuple[float, float, float]:
+        """(α_max, F_max, duration) on a rigid immovable flat, n = 3/2 (Hertz 1882).
+
+        α_max = (5mV²/(4K))^(2/5); duration = 2·(α_max/V)·∫₀¹(1 − s^(5/2))^(-1/2) ds
+        = 2.9432752·α_max/V.
+        """
+        if self.exponent != 1.5:
+            raise ValueError("closed form exists for n = 3/2 only")
+        a = (5.0 * mass * velocity**2 / (4.0 * self.K)) ** 0.4
+        return a, self.force(a), 2.9432752 * a / velocity
+
+
+@dataclass(frozen=True)
+class YangSunState:
+    """Memory of the Yang–Sun law: the largest approach reached so far, α_m [m]."""
+
+    alpha_max: float = 0.0
+
+
+@dataclass(frozen=True)
+class YangSunBranch:
+    """The Yang–Sun law at a fixed α_m: loading above α_m, the unloading curve below."""
+
+    law: "YangSunLaw"
+    alpha_max: float
+
+    def _unload(self):
+        am = self.alpha_max
+        return self.law.force_loading(am), self.law.permanent(am), am
+
+    def force(self, alpha: float, rate: float = 0.0) -> float:
+        if alpha >= self.alpha_max:
+            return self.law.force_loading(alpha)
+        Fm, ap, am = self._unload()
+        if alpha <= ap:
+            return 0.0
+        return Fm * ((alpha - ap) / (am - ap)) ** self.law.unloading_exponent
+
+    def stiffness(self, alpha: float, rate: float = 0.0) -> float:
+        if alpha >= self.alpha_max:
+            return self.law.hertz.stiffness(alpha)
+        Fm, ap, am = self._unload()
+        if alpha <= ap:
+            return 0.0
+        q = self.law.unloading_exponent
+        return q * Fm / (am - ap) * ((alpha - ap) / (am - ap)) ** (q - 1.0)
+
+    def damping(self, alpha: float, rate: float = 0.0) -> float:
+        return 0.0
+
+    def radius(self, alpha: float) -> float:
+        return self.law.hertz.radius(max(alpha, 0.0))
+
+    def energy(self, alpha: float) -> float:
+        """Recoverable energy: the integral of the unloading curve from α_p up to α."""
+        am = max(alpha, self.alpha_max)
+        Fm, ap = self.law.force_loading(am), self.law.permanent(am)
+        if alpha <= ap or am <= 0.0:
+            return 0.0
+        q = self.law.unloading_exponent
+        return Fm * (am - ap) / (q + 1.0) * ((alpha - ap) / (am - ap)) ** (q + 1.0)
+
+
+@dataclass(frozen=True)
+class YangSunLaw:
+    """Hertz loading, Yang–Sun unloading with permanent indentation (module docstring).
+
+    ``hertz``: the loading law; ``critical_indentation`` α_cr [m] (Yang & Sun
+    report ≈ 0.08 mm for graphite/epoxy with a 12.7 mm steel ball);
+    ``unloading_exponent`` q = 5/2.
+    """
+
+    hertz: HertzLaw
+    critical_indentation: float
+    unloading_exponent: float = 2.5
+
+    def __post_init__(self):
+        _positive("critical indentation", self.critical_indentation)
+        if not self.unloading_exponent >= 1.0:
+            raise InputError(f"contact: unloading exponent must be >= 1, got {self.unloading_exponent!r}")
+
+    def force_loading(self, alpha: float) -> float:
+        return self.hertz.force(alpha)
+
+    def permanent(self, alpha_max: float) -> float:
+        """α_p = 0 below α_cr, else α_m·(1 − (α_cr/α_m)^(2/5)) [m]."""
+        if alpha_max <= self.critical_indentation:
+            return 0.0
+        return alpha_max * (1.0 - (self.critical_indentation / alpha_max) ** 0.4)
+
+    def initial_state(self) -> YangSunState:
+        return YangSunState()
+
+    def branch(self, state: YangSunState) -> YangSunBranch:
+        return YangSunBranch(self, state.alpha_max)
+
+    def advance(self, state: YangSunState, alpha: float, rate: float) -> YangSunState:
+        return state if alpha <= state.alpha_max else YangSunState(alpha)
+
+
+@dataclass(frozen=True)
+class HuntCrossleyLaw:
+    """F = K·α^n·(1 + D·α̇) ≥ 0 with D from the restitution e (module docstring).
+
+    ``form``: ``"lankarani-nikravesh"`` (D = 3(1 − e²)/(4v⁻)) or ``"hunt-crossley"``
+    (D = 3(1 − e)/(2v⁻)). ``impact_velocity`` v⁻ > 0 [m/s].
+    """
+
+    K: float
+    R: float
+    restitution: float
+    impact_velocity: float
+    exponent: float = 1.5
+    form: str = "lankarani-nikravesh"
+
+    def __post_init__(self):
+        _positive("Hunt-Crossley K", self.K)
+        _positive("sphere radius R", self.R)
+        _positive("impact velocity", self.impact_velocity)
+        if not 0.0 < self.restitution <= 1.0:
+            raise InputError(f"contact: coefficient of restitution must be in (0, 1], got {self.restitution!r}")
+        if self.form not in ("lankarani-nikravesh", "hunt-crossley"):
+            raise InputError(f"contact: Hunt-Crossley form {self.form!r} is not 'lankarani-nikravesh' or 'hunt-crossley'")
+
+    @property
+    def D(self) -> float:
+        """The damping factor D [s/m]."""
+        e, v = self.restitution, self.impact_velocity
+        if self.form == "hunt-crossley":
+            return 1.5 * (1.0 - e) / v
+        return 0.75 * (1.0 - e * e) / v
+
+    def force(self, alpha: float, rate: float = 0.0) -> float:
+        if alpha <= 0.0:
+            return 0.0
+        return max(self.K * alpha**self.exponent * (1.0 + self.D * rate), 0.0)
+
+    def stiffness(self, alpha: float, rate: float = 0.0) -> float:
+        g = 1.0 + self.D * rate
+        if alpha <= 0.0 or g <= 0.0:
+            return 0.0
+        return self.exponent * self.K * alpha ** (self.exponent - 1.0) * g
+
+    def damping(self, alpha: float, rate: float = 0.0) -> float:
+        if alpha <= 0.0 or 1.0 + self.D * rate <= 0.0:
+            return 0.0
+        return self.K * alpha**self.exponent * self.D
+
+    def radius(self, alpha: float) -> float:
+        return math.sqrt(self.R * alpha) if alpha > 0.0 else 0.0
+
+    def energy(self, alpha: float) -> float:
+        """The elastic part K·α^(n+1)/(n+1) [J]."""
+        return self.K * alpha ** (self.exponent + 1.0) / (self.exponent + 1.0) if alpha > 0.0 else 0.0
+
+
+@dataclass(frozen=True)
+class SoftProjectileLaw:
+    """F = (m·V²/d)·k·(α/d)^p·(1 + c·α̇/V) ≥ 0, a = sqrt(d·α) (module docstring).
+
+    ``mass`` m [kg], ``diameter`` d [m], ``velocity`` V [m/s] of the projectile;
+    ``k``, ``p``, ``c`` dimensionless (already scaled to this diameter; see
+    :meth:`scaled`).
+    """
+
+    mass: float
+    diameter: float
+    velocity: float
+    k: float
+    p: float
+    c: float = 0.0
+
+    def __post_init__(self):
+        for name in ("mass", "diameter", "velocity", "k", "p"):
+            _positive(name, getattr(self, name))
+        if not (math.isfinite(self.c) and self.c >= 0.0):
+            raise InputError(f"contact: rate coefficient c must be non-negative, got {self.c!r}")
+
+    @classmethod
+    def scaled(cls, mass, diameter, velocity, k_ref, p, c_ref, d_ref, q_k=0.0, q_c=0.0) -> "SoftProjectileLaw":
+        """k = k_ref·(d/d_ref)^q_k, c = c_ref·(d/d_ref)^q_c."""
+        s = diameter / d_ref
+        return cls(mass, diameter, velocity, k_ref * s**q_k, p, c_ref * s**q_c)
+
+    @property
+    def scale(self) -> float:
+        """m·V²/d [N]."""
+        return self.mass * self.velocity**2 / self.diameter
+
+    def _elastic(self, alpha: float) -> float:
+        return self.scale * self.k * (alpha / self.diameter) ** self.p
+
+    def force(self, alpha: float, rate: float = 0.0) -> float:
+        if alpha <= 0.0:
+            return 0.0
+        return max(self._elastic(alpha) * (1.0 + self.c * rate / self.velocity), 0.0)
+
+    def stiffness(self, alpha: float, rate: float = 0.0) -> float:
+        g = 1.0 + self.c * rate / self.velocity
+        if alpha <= 0.0 or g <= 0.0:
+            return 0.0
+        return self.p * self._elastic(alpha) / alpha * g
+
+    def damping(self, alpha: float, rate: float = 0.0) -> float:
+        if alpha <= 0.0 or 1.0 + self.c * rate / self.velocity <= 0.0:
+            return 0.0
+        return self._elastic(alpha) * self.c / self.velocity
+
+    def radius(self, alpha: float) -> float:
+        return math.sqrt(self.diameter * alpha) if alpha > 0.0 else 0.0
+
+    def energy(self, alpha: float) -> float:
+        return self._elastic(alpha) * alpha / (self.p + 1.0) if alpha > 0.0 else 0.0
