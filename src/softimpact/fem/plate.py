@@ -162,10 +162,10 @@ class PlateFE:
             return quad(A, e0u, e0v) + quad(Bm, ku, e0v) + quad(Bm, e0u, kv) + quad(D, ku, kv)
 
         def gxz(f):
-            return f.grad[W][0] + f.value[PHI_X]
+            return f.grad[W][0] + f[PHI_X]
 
         def gyz(f):
-            return f.grad[W][1] + f.value[PHI_Y]
+            return f.grad[W][1] + f[PHI_Y]
 
         @BilinearForm
         def shear_xz(u, v, w):
@@ -183,7 +183,7 @@ class PlateFE:
 
         @BilinearForm
         def mass(u, v, w):
-            a, b = u.value, v.value
+            a, b = u, v
             return (
                 I0 * (a[U] * b[U] + a[V] * b[V] + a[W] * b[W])
                 + I1 * (a[U] * b[PHI_X] + a[PHI_X] * b[U] + a[V] * b[PHI_Y] + a[PHI_Y] * b[V])
@@ -355,7 +355,7 @@ class PlateFE:
         @LinearForm
         def form(v, w):
             q = pressure(w.x[0], w.x[1]) if callable(pressure) else pressure
-            return q * v.value[W]
+            return q * v[W]
 
         f = form.assemble(Basis(self.mesh, self.element, intorder=4))
         return f[self.free]
