@@ -1,0 +1,259 @@
+"""Transverse soft impact of a laminated plate: the beam workflow in two dimensions.
+
+The laminate is a first-order shear deformation (FSDT) plate section (A, B, D,
+transverse shear with k = 5/6, rotary inertia), meshed with MITC4 elements
+(:mod:`softimpact.fem.plate`), loaded on its top face by the force history
+spread over a circular contact patch with the cosine distribution of eq (11)
+and the radius of eq (10) (:mod:`softimpact.fem.plate_loads`), and integrated
+by Newmark average acceleration. Gauges read the surface strain in a direction,
+averaged over their length, on the top or bottom face; the deflection is read
+under the impact point and at chosen points.
+
+The model is linear and time-invariant, so :class:`PlateModel` offers two ways
+to the same outputs: ``direct`` stepping (all DOFs, energies) and ``respond``
+through the response engine (impulse responses at the outputs, computed once by
+reciprocity; milliseconds per force history).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import InputError
+from ..fem.newmark import SolverSpec
+from ..fem.plate import EDGES, SUPPORT_KINDS, W, Plate, PlateFE
+from ..fem.plate_loads import CircularPatch
+from ..fem.plate_stepper import PlateStepper
+from ..fem.response import ImpulseResponse
+from ..models.laminate import Stack
+from ..models.plate_laminate import SHEAR_CORRECTION, PlateSection, plate_section
+
+__all__ = ["PlateSpec", "PlateLoad", "PlateGauge", "PlateProblem", "PlateResult", "PlateModel"]
+
+MIN_STEPS_PER_RISE = 4  # a pulse rising in fewer time steps than this is not resolved
+DEFAULT_GAUGE_LENGTH = 0.031 * 0.0254  # m, the paper's gauges (NOTES.md)
+
+
+def _positive(name: str, value) -> None:
+    if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
+        raise InputError(f"{name} must be positive, got {value!r}")
+
+
+@dataclass(frozen=True)
+class PlateSpec:
+    """The plate: lengths along x (the 0° fibres) and y [m], elements (nx, ny),
+    supports of the edges (x0, x1, y0, y1), the laminate stack, the shear
+    correction factor and Rayleigh damping (α [1/s], β [s]: C = αM + βK)."""
+
+    length_x: float
+    length_y: float
+    elements: tuple[int, int]
+    stack: Stack
+    supports: tuple[str, str, str, str] = ("simply-supported",) * 4
+    shear_correction: float = SHEAR_CORRECTION
+    damping: tuple[float, float] = (0.0, 0.0)
+
+    def __post_init__(self):
+        _positive("length_x", self.length_x)
+        _positive("length_y", self.length_y)
+        if not (len(self.elements) == 2 and all(isinstance(n, (int, np.integer)) and n >= 1 for n in self.elements)):
+            raise InputError(f"elements must be two positive integers (nx, ny), got {self.elements!r}")
+        if len(self.supports) != 4 or any(s not in SUPPORT_KINDS for s in self.supports):
+            raise InputError(f"supports must give one of {', '.join(SUPPORT_KINDS)} for each edge {', '.join(EDGES)}, got {self.supports!r}")
+        if not isinstance(self.stack, Stack):
+            raise InputError(f"stack must be a Stack (ply and angles), got {type(self.stack).__name__}")
+        if not (len(self.damping) == 2 and all(math.isfinite(d) and d >= 0 for d in self.damping)):
+            raise InputError(f"damping must be two non-negative numbers (alpha, beta), got {self.damping!r}")
+
+    def section(self) -> PlateSection:
+        return plate_section(self.stack, self.shear_correction)
+
+    def plate(self) -> Plate:
+        nx, ny = (int(n) for n in self.elements)
+        return Plate(self.length_x, self.length_y, nx, ny, self.section(), tuple(self.supports))
+
+
+@dataclass(frozen=True)
+class PlateLoad:
+    """Impact point (x, y) [m] on the top face, contact radius r0 [m], force history (a pulse or
+    any callable F(t) [N]), and whether the radius grows with the force (eq 10) or stays r0."""
+
+    position: tuple[float, float]
+    contact_radius: float
+    history: object
+    grow: bool = True
+
+    def __post_init__(self):
+        _positive("contact_radius", self.contact_radius)
+        if len(self.position) != 2:
+            raise InputError(f"load position must be (x, y), got {self.position!r}")
+
+
+@dataclass(frozen=True)
+class PlateGauge:
+    """A strain gauge: centre (x, y) [m], face (top|bottom), direction ("x", "y" or degrees from x),
+    length [m] along that direction."""
+
+    name: str
+    position: tuple[float, float]
+    surface: str = "bottom"
+    direction: str | float = "x"
+    length: float = DEFAULT_GAUGE_LENGTH
+
+    def __post_init__(self):
+        if self.surface not in ("top", "bottom"):
+            raise InputError(f"gauge {self.name}: surface {self.surface!r} is not 'top' or 'bottom'")
+        if isinstance(self.direction, str) and self.direction not in ("x", "y"):
+            raise InputError(f"gauge {self.name}: direction {self.direction!r} is not 'x', 'y' or an angle in degrees")
+        if not (math.isfinite(self.length) and self.length >= 0):
+            raise InputError(f"gauge {self.name}: length must be non-negative, got {self.length!r} m")
+
+
+@dataclass(frozen=True)
+class PlateProblem:
+    """Everything that defines a plate run (SI); checks that the load, gauges and time step fit.
+
+    ``points``: extra points (x, y) [m] where the deflection is recorded, after
+    the impact point.
+    """
+
+    plate: PlateSpec
+    load: PlateLoad
+    solver: SolverSpec
+    gauges: tuple[PlateGauge, ...] = ()
+    points: tuple[tuple[float, float], ...] = ()
+    title: str = ""
+
+    def __post_init__(self):
+        Lx, Ly = self.plate.length_x, self.plate.length_y
+
+        def on_plate(p) -> bool:
+            return 0 <= p[0] <= Lx and 0 <= p[1] <= Ly
+
+        x, y = self.load.position
+        r = self.load.contact_radius
+        if not (r <= x <= Lx - r and r <= y <= Ly - r):
+            raise InputError(f"load position {self.load.position!r} m with contact_radius {r!r} m: the patch is not inside the plate ({Lx!r} × {Ly!r} m)")
+        for g in self.gauges:
+            theta = math.radians(0.0 if g.direction == "x" else 90.0 if g.direction == "y" else float(g.direction))
+            d = 0.5 * g.length * np.array([math.cos(theta), math.sin(theta)])
+            if not (on_plate(np.asarray(g.position) - d) and on_plate(np.asarray(g.position) + d)):
+                raise InputError(f"gauge {g.name}: position {g.position!r} m puts the gauge off the plate")
+        for p in self.points:
+            if not on_plate(p):
+                raise InputError(f"points: {p!r} m is off the plate")
+        rise = getattr(self.load.history, "time_of_peak", None)
+        if rise is not None and rise < MIN_STEPS_PER_RISE * self.solver.time_step:
+            raise InputError(
+                f"time_step {self.solver.time_step * 1e6:.3g} us cannot resolve a pulse rising in "
+                f"{rise * 1e6:.3g} us (need at most time_of_peak/{MIN_STEPS_PER_RISE})"
+            )
+
+
+@dataclass(frozen=True)
+class PlateResult:
+    """Histories (time on the last axis) of a plate run."""
+
+    problem: PlateProblem
+    time: np.ndarray  # (n,) s
+    force: np.ndarray  # (n,) N
+    strain: np.ndarray  # (n_gauges, n)
+    deflection: np.ndarray  # (1 + n_points, n) m, up +: impact point first, then problem.points
+    displacement: np.ndarray | None = None  # (n_dofs, n), free DOFs, direct stepping only
+    energy: dict = field(default_factory=dict)  # kinetic, strain, work [J], direct stepping only
+
+
+class PlateModel:
+    """Assembled plate with its stepper, contact patch and output rows, for one (mesh, dt)."""
+
+    def __init__(self, problem: PlateProblem, patch_radius: float | None = None):
+        """``patch_radius``: the widest contact radius the model must load (for fits of r0)."""
+        self.problem = problem
+        self.fe = fe = PlateFE(problem.plate.plate())
+        M, K = fe.M, fe.K
+        a, b = problem.plate.damping
+        C = None if a == 0 and b == 0 else a * M + b * K
+        self.stepper = PlateStepper(M, K, problem.solver.time_step, C=C, params=problem.solver.newmark)
+        load = problem.load
+        self.patch = CircularPatch(fe, load.position, patch_radius or load.contact_radius, grow=load.grow)
+        # Patch loads push the plate down (−z).
+        self.load_dofs = self.patch.dofs
+        self.B = np.zeros((fe.n, self.load_dofs.size))
+        self.B[self.load_dofs, np.arange(self.load_dofs.size)] = -1.0
+        rows = [fe.surface_strain(*g.position, g.surface, g.direction, g.length) for g in problem.gauges]
+        rows += [fe.deflection(*p) for p in (load.position,) + tuple(problem.points)]
+        self.O = np.array(rows)
+        self._engine = None
+
+    @property
+    def steps(self) -> int:
+        return self.problem.solver.steps
+
+    def force_samples(self, history=None) -> np.ndarray:
+        h = self.problem.load.history if history is None else history
+        return np.asarray(h(self.problem.solver.times()) if callable(h) else h, float)
+
+    def nodal_loads(self, force: np.ndarray, radius: float | None = None) -> np.ndarray:
+        """Patch loads (n_patch_nodes, n_t) [N], compression +, for a force history sampled at
+        the solver's times (r0 = ``radius`` or the problem's contact radius)."""
+        return self.patch.forces(force, self.problem.load.contact_radius if radius is None else radius)
+
+    def engine(self) -> ImpulseResponse:
+        """The response engine (impulse responses of the outputs to each patch node), built once."""
+        if self._engine is None:
+            self._engine = ImpulseResponse.reciprocal(self.stepper, self.B, self.steps, self.O)
+        return self._engine
+
+    def _split(self, y: np.ndarray):
+        ng = len(self.problem.gauges)
+        return y[:ng], y[ng:]
+
+    def respond(self, history=None, radius: float | None = None) -> PlateResult:
+        """Gauge strains and deflections for a force history through the response engine."""
+        F = self.force_samples(history)
+        if F[0] != 0.0:
+            raise InputError("history: the force must be zero at first contact (t = 0)")
+        y = self.engine().respond(self.nodal_loads(F, radius))
+        strain, defl = self._split(y)
+        return PlateResult(self.problem, self.problem.solver.times(), F, strain, defl)
+
+    def direct(self, history=None, progress=None, energy: bool = True) -> PlateResult:
+        """Direct Newmark stepping of all DOFs; with ``energy``, the energy balance.
+
+        Work done by the load is summed as ½(f_k + f_{k+1})·(u_{k+1} − u_k), the
+        rule under which average acceleration balances energy exactly.
+        """
+        F = self.force_samples(history)
+        st, fe = self.stepper, self.fe
+        n, N = fe.n, self.steps
+        f = np.zeros((N + 1, n))  # time-major: each step reads and writes contiguous rows
+        f[:, self.load_dofs] = -self.nodal_loads(F).T
+        u = np.zeros((N + 1, n))
+        v = np.zeros((N + 1, n))
+        acc = st.initial_acceleration(u[0], v[0], f[0])
+        M, K = st.M, st.K
+        kinetic, strain_energy, work = (np.zeros(N + 1) for _ in range(3))
+        for k in range(N):
+            u[k + 1] = st.solve(f[k + 1] + st.predictor(u[k], v[k], acc))
+            v[k + 1], acc = st.correct(u[k + 1], u[k], v[k], acc)
+            if energy:
+                kinetic[k + 1] = 0.5 * v[k + 1] @ (M @ v[k + 1])
+                strain_energy[k + 1] = 0.5 * u[k + 1] @ (K @ u[k + 1])
+                work[k + 1] = work[k] + 0.5 * (f[k] + f[k + 1]) @ (u[k + 1] - u[k])
+            if progress is not None and k % 100 == 0:
+                progress(k)
+        strain, defl = self._split((u @ self.O.T).T)
+        energies = {"kinetic": kinetic, "strain": strain_energy, "work": work} if energy else {}
+        return PlateResult(self.problem, self.problem.solver.times(), F, strain, defl, u.T, energies)
+
+    def frequencies(self, count: int = 5) -> np.ndarray:
+        """The ``count`` lowest natural frequencies [Hz] of the undamped plate (shift-invert Lanczos)."""
+        import scipy.sparse.linalg as spl
+
+        if not (isinstance(count, int) and 1 <= count < self.fe.n - 1):
+            raise InputError(f"count must be an integer from 1 to {self.fe.n - 2}, got {count!r}")
+        vals = spl.eigsh(self.fe.K, k=count, M=self.fe.M, sigma=0.0, which="LM", return_eigenvectors=False)
+        return np.sqrt(np.abs(np.sort(vals))) / (2 * np.pi)
