@@ -73,7 +73,9 @@ def main(meshes):
         for _ in range(reps):
             model.respond(SkewedPulse(80 * LBF, 25e-6, 300e-6 + 1e-6 * _))
         respond = (time.perf_counter() - t) / reps
-        print(f"{n:>3}×{n:<3} {model.fe.n:>6} {build:>8.2f} {direct:>9.2f} {plain:>12.2f} {plain / direct:>8.1f}× {engine:>9.2f} {respond * 1e3:>11.1f} {diff:>9.1e}")
+        print(
+            f"{n:>3}×{n:<3} {model.fe.n:>6} {build:>8.2f} {direct:>9.2f} {plain:>12.2f} {plain / direct:>8.1f}× {engine:>9.2f} {respond * 1e3:>11.1f} {diff:>9.1e}"
+        )
 
 
 if __name__ == "__main__":

@@ -16,7 +16,8 @@ import time
 
 import numpy as np
 
-from softimpact.cases import load_bar_case, load_beam_case
+from softimpact.input.bar_case import load_bar_case
+from softimpact.input.beam_case import load_beam_case
 from softimpact.workflows.bar_impact import simulate_impact
 from softimpact.workflows.beam_impact import BeamModel
 from softimpact.workflows.calibration import first_lobe_peak, first_zero_crossing
@@ -56,8 +57,7 @@ def beam(levels):
         print(f"  beam level ×{f}: {time.perf_counter() - t0:.1f} s", file=sys.stderr, flush=True)
         return out
 
-    show("Beam, paper-long-beam (200 × 6, dt 1 µs, × 2, × 4): gauge strains",
-         convergence_study(run, [2**k for k in range(levels)], 2.0, formal_order=2))
+    show("Beam, paper-long-beam (200 × 6, dt 1 µs, × 2, × 4): gauge strains", convergence_study(run, [2**k for k in range(levels)], 2.0, formal_order=2))
 
 
 def bar():
@@ -75,8 +75,7 @@ def bar():
             "midpoint_peak_strain": float(np.max(np.abs(r.gauge_strain[0]))),
         }
 
-    show("Bar, paper-calibration with end cap (39 elements, dt 0.5 µs, × 2, × 4)",
-         convergence_study(run, (1, 2, 4), 2.0, formal_order=2))
+    show("Bar, paper-calibration with end cap (39 elements, dt 0.5 µs, × 2, × 4)", convergence_study(run, (1, 2, 4), 2.0, formal_order=2))
 
 
 if __name__ == "__main__":

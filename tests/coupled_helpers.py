@@ -4,9 +4,9 @@ from dataclasses import replace
 
 import numpy as np
 
-from softimpact.cases import load_beam_case
 from softimpact.fem.impact import ContactStructure
 from softimpact.fem.newmark import SolverSpec
+from softimpact.input.beam_case import load_beam_case
 from softimpact.workflows.beam_impact import BeamModel
 
 INCH = 0.0254
@@ -52,6 +52,13 @@ def beam_structure(model, position, max_radius):
     gauges = model.problem.gauges
     outputs = np.array([pm.surface_strain(g.position, g.surface, g.length) for g in gauges])
     return ContactStructure(
-        M=pm.M, K=pm.K, surface_x=xs[sel], surface_dofs=dofs, load_sign=-1.0, center=position,
-        approach_row=-mid_surface_row(pm, position), outputs=outputs, output_names=tuple(g.name for g in gauges),
+        M=pm.M,
+        K=pm.K,
+        surface_x=xs[sel],
+        surface_dofs=dofs,
+        load_sign=-1.0,
+        center=position,
+        approach_row=-mid_surface_row(pm, position),
+        outputs=outputs,
+        output_names=tuple(g.name for g in gauges),
     )

@@ -1,6 +1,5 @@
 """Strain-gauge bridges: volts → strain against the resistor network itself."""
 
-import numpy as np
 import pytest
 
 from softimpact.errors import InputError

@@ -5,8 +5,8 @@ import re
 
 import numpy as np
 import pytest
-
 from conftest import INCH
+
 from softimpact.errors import InputError
 from softimpact.models.pulses import SkewedPulse
 from softimpact.workflows import conditioning as cond

@@ -7,8 +7,9 @@ import pytest
 from conftest import INCH, LB_PER_IN3, PSI
 from scipy.integrate import solve_ivp
 
-from softimpact.cases import load_bar_case, load_beam_case
 from softimpact.errors import InputError
+from softimpact.input.bar_case import load_bar_case
+from softimpact.input.beam_case import load_beam_case
 from softimpact.workflows.bar_impact import simulate_impact, without_end_cap
 from softimpact.workflows.beam_impact import BeamModel
 from softimpact.workflows.convergence import convergence_study, observed_order, richardson

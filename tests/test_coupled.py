@@ -6,7 +6,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-import scipy.sparse
 import scipy.sparse.linalg as spl
 from scipy.integrate import solve_ivp
 from scipy.special import beta as beta_fn
@@ -14,7 +13,7 @@ from scipy.special import beta as beta_fn
 sys.path.insert(0, str(Path(__file__).parent))
 from coupled_helpers import INCH, beam_structure, long_beam_model  # noqa: E402
 
-from softimpact.fem.impact import ContactPatch, ContactStructure, integrate_impact  # noqa: E402
+from softimpact.fem.impact import ContactPatch, ContactStructure  # noqa: E402
 from softimpact.fem.loads import PatchLoad  # noqa: E402
 from softimpact.fem.newmark import SolverSpec  # noqa: E402
 from softimpact.models.contact_laws import HertzLaw, HuntCrossleyLaw, YangSunLaw  # noqa: E402
@@ -34,12 +33,19 @@ def _ball(d_in):
 def _wall(stiffness=1e16, mass=1e6):
     """A one-DOF target: a huge mass on a huge spring (practically a rigid, immovable wall)."""
     return ContactStructure(
-        M=np.array([[mass]]), K=np.array([[stiffness]]), surface_x=np.array([0.0]), surface_dofs=np.array([0]),
-        load_sign=1.0, center=0.0, approach_row=np.array([1.0]), outputs=np.zeros((0, 1)),
+        M=np.array([[mass]]),
+        K=np.array([[stiffness]]),
+        surface_x=np.array([0.0]),
+        surface_dofs=np.array([0]),
+        load_sign=1.0,
+        center=0.0,
+        approach_row=np.array([1.0]),
+        outputs=np.zeros((0, 1)),
     )
 
 
 # --- rigid wall: closed forms ---------------------------------------------------------------
+
 
 def _hertz_closed_form(K, m, V):
     """Hertz (1882) rigid-wall impact from the energy integral, written out here independently."""
@@ -125,6 +131,7 @@ def test_yang_sun_rebound_energy_is_unloading_curve_energy():
 
 # --- patch -------------------------------------------------------------------------------------
 
+
 @pytest.mark.parametrize("radius", [0.02 * INCH, 0.1 * INCH, 0.23 * INCH])
 def test_patch_shares_match_patchload(radius):
     """Nodal shares equal fem.loads.PatchLoad's exact nodal integrals for a unit force and sum to one."""
@@ -149,6 +156,7 @@ def test_patch_share_derivative():
 
 
 # --- beam invariants -------------------------------------------------------------------------
+
 
 @pytest.fixture(scope="module")
 def beam():
@@ -204,6 +212,7 @@ def test_beam_separation_and_recontact(beam_runs):
 
 
 # --- THE independent implementation ----------------------------------------------------------
+
 
 def _independent_explicit(model, d, m, V, law_K, duration, dt_fraction=0.4):
     """Same formulation, different code and scheme: explicit central differences on M, K of the
@@ -287,7 +296,7 @@ def test_long_beam_agrees_with_independent_explicit_solution(beam, beam_runs, ca
     F0 = F[first].max()
     tp = t[first][np.argmax(F[first])]
     T = t[k_end - 1] + 0.5 * dt  # dt ≈ 25 ns: half-step resolution is 0.03 % of T
-    imp = np.sum(0.5 * (F[1:k_end + 1] + F[:k_end])) * dt
+    imp = np.sum(0.5 * (F[1 : k_end + 1] + F[:k_end])) * dt
     assert r.peak_force == pytest.approx(F0, rel=0.01)
     assert r.time_of_peak == pytest.approx(tp, rel=0.01)
     assert r.contact_duration == pytest.approx(T, rel=0.01)
@@ -299,10 +308,11 @@ def test_long_beam_agrees_with_independent_explicit_solution(beam, beam_runs, ca
 
 # --- identification on the built-in rubber series ---------------------------------------------
 
+
 @pytest.fixture(scope="module")
 def rubber():
-    from softimpact.cases import load_series
-    from softimpact.io import read_record
+    from softimpact.input.records import read_record
+    from softimpact.input.series import load_series
     from softimpact.workflows.identification import BarTest
     from softimpact.workflows.reduction import Record, reduce_record
 

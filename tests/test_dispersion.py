@@ -4,9 +4,9 @@ import math
 
 import numpy as np
 import pytest
+from conftest import INCH
 from scipy.special import jv
 
-from conftest import INCH
 from softimpact.errors import InputError
 from softimpact.models import dispersion as dsp
 from softimpact.models.pulses import SkewedPulse

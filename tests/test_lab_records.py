@@ -16,11 +16,11 @@ try:
 except ImportError:
     TdmsWriter = None
 
-needs_h5py = pytest.mark.skipif(h5py is None, reason="h5py not installed")
-needs_nptdms = pytest.mark.skipif(TdmsWriter is None, reason="npTDMS not installed")
-
 from softimpact.errors import InputError
 from softimpact.input.lab_records import LabRecord, list_channels, read_lab_record
+
+needs_h5py = pytest.mark.skipif(h5py is None, reason="h5py not installed")
+needs_nptdms = pytest.mark.skipif(TdmsWriter is None, reason="npTDMS not installed")
 
 DT = 1e-7  # s, 10 MS/s
 T0 = -20e-6  # s: 200 samples of pre-trigger
@@ -169,7 +169,16 @@ def test_hdf5_round_trip_with_attributes(tmp_path):
 
 def test_tektronix_style_csv(tmp_path):
     """Tektronix MSO export: metadata lines, a 'TIME,CH1' header, then numbers."""
-    meta = [["Model", "MSO54"], ["Firmware Version", "1.30"], ["Record Length", str(N)], ["Sample Interval", repr(DT)], ["Trigger Point", "200"], ["Date", "2024-05-01"], [""], ["TIME", "CH1"]]
+    meta = [
+        ["Model", "MSO54"],
+        ["Firmware Version", "1.30"],
+        ["Record Length", str(N)],
+        ["Sample Interval", repr(DT)],
+        ["Trigger Point", "200"],
+        ["Date", "2024-05-01"],
+        [""],
+        ["TIME", "CH1"],
+    ]
     path = write_csv(tmp_path / "tek.csv", csv_rows(meta + data_rows()))
     rec = read_lab_record(path)
     check(rec)
@@ -179,7 +188,13 @@ def test_tektronix_style_csv(tmp_path):
 
 def test_lecroy_style_csv(tmp_path):
     """LeCroy export: instrument line, segment lines, a 'Time,Ampl' header."""
-    meta = [["LECROYWR64Xi", "51181", "Waveform"], ["Segments", "1", "SegmentSize", str(N)], ["Segment", "TrigTime", "TimeSinceSegment1"], ["#1", "01-May-2024 10:00:00", "0"], ["Time", "Ampl"]]
+    meta = [
+        ["LECROYWR64Xi", "51181", "Waveform"],
+        ["Segments", "1", "SegmentSize", str(N)],
+        ["Segment", "TrigTime", "TimeSinceSegment1"],
+        ["#1", "01-May-2024 10:00:00", "0"],
+        ["Time", "Ampl"],
+    ]
     check(read_lab_record(write_csv(tmp_path / "lecroy.csv", csv_rows(meta + data_rows()))))
 
 
@@ -192,7 +207,9 @@ def test_picoscope_style_csv_with_units_row(tmp_path):
 
 def test_excel_semicolon_decimal_comma_with_bom(tmp_path):
     """European Excel: UTF-8 BOM, ';' delimiter, decimal commas, units in the header 'Zeit [ms]'."""
-    rows = [["Versuch", "Schuss 12"], ["Zeit [ms]", "Dehnung [V]"]] + [[repr(float(t) * 1e3).replace(".", ","), repr(float(y)).replace(".", ",")] for t, y in zip(TIME, VOLTS)]
+    rows = [["Versuch", "Schuss 12"], ["Zeit [ms]", "Dehnung [V]"]] + [
+        [repr(float(t) * 1e3).replace(".", ","), repr(float(y)).replace(".", ",")] for t, y in zip(TIME, VOLTS)
+    ]
     path = write_csv(tmp_path / "excel.csv", csv_rows(rows, ";"), encoding="utf-8-sig")
     assert open(path, "rb").read(3) == b"\xef\xbb\xbf"
     check(read_lab_record(path), rtol=1e-12)
@@ -200,7 +217,9 @@ def test_excel_semicolon_decimal_comma_with_bom(tmp_path):
 
 def test_tab_delimited_text_with_sample_interval_only(tmp_path):
     """A tab-delimited file with two signal columns and 'Sample Interval' in the header: time from the header."""
-    rows = [["Sample Interval", repr(DT)], ["Horizontal Offset", repr(T0)], ["CH1 (V)", "CH2 (V)"]] + [[repr(float(y)), repr(float(z))] for y, z in zip(VOLTS, TRIGGER)]
+    rows = [["Sample Interval", repr(DT)], ["Horizontal Offset", repr(T0)], ["CH1 (V)", "CH2 (V)"]] + [
+        [repr(float(y)), repr(float(z))] for y, z in zip(VOLTS, TRIGGER)
+    ]
     path = write_csv(tmp_path / "scope.txt", csv_rows(rows, "\t"))
     assert list_channels(path) == ["CH1", "CH2"]
     check(read_lab_record(path, 0))

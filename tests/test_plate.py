@@ -4,12 +4,12 @@ import math
 from dataclasses import replace
 
 import numpy as np
+import plate_navier as nav
 import pytest
 import scipy.linalg
 import scipy.sparse.linalg as spl
-
-import plate_navier as nav
 from conftest import INCH
+
 from softimpact.errors import InputError
 from softimpact.fem.newmark import SolverSpec
 from softimpact.fem.plate import Plate, PlateFE
@@ -187,7 +187,10 @@ def test_clamped_plate_is_stiffer_than_simply_supported():
         (lambda: PlateSpec(A, A, (4, 4), STACK, ("clamped", "hinged", "free", "free")), "supports"),
         (lambda: PlateLoad((A / 2, A / 2), 0.0, PAPER_PULSE), "contact_radius"),
         (lambda: PlateGauge("g", (0.1, 0.1), "middle"), "surface"),
-        (lambda: PlateProblem(PlateSpec(A, A, (4, 4), STACK), PlateLoad((0.1 * INCH, A / 2), 0.25 * INCH, PAPER_PULSE), SolverSpec(1e-6, 1e-4)), "load position"),
+        (
+            lambda: PlateProblem(PlateSpec(A, A, (4, 4), STACK), PlateLoad((0.1 * INCH, A / 2), 0.25 * INCH, PAPER_PULSE), SolverSpec(1e-6, 1e-4)),
+            "load position",
+        ),
     ],
 )
 def test_bad_input_names_the_argument(make, match):

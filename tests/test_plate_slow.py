@@ -1,10 +1,10 @@
 """The issue's full-size check: 8 × 8 in SS [90/0]5s plate, eq-15 pulse, against the Navier FSDT series."""
 
 import numpy as np
-import pytest
-
 import plate_navier as nav
-from test_plate import A, GAUGES, NAVIER_GAUGES, PAPER_PULSE, SECTION, _problem
+import pytest
+from test_plate import NAVIER_GAUGES, PAPER_PULSE, SECTION, A, _problem
+
 from softimpact.workflows.plate_impact import PlateModel
 
 pytestmark = pytest.mark.slow
@@ -40,8 +40,11 @@ def test_paper_plate_early_strains(paper_case):
     assert np.all(err < 0.09)
 
 
-@pytest.mark.xfail(strict=True, reason="MITC4 dispersion: 64 × 64 gives 21 % / 29 % over 0–1000 µs; content up to ~80 kHz matters, "
-                   "and average acceleration at dt = 1 µs alone errs 5 % (tests/plate_navier.py, report)")
+@pytest.mark.xfail(
+    strict=True,
+    reason="MITC4 dispersion: 64 × 64 gives 21 % / 29 % over 0–1000 µs; content up to ~80 kHz matters, "
+    "and average acceleration at dt = 1 µs alone errs 5 % (tests/plate_navier.py, report)",
+)
 def test_paper_plate_strains_within_2_percent_over_1000_us(paper_case):
     """The issue's target: gauge strains over 0–1000 µs within 2 % of their Navier peaks (not met)."""
     _, r, _, s_ref = paper_case

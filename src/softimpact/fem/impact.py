@@ -313,7 +313,7 @@ def _solve_contact(law, patch: ContactPatch, cG, hm, kappa, q, target, guess):
     lo, hi = 0.0, target
     a = guess if 0.0 < guess < target else target
     its = 0
-    for its in range(1, NEWTON_MAXITER + 1):
+    for its in range(1, NEWTON_MAXITER + 1):  # noqa: B007 (the count is returned after the loop)
         rate = kappa * a + q
         f = law.force(a, rate)
         r = law.radius(a)

@@ -198,7 +198,6 @@ class PlateFE:
         M = mass.assemble(full)
         self.K_full, self.M_full = K.tocsr(), M.tocsr()
 
-        nd = full.nodal_dofs  # (5, n_nodes)
         self.grid_node = grid
         self.membrane = (not sec.is_symmetric()) if plate.membrane is None else bool(plate.membrane)
         self.fixed = self._support_dofs()
@@ -359,4 +358,3 @@ class PlateFE:
 
         f = form.assemble(Basis(self.mesh, self.element, intorder=4))
         return f[self.free]
-

@@ -32,7 +32,7 @@ import math
 import numpy as np
 
 from ..errors import InputError
-from .plate import W, PlateFE
+from .plate import PlateFE, W
 
 __all__ = ["CircularPatch", "cosine_pressure"]
 
@@ -154,4 +154,3 @@ class CircularPatch:
         tab = self.table()
         shape = tab[k] * (1 - frac)[:, None] + tab[k + 1] * frac[:, None]  # (n_t, n_nodes)
         return (shape * F[:, None]).T
-

@@ -512,7 +512,7 @@ def _text_table(path):
     body = [ln for ln in lines if ln.strip()]
     if not body:
         _fail(path, "empty file")
-    tail = body[-min(20, len(body)):]
+    tail = body[-min(20, len(body)) :]
     best = None
     for delim in (",", ";", "\t"):
         split = [_split(ln, delim) for ln in tail]

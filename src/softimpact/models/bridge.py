@@ -101,10 +101,7 @@ class Bridge:
         if not (isinstance(self.lead_resistance, (int, float)) and math.isfinite(self.lead_resistance) and self.lead_resistance >= 0):
             raise InputError(f"bridge: lead_resistance must be zero or positive, got {self.lead_resistance!r}")
         if self.lead_resistance > 0 and self.configuration not in _LEAD_CORRECTED:
-            raise InputError(
-                f"bridge: lead_resistance is corrected only for quarter and half bridges, not {self.configuration!r} "
-                "(use shunt calibration)"
-            )
+            raise InputError(f"bridge: lead_resistance is corrected only for quarter and half bridges, not {self.configuration!r} (use shunt calibration)")
         if self.polarity not in (1, -1):
             raise InputError(f"bridge: polarity must be 1 or -1, got {self.polarity!r}")
         if self.configuration in _NEEDS_POISSON:
@@ -159,7 +156,7 @@ class Bridge:
             )
         return self.gain / true_gain
 
-    def shunt_calibrated(self, shunt_resistance: float, measured_step: float) -> "Bridge":
+    def shunt_calibrated(self, shunt_resistance: float, measured_step: float) -> Bridge:
         """This bridge with the gain that makes the measured shunt step read the shunt's simulated strain."""
         scale = self.shunt_scale_factor(shunt_resistance, measured_step)
         return dataclasses.replace(self, gain=self.gain / scale)

@@ -131,14 +131,14 @@ class HertzLaw:
             raise InputError(f"contact: exponent must be >= 1, got {self.exponent!r}")
 
     @classmethod
-    def sphere_on_flat(cls, radius: float, sphere: Material, flat: Material) -> "HertzLaw":
+    def sphere_on_flat(cls, radius: float, sphere: Material, flat: Material) -> HertzLaw:
         """Eq (3) for an isotropic flat target: K = (4/3)·sqrt(R)·E*."""
         _positive("sphere radius", radius)
         k1, k2 = sphere.plane_modulus, flat.plane_modulus
         return cls(4.0 / 3.0 * math.sqrt(radius) * k1 * k2 / (k1 + k2), radius)
 
     @classmethod
-    def sphere_on_laminate(cls, radius: float, sphere: Material, transverse_modulus: float) -> "HertzLaw":
+    def sphere_on_laminate(cls, radius: float, sphere: Material, transverse_modulus: float) -> HertzLaw:
         """Sun's form on a laminate: K = (4/3)·sqrt(R)·E*, 1/E* = (1 − ν_s²)/E_s + 1/E_2."""
         _positive("sphere radius", radius)
         return cls(4.0 / 3.0 * math.sqrt(radius) * laminate_modulus(sphere, transverse_modulus), radius)
@@ -182,7 +182,7 @@ class YangSunState:
 class YangSunBranch:
     """The Yang–Sun law at a fixed α_m: loading above α_m, the unloading curve below."""
 
-    law: "YangSunLaw"
+    law: YangSunLaw
     alpha_max: float
 
     def _unload(self):
@@ -338,7 +338,7 @@ class SoftProjectileLaw:
             raise InputError(f"contact: rate coefficient c must be non-negative, got {self.c!r}")
 
     @classmethod
-    def scaled(cls, mass, diameter, velocity, k_ref, p, c_ref, d_ref, q_k=0.0, q_c=0.0) -> "SoftProjectileLaw":
+    def scaled(cls, mass, diameter, velocity, k_ref, p, c_ref, d_ref, q_k=0.0, q_c=0.0) -> SoftProjectileLaw:
         """k = k_ref·(d/d_ref)^q_k, c = c_ref·(d/d_ref)^q_c."""
         s = diameter / d_ref
         return cls(mass, diameter, velocity, k_ref * s**q_k, p, c_ref * s**q_c)

@@ -91,7 +91,7 @@ class RoundBar:
             raise InputError(f"bar: radius must be positive, got {self.radius!r}")
 
     @classmethod
-    def of(cls, bar) -> "RoundBar":
+    def of(cls, bar) -> RoundBar:
         """A RoundBar, or one built from anything with ``material`` (E, ρ, ν) and ``diameter``."""
         if isinstance(bar, cls):
             return bar
@@ -156,7 +156,7 @@ def _table(nu: float) -> tuple[np.ndarray, np.ndarray]:
     v[0] = 1.0
     for i, y in enumerate(aL[1:], start=1):
         x = 2 * math.pi * y
-        f = lambda c: float(_frequency_function(c, x, nu))  # noqa: E731
+        f = lambda c, x=x: float(_frequency_function(c, x, nu))  # noqa: E731
         prev = min(v[i - 1], 1.0 - 1e-12)
         # The branch moves little between table points, and not always down: it
         # dips below c_R near a/Λ ≈ 1.4 and comes back up to it (Davies 1948,

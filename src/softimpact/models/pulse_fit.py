@@ -150,8 +150,7 @@ def _errors(sol, scales, n):
     return np.sqrt(np.maximum(np.diag(cov), 0.0)) * scales
 
 
-def fit_pulse(t, F, t_end: float | None = None, guess: tuple[float, float, float] | None = None,
-              fit_start: bool = True) -> PulseFit:
+def fit_pulse(t, F, t_end: float | None = None, guess: tuple[float, float, float] | None = None, fit_start: bool = True) -> PulseFit:
     """Least-squares fit of eq (15) (with a start time t0 if ``fit_start``) to the samples t ≤ ``t_end``.
 
     ``guess``: (F0, t_F0, T) to start from (default: from the record).

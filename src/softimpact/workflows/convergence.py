@@ -161,8 +161,21 @@ def richardson(values, ratio: float, formal_order: float | None = None, name: st
     if not np.all(np.isfinite(v)):
         bad = [i for i in range(v.shape[0]) if not np.all(np.isfinite(v[i]))]
         nan = np.full(v.shape[1:], math.nan) if history else math.nan
-        return OutputConvergence(name, kind, v, float(ratio), math.nan, nan, np.full(v.shape[0], math.nan), math.nan,
-                                 math.nan, math.nan, math.nan, "undefined", f"not finite at level(s) {bad}")
+        return OutputConvergence(
+            name,
+            kind,
+            v,
+            float(ratio),
+            math.nan,
+            nan,
+            np.full(v.shape[0], math.nan),
+            math.nan,
+            math.nan,
+            math.nan,
+            math.nan,
+            "undefined",
+            f"not finite at level(s) {bad}",
+        )
     norm = _rms if history else (lambda x: abs(float(x)))
     inner = (lambda x, y: float(np.mean(x * y))) if history else (lambda x, y: float(x * y))
     scale = norm(v[-1]) or max(norm(row) for row in v) or 1.0
@@ -172,8 +185,21 @@ def richardson(values, ratio: float, formal_order: float | None = None, name: st
 
     def result(order, ext, gci_f, gci_c, asym, fs, status, message):
         errors = np.array([rel(row - ext) for row in v])
-        return OutputConvergence(name, kind, v, float(ratio), float(order), ext if history else float(ext), errors,
-                                 float(gci_f), float(gci_c), float(asym), float(fs), status, message)
+        return OutputConvergence(
+            name,
+            kind,
+            v,
+            float(ratio),
+            float(order),
+            ext if history else float(ext),
+            errors,
+            float(gci_f),
+            float(gci_c),
+            float(asym),
+            float(fs),
+            status,
+            message,
+        )
 
     if v.shape[0] == 2:
         if formal_order is None:
@@ -182,34 +208,49 @@ def richardson(values, ratio: float, formal_order: float | None = None, name: st
         rp = ratio**formal_order
         ext = v[1] + e / (rp - 1)
         gci = SAFETY_TWO_LEVELS * rel(e) / (rp - 1)
-        return result(formal_order, ext, gci, math.nan, math.nan, SAFETY_TWO_LEVELS, "two levels",
-                      f"order {formal_order:g} assumed; GCI {gci:.3g} with safety factor {SAFETY_TWO_LEVELS:g}")
+        return result(
+            formal_order,
+            ext,
+            gci,
+            math.nan,
+            math.nan,
+            SAFETY_TWO_LEVELS,
+            "two levels",
+            f"order {formal_order:g} assumed; GCI {gci:.3g} with safety factor {SAFETY_TWO_LEVELS:g}",
+        )
 
     f1, f2, f3 = v[-3], v[-2], v[-1]
     e21, e32 = f2 - f1, f3 - f2
     n21, n32 = norm(e21), norm(e32)
     fs = SAFETY_THREE_LEVELS
     if n21 <= ROUNDOFF * scale and n32 <= ROUNDOFF * scale:
-        return result(math.nan, f3, rel(e32), rel(e21), math.nan, fs, "converged to round-off",
-                      f"differences {rel(e21):.1e}, {rel(e32):.1e} of the value")
+        return result(math.nan, f3, rel(e32), rel(e21), math.nan, fs, "converged to round-off", f"differences {rel(e21):.1e}, {rel(e32):.1e} of the value")
     if n21 == 0:
-        return result(math.nan, f3, math.nan, math.nan, math.nan, fs, "diverging",
-                      "the two coarser levels agree but the finest departs: no order can be observed")
+        return result(
+            math.nan, f3, math.nan, math.nan, math.nan, fs, "diverging", "the two coarser levels agree but the finest departs: no order can be observed"
+        )
     # Signed ratio of the differences; for a history its sign is that of ⟨ε32, ε21⟩.
     R = math.copysign(n32 / n21, inner(e32, e21)) if n32 else 0.0
     if R == 0.0:
-        return result(math.nan, f3, 0.0, rel(e21), math.nan, fs, "converged to round-off",
-                      "the two finest levels agree exactly")
+        return result(math.nan, f3, 0.0, rel(e21), math.nan, fs, "converged to round-off", "the two finest levels agree exactly")
     p = math.log(n21 / n32) / math.log(ratio)
     if abs(R) >= 1:
-        return result(p, f3, math.nan, math.nan, math.nan, fs, "diverging",
-                      f"|ε32/ε21| = {abs(R):.3g} ≥ 1: the difference does not shrink (observed p = {p:.3g})")
+        return result(
+            p, f3, math.nan, math.nan, math.nan, fs, "diverging", f"|ε32/ε21| = {abs(R):.3g} ≥ 1: the difference does not shrink (observed p = {p:.3g})"
+        )
     rp = ratio**p
     if R < 0:
         half_range = 0.5 * norm(np.max(v[-3:], axis=0) - np.min(v[-3:], axis=0)) / scale
-        return result(p, f3, half_range, math.nan, math.nan, fs, "oscillatory",
-                      f"ε32/ε21 = {R:.3g} < 0: oscillatory convergence; finest level kept, "
-                      f"uncertainty ±{half_range:.3g} (half the range); |R| would give p = {p:.3g}")
+        return result(
+            p,
+            f3,
+            half_range,
+            math.nan,
+            math.nan,
+            fs,
+            "oscillatory",
+            f"ε32/ε21 = {R:.3g} < 0: oscillatory convergence; finest level kept, uncertainty ±{half_range:.3g} (half the range); |R| would give p = {p:.3g}",
+        )
     ext = f3 + e32 / (rp - 1)
     gci_f = fs * rel(e32) / (rp - 1)
     gci_c = fs * (norm(e21) / (norm(f2) or scale)) / (rp - 1)

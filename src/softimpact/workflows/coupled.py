@@ -149,7 +149,7 @@ def contact_intervals(t: np.ndarray, F: np.ndarray, alpha: np.ndarray) -> tuple[
     starts = [0] + list(np.flatnonzero(~on[:-1] & on[1:]) + 1)
     ends = list(np.flatnonzero(on[:-1] & ~on[1:]))
     out = []
-    for i, k0 in enumerate(starts):
+    for k0 in starts:
         k1 = next((e for e in ends if e >= k0), None)
         if k0 == 0:
             t0 = 0.0
@@ -188,8 +188,16 @@ def simulate_coupled(
     the run this long [s] after the impactor has left for good.
     """
     h: ImpactHistory = integrate_impact(
-        structure, law, impactor.mass, impactor.velocity, solver.time_step, solver.steps,
-        newmark=solver.newmark, energy=energy, stepper=stepper, stop_after=stop_after,
+        structure,
+        law,
+        impactor.mass,
+        impactor.velocity,
+        solver.time_step,
+        solver.steps,
+        newmark=solver.newmark,
+        energy=energy,
+        stepper=stepper,
+        stop_after=stop_after,
     )
     t, F, al = h.time, h.contact_force, h.approach
     contacts = contact_intervals(t, F, al)

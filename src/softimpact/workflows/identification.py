@@ -226,8 +226,14 @@ def _rod_structure(rod: Rod) -> ContactStructure:
     e = np.zeros(model.n)
     e[model.end_dof] = 1.0
     return ContactStructure(
-        M=model.M, K=model.K, surface_x=np.array([0.0]), surface_dofs=np.array([model.end_dof]),
-        load_sign=1.0, center=0.0, approach_row=e, outputs=np.zeros((0, model.n)),
+        M=model.M,
+        K=model.K,
+        surface_x=np.array([0.0]),
+        surface_dofs=np.array([model.end_dof]),
+        load_sign=1.0,
+        center=0.0,
+        approach_row=e,
+        outputs=np.zeros((0, model.n)),
     )
 
 
@@ -241,8 +247,14 @@ def closure(law: IdentifiedLaw, tests, rod: Rod) -> Closure:
         dt = fig[1] / STEPS_PER_PULSE
         steps = int(math.ceil(t[-1] / dt))
         h = integrate_impact(
-            structure, law.law(tst.mass, tst.diameter, tst.velocity), tst.mass, tst.velocity, dt, steps,
-            energy=False, stop_after=0.5 * fig[1],
+            structure,
+            law.law(tst.mass, tst.diameter, tst.velocity),
+            tst.mass,
+            tst.velocity,
+            dt,
+            steps,
+            energy=False,
+            stop_after=0.5 * fig[1],
         )
         names.append(tst.name)
         meas.append(fig)

@@ -24,7 +24,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..fem.newmark import SolverSpec
-from ..fem.plate import EDGES, SUPPORT_KINDS, W, Plate, PlateFE
+from ..fem.plate import EDGES, SUPPORT_KINDS, Plate, PlateFE
 from ..fem.plate_loads import CircularPatch
 from ..fem.plate_stepper import PlateStepper
 from ..fem.response import ImpulseResponse

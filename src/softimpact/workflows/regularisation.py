@@ -172,5 +172,4 @@ def choose_gcv(G, d, L, lambdas, sigma: float | None = None, floor: bool = True)
     reason = f"GCV minimum {curve.gcv[k]:.3g} at λ = {curve.lambdas[k]:.3g}" + note
     if k == 0 or k == curve.lambdas.size - 1:
         reason += "; at the edge of the grid"
-    return LambdaChoice("gcv" if not floor else "gcv-floored", float(curve.lambdas[k]), sols[k], curve, reason,
-                        math.nan if sigma is None else float(sigma))
+    return LambdaChoice("gcv" if not floor else "gcv-floored", float(curve.lambdas[k]), sols[k], curve, reason, math.nan if sigma is None else float(sigma))
