@@ -28,6 +28,9 @@ lint: $(BIN)/softimpact
 bench: $(BIN)/softimpact
 	$(BIN)/python benchmarks/bench_bar.py
 	$(BIN)/python benchmarks/bench_beam.py
+	$(BIN)/python benchmarks/bench_startup.py
+	$(BIN)/python benchmarks/bench_plate.py
+	$(BIN)/python benchmarks/bench_coupled.py
 
 clean:
 	rm -rf $(VENV) results build src/*.egg-info
