@@ -224,18 +224,19 @@ class BeamModel:
         v = np.zeros((N + 1, n))
         acc = st.initial_acceleration(u[0], v[0], f[0])
         M, K = self.plane.M, self.plane.K
-        kinetic, strain_energy, work = (np.zeros(N + 1) for _ in range(3))
         for k in range(N):
             u[k + 1] = st.solve(f[k + 1] + st.predictor(u[k], v[k], acc))
             v[k + 1], acc = st.correct(u[k + 1], u[k], v[k], acc)
-            if energy:
-                kinetic[k + 1] = 0.5 * v[k + 1] @ (M @ v[k + 1])
-                strain_energy[k + 1] = 0.5 * u[k + 1] @ (K @ u[k + 1])
-                work[k + 1] = work[k] + 0.5 * (f[k] + f[k + 1]) @ (u[k + 1] - u[k])
             if progress is not None and k % 100 == 0:
                 progress(k)
         strain, bending, defl = self._split((u @ self.O.T).T)
-        energies = {"kinetic": kinetic, "strain": strain_energy, "work": work} if energy else {}
+        energies = {}
+        if energy:
+            # After the loop, all steps at once: one sparse product per quadratic form.
+            kinetic = 0.5 * np.einsum("kn,kn->k", v, (M @ v.T).T)
+            strain_energy = 0.5 * np.einsum("kn,kn->k", u, (K @ u.T).T)
+            increments = 0.5 * np.einsum("kn,kn->k", f[:-1] + f[1:], np.diff(u, axis=0))
+            energies = {"kinetic": kinetic, "strain": strain_energy, "work": np.concatenate(([0.0], np.cumsum(increments)))}
         return BeamResult(self.problem, self.problem.solver.times(), F, strain, bending, defl, u.T, energies)
 
     def moduli(self) -> dict:
