@@ -284,6 +284,11 @@ def beam_mesh(model, system: str, span: float):
     top = pm.beam.thickness * lu.factor
     ax.plot([xc - r0, xc + r0], [top * 1.04] * 2, color="C3", lw=3, label="contact patch (r0)")
     lo, hi = xc - span * lu.factor, xc + span * lu.factor
+    margin = 0.1 * span * lu.factor  # gauges near the window's edge are drawn whole, inside it
+    for g in model.problem.gauges:
+        x = g.position * lu.factor
+        if lo - 2 * margin <= x <= hi + 2 * margin:
+            lo, hi = min(lo, x - margin), max(hi, x + margin)
     for g in model.problem.gauges:
         x = g.position * lu.factor
         if not lo <= x <= hi:
@@ -299,7 +304,7 @@ def beam_mesh(model, system: str, span: float):
     ax.set_xlabel(f"x [{lu.label}]")
     ax.set_ylabel(f"z [{lu.label}]")
     ax.set_title(f"Mesh near the impact point ({pm.beam.nx} × {pm.beam.nz} elements, {pm.n} DOF) (paper Fig 18)")
-    ax.legend(fontsize="small", loc="upper center", bbox_to_anchor=(0.5, -0.35), ncol=3, frameon=False)
+    ax.legend(fontsize="small", loc="upper center", bbox_to_anchor=(0.5, -0.45), ncol=3, frameon=False)
     return fig
 
 
