@@ -23,10 +23,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import InputError
-from ..fem.newmark import SolverSpec
+from ..fem.newmark import NewmarkStepper, SolverSpec
 from ..fem.plate import EDGES, SUPPORT_KINDS, Plate, PlateFE
 from ..fem.plate_loads import CircularPatch
-from ..fem.plate_stepper import PlateStepper
 from ..fem.response import ImpulseResponse
 from ..models.laminate import Stack
 from ..models.plate_laminate import SHEAR_CORRECTION, PlateSection, plate_section
@@ -176,7 +175,7 @@ class PlateModel:
         M, K = fe.M, fe.K
         a, b = problem.plate.damping
         C = None if a == 0 and b == 0 else a * M + b * K
-        self.stepper = PlateStepper(M, K, problem.solver.time_step, C=C, params=problem.solver.newmark)
+        self.stepper = NewmarkStepper(M, K, problem.solver.time_step, C=C, params=problem.solver.newmark)
         load = problem.load
         self.patch = CircularPatch(fe, load.position, patch_radius or load.contact_radius, grow=load.grow)
         # Patch loads push the plate down (−z).
