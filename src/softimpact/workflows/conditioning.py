@@ -47,6 +47,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
+from ..models.noise import robust_sigma
 
 __all__ = [
     "ConditioningSettings",
@@ -116,10 +117,8 @@ def _arrays(t, y):
 
 def baseline_and_noise(values) -> tuple[float, float]:
     """(median, MAD-based σ) of pre-trigger samples."""
-    from scipy.stats import median_abs_deviation
-
     v = np.asarray(values, dtype=float)
-    return float(np.median(v)), float(median_abs_deviation(v, scale="normal"))
+    return float(np.median(v)), float(robust_sigma(v))
 
 
 def detect_clipping(y, noise: float, clip_run: int = 4, adc_range: tuple[float, float] | None = None) -> list[str]:

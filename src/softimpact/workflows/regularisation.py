@@ -30,6 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
+from ..models.noise import robust_sigma
 
 __all__ = [
     "RegularisationCurve",
@@ -70,12 +71,10 @@ class LambdaChoice:
 
 def noise_sigma(samples) -> float:
     """σ of the noise: normal-scaled median absolute deviation of ``samples`` (pre-trigger part or a residual)."""
-    from scipy.stats import median_abs_deviation
-
     x = np.asarray(samples, float)
     if x.size < 8:
         raise InputError(f"noise: need at least 8 samples to measure the noise, got {x.size}")
-    return float(median_abs_deviation(x, scale="normal"))
+    return float(robust_sigma(x))
 
 
 def _check(G, d, L):
