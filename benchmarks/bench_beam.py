@@ -13,19 +13,11 @@ import time
 
 import numpy as np
 import scipy.sparse.linalg as spl
+from timing import best
 
 from softimpact.input.beam_case import load_beam_case
 from softimpact.models.pulses import SkewedPulse
 from softimpact.workflows.beam_impact import BeamModel
-
-
-def best(fn, repeat=3):
-    out = []
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        fn()
-        out.append(time.perf_counter() - t0)
-    return min(out)
 
 
 def plain_loop(model, f):

@@ -16,19 +16,11 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
 from coupled_helpers import INCH, beam_structure, long_beam_model  # noqa: E402
+from timing import best  # noqa: E402
 
 from softimpact.models.contact_laws import HertzLaw  # noqa: E402
 from softimpact.models.materials import Material  # noqa: E402
 from softimpact.workflows.coupled import Impactor, simulate_coupled  # noqa: E402
-
-
-def best(fn, repeat=3):
-    out = []
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        fn()
-        out.append(time.perf_counter() - t0)
-    return min(out)
 
 
 def main():
