@@ -22,7 +22,7 @@ import numpy as np
 
 from ..errors import InputError
 
-__all__ = ["PatchLoad", "patch_nodes"]
+__all__ = ["PatchLoad"]
 
 
 def _tributaries(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -73,8 +73,3 @@ class PatchLoad:
         """r(t) = r0·sqrt(F/F0), eq (10)."""
         F = np.asarray(F, float)
         return (self.radius if radius is None else radius) * np.sqrt(np.maximum(F, 0.0) / F.max())
-
-
-def patch_nodes(node_x, center, radius) -> np.ndarray:
-    """Indices (into node_x) of the nodes the patch can load."""
-    return PatchLoad(node_x, center, radius).nodes

@@ -183,7 +183,3 @@ class PlaneModel:
         full = np.zeros((self.basis.N,) + u.shape[1:])
         full[self.free] = u
         return full
-
-
-def assemble_plane(beam: PlaneBeam) -> PlaneModel:
-    return PlaneModel(beam)

@@ -25,7 +25,7 @@ so the incident compressive pulse gives negative gauge strain.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -114,7 +114,6 @@ class BarImpactResult:
     rebound_velocity: float  # impactor velocity after separation, positive toward the bar; nan if no separation
     contacts: int  # number of separate contact intervals
     newton_iterations: int
-    extras: dict = field(default_factory=dict)
 
     @property
     def separated(self) -> bool:

@@ -193,9 +193,8 @@ def reduce_record(record: Record, bar: BarSpec, gauge_position: float, settings:
     L, x = bar.length, gauge_position
     if not 0 <= x < L:
         _fail(name, f"gauge position {x!r} m must lie on the bar [0, {L!r}) m")
-    c = bar.material.wave_speed
-    EA = bar.material.youngs_modulus * bar.area
-    Z = bar.material.density * c * bar.area
+    rod = bar.rod()
+    c, EA, Z = rod.wave_speed, rod.axial_stiffness, rod.impedance
     tau, period = 2 * (L - x) / c, 2 * L / c
     t, y, dt = _validate(record)
     _check_clipping(name, y)
