@@ -17,15 +17,18 @@ from ..output import plots
 from ..output.bar import bar_files, bar_section
 from ..output.beam import beam_files, beam_section
 from ..output.calibration import calibration_section, series_calibration_files, tables_rows
+from ..output.converge import converge_files, converge_section
 from ..output.files import figure_bytes
 from ..output.report import Section, render_report
 from ..output.series import reduction_files, scaling_files, scaling_section
 from ..units import INCH, display
 from ..workflows.beam_impact import BeamModel
 from ..workflows.calibration import Measured, calibrate
+from ..workflows.refinement import coarsen_beam
 from . import Outcome, Progress, no_progress
 from .bar import gauge_lag, run_bar
 from .calibrate import calibrate_tests, calibration_model, comparison, series_fits, start_pulse
+from .converge import STUDIES, study_case
 from .series import fit_series, reduce_series
 
 __all__ = ["paper", "NOTES"]
@@ -170,11 +173,26 @@ def paper(figures: bool = True, progress: Progress = no_progress) -> Outcome:
                 )
             )
 
+    def discretisation():
+        problem, _ = load_bar_case("paper-calibration")
+        result, sizes = study_case(STUDIES["bar"], problem, 3, 2)
+        files.update(converge_files(result, sizes, problem, "bar", figures, prefix="convergence/bar/"))
+        sections.append(converge_section(result, sizes, "Discretisation error: the bar (paper-calibration)", "convergence/bar/", figures))
+        for name in ("paper-long-beam", "paper-short-beam"):
+            problem, _ = load_beam_case(name, 1)
+            base = coarsen_beam(problem, 2)  # levels ½, 1, 2: the paper's mesh in the middle
+            result, sizes = study_case(STUDIES["beam"], base, 3, 2)
+            prefix = f"convergence/{name.removeprefix('paper-')}/"
+            files.update(converge_files(result, sizes, base, "beam", figures, prefix=prefix))
+            title = f"Discretisation error: the {name.removeprefix('paper-').replace('-', ' ')} (history 1)"
+            sections.append(converge_section(result, sizes, title, prefix, figures, case_level=1))
+
     steps = [
         ("bar calibration (Figs 4-6)", bar_calibration),
         ("rubber-ball series, Table I (Figs 7-15)", rubber_series),
         ("laminated beams (Figs 16-22)", beams),
         ("calibration, Tables II and III (Figs 23-25)", calibrations),
+        ("discretisation error of the paper's meshes", discretisation),
     ]
     for k, (label, step) in enumerate(steps):
         progress(k, len(steps), label)

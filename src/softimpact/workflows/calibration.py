@@ -36,10 +36,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import InputError
+from ..models.features import first_lobe_peak, first_zero_crossing
 from ..models.noise import white_noise_sigma
 from ..models.pulses import SkewedPulse, TabulatedPulse, fit_skewed
 
-__all__ = ["Measured", "Prepared", "Calibration", "prepare", "calibrate", "METHODS", "first_zero_crossing"]
+__all__ = ["Measured", "Prepared", "Calibration", "prepare", "calibrate", "METHODS"]
 
 METHODS = ("least-squares", "paper", "deconvolve")
 DEPARTURE_SIGMAS = 6.0  # a gauge "leaves the noise" at this many σ of its pre-impact part
@@ -103,27 +104,6 @@ class Calibration:
         """T; for a deconvolved history, that of its eq-15 fit."""
         p = self.fit_pulse if isinstance(self.pulse, TabulatedPulse) else self.pulse
         return math.nan if p is None else float(p.duration)
-
-
-def first_zero_crossing(t, y, fraction: float = 0.25) -> float:
-    """Time at which y first changes sign after its first excursion beyond ``fraction``·max|y|."""
-    big = np.flatnonzero(np.abs(y) > fraction * np.max(np.abs(y)))
-    if big.size == 0:
-        return math.nan
-    k0 = big[0]
-    later = np.flatnonzero(np.sign(y[k0:]) == -np.sign(y[k0]))
-    if later.size == 0:
-        return math.nan
-    k = k0 + later[0]
-    return float(t[k - 1] + (t[k] - t[k - 1]) * y[k - 1] / (y[k - 1] - y[k]))
-
-
-def first_lobe_peak(t, y, fraction: float = 0.25) -> float:
-    """Largest |y| of the first main lobe: from the first excursion beyond ``fraction``·max|y|
-    to the first zero crossing after it (the strain amplitude the paper compares)."""
-    z = first_zero_crossing(t, y, fraction)
-    sel = t <= z if math.isfinite(z) else np.ones(t.size, bool)
-    return float(np.max(np.abs(y[sel])))
 
 
 def _departure(t, y, sigma, level=None):
