@@ -248,14 +248,24 @@ def predict_cmd(projectile, mass, diameter, velocity, model, constants, group, t
 @click.option("--fit-radius/--no-fit-radius", default=False, show_default=True, help="Least squares: fit r0 too.")
 @click.option("--projectile", default="rubber-1/2in", show_default=True, help="Projectile of the bar-model start.")
 @click.option("--constants", help="Scaling constants of the start: a preset or a scaling.json (default: the projectile's).")
+@click.option(
+    "--budget",
+    type=float,
+    default=20.0,
+    show_default=True,
+    help="Seconds that refining the model may cost: the mesh is refined until its discretisation error moves no "
+    "parameter by more than half a noise standard error, or this budget is spent.",
+)
 @_out_option("calibrate")
 @_figures_option
 @_guarded
-def calibrate_cmd(case, measured, velocity, method, contact_radius, contact_time, fit_radius, projectile, constants, out, figures):
+def calibrate_cmd(case, measured, velocity, method, contact_radius, contact_time, fit_radius, projectile, constants, budget, out, figures):
     """Force history that makes computed gauge strains match measured ones.
 
     CASE is a beam case (with --measured and --velocity) or a calibration series
-    file. Writes calibration.json and history.csv (history-<test>.csv per test and
+    file. The model's discretisation error is estimated first (the case's mesh
+    against one refinement) and the mesh refined within --budget; standard errors
+    include that error as well as the noise. Writes calibration.json and history.csv (history-<test>.csv per test and
     tables.csv and scaling.json for a series) and, with figures, strains*.png, force*.png
     (and fig23-25-force-scaling.png for a series).
     """
@@ -274,6 +284,7 @@ def calibrate_cmd(case, measured, velocity, method, contact_radius, contact_time
         projectile=projectile,
         constants=constants,
         figures=figures,
+        budget=budget,
     )
 
 

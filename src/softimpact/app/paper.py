@@ -140,12 +140,12 @@ def paper(figures: bool = True, progress: Progress = no_progress) -> Outcome:
         for beam in ("long", "short"):
             series = load_calibration_series(f"paper-{beam}-calibration")
             problem, _ = load_beam_case(series.case)
-            model = calibration_model(problem, [t.contact_radius or problem.load.contact_radius for t in series.tests], False)
-            items = calibrate_tests(model, series.tests, series.projectile, series.constants, "least-squares")
+            models = calibration_model(problem, [t.contact_radius or problem.load.contact_radius for t in series.tests], False)
+            items = calibrate_tests(models, series.tests, series.projectile, series.constants, "least-squares")
             truths = [SkewedPulse(r[1], r[2], r[3]) for r in series.reference] if len(series.reference) == len(items) else None
             prefix = f"calibration-{beam}/"
             fits = series_fits(series, items)
-            files.update(series_calibration_files(model, series, items, fits, figures, prefix, truths))
+            files.update(series_calibration_files(models, series, items, fits, figures, prefix, truths))
             paper_method = None
             if beam == "long":
                 # The paper's procedure on history 1, from the bar model with the Table's tF0/T (see NOTES).
@@ -154,8 +154,9 @@ def paper(figures: bool = True, progress: Progress = no_progress) -> Outcome:
                 ref = series.reference[0]
                 start = SkewedPulse(bar.peak_force, ref[2] / ref[3] * bar.duration, bar.duration)
                 t, strains = read_strains(test.measured)
-                paper_method = calibrate(model, Measured(test.measured.name, t, strains), start, "paper", radius=test.contact_radius)
-            sections.append(calibration_section(model, series, items, comparison(model, series, items, fits), prefix, figures, paper_method))
+                paper_method = calibrate(models(0), Measured(test.measured.name, t, strains), start, "paper", radius=test.contact_radius)
+            compared = comparison(models.finest(), series, items, fits)
+            sections.append(calibration_section(models, series, items, compared, prefix, figures, paper_method))
             groups[f"{beam} beam, calibrated"] = [r[:4] for r in tables_rows(items)]
             groups[f"{beam} beam, Table {'II' if beam == 'long' else 'III'} (paper)"] = [r[:4] for r in series.reference]
         if figures:

@@ -336,7 +336,7 @@ def calibration_strains(cal, model, system: str, title: str):
     tu, su = display(system, "time"), display(system, "strain")
     gauges = model.problem.gauges
     fig, axes = plt.subplots(len(gauges), 1, figsize=(6.6, 2.5 * len(gauges) + 0.6), sharex=True, layout="constrained", squeeze=False)
-    tm = model.problem.solver.times()
+    tm = cal.time if cal.time is not None else model.problem.solver.times()
     p = cal.prepared
     for ax, g, y, c in zip(axes[:, 0], gauges, p.strains, cal.computed):
         ax.grid(True, alpha=0.3)

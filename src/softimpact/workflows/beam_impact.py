@@ -135,6 +135,9 @@ class BeamProblem:
             )
 
 
+OUTPUTS = ("all", "strain")  # what a BeamModel observes (BeamModel's ``outputs``)
+
+
 @dataclass(frozen=True)
 class BeamResult:
     """Histories (time on the last axis) of a beam run."""
@@ -152,9 +155,14 @@ class BeamResult:
 class BeamModel:
     """Assembled beam with its stepper, patch and output rows, for one (mesh, dt)."""
 
-    def __init__(self, problem: BeamProblem, patch_radius: float | None = None):
-        """``patch_radius``: the widest contact radius the model must load (for fits of r0)."""
-        self.problem = problem
+    def __init__(self, problem: BeamProblem, patch_radius: float | None = None, outputs: str = "all"):
+        """``patch_radius``: the widest contact radius the model must load (for fits of r0).
+        ``outputs``: "all" (gauge strains, bending strains, deflection under the load) or
+        "strain" (the gauge strains only: the response engine then costs one right-hand
+        side per gauge instead of two per gauge and one; bending and deflection are NaN)."""
+        if outputs not in OUTPUTS:
+            raise InputError(f"outputs: {outputs!r} is not one of {', '.join(OUTPUTS)}", "outputs")
+        self.problem, self.outputs = problem, outputs
         self.plane = PlaneModel(problem.beam.plane_beam())
         pm = self.plane
         M, K = pm.M, pm.K
@@ -171,8 +179,10 @@ class BeamModel:
         for g in problem.gauges:
             other = "top" if g.surface == "bottom" else "bottom"
             rows.append(pm.surface_strain(g.position, g.surface, g.length))
-            rows.append(pm.surface_strain(g.position, other, g.length))
-        rows.append(pm.displacement(problem.load.position, "top", 1))
+            if outputs == "all":
+                rows.append(pm.surface_strain(g.position, other, g.length))
+        if outputs == "all":
+            rows.append(pm.displacement(problem.load.position, "top", 1))
         self.O = np.array(rows) if rows else np.zeros((0, pm.n))
         self._engine = None
 
@@ -185,8 +195,16 @@ class BeamModel:
         or the problem's contact radius)."""
         return self.patch.forces(force, self.problem.load.contact_radius if radius is None else radius)
 
+    def gauge_rows(self) -> np.ndarray:
+        """Indices of the gauge strain rows among the model's outputs (and the engine's kernel)."""
+        ng = len(self.problem.gauges)
+        return np.arange(ng) if self.outputs == "strain" else 2 * np.arange(ng)
+
     def _split(self, y: np.ndarray):
         ng = len(self.problem.gauges)
+        if self.outputs == "strain":
+            nan = np.full(y.shape[1:], np.nan)
+            return y, np.full(y.shape, np.nan), nan
         face, other = y[0 : 2 * ng : 2], y[1 : 2 * ng : 2]
         return face, 0.5 * (face - other), y[2 * ng]
 
@@ -209,10 +227,13 @@ class BeamModel:
         strain, bending, defl = self._split(y)
         return BeamResult(self.problem, self.problem.solver.times(), F, strain, bending, defl)
 
-    def direct(self, history=None, progress=None, energy: bool = True, displacement: bool = True, energy_samples: int = 200) -> BeamResult:
+    def direct(
+        self, history=None, progress=None, energy: bool = True, displacement: bool = True, energy_samples: int = 200, radius: float | None = None
+    ) -> BeamResult:
         """Direct Newmark stepping of all DOFs; with ``energy``, the energy balance;
         with ``displacement``, the whole displacement history (for deformed shapes:
-        n_dofs × n_steps floats; without it only the outputs are kept).
+        n_dofs × n_steps floats; without it only the outputs are kept); ``radius``:
+        r0 of this history (default the problem's contact radius).
 
         Work done by the load is summed over every step as ½(f_k + f_{k+1})·(u_{k+1} − u_k),
         the rule under which average acceleration balances energy exactly; the
@@ -223,7 +244,7 @@ class BeamModel:
         F = self.force_samples(history)
         st = self.stepper
         n, N = self.plane.n, self.steps
-        loads = -self.nodal_loads(F)  # (p, N+1): patch forces on the load DOFs (down)
+        loads = -self.nodal_loads(F, radius)  # (p, N+1): patch forces on the load DOFs (down)
         f0 = np.zeros(n)
         f0[self.load_dofs] = loads[:, 0]
         stride = max(1, N // max(1, energy_samples))

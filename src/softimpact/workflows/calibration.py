@@ -31,7 +31,7 @@ noise with the same instant in the model.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -40,7 +40,7 @@ from ..models.features import first_lobe_peak, first_zero_crossing
 from ..models.noise import white_noise_sigma
 from ..models.pulses import SkewedPulse, TabulatedPulse, fit_skewed
 
-__all__ = ["Measured", "Prepared", "Calibration", "prepare", "calibrate", "METHODS"]
+__all__ = ["Measured", "Prepared", "Calibration", "ModelCheck", "prepare", "calibrate", "calibrate_checked", "METHODS"]
 
 METHODS = ("least-squares", "paper", "deconvolve")
 DEPARTURE_SIGMAS = 6.0  # a gauge "leaves the noise" at this many σ of its pre-impact part
@@ -69,6 +69,29 @@ class Prepared:
 
 
 @dataclass(frozen=True)
+class ModelCheck:
+    """How good the calibration model is (:func:`calibrate_checked`).
+
+    ``level``: the refinement level used (0 = the case's own mesh, k = refined by
+    ratio^k); ``error_to_noise``: per gauge, the RMS of the model's estimated
+    discretisation error over the record's window divided by the gauge's noise σ;
+    ``shifts``: per parameter, how far the fit moves when the estimated model
+    error is corrected (defect correction toward the Richardson-extrapolated model);
+    ``noise_errors``: the standard errors from the noise alone; ``meets``:
+    whether every shift is within ``tolerance`` × its noise standard error.
+    """
+
+    level: int
+    factor: int
+    error_to_noise: np.ndarray
+    shifts: dict
+    noise_errors: dict
+    tolerance: float
+    meets: bool
+    message: str
+
+
+@dataclass(frozen=True)
 class Calibration:
     """A calibrated force history and how it was found."""
 
@@ -85,6 +108,8 @@ class Calibration:
     start: SkewedPulse
     history: list = field(default_factory=list)  # per iteration (paper method): (F0, tF0, T)
     fit_pulse: object = None  # deconvolve: the eq-15 least-squares pulse beside it
+    time: np.ndarray | None = None  # the model's grid of ``computed`` [s]
+    check: ModelCheck | None = None  # the discretisation check, when the model was checked
 
     @property
     def peak_force(self) -> float:
@@ -189,9 +214,12 @@ def calibrate(
     fit_origin: bool = True,
     tol: float = 1e-4,
     max_iterations: int = 200,
+    defect=None,
 ) -> Calibration:
     """Calibrate the force history by ``method`` (module docstring); ``radius``: r0 of the test
-    (default the case's), at most the model's patch radius."""
+    (default the case's), at most the model's patch radius. ``defect`` (n_gauges, n_steps + 1)
+    on the model's grid: the model's discretisation error (its strains minus a better model's),
+    subtracted from every computed strain (defect correction; least-squares only)."""
     r0 = model.problem.load.contact_radius if radius is None else radius
     if not 0 < r0 <= model.patch.radius * (1 + 1e-12):
         raise InputError(f"contact_radius: {r0!r} m must be positive and within the model's patch ({model.patch.radius!r} m)")
@@ -206,7 +234,7 @@ def calibrate(
     if method == "paper":
         return _paper(model, prep, start, r0, tol, max_iterations, contact_time is not None)
     if method == "least-squares":
-        return _least_squares(model, prep, start, r0, fit_radius, fit_origin)
+        return _least_squares(model, prep, start, r0, fit_radius, fit_origin, defect)
     return _deconvolve(model, prep, start, r0)
 
 
@@ -276,10 +304,10 @@ def _paper(model, prep, start, r0, tol, max_iterations, given_contact=False):
     pulse = SkewedPulse(F0, skew * T, T)
     computed = model.respond(pulse, r0).strain
     msg = f"converged in {it} iterations" if converged else f"not converged after {it} iterations (ratios {f_ratio:.4f}, {t_ratio:.4f})"
-    return Calibration("paper", pulse, r0, {}, it, converged, msg, _residual_rms(model, prep, computed), computed, prep, start, history)
+    return Calibration("paper", pulse, r0, {}, it, converged, msg, _residual_rms(model, prep, computed), computed, prep, start, history, time=tm)
 
 
-def _least_squares(model, prep, start, r0, fit_radius, fit_origin):
+def _least_squares(model, prep, start, r0, fit_radius, fit_origin, defect=None):
     """Eq (15) fitted to every sample up to the end of the model's run, pre-impact part
     included, with a baseline correction per gauge fitted alongside: the offsets' own
     uncertainty then reaches the standard errors instead of biasing F0 unseen."""
@@ -307,6 +335,8 @@ def _least_squares(model, prep, start, r0, fit_radius, fit_origin):
         if not (0 < tp < T) or F0 <= 0 or r <= 0:
             return np.full(ys.size, 1e6)
         c = _strains(model, SkewedPulse(F0, tp, T), r)
+        if defect is not None:
+            c = c - defect
         comp = np.array([np.interp(ts - shift, tm, ci, left=0.0) for ci in c]) + offs[:, None]
         return ((comp - ys) * weights).ravel()
 
@@ -326,10 +356,12 @@ def _least_squares(model, prep, start, r0, fit_radius, fit_origin):
         se = {}
     F0, tp, T, r, shift, offs = unpack(sol.x)
     pulse = SkewedPulse(F0, tp, T)
-    comp = _strains(model, pulse, r)
+    comp = _strains(model, pulse, r) - (0.0 if defect is None else defect)
     rel = prep.time - shift
     prep = Prepared(prep.name, rel, prep.strains - offs[:, None], prep.noise, prep.offsets + offs, prep.contact_time + shift, (rel >= 0) & (rel <= tm[-1]))
-    return Calibration("least-squares", pulse, r, se, int(sol.nfev), bool(sol.success), sol.message, _residual_rms(model, prep, comp), comp, prep, start)
+    return Calibration(
+        "least-squares", pulse, r, se, int(sol.nfev), bool(sol.success), sol.message, _residual_rms(model, prep, comp), comp, prep, start, time=tm
+    )
 
 
 def _deconvolve(model, prep, start, r0, knots: int = 160):
@@ -342,7 +374,7 @@ def _deconvolve(model, prep, start, r0, knots: int = 160):
     shape = model.nodal_loads(np.array([0.0, 1.0]), r0)[:, 1]
     eng = model.engine()
     n_g = len(model.problem.gauges)
-    h = np.tensordot(eng.kernel[0 : 2 * n_g : 2], shape, axes=([1], [0]))  # (n_g, N-1): strain per unit force at step 1
+    h = np.tensordot(eng.kernel[model.gauge_rows()], shape, axes=([1], [0]))  # (n_g, N-1): strain per unit force at step 1
     # Basis: hat functions on a coarse grid over the window where the force may act.
     span = min(tm[-1], 2.5 * start.duration)
     grid = np.linspace(0.0, span, knots + 1)
@@ -405,4 +437,99 @@ def _deconvolve(model, prep, start, r0, knots: int = 160):
         prep,
         start,
         fit_pulse=fit_pulse,
+        time=tm,
     )
+
+
+MAIN = ("peak_force", "time_of_peak", "duration")  # the parameters the check judges
+# Roache's factor of safety when the order is assumed, not observed (two levels): the
+# model-error shift Δ becomes a 95 % bound 3|Δ|, i.e. a standard uncertainty 3|Δ|/1.96.
+ASSUMED_ORDER_SAFETY = 3.0
+
+
+def _on_grid(t_to, t_from, y):
+    """Histories y (n_g, n) on grid t_from, linearly interpolated onto t_to."""
+    return np.array([np.interp(t_to, t_from, yi) for yi in y])
+
+
+def calibrate_checked(
+    level_model,
+    measured: Measured,
+    start: SkewedPulse,
+    method: str = "least-squares",
+    *,
+    ratio: int = 2,
+    order: float = 2.0,
+    tolerance: float = 0.5,
+    max_level: int = 1,
+    contact_time=None,
+    radius: float | None = None,
+    fit_radius: bool = False,
+    progress=None,
+) -> Calibration:
+    """Calibrate with a model whose discretisation error is known and bounded.
+
+    ``level_model(k)`` gives the model refined by ratio^k (k = 0: the case's own);
+    models of coarser levels stay in use (they are built once by the caller).
+    At level L the model error is estimated by Richardson from two levels at the
+    current fit p̂: e_L = (y_{L+1} − y_L)·r^p/(r^p − 1) for the case's own level
+    (one direct run of the next level), e_L = (y_L − y_{L−1})/(r^p − 1) above it
+    (formal order p, ``order``). The fit is repeated with e_L subtracted from the
+    model (defect correction); the parameter shifts Δ it causes are the model's
+    bias. If any |Δ| exceeds ``tolerance`` × its noise standard error, the next
+    level is used, up to ``max_level`` (the caller's time budget). The reported
+    standard errors are √(SE_noise² + Δ²): noise and discretisation together.
+    Least squares carries the check; another ``method`` is then run on the chosen level.
+    """
+
+    def note(label):
+        if progress is not None:
+            progress(label)
+
+    r_p = float(ratio) ** order
+    level, model = 0, level_model(0)
+    note("fitting on the case's mesh")
+    cal = calibrate(model, measured, start, "least-squares", contact_time=contact_time, radius=radius, fit_radius=fit_radius)
+    while True:
+        tm = model.problem.solver.times()
+        y = model.respond(cal.pulse, cal.contact_radius).strain
+        if level == 0:
+            note("estimating the model's error (one run of the refined mesh)")
+            finer = level_model(1)
+            y_next = finer.direct(cal.pulse, energy=False, displacement=False, radius=cal.contact_radius).strain
+            y_next = _on_grid(tm, finer.problem.solver.times(), y_next)
+            error = (y_next - y) * r_p / (r_p - 1.0)
+        else:
+            coarser = level_model(level - 1)
+            y_prev = _on_grid(tm, coarser.problem.solver.times(), coarser.respond(cal.pulse, cal.contact_radius).strain)
+            error = (y - y_prev) / (r_p - 1.0)
+        prep = cal.prepared
+        w = (prep.time >= 0) & (prep.time <= tm[-1])
+        err_w = _on_grid(prep.time[w], tm, error)
+        error_to_noise = np.sqrt(np.mean(err_w**2, axis=1)) / prep.noise
+        note("correcting the model's error (defect correction)")
+        corrected = calibrate(model, measured, cal.pulse, "least-squares", contact_time=contact_time, radius=radius, fit_radius=fit_radius, defect=error)
+        names = [n for n in cal.standard_errors if n in corrected.standard_errors]
+        values = lambda c: {"peak_force": c.peak_force, "time_of_peak": c.time_of_peak, "duration": c.duration, "contact_radius": c.contact_radius}  # noqa: E731
+        v0, v1 = values(cal), values(corrected)
+        shifts = {n: v1[n] - v0[n] for n in v0 if n in names}
+        noise = dict(cal.standard_errors)
+        meets = all(abs(shifts[n]) <= tolerance * noise[n] for n in MAIN if n in shifts and noise.get(n))
+        if meets or level >= max_level:
+            break
+        level += 1
+        note(f"refining the model (×{ratio**level})")
+        model = level_model(level)
+        cal = calibrate(model, measured, cal.pulse, "least-squares", contact_time=contact_time, radius=radius, fit_radius=fit_radius)
+    total = {n: math.hypot(se, ASSUMED_ORDER_SAFETY / 1.96 * shifts.get(n, 0.0)) for n, se in noise.items()}
+    worst = max((abs(shifts[n]) / noise[n] for n in MAIN if n in shifts and noise.get(n)), default=0.0)
+    message = (
+        f"model ×{ratio**level}: its estimated discretisation error is {np.max(error_to_noise):.2g} × the noise (RMS), "
+        f"and moves the fit by up to {worst:.2g} noise standard errors"
+        + ("" if meets else f" (above {tolerance:g}: the time budget stopped the refinement; the standard errors include it)")
+    )
+    check = ModelCheck(level, ratio**level, error_to_noise, shifts, noise, tolerance, meets, message)
+    if method == "least-squares":
+        return replace(cal, standard_errors=total, check=check)
+    other = calibrate(model, measured, start, method, contact_time=cal.prepared.contact_time, radius=cal.contact_radius)
+    return replace(other, check=check)
