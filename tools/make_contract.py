@@ -31,7 +31,10 @@ COMMANDS = [
     ("fit", ["fit", "paper-rubber-series"]),
     ("predict", ["predict", "--projectile", "rubber-1/2in", "--velocity", "1166 in/s"]),
     # --budget 0: the case's own mesh, as before issue 9 (which refines it by default).
-    ("calibrate", ["calibrate", "paper-long-beam", "--measured", "{data}/series/paper-long-calibration/long-V1166.csv", "--velocity", "1166 in/s", "--budget", "0"]),
+    (
+        "calibrate",
+        ["calibrate", "paper-long-beam", "--measured", "{data}/series/paper-long-calibration/long-V1166.csv", "--velocity", "1166 in/s", "--budget", "0"],
+    ),
     ("predict-bar", ["predict", "--projectile", "rubber-3/8in", "--velocity", "2000 in/s", "--bar", "paper-calibration"]),
 ]
 SAMPLES = 7  # rows of each CSV column kept (evenly spaced), besides its sum
