@@ -149,7 +149,15 @@ def calibrate_tests(
             )
             dec = None
             if deconvolve and method != "deconvolve":
-                dec = calibrate(models(cal.check.level), measured, start, "deconvolve", contact_time=cal.prepared.contact_time, radius=r0)
+                dec = calibrate(
+                    models(cal.check.level),
+                    measured,
+                    start,
+                    "deconvolve",
+                    contact_time=cal.prepared.contact_time,
+                    radius=r0,
+                    error_to_noise=cal.check.error_to_noise,
+                )
             out.append(CalibratedTest(test, cal, dec))
         except InputError as exc:
             out.append(CalibratedTest(test, None, None, str(exc)))

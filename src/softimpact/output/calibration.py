@@ -60,6 +60,9 @@ def calibration_entry(item, gauges) -> dict:
             "start_bar_model": {"peak_force_N": c.start.peak_force, "time_of_peak_s": c.start.time_of_peak, "duration_s": c.start.duration},
         }
     )
+    if c.correlations:
+        entry["parameter_correlations"] = c.correlations
+        entry["weakly_identified"] = c.weakly_identified
     if c.check is not None:
         k = c.check
         entry["model_check"] = {
@@ -84,6 +87,20 @@ def calibration_entry(item, gauges) -> dict:
             "eq15_fit_duration_s": d.duration,
             "message": str(d.message),
         }
+        if d.regularisation is not None:
+            ch = d.regularisation
+            entry["deconvolved"]["regularisation"] = {
+                "rule": ch.method,
+                "lambda": ch.lam,
+                "reason": ch.reason,
+                "noise_level_in_sigma": ch.noise,
+                "curve": {
+                    "lambda": ch.curve.lambdas,
+                    "residual_norm": ch.curve.residual_norms,
+                    "solution_seminorm": ch.curve.solution_norms,
+                    "gcv": ch.curve.gcv,
+                },
+            }
     return entry
 
 

@@ -19,8 +19,11 @@ of a force history costs milliseconds.
   the noise, not a mismatch of the model).
 - ``deconvolve``: a non-parametric force history. With the patch frozen at r0
   the strains are linear in F: y_g = h_g * F. F is sought as hat functions on a
-  coarse grid, with Tikhonov regularisation of its second difference (λ by
-  generalised cross-validation), non-negative, and zero before first contact.
+  coarse grid, with Tikhonov regularisation of its second difference,
+  non-negative, and zero before first contact. λ by the discrepancy principle
+  (default: the largest λ whose residual is within the measured noise, raised by
+  the model's estimated error), the L-curve, or generalised cross-validation
+  (:mod:`softimpact.models.regularisation`).
 
 Measured strains arrive with an offset per gauge and on their own clock: the
 offsets are the means of the pre-impact part; the instant of first contact is
@@ -43,6 +46,7 @@ from ..models.pulses import SkewedPulse, TabulatedPulse, fit_skewed
 __all__ = ["Measured", "Prepared", "Calibration", "ModelCheck", "prepare", "calibrate", "calibrate_checked", "METHODS"]
 
 METHODS = ("least-squares", "paper", "deconvolve")
+WEAK_CORRELATION = 0.9  # |correlation| of two estimates beyond which they are called weakly identifiable
 DEPARTURE_SIGMAS = 6.0  # a gauge "leaves the noise" at this many σ of its pre-impact part
 
 
@@ -110,6 +114,13 @@ class Calibration:
     fit_pulse: object = None  # deconvolve: the eq-15 least-squares pulse beside it
     time: np.ndarray | None = None  # the model's grid of ``computed`` [s]
     check: ModelCheck | None = None  # the discretisation check, when the model was checked
+    regularisation: object = None  # deconvolve: the LambdaChoice (λ, rule, curve, reason)
+    correlations: dict = field(default_factory=dict)  # least squares: "a~b" → correlation of the estimates, for |r| ≥ 0.5
+
+    @property
+    def weakly_identified(self) -> list[str]:
+        """Parameters whose estimate trades against another (|correlation| ≥ WEAK_CORRELATION)."""
+        return [f"{pair.replace('~', ' trades against ')} (correlation {r:+.2f})" for pair, r in self.correlations.items() if abs(r) >= WEAK_CORRELATION]
 
     @property
     def peak_force(self) -> float:
@@ -215,11 +226,15 @@ def calibrate(
     tol: float = 1e-4,
     max_iterations: int = 200,
     defect=None,
+    rule: str = "discrepancy",
+    error_to_noise=None,
 ) -> Calibration:
     """Calibrate the force history by ``method`` (module docstring); ``radius``: r0 of the test
     (default the case's), at most the model's patch radius. ``defect`` (n_gauges, n_steps + 1)
     on the model's grid: the model's discretisation error (its strains minus a better model's),
-    subtracted from every computed strain (defect correction; least-squares only)."""
+    subtracted from every computed strain (defect correction; least-squares only). ``rule``:
+    the deconvolution's choice of λ; ``error_to_noise``: the model's estimated error per gauge
+    (in noise σ), which the discrepancy principle adds to the noise."""
     r0 = model.problem.load.contact_radius if radius is None else radius
     if not 0 < r0 <= model.patch.radius * (1 + 1e-12):
         raise InputError(f"contact_radius: {r0!r} m must be positive and within the model's patch ({model.patch.radius!r} m)")
@@ -235,7 +250,7 @@ def calibrate(
         return _paper(model, prep, start, r0, tol, max_iterations, contact_time is not None)
     if method == "least-squares":
         return _least_squares(model, prep, start, r0, fit_radius, fit_origin, defect)
-    return _deconvolve(model, prep, start, r0)
+    return _deconvolve(model, prep, start, r0, rule=rule, error_to_noise=error_to_noise)
 
 
 def _strains(model, pulse, radius=None):
@@ -349,9 +364,16 @@ def _least_squares(model, prep, start, r0, fit_radius, fit_origin, defect=None):
     sol = least_squares(residual, p0, bounds=(lo, hi), x_scale="jac", diff_step=1e-6, ftol=1e-12, xtol=1e-10, gtol=1e-12)
     dof = max(sol.fun.size - len(names), 1)
     s2 = float(sol.fun @ sol.fun) / dof
+    correlations = {}
     try:
         cov = np.linalg.inv(sol.jac.T @ sol.jac) * s2
         se = {n: float(math.sqrt(max(cov[i, i], 0.0)) * scale[i]) for i, n in enumerate(names)}
+        d = np.sqrt(np.maximum(np.diag(cov), 1e-300))
+        corr = cov / np.outer(d, d)
+        for i in range(n_main):
+            for j in range(i + 1, n_main):
+                if abs(corr[i, j]) >= 0.5:
+                    correlations[f"{names[i]}~{names[j]}"] = float(corr[i, j])
     except np.linalg.LinAlgError:
         se = {}
     F0, tp, T, r, shift, offs = unpack(sol.x)
@@ -360,13 +382,30 @@ def _least_squares(model, prep, start, r0, fit_radius, fit_origin, defect=None):
     rel = prep.time - shift
     prep = Prepared(prep.name, rel, prep.strains - offs[:, None], prep.noise, prep.offsets + offs, prep.contact_time + shift, (rel >= 0) & (rel <= tm[-1]))
     return Calibration(
-        "least-squares", pulse, r, se, int(sol.nfev), bool(sol.success), sol.message, _residual_rms(model, prep, comp), comp, prep, start, time=tm
+        "least-squares",
+        pulse,
+        r,
+        se,
+        int(sol.nfev),
+        bool(sol.success),
+        sol.message,
+        _residual_rms(model, prep, comp),
+        comp,
+        prep,
+        start,
+        time=tm,
+        correlations=correlations,
     )
 
 
-def _deconvolve(model, prep, start, r0, knots: int = 160):
-    """Tikhonov-regularised, non-negative deconvolution through the impulse responses (module docstring)."""
-    from scipy.optimize import lsq_linear
+RULES = ("discrepancy", "l-curve", "gcv", "gcv-floored")  # choices of the deconvolution's λ
+
+
+def _deconvolve(model, prep, start, r0, knots: int = 160, rule: str = "discrepancy", error_to_noise=None):
+    """Tikhonov-regularised, non-negative deconvolution through the impulse responses (module docstring).
+    ``rule`` chooses λ (:mod:`softimpact.models.regularisation`); ``error_to_noise`` (per gauge) raises
+    the discrepancy level by the model's estimated error."""
+    from ..models.regularisation import choose_discrepancy, choose_gcv, choose_l_curve
 
     tm = model.problem.solver.times()
     N = tm.size
@@ -399,20 +438,27 @@ def _deconvolve(model, prep, start, r0, knots: int = 160):
     A = np.vstack(rows)
     y = np.concatenate(rhs)
     L = np.diff(np.eye(knots), 2, axis=0)
-    # GCV over λ (unconstrained problem).
-    AtA, Aty, LtL = A.T @ A, A.T @ y, L.T @ L
-    best = None
-    scale = np.trace(AtA) / np.trace(LtL)
-    for lam in scale * np.logspace(-8, 1, 37):
-        Ainv = np.linalg.inv(AtA + lam * LtL)
-        c = Ainv @ Aty
-        res = A @ c - y
-        trace_h = float(np.sum(Ainv * AtA))  # trace(A (AᵀA + λLᵀL)⁻¹ Aᵀ) = trace((AᵀA + λLᵀL)⁻¹ AᵀA)
-        gcv = y.size * float(res @ res) / (y.size - trace_h) ** 2
-        if best is None or gcv < best[0]:
-            best = (gcv, lam)
-    lam = best[1]
-    sol = lsq_linear(np.vstack((A, math.sqrt(lam) * L)), np.concatenate((y, np.zeros(L.shape[0]))), bounds=(0.0, np.inf))
+    # The data are in units of each gauge's noise; with a model error estimate the
+    # expected misfit per sample is √(1 + (e/σ)²) (the discrepancy principle's level).
+    level = 1.0 if error_to_noise is None else float(np.sqrt(1.0 + np.mean(np.square(error_to_noise))))
+    scale = math.sqrt(np.trace(A.T @ A) / np.trace(L.T @ L))
+    lambdas = scale * np.logspace(-4, 2, 31)
+    if rule == "discrepancy":
+        choice = choose_discrepancy(A, y, L, lambdas, level)
+    elif rule == "l-curve":
+        choice = choose_l_curve(A, y, L, lambdas)
+    elif rule == "gcv":
+        choice = choose_gcv(A, y, L, lambdas, floor=False)
+    elif rule == "gcv-floored":
+        choice = choose_gcv(A, y, L, lambdas, level)
+    else:
+        raise InputError(f"rule: {rule!r} is not one of {', '.join(RULES)}", "rule")
+    lam = choice.lam
+
+    class _Solution:  # the chosen non-negative solution, as lsq_linear reported it before
+        x, nit, success, message = choice.solution, 0, True, choice.reason
+
+    sol = _Solution
     F = Phi @ sol.x
     pulse = TabulatedPulse(tm, F)
     computed = np.array([np.convolve(h[g], F[1:])[: N - 1] for g in range(n_g)])
@@ -431,13 +477,14 @@ def _deconvolve(model, prep, start, r0, knots: int = 160):
         {},
         int(sol.nit),
         bool(sol.success),
-        f"λ = {lam:.3g} by GCV; {sol.message}",
+        f"λ = {lam:.3g} by {choice.method}: {choice.reason}",
         _residual_rms(model, prep, computed),
         computed,
         prep,
         start,
         fit_pulse=fit_pulse,
         time=tm,
+        regularisation=choice,
     )
 
 
@@ -531,5 +578,5 @@ def calibrate_checked(
     check = ModelCheck(level, ratio**level, error_to_noise, shifts, noise, tolerance, meets, message)
     if method == "least-squares":
         return replace(cal, standard_errors=total, check=check)
-    other = calibrate(model, measured, start, method, contact_time=cal.prepared.contact_time, radius=cal.contact_radius)
+    other = calibrate(model, measured, start, method, contact_time=cal.prepared.contact_time, radius=cal.contact_radius, error_to_noise=error_to_noise)
     return replace(other, check=check)
