@@ -10,7 +10,8 @@ each solver.
 
 Intended changes since, recorded by re-running the affected command only:
 issue 9 made calibrate's standard errors include the model's discretisation
-error (calibrate.calibration.json.tests.0.*_se_*).
+error (calibrate.calibration.json.tests.0.*_se_*), and its deconvolution choose λ by the
+discrepancy principle instead of GCV (the deconvolved_* entries).
 
     .venv/bin/python tools/make_contract.py tests/data/contract.json
 """
