@@ -66,6 +66,7 @@ __all__ = [
     "radial_factors",
     "second_mode_cutoff",
     "propagate",
+    "disperse",
 ]
 
 TABLE_MAX = 3.0  # a/Λ tabulated up to here: c is within 0.6 % of c_R beyond (Bancroft's table ends at a/Λ = 1, Davies' at 2.1)
@@ -298,6 +299,49 @@ def propagate(t, signal, distance: float, bar, cutoff: float | None = None) -> n
     f = np.fft.rfftfreq(nfft, dt)
     c = phase_velocity(f, b)
     Y = Y * np.exp(-2j * np.pi * f * distance / c)
+    taper = np.clip((f - ROLLOFF_START * f_cut) / ((1 - ROLLOFF_START) * f_cut), 0.0, 1.0)
+    Y = Y * 0.5 * (1 + np.cos(np.pi * taper))
+    if nfft % 2 == 0:
+        Y[-1] = 0.0
+    return np.fft.irfft(Y, nfft)[:n]
+
+
+def disperse(t, signal, distance: float, bar, surface_to_force: bool = False) -> np.ndarray:
+    """The dispersion of a move by ``distance`` [m] alone, without its bulk delay d/c0.
+
+    Each harmonic is multiplied by exp(−i ω d (1/c(f) − 1/c0)): :func:`propagate`
+    followed by an advance of d/c0, in one transform, so that a pulse stays where
+    it is on the clock and only its shape changes. Forward (d > 0) it is causal
+    (c ≤ c0 for every harmonic); backward (d < 0) it removes the dispersion a
+    move of |d| added. ``surface_to_force``: each harmonic is also multiplied by
+    M1·M2 (:func:`radial_factors`), turning a surface strain into force/(E A).
+    Padding, DC, Nyquist and the taper at the second-mode cutoff as in
+    :func:`propagate`.
+    """
+    t = np.asarray(t, dtype=float)
+    y = np.asarray(signal, dtype=float)
+    if t.ndim != 1 or t.shape != y.shape or t.size < 4:
+        raise InputError("disperse: t and signal must be 1-D arrays of equal length >= 4")
+    dt = (t[-1] - t[0]) / (t.size - 1)
+    if not dt > 0 or np.max(np.abs(np.diff(t) - dt)) > 1e-6 * dt:
+        raise InputError("disperse: t must be uniform and increasing")
+    if not math.isfinite(distance):
+        raise InputError(f"disperse: distance must be finite, got {distance!r}")
+    if distance == 0 and not surface_to_force:
+        return y.copy()
+    b = RoundBar.of(bar)
+    f_cut = second_mode_cutoff(b)
+    n = t.size
+    # The dispersive part of the move shifts a harmonic by at most |d|(1/c_R − 1/c0) < 1.2 |d|/c0.
+    need = n + int(math.ceil(1.2 * abs(distance) / b.wave_speed / dt)) + n // 4
+    nfft = 1 << (need - 1).bit_length()
+    Y = np.fft.rfft(y, nfft)
+    f = np.fft.rfftfreq(nfft, dt)
+    c = phase_velocity(f, b)
+    Y = Y * np.exp(-2j * np.pi * f * distance * (1.0 / c - 1.0 / b.wave_speed))
+    if surface_to_force:
+        M1, M2 = radial_factors(f * b.radius / c, b.poisson_ratio)
+        Y = Y * M1 * M2
     taper = np.clip((f - ROLLOFF_START * f_cut) / ((1 - ROLLOFF_START) * f_cut), 0.0, 1.0)
     Y = Y * 0.5 * (1 + np.cos(np.pi * taper))
     if nfft % 2 == 0:

@@ -46,11 +46,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
+from ..models.dispersion import RoundBar, disperse
 from ..models.noise import white_noise_sigma
 from ..models.pulses import SkewedPulse, fit_skewed
 from ..models.specimens import BarSpec
 
-__all__ = ["Record", "ReductionSettings", "Reduction", "reduce_record", "wave_separation"]
+__all__ = ["Record", "ReductionSettings", "Reduction", "reduce_record", "wave_separation", "dispersive_wave_separation"]
 
 MIN_SAMPLES = 64  # fewer cannot hold a pre-trigger baseline and a pulse
 BASELINE_RESOLUTION = 1e-6  # of the peak strain: the finest resolution a record can claim (noise-free data)
@@ -162,13 +163,46 @@ def _smooth(y, dt, scale):
     return savgol_filter(y, window, 3)
 
 
-def _bar_force(y, baseline, tt, tau, period, EA, cap_mass, Z, window, dt):
+def dispersive_wave_separation(s: np.ndarray, t: np.ndarray, x: float, length: float, bar: RoundBar) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`wave_separation` with the first-mode (Pochhammer–Chree) dispersion of each path.
+
+    ``s`` is −EA·ε_surface at the gauge on ``t`` (zero at first contact + x/c0).
+    Harmonic by harmonic, s_x = D(x) G − D(2L − x) G with D(d) the move by d
+    (:func:`softimpact.models.dispersion.propagate`), and the surface strain is
+    turned into force by M1·M2. Moving back by x, with the bulk delays kept on
+    the clock as in the non-dispersive case:
+
+        s0 = Δ(−x)[M1 M2 s],   G(t) = s0(t) + Δ(2(L − x))[G](t − τ),   F(t) = G(t) − Δ(2L)[G](t − P),
+
+    with Δ(d) the dispersion of a move by d without its bulk delay
+    (:func:`softimpact.models.dispersion.disperse`). Δ(d > 0) is causal, so the
+    recursion is solved block by block of length τ as before. Returns (F, G, Δ(2L)[G](t − P)).
+    """
+    c0 = bar.wave_speed
+    tau, period = 2 * (length - x) / c0, 2 * length / c0
+    s0 = disperse(t, s, -x, bar, surface_to_force=True)
+    G = s0.copy()
+    k = 1
+    while k * tau <= t[-1]:
+        block = (t >= k * tau) & (t < (k + 1) * tau)
+        H = disperse(t, G, 2 * (length - x), bar)
+        G[block] = s0[block] + np.interp(t[block] - tau, t, H)
+        k += 1
+    back = np.interp(t - period, t, disperse(t, G, 2 * length, bar), left=0.0)
+    return G - back, G, back
+
+
+def _bar_force(y, baseline, tt, tau, period, EA, cap_mass, Z, window, dt, dispersion=None, x=0.0, length=0.0):
     """Contact force at the struck end from the gauge strain (module docstring)."""
-    F, G = wave_separation(-EA * (y - baseline), tt, tau, period)
+    if dispersion is None:
+        F, G = wave_separation(-EA * (y - baseline), tt, tau, period)
+        back = np.interp(tt - period, tt, G, left=0.0)
+    else:
+        F, G, back = dispersive_wave_separation(-EA * (y - baseline), tt, x, length, dispersion)
     if cap_mass > 0:
         from scipy.signal import savgol_filter
 
-        v_end = (G + np.interp(tt - period, tt, G, left=0.0)) / Z
+        v_end = (G + back) / Z
         F = F + cap_mass * savgol_filter(v_end, window, 3, deriv=1, delta=dt)
     return F
 
@@ -187,8 +221,14 @@ def _late_baseline(y, tt, start, period):
     return float(np.mean(y[sel])), int(sel.sum())
 
 
-def reduce_record(record: Record, bar: BarSpec, gauge_position: float, settings: ReductionSettings = ReductionSettings()) -> Reduction:
-    """Force history at the struck end and its pulse parameters (module docstring)."""
+def reduce_record(
+    record: Record, bar: BarSpec, gauge_position: float, settings: ReductionSettings = ReductionSettings(), dispersion: bool = False
+) -> Reduction:
+    """Force history at the struck end and its pulse parameters (module docstring).
+
+    ``dispersion``: correct for the bar's first-mode (Pochhammer–Chree)
+    dispersion, ν from the bar's material (:func:`dispersive_wave_separation`).
+    """
     name = record.name
     L, x = bar.length, gauge_position
     if not 0 <= x < L:
@@ -196,6 +236,7 @@ def reduce_record(record: Record, bar: BarSpec, gauge_position: float, settings:
     rod = bar.rod()
     c, EA, Z = rod.wave_speed, rod.axial_stiffness, rod.impedance
     tau, period = 2 * (L - x) / c, 2 * L / c
+    round_bar = RoundBar(c, bar.material.poisson_ratio, bar.diameter / 2) if dispersion else None
     t, y, dt = _validate(record)
     _check_clipping(name, y)
     flags = []
@@ -266,7 +307,7 @@ def reduce_record(record: Record, bar: BarSpec, gauge_position: float, settings:
         t_thr = float(tt[below[0]]) - t0 if below.size else math.nan
         return fit, t0, rms, F0, t_pk, t_thr
 
-    F = _bar_force(y, baseline, tt, tau, period, EA, cap_mass, Z, window, dt)
+    F = _bar_force(y, baseline, tt, tau, period, EA, cap_mass, Z, window, dt, round_bar, x, L)
     fit, t0, rms, F0, t_pk, t_thr = parameters(F)
 
     # A baseline error δ adds about δ·EA·L/(L − x) to F for the rest of the record,
@@ -281,7 +322,7 @@ def reduce_record(record: Record, bar: BarSpec, gauge_position: float, settings:
         if abs(late - baseline) <= 3 * se:
             baseline = (n_base * baseline + n_late * late) / (n_base + n_late)
             n_base += n_late
-            F = _bar_force(y, baseline, tt, tau, period, EA, cap_mass, Z, window, dt)
+            F = _bar_force(y, baseline, tt, tau, period, EA, cap_mass, Z, window, dt, round_bar, x, L)
             fit, t0, rms, F0, t_pk, t_thr = parameters(F)
         else:
             flags.append(
