@@ -5,9 +5,9 @@ import pytest
 from conftest import INCH
 
 from softimpact.errors import InputError
+from softimpact.models.bridge import Bridge
 from softimpact.models.materials import lookup
 from softimpact.models.pulses import SkewedPulse, TailedPulse
-from softimpact.models.bridge import Bridge
 from softimpact.models.specimens import BarSpec, EndCap
 from softimpact.workflows.reduction import Record, reduce_record, wave_separation
 from softimpact.workflows.synthetic import gauge_model, synthetic_record

@@ -54,7 +54,7 @@ class ReducedTest:
         if self.reduction is None:
             return "error"
         if self.rejected:
-            return "flagged, accepted" if self.test.accept_flagged else "flagged, not fitted"
+            return "flagged: accepted" if self.test.accept_flagged else "flagged: not fitted"
         return "ok"
 
 

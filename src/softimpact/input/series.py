@@ -182,6 +182,7 @@ def read_test_record(test: SeriesTest) -> TestRecord:
         if t.size > 1:
             meta["sample_rate"] = float(1.0 / np.median(np.diff(t)))
             meta["time_start"] = float(t[0])
+            meta["pretrigger_samples"] = int(np.count_nonzero(t < 0))
         return TestRecord(t, y, kind, meta)
     from .lab_records import read_lab_record
 

@@ -133,7 +133,7 @@ def dispersion_comparison(corrected, uncorrected, system: str):
         uncorrected.force * fu.factor,
         lw=0.8,
         color="0.55",
-        label=f"non-dispersive bar (F0 = {uncorrected.peak_force * fu.factor:.4g})",
+        label=f"uncorrected: non-dispersive bar (F0 = {uncorrected.peak_force * fu.factor:.4g})",
     )
     ax.plot(
         corrected.time * tu.factor,

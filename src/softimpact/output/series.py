@@ -52,7 +52,7 @@ def reduction_files(series, reduced, figures: bool = True, prefix: str = "") -> 
         "trigger": "trigger",
         "record_date": "date",
     }
-    for k in ("status", "rejected_because", "conditioning", *record_cols, "dispersion") + (("uncorrected_peak_force_N",) if corrected else ()):
+    for k in ("status", "rejected_because", "conditioning_notes", *record_cols, "dispersion") + (("uncorrected_peak_force_N",) if corrected else ()):
         cols[k] = []
     files: dict[str, bytes | str] = {}
     for item in reduced:
@@ -64,7 +64,8 @@ def reduction_files(series, reduced, figures: bool = True, prefix: str = "") -> 
         cols["status"].append(getattr(item, "status", "ok" if r is not None else "error"))
         conditioned = getattr(item, "conditioning", None)
         cols["rejected_because"].append(_text(getattr(item, "rejected", ())))
-        cols["conditioning"].append(_text(conditioned.flags if conditioned is not None else ()))
+        rejected = getattr(item, "rejected", ())
+        cols["conditioning_notes"].append(_text([f for f in (conditioned.flags if conditioned is not None else ()) if f not in rejected]))
         meta = getattr(item, "metadata", {})
         for k, m in record_cols.items():
             v = meta.get(m)

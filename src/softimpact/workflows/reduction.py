@@ -46,7 +46,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
-from ..models.dispersion import RoundBar, disperse
+from ..models.dispersion import RoundBar, disperse, radial_band_edge, rayleigh_speed_ratio
 from ..models.noise import white_noise_sigma
 from ..models.pulses import SkewedPulse, fit_skewed
 from ..models.specimens import BarSpec
@@ -176,18 +176,17 @@ def dispersive_wave_separation(s: np.ndarray, t: np.ndarray, x: float, length: f
 
     with Δ(d) the dispersion of a move by d without its bulk delay
     (:func:`softimpact.models.dispersion.disperse`). Δ(d > 0) is causal, so the
-    recursion is solved block by block of length τ as before. Returns (F, G, Δ(2L)[G](t − P)).
+    recursion is solved as before, a pass per τ of record. Returns (F, G, Δ(2L)[G](t − P)).
     """
     c0 = bar.wave_speed
     tau, period = 2 * (length - x) / c0, 2 * length / c0
     s0 = disperse(t, s, -x, bar, surface_to_force=True)
+    # Iterated over the whole record rather than block by block: band-limited, the
+    # operators put a few µs of precursor before each front, which a block that
+    # starts at k·τ would miss. Each pass makes G right for another τ.
     G = s0.copy()
-    k = 1
-    while k * tau <= t[-1]:
-        block = (t >= k * tau) & (t < (k + 1) * tau)
-        H = disperse(t, G, 2 * (length - x), bar)
-        G[block] = s0[block] + np.interp(t[block] - tau, t, H)
-        k += 1
+    for _ in range(int((t[-1] - t[0]) // tau) + 1):
+        G = s0 + np.interp(t - tau, t, disperse(t, G, 2 * (length - x), bar), left=0.0)
     back = np.interp(t - period, t, disperse(t, G, 2 * length, bar), left=0.0)
     return G - back, G, back
 
@@ -332,6 +331,14 @@ def reduce_record(
 
     time = tt - t0
     keep = time >= 0
+    if round_bar is not None:
+        # Moving the record back by x needs it up to x(1/c_R − 1/c0) past each instant: the end is dropped.
+        lost = x * (1 / (rayleigh_speed_ratio(round_bar.poisson_ratio) * c) - 1 / c)
+        keep &= tt <= tt[-1] - lost
+        flags.append(
+            f"Pochhammer-Chree dispersion corrected (nu = {round_bar.poisson_ratio:g}; band to {radial_band_edge(round_bar) / 1e3:.0f} kHz); "
+            f"last {lost * 1e6:.0f} us of the record dropped (the correction needs the record beyond it)"
+        )
     time, force = time[keep], F[keep]
     force_start = float(np.interp(0.0, tt - t0, F))
     time = np.concatenate(([0.0], time))
