@@ -58,11 +58,11 @@ class ReducedTest:
         return "ok"
 
 
-def read_records(series: Series) -> list[TestRecord]:
-    """Every record of the series, as strain where the bridge turns volts into strain (InputError on a bad file)."""
+def read_records(series: Series, second: bool = False) -> list[TestRecord]:
+    """Every record of the series (or of its second gauge), as strain where the bridge turns volts into strain (InputError on a bad file)."""
     out = []
     for test in series.tests:
-        rec = read_test_record(test)
+        rec = read_test_record(test, second)
         if rec.kind == "voltage":
             if series.bridge is None:
                 if rec.metadata.get("unit_stated", True):
@@ -91,14 +91,19 @@ def _condition(series: Series, rec: TestRecord) -> tuple[Conditioned | None, tup
 def reduce_series(series: Series, progress: Progress = no_progress) -> list[ReducedTest]:
     """Read every record (a bad file raises), condition and reduce each; a record that cannot be reduced is reported."""
     records = read_records(series)
+    seconds = read_records(series, second=True) if series.second_position is not None else [None] * len(records)
     corrected = series.dispersion == "pochhammer-chree"
     out = []
-    for i, (test, rec) in enumerate(zip(series.tests, records)):
+    for i, (test, rec, rec2) in enumerate(zip(series.tests, records, seconds)):
         conditioned, rejected = _condition(series, rec)
         meta = {**rec.metadata, "dispersion": series.dispersion}
         record = Record(test.record.name, rec.time, rec.signal)
+        second = None
+        if rec2 is not None:
+            meta["second_gauge"] = rec2.metadata
+            second = Record(test.second[0].name, rec2.time, rec2.signal)
         try:
-            reduction = reduce_record(record, series.bar, series.gauge_position, dispersion=corrected)
+            reduction = reduce_record(record, series.bar, series.gauge_position, dispersion=corrected, second=second, second_position=series.second_position)
             plain = reduce_record(record, series.bar, series.gauge_position) if corrected else None
             out.append(ReducedTest(test, reduction, "", conditioned, rejected, meta, plain))
         except InputError as exc:

@@ -4,7 +4,8 @@ A bar series names the bar (``dispersion = "none" | "pochhammer-chree"`` among
 its keys), its gauge (and bridge, for voltage records) and one ``[[test]]`` per
 shot: the record, velocity, diameter and mass. A record is a path, or a table
 ``{ file = "shot12.tdms", channel = "gauge A" }`` (channel by name or index)
-for any file :mod:`softimpact.input.lab_records` reads. A calibration series
+for any file :mod:`softimpact.input.lab_records` reads. With a second gauge
+(``[gauge] second_position``) each test names its ``second_record`` too. A calibration series
 names a beam case and one ``[[test]]`` per measured strain file. Paths inside
 are relative to the series file.
 
@@ -68,6 +69,7 @@ class SeriesTest:
     channel: str | int | None = None
     unit: str | None = None
     accept_flagged: bool = False
+    second: tuple[Path, str | int | None, str | None] | None = None  # the second gauge's (file, channel, unit)
 
 
 @dataclass(frozen=True)
@@ -83,6 +85,7 @@ class Series:
     path: Path
     synthetic: str = ""
     dispersion: str = "none"
+    second_position: float | None = None  # a second gauge [m]: two-gauge wave separation
 
 
 @dataclass(frozen=True)
@@ -132,14 +135,14 @@ def _read_bridge(g: Table, bar: BarSpec) -> Bridge:
     return bridge
 
 
-def _read_record_key(t: Table, base: Path) -> tuple[Path, str | int | None, str | None]:
-    """``record``: a path, or ``{ file, channel, unit }``."""
-    raw = t.raw("record")
+def _read_record_key(t: Table, base: Path, key: str = "record") -> tuple[Path, str | int | None, str | None]:
+    """``record`` (or ``second_record``): a path, or ``{ file, channel, unit }``."""
+    raw = t.raw(key)
     if isinstance(raw, str):
         return base / raw, None, None
     if not isinstance(raw, dict):
-        raise InputError(f"{t.key('record')}: expected a path or {{ file = ..., channel = ... }}, got {raw!r}")
-    r = Table(raw, t.key("record"))
+        raise InputError(f"{t.key(key)}: expected a path or {{ file = ..., channel = ... }}, got {raw!r}")
+    r = Table(raw, t.key(key))
     file = r.string("file")
     channel = r.raw("channel", None)
     if channel is not None and (isinstance(channel, bool) or not isinstance(channel, (str, int))):
@@ -168,17 +171,18 @@ def _native_csv(path: Path) -> bool:
     return False
 
 
-def read_test_record(test: SeriesTest) -> TestRecord:
-    """The test's record: a softimpact CSV (input/records.py) or a lab file (input/lab_records.py).
+def read_test_record(test: SeriesTest, second: bool = False) -> TestRecord:
+    """The test's record (or its second gauge's): a softimpact CSV (input/records.py) or a lab file (input/lab_records.py).
 
     Raises InputError naming the file when it cannot be read, has no such
     channel or no time base, or holds a unit other than volts or strain.
     """
-    if test.channel is None and test.unit is None and _native_csv(test.record):
+    path, channel, unit = test.second if second else (test.record, test.channel, test.unit)
+    if channel is None and unit is None and _native_csv(path):
         from .records import read_record
 
-        t, y, kind = read_record(test.record)
-        meta = {"file": str(test.record), "source_format": "softimpact-csv", "channel": kind, "unit": "V" if kind == "voltage" else "strain"}
+        t, y, kind = read_record(path)
+        meta = {"file": str(path), "source_format": "softimpact-csv", "channel": kind, "unit": "V" if kind == "voltage" else "strain"}
         if t.size > 1:
             meta["sample_rate"] = float(1.0 / np.median(np.diff(t)))
             meta["time_start"] = float(t[0])
@@ -186,13 +190,12 @@ def read_test_record(test: SeriesTest) -> TestRecord:
         return TestRecord(t, y, kind, meta)
     from .lab_records import read_lab_record
 
-    rec = read_lab_record(test.record, test.channel)
-    unit = test.unit
+    rec = read_lab_record(path, channel)
     if unit is None:
         unit = {"V": "V", "strain": "strain", "microstrain": "microstrain"}.get(rec.unit)
         if unit is None:
             raise InputError(
-                f"{test.record}: channel {rec.metadata.get('channel')!r} is in {rec.unit!r}, not volts or strain "
+                f"{path}: channel {rec.metadata.get('channel')!r} is in {rec.unit!r}, not volts or strain "
                 "(wrong channel? give record.unit if the file's unit is wrong)"
             )
     kind, factor = RECORD_UNITS[unit]
@@ -215,11 +218,22 @@ def load_series(arg: str) -> Series:
     position = g.quantity("position", "length", positive=False)
     if not 0 <= position < bar.length:
         raise InputError(f"gauge.position: {g.raw('position')!r} is not on the bar (0 to {bar.length:.6g} m)")
+    second_position = g.quantity("second_position", "length", default=None)
+    if second_position is not None:
+        if not position < second_position < bar.length:
+            raise InputError(f"gauge.second_position: {g.raw('second_position')!r} must lie beyond position, on the bar (to {bar.length:.6g} m)")
+        if dispersion != "none":
+            raise InputError("gauge.second_position: two-gauge separation with bar.dispersion is not implemented (use one or the other)")
     bridge = _read_bridge(g, bar) if "gauge_factor" in g else None
     g.done()
     tests = []
     for t in top.tables("test"):
         record, channel, unit = _read_record_key(t, path.parent)
+        second = None
+        if second_position is not None:
+            second = _read_record_key(t, path.parent, "second_record")
+        elif "second_record" in t:
+            raise InputError(f"{t.key('second_record')}: a second record needs gauge.second_position")
         accept = t.raw("accept_flagged", False)
         if not isinstance(accept, bool):
             raise InputError(f"{t.key('accept_flagged')}: expected true or false, got {accept!r}")
@@ -233,6 +247,7 @@ def load_series(arg: str) -> Series:
                 channel,
                 unit,
                 accept,
+                second,
             )
         )
         t.done()
@@ -242,7 +257,7 @@ def load_series(arg: str) -> Series:
     if len(set(names)) != len(names):
         raise InputError(f"test: names must be unique, got duplicates in {names}")
     top.done()
-    return Series(title, system, bar, position, bridge, tuple(tests), path, synthetic, dispersion)
+    return Series(title, system, bar, position, bridge, tuple(tests), path, synthetic, dispersion, second_position)
 
 
 @dataclass(frozen=True)
