@@ -192,6 +192,7 @@ def test_digitiser_files_in_volts_reduce_to_the_strain_csv_forces(tmp_path):
     assert float(rows["shot12.mat"]["sample_rate_Hz"]) == pytest.approx(1 / DT, rel=1e-9)
     assert rows["shot12-v73.mat"]["record_format"] == "mat-v7.3"
     assert rows["shot12-tek.csv"]["record_unit"] == "mV" and rows["shot12-tek.csv"]["record_date"] == "2026-11-20"
+    assert rows["shot12-tek.csv"]["trigger"] == "200"  # the export's Trigger Point
     assert float(rows["shot12-tek.csv"]["record_start_s"]) == pytest.approx(T_REC[0])
     assert all(r["status"] == "ok" for r in rows.values())
     summary = json.loads((out / "summary.json").read_text())

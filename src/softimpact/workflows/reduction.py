@@ -20,6 +20,12 @@ ended (a tail) and the pre-trigger value is kept and flagged. A baseline error
 δ biases the force by about δ·EA·L/(L − x) for the rest of the record, so the
 impulse's uncertainty grows with the record's length: it is reported.
 
+Two options leave the non-dispersive, free-far-end picture: ``dispersion``
+replaces each pure delay by the first-mode (Pochhammer–Chree) move along the
+bar and turns surface strain into force by the radial factors
+(:func:`dispersive_wave_separation`); a second gauge separates the waves from
+the two stations, so the far end need not be free (:func:`two_gauge_separation`).
+
 An end cap of mass m_c (lumped at the struck end) is corrected for: the contact
 force is the bar force plus m_c times the end acceleration, the end velocity
 being (G(t) + G(t − P))/(ρcA).
