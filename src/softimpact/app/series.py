@@ -5,12 +5,14 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..errors import InputError
+from ..gates import quality
 from ..input.records import read_record
 from ..input.series import Series, SeriesTest, load_series
 from ..output.files import json_text
+from ..output.scaling_json import scaling_summary
 from ..output.series import reduction_files, scaling_files
 from ..workflows.reduction import Record, Reduction, reduce_record
-from ..workflows.scaling import TestPoint, fit_groups
+from ..workflows.scaling import TestPoint, fit_gates, fit_groups
 from . import Outcome, Progress, no_progress
 
 __all__ = ["ReducedTest", "reduce_series", "fit_series", "reduce", "fit"]
@@ -70,7 +72,7 @@ def _reduce(name: str, progress: Progress):
     reduced = reduce_series(series, progress)
     warnings = tuple(r.error for r in reduced if r.reduction is None)
     if len(warnings) == len(reduced):
-        raise InputError("no record of the series could be reduced")
+        raise InputError(f"no record of the series could be reduced (first: {warnings[0]})")
     return series, reduced, warnings
 
 
@@ -90,8 +92,16 @@ def fit(series_name: str, figures: bool = True, progress: Progress = no_progress
     """Reduce a series, then fit the scaling constants α1–α4 of eqs (4)–(7)."""
     series, reduced, warnings = _reduce(series_name, progress)
     fits = fit_series(reduced)
+    gates = fit_gates(fits)
     files = reduction_files(series, reduced, figures)
     files.update(scaling_files(fits, series.units, figures))
+    files["scaling.json"] = json_text({**scaling_summary(fits), "quality": quality(gates)})
+    lonely = [label for label, g in fits.items() if len(g.points) == 1]
+    if lonely:
+        warnings = (
+            *warnings,
+            f"{', '.join(lonely)}: one test only: the constants have no confidence interval and the law is not checked against other velocities",
+        )
     lines = []
     for label, g in fits.items():
         a = {k: f.slope for k, f in g.origin.items()}
@@ -99,4 +109,4 @@ def fit(series_name: str, figures: bool = True, progress: Progress = no_progress
             f"{label:>10s}: alpha1 {a['alpha1']:.3f}  alpha2 {a['alpha2']:.3f}  alpha3 {a['alpha3']:.3f}  alpha4 {a['alpha4']:.3f}  ({len(g.points)} tests)"
         )
     inputs = (series.path, *(t.record for t in series.tests))
-    return Outcome(files, "\n".join(lines + ["scaling.json"]), inputs, warnings)
+    return Outcome(files, "\n".join(lines + ["scaling.json"]), inputs, warnings, gates)
