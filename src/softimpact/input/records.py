@@ -5,12 +5,13 @@ signal column (``strain``, ``microstrain`` or ``voltage_V``); measured beam
 strains hold a time column and ``strain_<gauge>`` columns. Errors name the
 file, the row and the column. A UTF-8 byte-order mark (Excel's "CSV UTF-8") is
 accepted; the delimiter is a comma, or a semicolon or tab found in the header
-row (spreadsheets in many locales write those).
+row (spreadsheets in many locales write those, with a decimal comma, also read).
 """
 
 from __future__ import annotations
 
 import math
+import re
 import warnings
 from pathlib import Path
 
@@ -26,6 +27,7 @@ SIGNAL_COLUMNS = {"strain": ("strain", 1.0), "microstrain": ("strain", 1e-6), "v
 
 
 DELIMITERS = {",": "comma", ";": "semicolon", "\t": "tab"}
+_DECIMAL_COMMA = re.compile(r"^[+-]?\d*,\d+([eE][+-]?\d+)?$")
 
 
 def _delimiter(header: str) -> str:
@@ -68,13 +70,12 @@ def read_columns(path) -> tuple[list[str], np.ndarray]:
             cell = cell.strip()
             if cell == "":
                 continue
+            if delim != "," and _DECIMAL_COMMA.match(cell):
+                cell = cell.replace(",", ".")  # ';'- and tab-separated files of many locales write 1,5
             try:
                 value = float(cell)
             except ValueError:
-                hint = ""
-                if delim != ";" and "," in cell and "." not in cell:
-                    hint = " (a decimal comma? use a decimal point, or ';' between cells)"
-                raise InputError(f"{path}: row {i + 2}, column {names[j]!r}: {cell!r} is not a number ({DELIMITERS[delim]}-separated){hint}") from None
+                raise InputError(f"{path}: row {i + 2}, column {names[j]!r}: {cell!r} is not a number ({DELIMITERS[delim]}-separated)") from None
             if math.isinf(value):
                 raise InputError(f"{path}: row {i + 2}, column {names[j]!r}: {cell!r} is not finite")
             data[i, j] = value
