@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -383,3 +384,32 @@ def test_killed_write_leaves_no_partial_folder_after_the_next_run(tmp_path, sig)
 def test_builtin_cases_are_all_listed():
     """The cases the tests above edit are built-ins (a guard against renames)."""
     assert {"paper-calibration", "paper-long-beam", "paper-rubber-series"} <= set(builtin_cases())
+
+
+# --- README -----------------------------------------------------------------------------------------
+
+README = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+TOML_BLOCKS = re.findall(r"```toml\n(.*?)```", README, flags=re.S)
+_COMMENTED = re.compile(r"^#\s*([A-Za-z0-9_]+)\s*=")
+
+
+def _variants():
+    """Each README TOML block as written, and with each commented assignment uncommented in place of its key's line."""
+    for b, block in enumerate(TOML_BLOCKS):
+        yield f"block{b}", block
+        lines = block.splitlines()
+        for i, line in enumerate(lines):
+            m = _COMMENTED.match(line)
+            if m:
+                key = m[1]
+                edited = [line[1:].lstrip() if j == i else other for j, other in enumerate(lines) if j == i or not re.match(rf"^{key}\s*=", other)]
+                yield f"block{b}-{key}", "\n".join(edited)
+
+
+@pytest.mark.parametrize("name, text", list(_variants()), ids=[v[0] for v in _variants()])
+def test_readme_toml_snippets_parse(name, text):
+    """Every README TOML snippet is valid TOML, and stays valid with any commented option uncommented."""
+    import tomllib
+
+    assert TOML_BLOCKS
+    tomllib.loads(text)

@@ -133,7 +133,8 @@ class BeamProblem:
         rise = getattr(self.load.history, "time_of_peak", None)
         if rise is not None and rise < MIN_STEPS_PER_RISE * self.solver.time_step:
             raise InputError(
-                f"time step {self.solver.time_step!r} s cannot resolve a pulse rising in {rise!r} s (need at most time_of_peak/{MIN_STEPS_PER_RISE})",
+                f"a time step of {self.solver.time_step * 1e6:.4g} us cannot resolve a pulse rising in {rise * 1e6:.4g} us "
+                f"(need at most time_of_peak/{MIN_STEPS_PER_RISE} = {rise / MIN_STEPS_PER_RISE * 1e6:.4g} us)",
                 "time_step",
             )
 
