@@ -413,3 +413,30 @@ def test_readme_toml_snippets_parse(name, text):
 
     assert TOML_BLOCKS
     tomllib.loads(text)
+
+
+def test_reduction_gates_flag_a_misfit_and_a_degenerate_pulse():
+    """reduce's gates: a pulse fitted within 5 % of F0 passes; a 30 % misfit or tF0 = T fails, naming the test."""
+    from types import SimpleNamespace
+
+    from softimpact.app.series import ReducedTest, reduction_gates
+
+    def reduced(name, rms, tF0, T):
+        test = SimpleNamespace(name=name)
+        return ReducedTest(test, SimpleNamespace(fit_rms=rms, peak_force=100.0, time_of_peak=tF0, duration=T))
+
+    gates = {
+        g.name: g for g in reduction_gates([reduced("good", 5.0, 30e-6, 120e-6), reduced("noisy", 30.0, 30e-6, 120e-6), reduced("flat", 1.0, 120e-6, 120e-6)])
+    }
+    assert gates["pulse-fit[good]"].passed and gates["pulse-skew[good]"].passed
+    assert not gates["pulse-fit[noisy]"].passed and "noisy" in gates["pulse-fit[noisy]"].reason
+    assert not gates["pulse-skew[flat]"].passed and "degenerate" in gates["pulse-skew[flat]"].reason
+
+
+def test_reduce_writes_its_gates_into_the_summary(tmp_path):
+    """reduce on the built-in series: summary.json carries quality.status passed and one fit and one skew gate per test."""
+    out = tmp_path / "out"
+    result = invoke("reduce", "paper-rubber-series", "--out", out, "--no-figures")
+    assert result.exit_code == 0, result.output
+    quality_ = json.loads((out / "summary.json").read_text())["quality"]
+    assert quality_["status"] == "passed" and len(quality_["gates"]) == 2 * 13

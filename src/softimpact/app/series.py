@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..errors import InputError
-from ..gates import quality
+from ..gates import Gate, at_most, quality
 from ..input.records import read_record
 from ..input.series import Series, SeriesTest, load_series
 from ..output.files import json_text
@@ -15,7 +15,10 @@ from ..workflows.reduction import Record, Reduction, reduce_record
 from ..workflows.scaling import TestPoint, fit_gates, fit_groups
 from . import Outcome, Progress, no_progress
 
-__all__ = ["ReducedTest", "reduce_series", "fit_series", "reduce", "fit"]
+__all__ = ["ReducedTest", "reduce_series", "fit_series", "reduction_gates", "reduce", "fit"]
+
+MAX_PULSE_MISFIT = 0.2  # RMS residual of the eq-15 fit / F0: above, T and tF0 do not describe the pulse
+MAX_SKEW = 0.95  # tF0/T: a peak at the very end of the pulse is a degenerate fit (tF0 ≈ T)
 
 
 @dataclass(frozen=True)
@@ -67,6 +70,27 @@ def fit_series(reduced: list[ReducedTest]):
     return fit_groups(points)
 
 
+def reduction_gates(reduced: list[ReducedTest]) -> tuple[Gate, ...]:
+    """Quality gates of each reduced test (:mod:`softimpact.gates`): the eq-15 pulse must fit
+    the force (RMS residual within MAX_PULSE_MISFIT of F0) and must not be degenerate
+    (tF0/T below MAX_SKEW)."""
+    gates = []
+    for r in reduced:
+        d = r.reduction
+        if d is None:
+            continue
+        name = r.test.name
+        misfit = d.fit_rms / d.peak_force if d.peak_force > 0 else float("nan")
+        gates.append(
+            at_most(
+                f"pulse-fit[{name}]", misfit, MAX_PULSE_MISFIT, f"{name}: the eq-15 pulse misses the force by {{value:.0%}} of F0 RMS (limit {{limit:.0%}})"
+            )
+        )
+        skew = d.time_of_peak / d.duration if d.duration > 0 else float("nan")
+        gates.append(at_most(f"pulse-skew[{name}]", skew, MAX_SKEW, f"{name}: degenerate pulse, tF0/T = {{value:.2f}} (limit {{limit:.2f}})"))
+    return tuple(gates)
+
+
 def _reduce(name: str, progress: Progress):
     series = load_series(name)
     reduced = reduce_series(series, progress)
@@ -81,18 +105,25 @@ def reduce(series_name: str, figures: bool = True, progress: Progress = no_progr
     series, reduced, warnings = _reduce(series_name, progress)
     files = reduction_files(series, reduced, figures)
     done = sum(r.reduction is not None for r in reduced)
+    gates = reduction_gates(reduced)
     files["summary.json"] = json_text(
-        {"series": str(series.path), "synthetic": series.synthetic, "reduced": done, "failed": {r.test.name: r.error for r in reduced if r.reduction is None}}
+        {
+            "series": str(series.path),
+            "synthetic": series.synthetic,
+            "reduced": done,
+            "failed": {r.test.name: r.error for r in reduced if r.reduction is None},
+            "quality": quality(gates),
+        }
     )
     inputs = (series.path, *(t.record for t in series.tests))
-    return Outcome(files, f"{done} of {len(reduced)} records reduced; tests.csv", inputs, warnings)
+    return Outcome(files, f"{done} of {len(reduced)} records reduced; tests.csv", inputs, warnings, gates)
 
 
 def fit(series_name: str, figures: bool = True, progress: Progress = no_progress) -> Outcome:
     """Reduce a series, then fit the scaling constants α1–α4 of eqs (4)–(7)."""
     series, reduced, warnings = _reduce(series_name, progress)
     fits = fit_series(reduced)
-    gates = fit_gates(fits)
+    gates = reduction_gates(reduced) + fit_gates(fits)
     files = reduction_files(series, reduced, figures)
     files.update(scaling_files(fits, series.units, figures))
     files["scaling.json"] = json_text({**scaling_summary(fits), "quality": quality(gates)})
