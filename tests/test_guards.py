@@ -440,3 +440,16 @@ def test_reduce_writes_its_gates_into_the_summary(tmp_path):
     assert result.exit_code == 0, result.output
     quality_ = json.loads((out / "summary.json").read_text())["quality"]
     assert quality_["status"] == "passed" and len(quality_["gates"]) == 2 * 13
+
+
+def test_ignore_limits_lets_a_refused_run_go_ahead(tmp_path, monkeypatch):
+    """On a machine with (pretend) 1 kB free the paper's bar is refused; `softimpact --ignore-limits bar` runs it."""
+    from softimpact import guards
+
+    monkeypatch.setattr(guards, "available_memory", lambda: 1000)
+    env = {guards.IGNORE_LIMITS_ENV: "0"}  # CliRunner restores it after each run
+    line = one_line_error(invoke("bar", "paper-calibration", "--out", tmp_path / "a", "--no-figures", env=env), 2)
+    assert "1 kB available" in line
+    result = CliRunner().invoke(main, ["--ignore-limits", "bar", "paper-calibration", "--out", str(tmp_path / "b"), "--no-figures"], env=env)
+    assert result.exit_code == 0, result.output
+    assert os.environ.get(guards.IGNORE_LIMITS_ENV) in (None, "0")

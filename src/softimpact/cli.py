@@ -55,8 +55,8 @@ def _check_out(out) -> None:
 def _guarded(fn):
     """Run a command so that it ends in one line and a documented exit code, never a traceback.
 
-    InputError → exit 2; CheckFailed → exit 3; any other exception → exit 70
-    (traceback with ``--debug``). :class:`SoftimpactWarning` s raised anywhere
+    InputError (and MemoryError, under ``--ignore-limits``) → exit 2; CheckFailed →
+    exit 3; any other exception → exit 70 (traceback with ``--debug``). :class:`SoftimpactWarning` s raised anywhere
     below are shown as ``softimpact: warning:`` lines and kept for the manifest.
     """
 
@@ -86,6 +86,9 @@ def _guarded(fn):
         except CheckFailed as exc:
             click.echo(f"softimpact: check failed: {_one_line(exc)} (diagnostics written, marked failed; --accept-poor to accept)", err=True)
             sys.exit(EXIT_CHECK)
+        except MemoryError:
+            click.echo("softimpact: error: out of memory: the problem is too large for this machine (make it smaller)", err=True)
+            sys.exit(EXIT_INPUT)
         except Exception as exc:
             if os.environ.get(DEBUG_ENV, "").strip() not in ("", "0"):
                 raise
