@@ -84,4 +84,4 @@ def require_resolution(measure: str, value: float, floor: float, comfortable: fl
     if not value >= floor:
         raise InputError(f"{measure} is {value:.3g}, below the minimum {floor:g}: {remedy}", argument)
     if value < comfortable:
-        warnings.warn(f"{measure} is {value:.3g} (at least {comfortable:g} recommended): {remedy}", SoftimpactWarning, stacklevel=2)
+        warnings.warn(f"{measure} is {value:.3g} ({comfortable:g} advised): {remedy}", SoftimpactWarning, stacklevel=2)

@@ -323,13 +323,15 @@ def check_problem(problem: BarImpactProblem) -> None:
         "elements per contact pulse length",
         wave / (problem.bar.length / e),
         *MIN_ELEMENTS_PER_PULSE,
-        f"the pulse ({duration * 1e6:.3g} us long) spans {wave:.3g} m of bar; use at least {math.ceil(MIN_ELEMENTS_PER_PULSE[0] * problem.bar.length / wave)} elements",
+        f"the pulse ({duration * 1e6:.3g} us long) spans {wave:.3g} m of bar: the bar needs at least {math.ceil(MIN_ELEMENTS_PER_PULSE[0] * problem.bar.length / wave)} elements "
+        f"({math.ceil(MIN_ELEMENTS_PER_PULSE[1] * problem.bar.length / wave)} advised)",
         "elements",
     )
     require_resolution(
         "time steps per contact duration",
         duration / problem.solver.time_step,
         *MIN_STEPS_PER_CONTACT,
-        f"contact lasts about {duration * 1e6:.3g} us; use a time step of at most {duration / MIN_STEPS_PER_CONTACT[0] * 1e6:.3g} us",
+        f"contact lasts about {duration * 1e6:.3g} us; use a time step of at most {duration / MIN_STEPS_PER_CONTACT[0] * 1e6:.3g} us "
+        f"({duration / MIN_STEPS_PER_CONTACT[1] * 1e6:.3g} us advised)",
         "time_step",
     )
