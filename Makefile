@@ -2,12 +2,13 @@
 #   make run   - create .venv, install softimpact, run the whole paper into results/paper
 #   make test  - create .venv, install softimpact with its test extras, run the tests (all of them, slow ones too)
 #   make lint  - ruff: lint and format check
+#   make fuzz  - the long property-based fuzz run (case files, CSV records, unit strings; minutes)
 PYTHON ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
 OUT ?= results/paper
 
-.PHONY: run test lint bench clean
+.PHONY: run test lint bench clean fuzz
 
 $(BIN)/softimpact: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -20,6 +21,9 @@ run: $(BIN)/softimpact
 
 test: $(BIN)/softimpact
 	MPLBACKEND=Agg $(BIN)/python -m pytest -q
+
+fuzz: $(BIN)/softimpact
+	HYPOTHESIS_PROFILE=long MPLBACKEND=Agg $(BIN)/python -m pytest -q -m fuzz tests/test_fuzz.py
 
 lint: $(BIN)/softimpact
 	$(BIN)/ruff check .

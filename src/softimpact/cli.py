@@ -1,34 +1,102 @@
 """The ``softimpact`` command line: click only — arguments → app → outputs → one line.
 
 Every command takes ``--out DIR`` and writes nothing outside it; commands that
-draw take ``--figures/--no-figures``. Exit codes: 0 done; 2 bad input (a
-one-line reason on stderr, nothing written). Heavy modules are imported inside
-the commands, so ``softimpact --help`` starts fast.
+draw take ``--figures/--no-figures``. Outputs are written atomically with a
+``manifest.json`` (files and inputs with their SHA-256, version, status, the
+command); a reused DIR loses the previous run's files that this run does not
+rewrite, and nothing else.
+
+Exit codes:
+
+- 0 — done (warnings, if any, as ``softimpact: warning:`` lines on stderr);
+- 2 — bad input, or a problem too large for the machine: a one-line reason on
+  stderr, nothing computed, nothing written (``--out`` is checked writable
+  before any computing);
+- 3 — ran, but the answer failed its quality checks (:mod:`softimpact.gates`):
+  a one-line reason, the diagnostics still written, marked ``"status": "failed"``
+  in summary.json and manifest.json; ``--accept-poor`` turns this into exit 0
+  with ``"status": "accepted-poor"``;
+- 70 — an internal error (a bug): one line; ``softimpact --debug`` (or
+  ``SOFTIMPACT_DEBUG=1``) shows the traceback.
+
+``softimpact --ignore-limits`` (or ``SOFTIMPACT_IGNORE_LIMITS=1``) runs problems
+the resource guard would refuse. Heavy modules are imported inside the
+commands, so ``softimpact --help`` starts fast.
 """
 
 from __future__ import annotations
 
 import functools
+import os
 import sys
+import warnings
 
 import click
 
 from . import __version__
-from .errors import InputError
+from .errors import EXIT_CHECK, EXIT_INPUT, EXIT_INTERNAL, CheckFailed, InputError, SoftimpactWarning
 
 __all__ = ["main"]
 
+DEBUG_ENV = "SOFTIMPACT_DEBUG"  # set to 1 to see the traceback of an internal error
+
+
+def _one_line(text: str) -> str:
+    return " ".join(str(text).split())
+
+
+def _check_out(out) -> None:
+    """Refuse, before any computing, an ``--out`` that cannot be written."""
+    from .output.files import check_writable
+
+    check_writable(out)
+
 
 def _guarded(fn):
-    """Turn :class:`InputError` into a one-line message and exit code 2."""
+    """Run a command so that it ends in one line and a documented exit code, never a traceback.
+
+    InputError (and MemoryError, under ``--ignore-limits``) → exit 2; CheckFailed →
+    exit 3; any other exception → exit 70 (traceback with ``--debug``). :class:`SoftimpactWarning` s raised anywhere
+    below are shown as ``softimpact: warning:`` lines and kept for the manifest.
+    """
 
     @functools.wraps(fn)
     def wrapper(*args, **kwargs):
+        ctx = click.get_current_context(silent=True)
+        shown = ctx.meta.setdefault("softimpact.warnings", []) if ctx is not None else []
+        original = warnings.showwarning
+
+        def show(message, category, filename, lineno, file=None, line=None):
+            if issubclass(category, SoftimpactWarning):
+                click.echo(f"softimpact: warning: {_one_line(message)}", err=True)
+                shown.append(_one_line(message))
+            else:
+                original(message, category, filename, lineno, file, line)
+
         try:
-            return fn(*args, **kwargs)
+            with warnings.catch_warnings():
+                warnings.simplefilter("always", SoftimpactWarning)
+                warnings.showwarning = show
+                if "out" in kwargs:
+                    _check_out(kwargs["out"])
+                return fn(*args, **kwargs)
         except InputError as exc:
-            click.echo(f"softimpact: error: {exc}", err=True)
-            sys.exit(2)
+            click.echo(f"softimpact: error: {_one_line(exc)}", err=True)
+            sys.exit(EXIT_INPUT)
+        except CheckFailed as exc:
+            click.echo(f"softimpact: check failed: {_one_line(exc)} (diagnostics written, marked failed; --accept-poor to accept)", err=True)
+            sys.exit(EXIT_CHECK)
+        except MemoryError:
+            click.echo("softimpact: error: out of memory: the problem is too large for this machine (make it smaller)", err=True)
+            sys.exit(EXIT_INPUT)
+        except Exception as exc:
+            if os.environ.get(DEBUG_ENV, "").strip() not in ("", "0"):
+                raise
+            click.echo(
+                f"softimpact: internal error: {type(exc).__name__}: {_one_line(exc)} (a bug; `softimpact --debug ...` shows the traceback)",
+                err=True,
+            )
+            sys.exit(EXIT_INTERNAL)
 
     return wrapper
 
@@ -66,33 +134,70 @@ class _Progress:
             self.bar = None
 
 
-def _finish(outcome, out: str) -> None:
-    """Write the outcome's files into ``out`` atomically, show its warnings and its line."""
+def _finish(outcome, out: str, accept_poor: bool = False) -> None:
+    """Write the outcome's files and manifest into ``out`` atomically, show its warnings and its line.
+
+    If a quality gate of the outcome failed, the files are still written (status
+    "failed" in the manifest) and :class:`CheckFailed` raised — unless
+    ``accept_poor``, when the status is "accepted-poor" and the exit is 0.
+    """
+    from .gates import failed, status
     from .output.files import write_outputs
 
     for w in outcome.warnings:
-        click.echo(f"softimpact: warning: {w}", err=True)
-    written = write_outputs(out, outcome.files, inputs=outcome.inputs)
+        click.echo(f"softimpact: warning: {_one_line(w)}", err=True)
+    gates = tuple(getattr(outcome, "gates", ()))
+    ctx = click.get_current_context(silent=True)
+    manifest = {
+        "status": status(gates, accept_poor),
+        "accept_poor": accept_poor,
+        "command": ctx.command_path if ctx is not None else "softimpact",
+        "arguments": dict(ctx.params) if ctx is not None else {},
+        "warnings": [*map(_one_line, outcome.warnings), *(ctx.meta.get("softimpact.warnings", []) if ctx is not None else [])],
+        "gates": [g.as_dict() for g in gates],
+    }
+    written = write_outputs(out, outcome.files, inputs=outcome.inputs, manifest=manifest)
+    bad = failed(gates)
+    if bad and not accept_poor:
+        raise CheckFailed(bad)
+    if bad:
+        click.echo(f"softimpact: warning: accepted with --accept-poor: {_one_line(CheckFailed(bad))}", err=True)
     click.echo(f"{outcome.line}; {len(written)} files in {out}")
 
 
-def _run(command, out: str, **kwargs) -> None:
-    """Run an app command with a progress bar, then write its outcome."""
+def _run(command, out: str, accept_poor: bool = False, **kwargs) -> None:
+    """Run an app command with a progress bar, then write its outcome (see :func:`_finish`)."""
     progress = _Progress()
     try:
         outcome = command(progress=progress, **kwargs)
     finally:
         progress.close()
-    _finish(outcome, out)
+    _finish(outcome, out, accept_poor)
+
+
+_accept_poor_option = click.option(
+    "--accept-poor", is_flag=True, default=False, help="Exit 0 even when the answer fails its quality checks (marked accepted-poor in the outputs)."
+)
 
 
 @click.group(context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 100})
 @click.version_option(__version__, prog_name="softimpact")
-def main():
+@click.option("--ignore-limits", is_flag=True, default=False, help="Run problems the memory/time guard would refuse (or set SOFTIMPACT_IGNORE_LIMITS=1).")
+@click.option("--debug", is_flag=True, default=False, help="Show the traceback of an internal error (or set SOFTIMPACT_DEBUG=1).")
+def main(ignore_limits, debug):
     """Soft-projectile impact: bar and laminate FE, force reduction, scaling laws, calibration.
 
     CASE and SERIES are files or built-in names (see `softimpact cases`).
+    Exit codes: 0 done; 2 bad input or a problem too large for the machine
+    (one line, nothing written); 3 the answer failed its quality checks
+    (diagnostics written, marked failed; --accept-poor to accept); 70 internal error.
     """
+    from .guards import IGNORE_LIMITS_ENV
+
+    if ignore_limits:
+        os.environ[IGNORE_LIMITS_ENV] = "1"
+    if debug:
+        os.environ[DEBUG_ENV] = "1"
 
 
 @main.command("cases", short_help="List the built-in cases and series.")
@@ -168,8 +273,9 @@ def converge_cmd(case, levels, ratio, history, out, figures):
 @click.argument("series")
 @_out_option("reduce")
 @_figures_option
+@_accept_poor_option
 @_guarded
-def reduce_cmd(series, out, figures):
+def reduce_cmd(series, out, figures, accept_poor):
     """Bar strain records of a SERIES file → force histories and pulse parameters.
 
     Writes tests.csv, history-<test>.csv per test, summary.json and, with figures,
@@ -177,15 +283,16 @@ def reduce_cmd(series, out, figures):
     """
     from .app.series import reduce
 
-    _run(reduce, out, series_name=series, figures=figures)
+    _run(reduce, out, accept_poor, series_name=series, figures=figures)
 
 
 @main.command("fit", short_help="Reduce a series, then fit alpha1-alpha4 (Table I).")
 @click.argument("series")
 @_out_option("fit")
 @_figures_option
+@_accept_poor_option
 @_guarded
-def fit_cmd(series, out, figures):
+def fit_cmd(series, out, figures, accept_poor):
     """Reduce a SERIES, then fit the scaling constants α1–α4 of eqs (4)–(7).
 
     Writes the files of `reduce` (but summary.json), scaling.json and, with
@@ -193,7 +300,7 @@ def fit_cmd(series, out, figures):
     """
     from .app.series import fit
 
-    _run(fit, out, series_name=series, figures=figures)
+    _run(fit, out, accept_poor, series_name=series, figures=figures)
 
 
 @main.command("predict", short_help="Force history from a model, optionally driving a bar or beam.")
@@ -256,10 +363,11 @@ def predict_cmd(projectile, mass, diameter, velocity, model, constants, group, t
     help="Seconds that refining the model may cost: the mesh is refined until its discretisation error moves no "
     "parameter by more than half a noise standard error, or this budget is spent.",
 )
+@_accept_poor_option
 @_out_option("calibrate")
 @_figures_option
 @_guarded
-def calibrate_cmd(case, measured, velocity, method, contact_radius, contact_time, fit_radius, projectile, constants, budget, out, figures):
+def calibrate_cmd(case, measured, velocity, method, contact_radius, contact_time, fit_radius, projectile, constants, budget, accept_poor, out, figures):
     """Force history that makes computed gauge strains match measured ones.
 
     CASE is a beam case (with --measured and --velocity) or a calibration series
@@ -274,6 +382,7 @@ def calibrate_cmd(case, measured, velocity, method, contact_radius, contact_time
     _run(
         calibrate_command,
         out,
+        accept_poor,
         case=case,
         measured=measured,
         velocity=velocity,

@@ -1,12 +1,23 @@
-"""The one exception type for bad input, raised at every layer.
+"""Exceptions and warnings shared by every layer, and the command line's exit codes.
 
 The core (models, fem, workflows) names the *argument* that is wrong — its
 Python name, in ``argument`` — and knows nothing of file formats. The input
 layer maps arguments to the keys of its files (``solver.time_step``), and the
-command line turns the error into a one-line message and exit code 2.
+command line turns the error into a one-line message and an exit code:
+
+- :class:`InputError` — bad input, nothing computed or written: exit 2.
+- :class:`CheckFailed` — the run finished but its answer failed a quality gate
+  (:mod:`softimpact.gates`): exit 3, its diagnostics still written and marked
+  ``"status": "failed"``.
+- :class:`SoftimpactWarning` — a usable result that deserves a word (a coarse
+  mesh, an ignored column): one ``softimpact: warning:`` line, exit unchanged.
 """
 
-__all__ = ["InputError", "CheckFailed"]
+__all__ = ["InputError", "CheckFailed", "SoftimpactWarning", "EXIT_INPUT", "EXIT_CHECK", "EXIT_INTERNAL"]
+
+EXIT_INPUT = 2  # bad input: a one-line reason, nothing written
+EXIT_CHECK = 3  # ran, but the answer failed its checks (diagnostics written, marked failed)
+EXIT_INTERNAL = 70  # an unexpected exception: a bug (EX_SOFTWARE of sysexits.h)
 
 
 class InputError(ValueError):
@@ -22,4 +33,18 @@ class InputError(ValueError):
 
 
 class CheckFailed(RuntimeError):
-    """A run finished but its answer failed a quality check (exit code 3)."""
+    """A run finished but its answer failed a quality check (exit code 3).
+
+    ``gates``: the :class:`softimpact.gates.Gate` objects that failed (their
+    reasons make the message when none is given).
+    """
+
+    def __init__(self, gates=(), message: str | None = None):
+        self.gates = tuple(gates)
+        if message is None:
+            message = "; ".join(g.reason for g in self.gates) or "the result failed its checks"
+        super().__init__(message)
+
+
+class SoftimpactWarning(UserWarning):
+    """A result the user may use, with a caveat shown as one line (never an exit code)."""

@@ -26,9 +26,12 @@ def no_progress(done: int, total: int, label: str) -> None:
 class Outcome:
     """What a command made: ``files`` (relative name → content) to write into the
     output folder, the ``inputs`` they must never overwrite, the one ``line`` to
-    print, and ``warnings`` to show before it."""
+    print, ``warnings`` to show before it, and the quality ``gates`` of a fit
+    (:mod:`softimpact.gates`): if one failed, the command line still writes the
+    files, then exits 3 (or 0 under ``--accept-poor``)."""
 
     files: dict[str, bytes | str]
     line: str
     inputs: tuple[Path, ...] = ()
     warnings: tuple[str, ...] = field(default_factory=tuple)
+    gates: tuple = ()  # of softimpact.gates.Gate

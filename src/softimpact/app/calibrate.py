@@ -15,6 +15,7 @@ import numpy as np
 
 from .. import units
 from ..errors import InputError
+from ..gates import Gate, at_most, passed_if
 from ..input.beam_case import load_beam_case
 from ..input.records import read_strains
 from ..input.series import CalibrationSeries, CalibrationTest, is_calibration_series, load_calibration_series
@@ -28,7 +29,17 @@ from ..workflows.scaling import TestPoint, fit_groups
 from . import Outcome, Progress, no_progress
 from .predict import scaling_law
 
-__all__ = ["CalibratedTest", "ModelLadder", "start_pulse", "calibration_model", "calibrate_tests", "series_fits", "comparison", "calibrate_command"]
+__all__ = [
+    "CalibratedTest",
+    "ModelLadder",
+    "calibration_gates",
+    "start_pulse",
+    "calibration_model",
+    "calibrate_tests",
+    "series_fits",
+    "comparison",
+    "calibrate_command",
+]
 
 
 @dataclass(frozen=True)
@@ -165,6 +176,34 @@ def calibrate_tests(
     return out
 
 
+MAX_RESIDUAL_TO_NOISE = 2.0  # RMS residual / noise σ at any gauge: above, the model does not describe the record
+MAX_SKEW = 0.95  # tF0/T at or above: a degenerate pulse (tF0 ≈ T)
+
+
+def calibration_gates(items: list[CalibratedTest]) -> tuple[Gate, ...]:
+    """Quality checks of each calibrated test: residual against the noise, a pulse that is
+    not degenerate, the optimiser's own status."""
+    gates = []
+    for item in items:
+        c, name = item.calibration, item.test.name
+        if c is None:
+            continue
+        ratio = float(np.max(c.residual_rms / c.prepared.noise))
+        gates.append(
+            at_most(
+                f"residual[{name}]",
+                ratio,
+                MAX_RESIDUAL_TO_NOISE,
+                f"{name}: the computed strains miss the record by {{value:.3g}} × its noise (RMS; limit {{limit:g}}): "
+                "the model does not describe it (gauge polarity, gauge names, case?)",
+            )
+        )
+        skew = c.time_of_peak / c.duration if c.duration > 0 else float("nan")
+        gates.append(at_most(f"pulse-skew[{name}]", skew, MAX_SKEW, f"{name}: degenerate pulse, tF0/T = {{value:.2f}} (limit {{limit:.2f}})"))
+        gates.append(passed_if(f"optimiser[{name}]", c.converged, f"{name}: the {c.method} fit did not converge ({c.message})"))
+    return tuple(gates)
+
+
 def _points(rows, projectile) -> list[TestPoint]:
     """(name, V, F0, tF0, T) rows as scaling test points of the series' projectile (I of eq 15: 2F0T/π)."""
     P = PROJECTILES[projectile]
@@ -237,9 +276,10 @@ def calibrate_command(
         warnings = tuple(i.error for i in items if i.calibration is None)
         if len(warnings) == len(items):
             raise InputError("no test of the series could be calibrated")
-        files = series_calibration_files(models, series, items, series_fits(series, items), figures)
+        gates = calibration_gates(items)
+        files = series_calibration_files(models, series, items, series_fits(series, items), figures, gates=gates)
         line = f"{len(items) - len(warnings)} of {len(items)} tests calibrated ({time.perf_counter() - t0:.1f} s); calibration.json"
-        return Outcome(files, line, (series.path, case_path, *(t.measured for t in series.tests)), warnings)
+        return Outcome(files, line, (series.path, case_path, *(t.measured for t in series.tests)), warnings, gates)
     if not measured or not velocity:
         raise InputError("--measured and --velocity are required with a beam case")
     V = units.parse(velocity, "velocity", "--velocity")
@@ -251,7 +291,8 @@ def calibrate_command(
     items = calibrate_tests(models, [test], projectile, constants, method, fit_radius, budget=budget, progress=progress)
     if items[0].calibration is None:
         raise InputError(items[0].error)
-    files = calibration_files(models, items, figures, single=True)
+    gates = calibration_gates(items)
+    files = calibration_files(models, items, figures, single=True, gates=gates)
     c = items[0].calibration
     fu, tu = units.display(problem.units, "force"), units.display(problem.units, "time")
     se = c.standard_errors.get("peak_force")
@@ -260,4 +301,4 @@ def calibrate_command(
         f"tF0 {c.time_of_peak * tu.factor:.1f} {tu.label}, T {c.duration * tu.factor:.1f} {tu.label} ({c.message}); "
         f"{c.check.message if c.check else ''}; {time.perf_counter() - t0:.1f} s"
     )
-    return Outcome(files, line, (case_path, Path(measured)))
+    return Outcome(files, line, (case_path, Path(measured)), gates=gates)

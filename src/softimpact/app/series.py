@@ -17,15 +17,20 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from ..errors import InputError
+from ..gates import Gate, at_most, quality
 from ..input.series import Series, SeriesTest, TestRecord, load_series, read_test_record
 from ..output.files import json_text
+from ..output.scaling_json import scaling_summary
 from ..output.series import reduction_files, scaling_files
 from ..workflows.conditioning import Conditioned, condition_record
 from ..workflows.reduction import Record, Reduction, reduce_record
-from ..workflows.scaling import TestPoint, fit_groups
+from ..workflows.scaling import TestPoint, fit_gates, fit_groups
 from . import Outcome, Progress, no_progress
 
-__all__ = ["ReducedTest", "read_records", "reduce_series", "fit_series", "reduce", "fit"]
+__all__ = ["ReducedTest", "read_records", "reduce_series", "fit_series", "reduction_gates", "reduce", "fit"]
+
+MAX_PULSE_MISFIT = 0.2  # RMS residual of the eq-15 fit / F0: above, T and tF0 do not describe the pulse
+MAX_SKEW = 0.95  # tF0/T: a peak at the very end of the pulse is a degenerate fit (tF0 ≈ T)
 
 
 @dataclass(frozen=True)
@@ -135,12 +140,34 @@ def fit_series(reduced: list[ReducedTest]):
     return fit_groups(points)
 
 
+def reduction_gates(reduced: list[ReducedTest]) -> tuple[Gate, ...]:
+    """Quality gates of each reduced test (:mod:`softimpact.gates`): the eq-15 pulse must fit
+    the force (RMS residual within MAX_PULSE_MISFIT of F0) and must not be degenerate
+    (tF0/T below MAX_SKEW)."""
+    gates = []
+    for r in reduced:
+        d = r.reduction
+        if d is None:
+            continue
+        name = r.test.name
+        misfit = d.fit_rms / d.peak_force if d.peak_force > 0 else float("nan")
+        gates.append(
+            at_most(
+                f"pulse-fit[{name}]", misfit, MAX_PULSE_MISFIT, f"{name}: the eq-15 pulse misses the force by {{value:.0%}} of F0 RMS (limit {{limit:.0%}})"
+            )
+        )
+        skew = d.time_of_peak / d.duration if d.duration > 0 else float("nan")
+        gates.append(at_most(f"pulse-skew[{name}]", skew, MAX_SKEW, f"{name}: degenerate pulse, tF0/T = {{value:.2f}} (limit {{limit:.2f}})"))
+    return tuple(gates)
+
+
 def _reduce(name: str, progress: Progress):
     series = load_series(name)
     reduced = reduce_series(series, progress)
-    if all(r.reduction is None for r in reduced):
-        raise InputError(f"no record of the series could be reduced ({reduced[0].error})")
-    return series, reduced, [r.error for r in reduced if r.reduction is None]
+    warnings = [r.error for r in reduced if r.reduction is None]
+    if len(warnings) == len(reduced):
+        raise InputError(f"no record of the series could be reduced (first: {warnings[0]})")
+    return series, reduced, warnings
 
 
 def reduce(series_name: str, figures: bool = True, progress: Progress = no_progress) -> Outcome:
@@ -149,6 +176,7 @@ def reduce(series_name: str, figures: bool = True, progress: Progress = no_progr
     warnings += [f"{r.test.name}: flagged ({r.rejected[0]})" for r in reduced if r.reduction is not None and r.rejected]
     files = reduction_files(series, reduced, figures)
     done = sum(r.reduction is not None for r in reduced)
+    gates = reduction_gates(reduced)
     files["summary.json"] = json_text(
         {
             "series": str(series.path),
@@ -158,10 +186,11 @@ def reduce(series_name: str, figures: bool = True, progress: Progress = no_progr
             "flagged": {r.test.name: list(r.rejected) for r in reduced if r.rejected},
             "dispersion": series.dispersion,
             "records": {r.test.name: r.metadata for r in reduced},
+            "quality": quality(gates),
         }
     )
     inputs = (series.path, *(t.record for t in series.tests))
-    return Outcome(files, f"{done} of {len(reduced)} records reduced; tests.csv", inputs, tuple(warnings))
+    return Outcome(files, f"{done} of {len(reduced)} records reduced; tests.csv", inputs, tuple(warnings), gates)
 
 
 def fit(series_name: str, figures: bool = True, progress: Progress = no_progress) -> Outcome:
@@ -171,8 +200,16 @@ def fit(series_name: str, figures: bool = True, progress: Progress = no_progress
     warnings += [
         f"{r.test.name}: not fitted (flagged: {r.rejected[0]}; accept_flagged = true fits it)" for r in reduced if r.reduction is not None and not r.fitted
     ]
+    gates = reduction_gates(reduced) + fit_gates(fits)
     files = reduction_files(series, reduced, figures)
     files.update(scaling_files(fits, series.units, figures))
+    files["scaling.json"] = json_text({**scaling_summary(fits), "quality": quality(gates)})
+    lonely = [label for label, g in fits.items() if len(g.points) == 1]
+    if lonely:
+        warnings = (
+            *warnings,
+            f"{', '.join(lonely)}: one test only: the constants have no confidence interval and the law is not checked against other velocities",
+        )
     lines = []
     for label, g in fits.items():
         a = {k: f.slope for k, f in g.origin.items()}
@@ -180,4 +217,4 @@ def fit(series_name: str, figures: bool = True, progress: Progress = no_progress
             f"{label:>10s}: alpha1 {a['alpha1']:.3f}  alpha2 {a['alpha2']:.3f}  alpha3 {a['alpha3']:.3f}  alpha4 {a['alpha4']:.3f}  ({len(g.points)} tests)"
         )
     inputs = (series.path, *(t.record for t in series.tests))
-    return Outcome(files, "\n".join(lines + ["scaling.json"]), inputs, tuple(warnings))
+    return Outcome(files, "\n".join(lines + ["scaling.json"]), inputs, tuple(warnings), gates)

@@ -4,7 +4,7 @@ The structure M·ü + C·u̇ + K·u = f is any linear FE model (beam, plate, bar
 The contact force F ≥ 0 acts along the impact direction on the surface nodes
 near the impact point, spread over the contact half-width a = law.radius(α)
 with the cosine distribution of eq (11) and exact nodal integrals (eq 14 with
-the errata of NOTES.md): node i with tributary segment [lo_i, hi_i] (relative
+the errata of docs/modelling-notes.md): node i with tributary segment [lo_i, hi_i] (relative
 to the impact point, clipped at ±a) receives F·s_i(a),
 
     s_i(a) = ½·[sin(π·hi_i/(2a)) − sin(π·lo_i/(2a))],   Σ s_i = 1,

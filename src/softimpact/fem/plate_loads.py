@@ -7,7 +7,7 @@ cosine shape of eq (11) in the radial distance ρ,
 
 normalised so that it integrates to F(t) (∫₀^r cos(πρ/2r) 2πρ dρ = 4r²(1 − 2/π)).
 The radius is fixed, r = r0, or grows with the force as r(t) = r0·sqrt(F/F0),
-eq (10), F0 the peak of the history (NOTES.md, errata: eq (14) is meant over the
+eq (10), F0 the peak of the history (docs/modelling-notes.md, errata: eq (14) is meant over the
 instantaneous radius).
 
 The nodal forces are the consistent ones, f_i = ∫ N_i p dA with the bilinear

@@ -12,7 +12,7 @@ from .. import units
 from ..errors import InputError
 from ..models.materials import sphere_mass
 from ..models.specimens import BarSpec, EndCap, Gauge, Projectile
-from ..workflows.bar_impact import CONTACT_LAWS, BarImpactProblem
+from ..workflows.bar_impact import CONTACT_LAWS, BarImpactProblem, check_problem
 from .toml import Table, load_toml, locate, naming, read_material, read_solver, read_units
 
 __all__ = ["read_bar", "read_gauges", "bar_problem", "load_bar_case"]
@@ -91,4 +91,7 @@ def bar_problem(data: dict) -> BarImpactProblem:
 def load_bar_case(case: str) -> tuple[BarImpactProblem, Path]:
     """Read a bar case by path or built-in name; returns the problem and its file."""
     path = locate(case)
-    return bar_problem(load_toml(path)), path
+    problem = bar_problem(load_toml(path))
+    with naming({"elements": "bar.elements", "time_step": "solver.time_step"}):
+        check_problem(problem)
+    return problem, path

@@ -17,7 +17,7 @@ from ..models.empirical import PRESETS, PROJECTILES
 from ..models.laminate import PLANES, PLIES, Blend, Ply, Stack, parse_layup
 from ..models.materials import Material
 from ..models.pulses import SkewedPulse, TabulatedPulse
-from ..workflows.beam_impact import LAMINATE_MODELS, BeamGauge, BeamLoad, BeamProblem, BeamSpec
+from ..workflows.beam_impact import LAMINATE_MODELS, BeamGauge, BeamLoad, BeamProblem, BeamSpec, check_problem
 from .records import read_columns
 from .toml import Table, load_toml, locate, naming, read_material, read_solver, read_units
 
@@ -185,7 +185,10 @@ def beam_problem(data: dict, base: Path = Path("."), history: int | None = None)
 
 def load_beam_case(case: str, history: int | None = None):
     path = locate(case)
-    return beam_problem(load_toml(path), path.parent, history), path
+    problem = beam_problem(load_toml(path), path.parent, history)
+    with naming({"elements": "beam.elements"}):
+        check_problem(problem)
+    return problem, path
 
 
 def table_rows(case: str) -> list[dict]:

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..gates import quality
 from ..units import display
 from .files import csv_text, figure_bytes, json_text
 from .report import Section, stem
@@ -104,8 +105,8 @@ def calibration_entry(item, gauges) -> dict:
     return entry
 
 
-def calibration_files(model, items, figures: bool, prefix: str = "", truths=None, single: bool = False) -> dict[str, bytes | str]:
-    """calibration.json, a history CSV per test (history.csv for a single test), figures."""
+def calibration_files(model, items, figures: bool, prefix: str = "", truths=None, single: bool = False, gates=()) -> dict[str, bytes | str]:
+    """calibration.json (with the quality ``gates``), a history CSV per test (history.csv for a single test), figures."""
     from . import plots
 
     system = model.problem.units
@@ -131,7 +132,7 @@ def calibration_files(model, items, figures: bool, prefix: str = "", truths=None
             files[f"{prefix}force{tag}.png"] = figure_bytes(
                 plots.calibration_forces(c, item.deconvolved, system, f"{item.test.name}: calibrated force history", truth)
             )
-    data = {"case": model.problem.title, "gauges": gauges, "tests": [calibration_entry(i, gauges) for i in items]}
+    data = {"case": model.problem.title, "gauges": gauges, "tests": [calibration_entry(i, gauges) for i in items], "quality": quality(gates)}
     files[prefix + "calibration.json"] = json_text(data)
     return files
 
@@ -145,12 +146,12 @@ def tables_rows(items):
     ]
 
 
-def series_calibration_files(model, series, items, fits, figures: bool, prefix: str = "", truths=None) -> dict[str, bytes | str]:
+def series_calibration_files(model, series, items, fits, figures: bool, prefix: str = "", truths=None, gates=()) -> dict[str, bytes | str]:
     """Per-test files, the Tables II/III layout, the scaling fit of the calibrated histories
     (``fits``, None for fewer than two tests), Figs 23–25."""
     from . import plots
 
-    files = calibration_files(model, items, figures, prefix, truths)
+    files = calibration_files(model, items, figures, prefix, truths, gates=gates)
     rows = tables_rows(items)
     cols = {k: [] for k in ("test", "velocity_m_s", "peak_force_N", "time_of_peak_s", "duration_s", "contact_radius_m")}
     for item in items:

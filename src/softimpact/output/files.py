@@ -4,16 +4,27 @@
 first written into a hidden staging folder inside DIR, then moved into place
 with :func:`os.replace`, so a run that fails leaves no half-written file that
 looks complete, and an input file is never overwritten.
+
+With a manifest, the run also writes ``manifest.json`` (last): its files and
+their SHA-256, the inputs and theirs, the package version, status and command.
+A reused DIR never mixes runs: the files the previous manifest lists that this
+run does not rewrite are removed (only those, and only while unchanged since
+that run wrote them). The staging folder is named ``.softimpact-<pid>-…``; it is
+removed on SIGTERM, and one left by a killed run is removed by the next run.
 """
 
 from __future__ import annotations
 
+import hashlib
 import io
 import json
 import math
 import os
 import shutil
+import signal
 import tempfile
+import threading
+import time
 from dataclasses import asdict, is_dataclass
 from pathlib import Path
 
@@ -22,7 +33,11 @@ import numpy as np
 from .. import __version__
 from ..errors import InputError
 
-__all__ = ["csv_text", "json_text", "jsonable", "figure_bytes", "write_outputs"]
+__all__ = ["csv_text", "json_text", "jsonable", "figure_bytes", "write_outputs", "check_writable", "sha256", "MANIFEST", "STAGING_PREFIX"]
+
+MANIFEST = "manifest.json"
+STAGING_PREFIX = ".softimpact-"  # staging folders: .softimpact-<pid>-<random>
+STALE_AGE = 3600.0  # s: a staging folder without a readable pid this old is a leftover
 
 
 def csv_text(columns: dict[str, np.ndarray]) -> str:
@@ -84,34 +99,176 @@ def figure_bytes(fig, fmt: str = "png") -> bytes:
     return buf.getvalue()
 
 
-def write_outputs(out_dir, files: dict[str, bytes | str], inputs=()) -> list[Path]:
+def sha256(data: bytes | str) -> str:
+    """Hex SHA-256 of bytes (text is encoded as UTF-8, as written)."""
+    return hashlib.sha256(data.encode("utf-8") if isinstance(data, str) else data).hexdigest()
+
+
+def _file_sha256(path: Path) -> str | None:
+    h = hashlib.sha256()
+    try:
+        with open(path, "rb") as fh:
+            for block in iter(lambda: fh.read(1 << 20), b""):
+                h.update(block)
+    except OSError:
+        return None
+    return h.hexdigest()
+
+
+def check_writable(out_dir) -> None:
+    """Refuse an output folder that cannot be created or written (before any computing).
+
+    Nothing is left behind: an empty folder is made and removed in the folder
+    itself, or in its nearest existing parent.
+    """
+    out = Path(out_dir)
+    if out.exists() and not out.is_dir():
+        raise InputError(f"--out: {out} exists and is not a folder")
+    probe = out
+    while not probe.exists():
+        if probe.parent == probe:
+            break
+        probe = probe.parent
+    if not probe.is_dir():
+        raise InputError(f"--out: cannot create {out}: {probe} is not a folder")
+    try:  # the only sure test (read-only mounts, /proc, root on a chmod-ed folder): make and remove a folder
+        os.rmdir(tempfile.mkdtemp(prefix=f"{STAGING_PREFIX}{os.getpid()}-probe-", dir=probe))
+    except OSError as exc:
+        raise InputError(f"--out: cannot write into {out} ({exc.strerror or exc} at {probe})") from None
+
+
+def _pid_alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except (PermissionError, OSError):
+        return True
+    return True
+
+
+def _remove_stale_staging(out: Path) -> None:
+    """Remove staging folders left by killed runs (their pid is gone, or they are old)."""
+    for entry in out.glob(STAGING_PREFIX + "*"):
+        if not entry.is_dir():
+            continue
+        pid_text = entry.name[len(STAGING_PREFIX) :].split("-", 1)[0]
+        if pid_text.isdigit():
+            stale = int(pid_text) != os.getpid() and not _pid_alive(int(pid_text))
+        else:
+            try:
+                stale = time.time() - entry.stat().st_mtime > STALE_AGE
+            except OSError:
+                stale = False
+        if stale:
+            shutil.rmtree(entry, ignore_errors=True)
+
+
+def _previous_files(out: Path) -> dict[str, str]:
+    """The files (name → sha256) listed by a previous run's manifest in ``out`` (empty if none or unreadable)."""
+    try:
+        data = json.loads((out / MANIFEST).read_text(encoding="utf-8"))
+        files = data.get("files", {})
+        return {str(k): str(v) for k, v in files.items()} if isinstance(files, dict) else {}
+    except (OSError, ValueError, AttributeError):
+        return {}
+
+
+def _remove_previous(out: Path, previous: dict[str, str], keep) -> None:
+    """Remove the previous run's files not rewritten now: only listed names inside ``out``, unchanged since."""
+    root = out.resolve()
+    for name, digest in previous.items():
+        if name in keep or name == MANIFEST:
+            continue
+        path = (out / name).resolve()
+        if root not in path.parents or not path.is_file() or path.is_symlink():
+            continue
+        if _file_sha256(path) == digest:
+            path.unlink()
+            parent = path.parent
+            while parent != root and parent.is_dir() and not any(parent.iterdir()):
+                parent.rmdir()
+                parent = parent.parent
+
+
+class _RemoveOnTerm:
+    """While active, SIGTERM removes the staging folder and exits (143) instead of leaving it behind."""
+
+    def __init__(self, staging: Path):
+        self.staging, self.previous = staging, None
+
+    def __enter__(self):
+        if threading.current_thread() is threading.main_thread():
+            self.previous = signal.signal(signal.SIGTERM, self._handle)
+        return self
+
+    def _handle(self, signum, frame):
+        shutil.rmtree(self.staging, ignore_errors=True)
+        raise SystemExit(128 + signum)
+
+    def __exit__(self, *exc):
+        if self.previous is not None:
+            signal.signal(signal.SIGTERM, self.previous)
+        return False
+
+
+def write_outputs(out_dir, files: dict[str, bytes | str], inputs=(), manifest: dict | None = None) -> list[Path]:
     """Write ``files`` (relative name → content) into ``out_dir`` atomically.
 
     All files are staged in a hidden folder inside ``out_dir`` and moved into
     place only once all are written. Refuses to overwrite any of ``inputs``.
-    Returns the paths written.
+    With ``manifest`` (a dict: status, command, …) ``manifest.json`` is added
+    with the files' and inputs' SHA-256 and the version, and the previous run's
+    files this run does not rewrite are removed (see the module docstring).
+    Returns the paths written (the manifest not included).
     """
     out = Path(out_dir)
     protected = {Path(p).resolve() for p in inputs}
-    targets = {name: (out / name) for name in files}
+    names = list(files) + ([MANIFEST] if manifest is not None else [])
+    targets = {name: (out / name) for name in names}
     for name, target in targets.items():
         if target.resolve() in protected:
             raise InputError(f"--out: writing {name} would overwrite the input {target}")
-    if out.exists() and not out.is_dir():
-        raise InputError(f"--out: {out} exists and is not a folder")
-    out.mkdir(parents=True, exist_ok=True)
-    staging = Path(tempfile.mkdtemp(prefix=".softimpact-", dir=out))
+    check_writable(out)
     try:
-        for name, content in files.items():
-            path = staging / name
-            path.parent.mkdir(parents=True, exist_ok=True)
-            if isinstance(content, str):
-                path.write_text(content, encoding="utf-8")
-            else:
-                path.write_bytes(content)
-        for name, target in targets.items():
-            target.parent.mkdir(parents=True, exist_ok=True)
-            os.replace(staging / name, target)
+        out.mkdir(parents=True, exist_ok=True)
+        _remove_stale_staging(out)
+        staging = Path(tempfile.mkdtemp(prefix=f"{STAGING_PREFIX}{os.getpid()}-", dir=out))
+    except OSError as exc:
+        raise InputError(f"--out: cannot write into {out} ({exc.strerror})") from None
+    try:
+        with _RemoveOnTerm(staging):
+            content_of = dict(files)
+            if manifest is not None:
+                content_of[MANIFEST] = _manifest_text(files, inputs, manifest)
+            for name, content in content_of.items():
+                path = staging / name
+                path.parent.mkdir(parents=True, exist_ok=True)
+                if isinstance(content, str):
+                    path.write_text(content, encoding="utf-8")
+                else:
+                    path.write_bytes(content)
+            if manifest is not None:
+                _remove_previous(out, _previous_files(out), set(files))
+            for name, target in targets.items():  # the manifest last: it lists a complete run
+                target.parent.mkdir(parents=True, exist_ok=True)
+                os.replace(staging / name, target)
+    except OSError as exc:
+        raise InputError(f"--out: cannot write into {out} ({exc.strerror or exc})") from None
     finally:
         shutil.rmtree(staging, ignore_errors=True)
-    return list(targets.values())
+    return [targets[name] for name in files]
+
+
+def _manifest_text(files: dict, inputs, manifest: dict) -> str:
+    """manifest.json: status and command (from ``manifest``), files and inputs with their SHA-256, version."""
+    listed_inputs = {}
+    for p in inputs:
+        digest = _file_sha256(Path(p))
+        listed_inputs[str(p)] = digest
+    data = {
+        **manifest,
+        "files": {name: sha256(content) for name, content in sorted(files.items())},
+        "inputs": listed_inputs,
+    }
+    return json_text(data)

@@ -38,6 +38,9 @@ def reduction_files(series, reduced, figures: bool = True, prefix: str = "") -> 
             "fit_peak_force_N",
             "fit_rms_N",
             "first_contact_record_time_s",
+            "whole_record_peak_force_N",
+            "whole_record_time_of_peak_s",
+            "whole_record_duration_s",
         )
     }
     reduction_cols = list(cols)[4:]
@@ -92,6 +95,9 @@ def reduction_files(series, reduced, figures: bool = True, prefix: str = "") -> 
             ("fit_peak_force_N", r.fit.peak_force),
             ("fit_rms_N", r.fit_rms),
             ("first_contact_record_time_s", r.first_contact_record_time),
+            ("whole_record_peak_force_N", r.whole_fit.peak_force if r.whole_fit is not None else math.nan),
+            ("whole_record_time_of_peak_s", r.whole_fit.time_of_peak if r.whole_fit is not None else math.nan),
+            ("whole_record_duration_s", r.whole_fit.duration if r.whole_fit is not None else math.nan),
         ):
             cols[k].append(v)
         files[f"{prefix}history-{stem(t.name)}.csv"] = csv_text({"time_s": r.time, "force_N": r.force})

@@ -46,11 +46,14 @@ __all__ = [
     "refine_peak",
     "without_end_cap",
     "force_from_gauge",
+    "check_problem",
 ]
 
 CONTACT_LAWS = ("hertz",)  # laws of the impactor–bar contact
 NEWTON_TOL = 1e-13  # relative tolerance on the approach α in the contact Newton iteration
 NEWTON_MAXITER = 50  # the monotone Newton converges in < 10; this only guards bugs
+MIN_ELEMENTS_PER_PULSE = (2.0, 6.0)  # elements per contact pulse length c·T_c: floor, comfortable (paper: 14)
+MIN_STEPS_PER_CONTACT = (10.0, 20.0)  # time steps per contact duration T_c: floor, comfortable (paper: 132)
 
 
 @dataclass(frozen=True)
@@ -289,3 +292,46 @@ def force_from_gauge(result: BarImpactResult, gauge_index: int = 0) -> tuple[np.
 def without_end_cap(problem: BarImpactProblem) -> BarImpactProblem:
     """The same problem on the plain bar (for the comparison of Fig 5)."""
     return replace(problem, bar=replace(problem.bar, end_cap=None))
+
+
+def check_problem(problem: BarImpactProblem) -> None:
+    """Refuse, before anything is built, a run that is too coarse to mean anything or too big for the machine.
+
+    The contact duration T_c is estimated by Hertz's rigid-wall closed form
+    (the bar's compliance only lengthens it, so the checks err on the safe
+    side). Resolution: elements per pulse length c·T_c/h and time steps per
+    T_c (:data:`MIN_ELEMENTS_PER_PULSE`, :data:`MIN_STEPS_PER_CONTACT`; an
+    InputError naming ``elements`` or ``time_step``, or a warning). Resources:
+    the dense mass, stiffness and strain-probe matrices (n² with n = 2(e + 1)
+    Hermite DOFs) and the histories of n DOFs over the run.
+    """
+    from ..guards import require_resolution, require_resources
+
+    e, steps = problem.bar.elements, problem.solver.steps
+    n = 2 * (e + 1)
+    n_x = 4 * e + 1
+    memory = 8.0 * (2 * n * n + n_x * n + 4 * n * (steps + 1) + n_x * (steps + 1))
+    flops = 4.0 * n * n * (steps + 1) + 0.5 * steps * steps
+    require_resources(f"a bar of {e} elements over {steps} steps", memory, flops)
+    law = problem.contact_law()
+    try:
+        *_, duration = law.rigid_impact(problem.projectile.mass, problem.projectile.velocity)
+    except ValueError:
+        return
+    wave = problem.bar.rod().wave_speed * duration
+    require_resolution(
+        "elements per contact pulse length",
+        wave / (problem.bar.length / e),
+        *MIN_ELEMENTS_PER_PULSE,
+        f"the pulse ({duration * 1e6:.3g} us long) spans {wave:.3g} m of bar: the bar needs at least {math.ceil(MIN_ELEMENTS_PER_PULSE[0] * problem.bar.length / wave)} elements "
+        f"({math.ceil(MIN_ELEMENTS_PER_PULSE[1] * problem.bar.length / wave)} advised)",
+        "elements",
+    )
+    require_resolution(
+        "time steps per contact duration",
+        duration / problem.solver.time_step,
+        *MIN_STEPS_PER_CONTACT,
+        f"contact lasts about {duration * 1e6:.3g} us; use a time step of at most {duration / MIN_STEPS_PER_CONTACT[0] * 1e6:.3g} us "
+        f"({duration / MIN_STEPS_PER_CONTACT[1] * 1e6:.3g} us advised)",
+        "time_step",
+    )

@@ -14,6 +14,7 @@ computed once by reciprocity; milliseconds per force history).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -27,9 +28,11 @@ from ..models.laminate import Stack, engineering_constants, plane_matrix
 from ..models.materials import Material
 from ..units import INCH
 
-__all__ = ["LAMINATE_MODELS", "BeamGauge", "BeamSpec", "BeamLoad", "BeamProblem", "BeamModel", "BeamResult", "isotropic_matrix"]
+__all__ = ["LAMINATE_MODELS", "BeamGauge", "BeamSpec", "BeamLoad", "BeamProblem", "BeamModel", "BeamResult", "isotropic_matrix", "check_problem"]
 
 MIN_STEPS_PER_RISE = 4  # a pulse rising in fewer time steps than this is not resolved
+MIN_ELEMENTS_THROUGH = (2, 4)  # element layers through the thickness: floor (one Q4 layer has no bending strain at the faces), comfortable
+MIN_ELEMENTS_PER_PATCH = (1.0, 2.0)  # elements across the contact patch 2·r0: floor, comfortable (paper: 16)
 LAMINATE_MODELS = ("smeared", "layered")  # homogenised through the thickness, or ply group by ply group
 
 
@@ -130,7 +133,8 @@ class BeamProblem:
         rise = getattr(self.load.history, "time_of_peak", None)
         if rise is not None and rise < MIN_STEPS_PER_RISE * self.solver.time_step:
             raise InputError(
-                f"time step {self.solver.time_step!r} s cannot resolve a pulse rising in {rise!r} s (need at most time_of_peak/{MIN_STEPS_PER_RISE})",
+                f"a time step of {self.solver.time_step * 1e6:.4g} us cannot resolve a pulse rising in {rise * 1e6:.4g} us "
+                f"(need at most time_of_peak/{MIN_STEPS_PER_RISE} = {rise / MIN_STEPS_PER_RISE * 1e6:.4g} us)",
                 "time_step",
             )
 
@@ -289,3 +293,34 @@ class BeamModel:
         out["plane_matrix_Pa"] = plane_matrix(spec.stack.effective(), spec.plane).tolist()
         out["bending_stiffness_per_width_N_m"] = {k: float(v) for k, v in spec.stack.bending_stiffness(spec.plane).items()}
         return out
+
+
+def check_problem(problem: BeamProblem) -> None:
+    """Refuse, before anything is built, a beam too coarse to mean anything or too big for the machine.
+
+    Resolution: element layers through the thickness and elements across the
+    contact patch (:data:`MIN_ELEMENTS_THROUGH`, :data:`MIN_ELEMENTS_PER_PATCH`;
+    InputError naming ``elements``, or a warning). Resources of direct
+    stepping: load, displacement and velocity histories of n DOFs over the run
+    (and as much again for the energy balance) and the banded factor
+    (bandwidth about 2(min(nx, nz) + 2)).
+    """
+    from ..guards import require_resolution, require_resources
+
+    b = problem.beam
+    steps = problem.solver.steps
+    n = 2 * (b.nx + 1) * (b.nz + 1)
+    band = 2 * (min(b.nx, b.nz) + 2)
+    memory = 8.0 * (6 * n * (steps + 1) + n * (band + 1))
+    flops = 4.0 * n * band * (steps + 1)
+    require_resources(f"a {b.nx} x {b.nz} beam over {steps} steps", memory, flops)
+    require_resolution(
+        "element layers through the thickness",
+        b.nz,
+        *MIN_ELEMENTS_THROUGH,
+        f"give beam.elements = [{b.nx}, {max(b.nz, MIN_ELEMENTS_THROUGH[1])}] or more",
+        "elements",
+    )
+    per_patch = 2 * problem.load.contact_radius / (b.length / b.nx)
+    need = math.ceil(MIN_ELEMENTS_PER_PATCH[0] * b.length / (2 * problem.load.contact_radius))
+    require_resolution("elements across the contact patch", per_patch, *MIN_ELEMENTS_PER_PATCH, f"use at least {need} elements along the length", "elements")

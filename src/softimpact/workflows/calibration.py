@@ -47,6 +47,7 @@ __all__ = ["Measured", "Prepared", "Calibration", "ModelCheck", "prepare", "cali
 
 METHODS = ("least-squares", "paper", "deconvolve")
 WEAK_CORRELATION = 0.9  # |correlation| of two estimates beyond which they are called weakly identifiable
+NOISE_FLOOR = 1e-4  # of a gauge's peak |strain|: the least noise assumed (a 14-bit digitiser's step)
 DEPARTURE_SIGMAS = 6.0  # a gauge "leaves the noise" at this many σ of its pre-impact part
 
 
@@ -155,6 +156,21 @@ def _departure(t, y, sigma, level=None):
     return float(t[k - 1] + (t[k] - t[k - 1]) * (level - a) / (b - a)) if b != a else float(t[k])
 
 
+def _to_model_rate(t: np.ndarray, Y: np.ndarray, dt_model: float):
+    """A record sampled much finer than the model, averaged over blocks of q samples
+    (q = ⌊dt_model/dt⌋ ≥ 2): the model cannot use the finer detail, and the block
+    mean is an anti-aliasing filter that leaves the noise white at the model's rate,
+    so the noise level and the first departure from it mean the same at any
+    sampling rate (an interpolated, oversampled record has correlated noise)."""
+    q = int(dt_model / float(np.median(np.diff(t))) + 1e-9)
+    if q < 2:
+        return t, Y
+    n = t.size // q
+    if n < 32:
+        return t, Y
+    return t[: n * q].reshape(n, q).mean(axis=1), Y[:, : n * q].reshape(Y.shape[0], n, q).mean(axis=2)
+
+
 def prepare(model, measured: Measured, start: SkewedPulse, contact_time: float | None = None, radius: float | None = None) -> Prepared:
     """Offsets removed, gauges in the model's order, first contact located (module docstring)."""
     names = [g.name for g in model.problem.gauges]
@@ -172,6 +188,7 @@ def prepare(model, measured: Measured, start: SkewedPulse, contact_time: float |
         raise InputError(f"{measured.name}: contains NaN or infinite values")
     if np.any(np.diff(t) <= 0):
         raise InputError(f"{measured.name}: time is not strictly increasing")
+    t, Y = _to_model_rate(t, Y, model.problem.solver.time_step)
     # Pre-impact part: before any gauge leaves a robust noise band around its first samples.
     head = max(16, t.size // 20)
     sig0 = white_noise_sigma(Y, axis=1)
@@ -187,6 +204,8 @@ def prepare(model, measured: Measured, start: SkewedPulse, contact_time: float |
     else:
         offsets = np.median(Y[:, :head], axis=1)
         noise = sig0
+    # A noise-free record (a model's own output) is weighted as if read by a fine digitiser.
+    noise = np.maximum(noise, NOISE_FLOOR * np.max(np.abs(Y - offsets[:, None]), axis=1))
     Y = Y - offsets[:, None]
     if contact_time is None:
         # The model, driven by the starting history, leaves the same noise level at t_m after contact.

@@ -33,7 +33,7 @@ from ..models.plate_laminate import SHEAR_CORRECTION, PlateSection, plate_sectio
 __all__ = ["PlateSpec", "PlateLoad", "PlateGauge", "PlateProblem", "PlateResult", "PlateModel"]
 
 MIN_STEPS_PER_RISE = 4  # a pulse rising in fewer time steps than this is not resolved
-DEFAULT_GAUGE_LENGTH = 0.031 * 0.0254  # m, the paper's gauges (NOTES.md)
+DEFAULT_GAUGE_LENGTH = 0.031 * 0.0254  # m, the paper's gauges (docs/modelling-notes.md)
 
 
 def _positive(name: str, value) -> None:

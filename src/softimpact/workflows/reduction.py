@@ -35,9 +35,12 @@ Pulse parameters (time from first contact):
   the eq-15 fit is within 10 % of its peak): the largest raw sample is biased up
   by the noise, the fit averages it;
 - T and t_F0: least-squares fit of the eq-(15) shape, with its start time t0,
-  to the force up to where it has fallen to 15 % of F0 after the peak (the tail
-  lives below that); t0 is first contact. T is thus the duration of the main
-  pulse, ignoring the tail, and t_F0 uses the whole rise (the location of the
+  to the main pulse: down to a level safely above where the tail takes over,
+  the tail located by a composite fit (:func:`~softimpact.models.pulse_fit.fit_tail_aware`;
+  a fixed 15 % of F0 seeds it). t0 is first contact. T is thus the duration of
+  the main pulse, ignoring the tail, whatever level the tail starts at; the fit
+  to the whole record is kept beside it (``whole_fit``) and a flag says when the
+  two differ. t_F0 uses the whole rise (the location of the
   maximum of a flat-topped, noisy peak is poorly determined; it is reported too,
   as ``time_of_max``);
 - threshold duration: time until the smoothed force first falls below 5 % of F0;
@@ -54,6 +57,7 @@ import numpy as np
 from ..errors import InputError
 from ..models.dispersion import RoundBar, disperse, radial_band_edge, rayleigh_speed_ratio
 from ..models.noise import white_noise_sigma
+from ..models.pulse_fit import fit_tail_aware
 from ..models.pulses import SkewedPulse, fit_skewed
 from ..models.specimens import BarSpec
 
@@ -106,6 +110,7 @@ class Reduction:
     fit: SkewedPulse
     fit_rms: float  # N, residual of the eq-15 fit over its window
     flags: tuple[str, ...]
+    whole_fit: SkewedPulse | None = None  # eq 15 fitted to the whole record, tail included (beside the main-pulse fit)
 
 
 def _fail(name, msg):
@@ -358,6 +363,16 @@ def reduce_record(
         t_cut = float(tt[after[0]])
         T_guess = t_pk_guess + (t_cut - t_pk_guess) / (2 / math.pi * math.acos(settings.fit_cutoff))
         fit, t0, rms = fit_skewed(tt, F, F0_guess, max(t_pk_guess, dt), T_guess, t_cut)
+        # The main pulse, wherever its tail starts: the knee located by a composite fit
+        # (models/pulse_fit), the whole record's fit kept beside it. The fixed 15 % cutoff
+        # above seeds it and stands when the tail-aware fit cannot be made.
+        aware = None
+        try:
+            aware = fit_tail_aware(tt[tt >= t0 - 2 * dt], F[tt >= t0 - 2 * dt])
+        except InputError:
+            pass
+        if aware is not None and aware.main.pulse.peak_force > 0 and abs(aware.main.start - t0) < 0.5 * fit.duration:
+            fit, t0, rms = aware.main.as_tuple()
         # F0: the maximum of a cubic fitted to the crown, where the eq-15 fit is within
         # 10 % of its peak: it averages the noise over the whole crown (< 0.3 % model
         # error on eq-15 shapes) and follows the data where they depart from eq 15.
@@ -372,10 +387,10 @@ def reduce_record(
             F0, t_pk = F0_guess, t_pk_guess
         below = np.flatnonzero((np.arange(Fs.size) > k_pk) & (Fs < settings.duration_threshold * F0))
         t_thr = float(tt[below[0]]) - t0 if below.size else math.nan
-        return fit, t0, rms, F0, t_pk, t_thr
+        return fit, t0, rms, F0, t_pk, t_thr, aware
 
     F = _bar_force(y, baseline, tt, tau, period, EA, cap_mass, Z, window, dt, round_bar, x, L, two)
-    fit, t0, rms, F0, t_pk, t_thr = parameters(F)
+    fit, t0, rms, F0, t_pk, t_thr, aware = parameters(F)
 
     # A baseline error δ adds about δ·EA·L/(L − x) to F for the rest of the record,
     # so the impulse needs the baseline well. Where the record runs on for whole
@@ -390,7 +405,7 @@ def reduce_record(
             baseline = (n_base * baseline + n_late * late) / (n_base + n_late)
             n_base += n_late
             F = _bar_force(y, baseline, tt, tau, period, EA, cap_mass, Z, window, dt, round_bar, x, L, two)
-            fit, t0, rms, F0, t_pk, t_thr = parameters(F)
+            fit, t0, rms, F0, t_pk, t_thr, aware = parameters(F)
         else:
             flags.append(
                 f"mean strain over the last {n_late} samples departs from the pre-trigger baseline by "
@@ -427,6 +442,8 @@ def reduce_record(
         impulse_sd = EA * noise / math.sqrt(n_base) * math.sqrt(2) * valid_until * (1 + valid_until / (2 * spacing))
     if not math.isfinite(t_thr):
         flags.append("the force never falls below 5 % of F0 within the record: threshold duration undefined")
+    if aware is not None and aware.differs:
+        flags.append(aware.message)
     end_noise = EA * noise * math.sqrt(terms)
     if end_noise > 0.05 * F0:
         flags.append(f"reflection corrections amplify the noise to {end_noise / F0:.0%} of F0 by the end")
@@ -450,4 +467,5 @@ def reduce_record(
         fit=fit,
         fit_rms=rms,
         flags=tuple(flags),
+        whole_fit=None if aware is None else aware.whole.pulse,
     )

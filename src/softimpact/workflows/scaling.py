@@ -19,10 +19,25 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
+from ..gates import Gate, at_least, at_most
 from ..models.empirical import ScalingLaw
 from ..units import INCH
 
-__all__ = ["TestPoint", "LineFit", "ScalingFit", "fit_line", "fit_scaling", "fit_groups", "REGRESSORS"]
+__all__ = [
+    "TestPoint",
+    "LineFit",
+    "ScalingFit",
+    "fit_line",
+    "fit_scaling",
+    "fit_groups",
+    "fit_gates",
+    "REGRESSORS",
+    "MIN_VELOCITY_SPREAD",
+    "MAX_RELATIVE_RESIDUAL",
+]
+
+MIN_VELOCITY_SPREAD = 0.1  # (V_max − V_min)/mean V of a group: below, a law in V is not determined by its tests
+MAX_RELATIVE_RESIDUAL = 0.3  # RMS residual / RMS response of a law: above, the straight line does not describe the tests
 
 
 @dataclass(frozen=True)
@@ -149,3 +164,51 @@ def fit_groups(points) -> dict[str, ScalingFit]:
     if len(groups) > 1:
         fits["pooled"] = fit_scaling(points, "pooled")
     return fits
+
+
+def fit_gates(fits: dict[str, ScalingFit]) -> tuple[Gate, ...]:
+    """Quality gates of the fits of :func:`fit_groups` (:mod:`softimpact.gates`).
+
+    Per group of two tests or more: the tests' velocities must spread by
+    MIN_VELOCITY_SPREAD of their mean (repeat shots at one velocity, or copies
+    of one record, leave a law in V undetermined and its interval falsely
+    narrow), and each law's RMS residual must stay within MAX_RELATIVE_RESIDUAL
+    of the RMS response. Every constant must be finite and positive. A group of
+    one test has no gate on spread or residual (it has no intervals either: the
+    app warns).
+    """
+    gates = []
+    for label, g in fits.items():
+        v = np.array([p.velocity for p in g.points])
+        if len(v) >= 2:
+            spread = float(np.ptp(v) / np.mean(v))
+            gates.append(
+                at_least(
+                    f"velocity-spread[{label}]",
+                    spread,
+                    MIN_VELOCITY_SPREAD,
+                    f"{label}: the {len(v)} tests span {{value:.1%}} of their mean velocity (need {{limit:.0%}}): the law's dependence on velocity is not determined",
+                )
+            )
+        for name, (_, _, fy) in REGRESSORS.items():
+            f = g.origin[name]
+            gates.append(
+                at_least(
+                    f"{name}-finite[{label}]",
+                    1.0 if math.isfinite(f.slope) and f.slope > 0 else 0.0,
+                    1.0,
+                    f"{label}: {name} = {f.slope!r} is not a positive number",
+                )
+            )
+            if len(v) >= 2:
+                y = np.array([fy(p) for p in g.points])
+                rel = float(np.sqrt(np.mean(f.residuals**2)) / np.sqrt(np.mean(y**2))) if np.any(y) else math.nan
+                gates.append(
+                    at_most(
+                        f"{name}-residual[{label}]",
+                        rel,
+                        MAX_RELATIVE_RESIDUAL,
+                        f"{label}: the {name} line misses its tests by {{value:.0%}} RMS (limit {{limit:.0%}})",
+                    )
+                )
+    return tuple(gates)
