@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError
-from ..input.sweep_spec import SweepSpec, load_sweep_spec
+from ..input.sweep_spec import Level, SweepSpec, load_sweep_spec
 from . import Outcome, Progress, no_progress
 from .sweep_cases import ADAPTERS, adapter_for, flatten
 
@@ -56,10 +56,21 @@ def plan_sweep(spec: SweepSpec) -> SweepPlan:
     runs = spec.runs()
     cases = [spec.case_for(r, adapter.expand) for r in runs]
     base = spec.case_path.parent
-    try:
-        problem = adapter.problem(cases[0], base)
-    except InputError as exc:
-        raise InputError(f"sweep: run 0 of {spec.case_path.name}: {exc}") from None
+    # Bad specs fail at once: with the draws at their medians, the first run and the first run
+    # taking each level value must parse (a run failing on an unlucky draw is only recorded).
+    central = spec.runs(central=True)
+    probe = {0}
+    for p in spec.parameters:
+        if isinstance(p, Level):
+            for value in p.values:
+                probe.add(next(r.index for r in central if (p.key, value) in r.sets))
+    for i in sorted(probe):
+        try:
+            checked = adapter.problem(spec.case_for(central[i], adapter.expand), base)
+        except InputError as exc:
+            raise InputError(f"sweep: {spec.case_path.name}: {exc}") from None
+        if i == 0:
+            problem = checked
     known = adapter.output_keys(problem)
     for o in spec.outputs:
         if o not in known:
@@ -87,12 +98,18 @@ class _Failed:
         self.reason = reason
 
 
-def prepare_group(kind: str, data: dict, base: str, runs: int):
-    """The shared part of a group (a Dask task: plain arguments, picklable result)."""
-    try:
-        return ADAPTERS[kind].prepare(data, Path(base), runs)
-    except Exception as exc:  # a drawn structure can be invalid: its runs fail, the sweep goes on
-        return _Failed(_one_line(exc))
+def prepare_group(kind: str, candidates, base: str, runs: int):
+    """The shared part of a group (a Dask task: plain arguments, picklable result), from the
+    first of the group's ``candidates`` (case dicts) that builds: a run's own load may be bad."""
+    first = None
+    for data in candidates:
+        try:
+            return ADAPTERS[kind].prepare(data, Path(base), runs)
+        except Exception as exc:  # a drawn structure can be invalid: its runs fail, the sweep goes on
+            first = first or _Failed(_one_line(exc))
+            if runs == 1:
+                break
+    return first
 
 
 def run_chunk(kind: str, prepared, items, base: str, outputs) -> list[dict]:
@@ -111,9 +128,9 @@ def run_chunk(kind: str, prepared, items, base: str, outputs) -> list[dict]:
     return rows
 
 
-def group_chunk(kind: str, data: dict, base: str, runs: int, items, outputs) -> list[dict]:
+def group_chunk(kind: str, base: str, runs: int, items, outputs) -> list[dict]:
     """A group of one chunk as one task: prepare and run where the data is."""
-    return run_chunk(kind, prepare_group(kind, data, base, runs), items, base, outputs)
+    return run_chunk(kind, prepare_group(kind, [d for _, d in items], base, runs), items, base, outputs)
 
 
 def _checkpoint_dir(out: Path, spec: SweepSpec) -> Path:
@@ -183,7 +200,7 @@ def execute(plan: SweepPlan, out: Path | None, workers: int = 0, scheduler: str 
         by_group.setdefault(c.group, []).append(c)
     if workers == 0 and not scheduler:
         for chunks in by_group.values():
-            prepared = prepare_group(kind, chunks[0].items[0][1], base, chunks[0].group_size)
+            prepared = prepare_group(kind, [d for _, d in chunks[0].items], base, chunks[0].group_size)
             for c in chunks:
                 finish(c, run_chunk(kind, prepared, c.items, base, spec.outputs))
         return rows, sum(len(c.items) for c in pending)
@@ -195,10 +212,10 @@ def execute(plan: SweepPlan, out: Path | None, workers: int = 0, scheduler: str 
         for chunks in by_group.values():
             first = chunks[0]
             if len(chunks) == 1 and first.group_size == len(first.items):
-                f = client.submit(group_chunk, kind, first.items[0][1], base, first.group_size, first.items, spec.outputs, pure=False)
+                f = client.submit(group_chunk, kind, base, first.group_size, first.items, spec.outputs, pure=False)
                 futures[f] = first
                 continue
-            prepared = client.submit(prepare_group, kind, first.items[0][1], base, first.group_size, pure=False)
+            prepared = client.submit(prepare_group, kind, [d for _, d in first.items], base, first.group_size, pure=False)
             for c in chunks:
                 futures[client.submit(run_chunk, kind, prepared, c.items, base, spec.outputs, pure=False)] = c
         for f in as_completed(list(futures)):
@@ -264,8 +281,6 @@ def _table(plan: SweepPlan, rows: dict) -> dict[str, np.ndarray | list]:
 
 
 def _velocity_key(spec: SweepSpec) -> str | None:
-    from ..input.sweep_spec import Level
-
     keys = [p.key for p in spec.parameters if isinstance(p, Level) and p.key.endswith("velocity") and all(isinstance(v, float) for v in p.si)]
     return keys[0] if keys else None
 
@@ -274,8 +289,6 @@ def thresholds(plan: SweepPlan, cols: dict) -> list[dict]:
     """Threshold velocities: per combination of the other levels and per damage output,
     the velocity [m/s] where the index first reaches 1 (linear between levels), over the
     draws: median and 5–95 % band, and how many draws reach 1 within the swept range."""
-    from ..input.sweep_spec import Level
-
     spec = plan.spec
     vkey = _velocity_key(spec)
     damage = [o for o in spec.outputs if o.startswith("damage.") and o != "damage.threshold_force_N"]

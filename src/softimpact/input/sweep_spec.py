@@ -215,10 +215,11 @@ class SweepSpec:
     chunk: int
     fingerprint: str
 
-    def runs(self) -> list[Run]:
+    def runs(self, central: bool = False) -> list[Run]:
+        """The runs; with ``central``, one per level combination with every draw at its median."""
         levels = [p for p in self.parameters if isinstance(p, Level)]
         random = [p for p in self.parameters if isinstance(p, (Drawn, Scaling))]
-        draws = self._draws(random)
+        draws = self._draws(random, central)
         out = []
         combos = list(itertools.product(*[range(len(p.values)) for p in levels]))
         for combo in combos:
@@ -246,11 +247,14 @@ class SweepSpec:
                 out.append(Run(len(out), tuple(sets), row, d))
         return out
 
-    def _draws(self, random) -> np.ndarray:
+    def _draws(self, random, central: bool = False) -> np.ndarray:
         dims = sum(p.dims for p in random)
         if not random:
             return np.zeros((1, 0))
-        if self.method == "latin-hypercube":
+        n = 1 if central else self.draws
+        if central:
+            u = np.full((1, dims), 0.5)
+        elif self.method == "latin-hypercube":
             from scipy.stats import qmc
 
             u = qmc.LatinHypercube(d=dims, seed=np.random.default_rng(self.seed)).random(self.draws)
@@ -260,7 +264,7 @@ class SweepSpec:
         cols, k = [], 0
         for p in random:
             x = p.transform(u[:, k : k + p.dims])
-            cols.append(x.reshape(self.draws, p.dims))
+            cols.append(x.reshape(n, p.dims))
             k += p.dims
         return np.hstack(cols)
 
