@@ -47,7 +47,7 @@ GRID = """
 [sweep]
 case = "beam.toml"
 method = "grid"
-outputs = ["peak_force_N", "strain_g1.peak", "gauges.g2.peak_compressive_strain"]
+outputs = ["peak_force_N", "strain_g1.peak", "gauges.g2.peak_compressive_strain", "damage.max_strain"]
 [[sweep.parameter]]
 key = "load.history.velocity"
 values = ["1000 in/s", "3000 in/s", "5000 in/s"]
@@ -92,6 +92,10 @@ def test_grid_matches_direct_beam_runs(tmp_path):
         eps = r.strain[0]
         assert t["strain_g1.peak"][k] == pytest.approx(eps[np.argmax(np.abs(eps))], rel=1e-6)
         assert t["gauges.g2.peak_compressive_strain"][k] == pytest.approx(r.strain[1].min(), rel=1e-6)
+        # [90/0]5s has 90° plies on both faces: under plane strain their worst strain is transverse
+        # tension ε_x at a face, allowable Y_t/E2 = 40 MPa / 7.9 GPa (Tsai & Hahn's T300/5208; E2 of the ply).
+        faces = np.concatenate((r.strain, r.strain - 2 * r.bending))
+        assert t["damage.max_strain"][k] == pytest.approx(faces.max() / (40e6 / 7.9e9), rel=1e-6)
         # eq (4) with Table I's α1 = 4.25 for the 1.1-g, 1/2-in ball; the pulse's sampled peak within 1 %
         V = v * INCH
         assert t["peak_force_N"][k] == pytest.approx(4.25 * 1.1e-3 * V**2 / (2 * 0.5 * INCH), rel=1e-2)
