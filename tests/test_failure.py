@@ -123,3 +123,26 @@ def test_plane_stress_section_is_free_across_the_width():
     assert np.abs(NM[[1, 2, 4, 5]]).max() < 1e-9 * np.abs(NM[[0, 3]]).max()
     h = STACK.thickness
     assert e0[0] + h / 2 * k[0] == pytest.approx(top) and e0[0] - h / 2 * k[0] == pytest.approx(bottom)
+
+
+@pytest.mark.parametrize("layup", ["[90/0]5s", "[0/90/0/90]", "[0_2/90_3/0]"])
+def test_extreme_faces_give_the_worst_ply(layup):
+    """The worst index over the extreme faces of each angle equals the worst over every ply face."""
+    from softimpact.workflows.damage import extreme_faces
+
+    stack = Stack(PLY, parse_layup(layup))
+    rng = np.random.default_rng(4)
+    e0, k = rng.normal(0, 2e-3, (3, 50)) * np.array([[1], [0.3], [0]]), rng.normal(0, 4.0, (3, 50)) * np.array([[1], [0.3], [0]])
+    zt, zb = _faces(stack)
+    z_all, a_all = np.concatenate((zt, zb)), tuple(stack.angles) * 2
+    z_ext, a_ext = extreme_faces(stack)
+    for z, a, out in ((z_all, a_all, []), (z_ext, a_ext, [])):
+        strain, stress = ply_stresses(PLY, a, e0, k, z)
+        idx = failure_indices(PLY, X, strain, stress)
+        out.append({c: v.max(axis=0) for c, v in idx.items()})
+        if len(z) == len(z_all):
+            every = out[0]
+        else:
+            ext = out[0]
+    for c in every:
+        assert ext[c] == pytest.approx(every[c], rel=1e-12)

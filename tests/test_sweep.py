@@ -290,3 +290,66 @@ def test_statistics_and_rank_correlation():
     x, noise = rng.uniform(1, 2, 200), rng.uniform(0, 1, 200)
     ranked = sensitivity({"noise": noise, "x": x}, np.exp(3 * x) + 0.01 * noise)
     assert ranked[0]["parameter"] == "x" and ranked[0]["spearman"] == pytest.approx(1.0)
+
+
+@pytest.mark.slow
+def test_monte_carlo_of_the_long_beam_under_a_minute_with_medians_of_the_deterministic_runs(tmp_path):
+    """Done-when of issue 13: 1000 runs of paper-long-beam under the rubber-ball law (α's drawn from
+    the fitted covariance of the built-in series, V uniform in 1000–5000 in/s) finish locally in under
+    a minute, and the median peak strains equal those of direct stepping at the median velocity with
+    the fitted mean α's (peak strain is monotone in V and the α's scatter by < 1 %)."""
+    from softimpact.input.beam_case import beam_problem
+    from softimpact.input.toml import load_toml, locate
+    from softimpact.workflows.beam_impact import BeamModel
+
+    r = CliRunner().invoke(main, ["fit", "paper-rubber-series", "--out", str(tmp_path / "fit"), "--no-figures"])
+    assert r.exit_code == 0, r.output
+    spec = """
+[sweep]
+case = "paper-long-beam"
+method = "monte-carlo"
+runs = 1000
+seed = 7
+chunk = 100
+outputs = ["peak_force_N", "strain_g1.peak", "strain_g2.peak"]
+[[sweep.parameter]]
+key = "load.history"
+value = { shape = "empirical", projectile = "rubber-1/2in", velocity = "1166 in/s" }
+[[sweep.parameter]]
+key = "load.history.velocity"
+distribution = { uniform = ["1000 in/s", "5000 in/s"] }
+[[sweep.parameter]]
+key = "load.history"
+from = "fit/scaling.json"
+group = "0.5 in"
+"""
+    (tmp_path / "mc.toml").write_text(spec)
+    t0 = time.perf_counter()
+    r = CliRunner().invoke(main, ["sweep", str(tmp_path / "mc.toml"), "--out", str(tmp_path / "out"), "--no-figures"])
+    elapsed = time.perf_counter() - t0
+    assert r.exit_code == 0, r.output
+    assert elapsed < 60, f"{elapsed:.1f} s"
+    t = _table(tmp_path / "out")
+    fit = json.loads((tmp_path / "fit" / "scaling.json").read_text())["groups"]["0.5 in"]
+    data = load_toml(locate("paper-long-beam"))
+    V = float(np.median(t["load.history.velocity"]))
+    data["load"]["history"] = {"shape": "empirical", "projectile": "rubber-1/2in", "velocity": f"{V!r} m/s"}
+    data["load"]["history"].update({f"alpha{i}": fit[f"alpha{i}"]["value"] for i in range(1, 5)})
+    ref = BeamModel(beam_problem(data)).direct(energy=False)
+    for g, eps in zip(("g1", "g2"), ref.strain):
+        assert float(np.median(t[f"strain_{g}.peak"])) == pytest.approx(eps[np.argmax(np.abs(eps))], rel=5e-3)
+
+
+def test_convolve_with_cached_spectrum_equals_respond():
+    """The engine's cached-spectrum convolution equals its FFT convolution (and so direct stepping)."""
+    import tomllib
+
+    from softimpact.input.beam_case import beam_problem
+    from softimpact.workflows.beam_impact import BeamModel
+
+    model = BeamModel(beam_problem(tomllib.loads(CASE)))
+    F = model.force_samples()
+    loads = model.nodal_loads(F)
+    e = model.engine()
+    assert e.convolve(loads) == pytest.approx(e.respond(loads), rel=1e-9, abs=1e-12 * np.abs(e.respond(loads)).max())
+    assert e.convolve(0.5 * loads) == pytest.approx(0.5 * e.respond(loads), rel=1e-9, abs=1e-12 * np.abs(e.respond(loads)).max())

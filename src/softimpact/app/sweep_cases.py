@@ -8,8 +8,9 @@ An adapter (see :class:`CaseAdapter`) tells the sweep
   expensive part (mesh, factorisation, impulse responses): runs are grouped by it;
 - ``prepare(data, base, runs)``: that expensive part, built once per group and
   sent to the workers (so it must pickle);
-- ``run(prepared, data, base)``: one run → a nested dict of outputs (the
-  ``summary.json`` keys of the case's command, plus sweep extras);
+- ``run(prepared, data, base, outputs)``: one run → a nested dict of outputs
+  (the ``summary.json`` keys of the case's command, plus sweep extras), which
+  may skip work none of the dotted ``outputs`` asked for;
 - ``output_keys(problem)``: the dotted output names a spec may ask for;
 - ``expand(data, key)``: make ``key`` settable (e.g. a catalogue name turned
   into its inline table before one of its properties is drawn).
@@ -41,7 +42,7 @@ class CaseAdapter(Protocol):
     def problem(self, data: dict, base: Path): ...
     def structure(self, data: dict) -> str: ...
     def prepare(self, data: dict, base: Path, runs: int): ...
-    def run(self, prepared, data: dict, base: Path) -> dict: ...
+    def run(self, prepared, data: dict, base: Path, outputs: tuple[str, ...]) -> dict: ...
     def output_keys(self, problem) -> tuple[str, ...]: ...
     def expand(self, data: dict, key: str) -> None: ...
 
@@ -100,10 +101,11 @@ class BeamCase:
             model._engine.stepper = None
         return model
 
-    def run(self, prepared, data, base):
+    def run(self, prepared, data, base, outputs=()):
         from ..input.beam_case import read_history
         from ..input.toml import Table
         from ..models.failure import STRENGTHS
+        from ..workflows.beam_impact import BeamResult
         from ..workflows.damage import beam_damage
 
         model = prepared
@@ -116,7 +118,12 @@ class BeamCase:
             pulse = read_history(load, "history", base)
             with naming({"time_step": "solver.time_step", "history": "load.history"}):
                 problem = dataclasses.replace(model.problem, load=dataclasses.replace(model.problem.load, history=pulse))
-            result = model.respond(pulse)
+            F = model.force_samples(pulse)
+            if F[0] != 0.0:
+                raise InputError("the force must be zero at first contact (t = 0)", "history")
+            y = model.engine().convolve(model.nodal_loads(F))
+            ng = len(problem.gauges)
+            result = BeamResult(problem, problem.solver.times(), F, y[0 : 2 * ng : 2], 0.5 * (y[0 : 2 * ng : 2] - y[1 : 2 * ng : 2]), y[2 * ng])
         t, F = result.time, result.force
         out = {
             "peak_force_N": float(F.max()),
@@ -134,7 +141,8 @@ class BeamCase:
             }
             out[f"strain_{g.name}"] = {"peak": float(eps[k]), "peak_abs": float(abs(eps[k]))}
         stack = problem.beam.stack
-        if stack is not None and stack.ply.name in STRENGTHS and hasattr(stack, "angles"):
+        wanted = not outputs or any(o.startswith("damage.") for o in outputs)
+        if wanted and stack is not None and stack.ply.name in STRENGTHS and hasattr(stack, "angles"):
             other = result.strain - 2 * result.bending
             dmg = beam_damage(stack, STRENGTHS[stack.ply.name], problem.beam.plane, result.strain, other, [g.surface for g in problem.gauges], F)
             out["damage"] = dmg.peaks()
@@ -186,7 +194,7 @@ class BarCase:
     def prepare(self, data, base, runs):
         return None
 
-    def run(self, prepared, data, base):
+    def run(self, prepared, data, base, outputs=()):
         from ..output.bar import bar_summary
         from ..workflows.bar_impact import simulate_impact
 

@@ -5,12 +5,14 @@ At a gauge section the plane model gives the axial strain on both faces; the
 section is taken as CLT kinematics (ε_x linear through the thickness between
 the two faces, the plane model's own assumption away from the load), with
 ε_y = 0 across the width for plane strain or N_y = M_y = 0 for plane stress.
-Each ply's stresses at its top and bottom faces then give the indices of
-:mod:`softimpact.models.failure`; a section's index is the worst ply's.
+Each ply's stresses at its faces then give the indices of
+:mod:`softimpact.models.failure`; a section's index is the worst ply's (found at
+the extreme faces of each fibre angle, :func:`extreme_faces`).
 """
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -19,7 +21,7 @@ from ..errors import InputError
 from ..models.failure import CRITERIA, PlyStrength, davies_zhang_force, failure_indices, ply_stresses
 from ..models.laminate import abd, engineering_constants
 
-__all__ = ["DamageResult", "section_strains", "beam_damage"]
+__all__ = ["DamageResult", "section_strains", "extreme_faces", "beam_damage"]
 
 
 @dataclass(frozen=True)
@@ -54,16 +56,31 @@ def section_strains(stack, plane: str, top: np.ndarray, bottom: np.ndarray) -> t
     return e0, k
 
 
+def extreme_faces(stack) -> tuple[np.ndarray, tuple]:
+    """Heights [m] and angles of the highest and lowest ply face of each fibre angle.
+
+    Along z the strains are affine, so any index convex in the ply stresses (maximum
+    strain, Tsai–Wu's 1/R: gauge functions of convex envelopes) is largest at the
+    extreme faces of the plies of one angle; Hashin's modes are convex on either side
+    of σ = 0 and continuous there when τ12 = 0 (0°/90° plies in a beam), so for them too.
+    Two points per angle instead of two per ply.
+    """
+    t, h = stack.ply.thickness, stack.thickness
+    tops = h / 2 - t * np.arange(len(stack.angles))
+    z, angles = [], []
+    for a in dict.fromkeys(stack.angles):
+        mine = tops[np.asarray(stack.angles) == a]
+        z += [mine.max(), mine.min() - t]
+        angles += [a, a]
+    return np.array(z), tuple(angles)
+
+
 def beam_damage(stack, strength: PlyStrength, plane: str, face: np.ndarray, other: np.ndarray, surfaces, force: np.ndarray) -> DamageResult:
     """Indices at the gauge sections; ``face``/``other`` (n_gauges, n_t) the axial strain on the
     gauge's face and the opposite one, ``surfaces`` each gauge's face, ``force`` (n_t,) [N]."""
     if not hasattr(stack, "angles"):
         raise InputError("damage screening needs a layup (ply stacking), not ply fractions", "stack")
-    t = stack.ply.thickness
-    h = stack.thickness
-    tops = h / 2 - t * np.arange(len(stack.angles))
-    z = np.concatenate((tops, tops - t))
-    angles = tuple(stack.angles) * 2
+    z, angles = extreme_faces(stack)
     ply = {c: np.zeros(face.shape) for c in CRITERIA}
     for g, surface in enumerate(surfaces):
         top, bottom = (other[g], face[g]) if surface == "bottom" else (face[g], other[g])
@@ -72,6 +89,12 @@ def beam_damage(stack, strength: PlyStrength, plane: str, face: np.ndarray, othe
         idx = failure_indices(stack.ply, strength, strain, stress)
         for c in CRITERIA:
             ply[c][g] = idx[c].max(axis=0)
-    ec = engineering_constants(stack.effective())
-    pc = davies_zhang_force(ec["E1"], ec["nu12"], h, strength.GIIc)
+    pc = delamination_force(stack, strength.GIIc)
     return DamageResult(ply, np.asarray(force, float) / pc, pc)
+
+
+@functools.lru_cache(maxsize=64)  # pure function of frozen inputs; a sweep asks again for every run
+def delamination_force(stack, GIIc: float) -> float:
+    """Davies–Zhang threshold [N] of the laminate, with its smeared in-plane E1 and ν12."""
+    ec = engineering_constants(stack.effective())
+    return davies_zhang_force(ec["E1"], ec["nu12"], stack.thickness, GIIc)
