@@ -458,6 +458,7 @@ def paper_thresholds(draws: int = 4, levels: int = 10, system: str = "in-lbf-s")
     fit = scaling_summary(fit_series(reduce_series(load_series("paper-rubber-series"))))
     rows = []
     for beam in PAPER_BEAMS:
+        prepared = None  # one model and one set of impulse responses per beam, for both balls
         for proj, group in PAPER_PROJECTILES.items():
             data = {
                 "sweep": {
@@ -476,7 +477,10 @@ def paper_thresholds(draws: int = 4, levels: int = 10, system: str = "in-lbf-s")
             mean, cov = scaling_covariance(fit, group)
             spec = dataclasses.replace(spec, parameters=spec.parameters + (Scaling("load.history", mean, cov, f"paper-rubber-series:{group}"),))
             plan = plan_sweep(spec)
-            done, _ = execute(plan, None, 0)
+            base = str(spec.case_path.parent)
+            if prepared is None:
+                prepared = prepare_group(plan.kind, [plan.chunks[0].items[0][1]], base, len(plan.runs))
+            done = {r["run"]: r for c in plan.chunks for r in run_chunk(plan.kind, prepared, c.items, base, spec.outputs)}
             for t in thresholds(plan, _table(plan, done)):
                 rows.append({**t, "levels": f"{beam.removeprefix('paper-').removesuffix('-beam')} beam, {proj}"})
     return rows
