@@ -405,6 +405,10 @@ def _threshold_figure(th: list[dict], system: str, title: str = "Threshold veloc
             lo.append(ys[-1] - t["threshold_velocity_p05_m_s"] * vu.factor)
             hi.append(t["threshold_velocity_p95_m_s"] * vu.factor - ys[-1])
         ax.errorbar(xs, ys, yerr=[np.nan_to_num(lo), np.nan_to_num(hi)], fmt="o", capsize=3, label=name)
+        for x, y in zip(xs, ys):
+            if not np.isfinite(y):  # no draw reached 1 within the swept velocities
+                ax.annotate("not reached", (x, 0.02), xycoords=("data", "axes fraction"), rotation=90, fontsize=7, ha="center")
+    ax.set_xlim(-0.5, len(labels) - 0.5)
     ax.set_xticks(range(len(labels)), [lab or "all runs" for lab in labels], fontsize=8)
     ax.set_ylabel(f"threshold velocity [{vu.label}]")
     ax.set_title(title, fontsize=10)
