@@ -353,3 +353,59 @@ def test_convolve_with_cached_spectrum_equals_respond():
     e = model.engine()
     assert e.convolve(loads) == pytest.approx(e.respond(loads), rel=1e-9, abs=1e-12 * np.abs(e.respond(loads)).max())
     assert e.convolve(0.5 * loads) == pytest.approx(0.5 * e.respond(loads), rel=1e-9, abs=1e-12 * np.abs(e.respond(loads)).max())
+
+
+BAR_SPEC = """
+[sweep]
+case = "paper-calibration"
+method = "grid"
+outputs = ["peak_force_N", "contact_duration_s"]
+[[sweep.parameter]]
+key = "projectile.velocity"
+values = ["40 in/s", "80 in/s"]
+[[sweep.parameter]]
+key = "solver.duration"
+value = "120 us"
+[[sweep.parameter]]
+key = "output.snapshots"
+value = ["60 us"]
+"""
+
+
+def test_bar_cases_sweep_through_their_adapter(tmp_path):
+    """A bar case sweeps too (each run its own nonlinear contact run): the rows equal the bar
+    workflow run on the case at each velocity."""
+    from softimpact.input.bar_case import bar_problem
+    from softimpact.input.toml import load_toml, locate
+    from softimpact.workflows.bar_impact import simulate_impact
+
+    (tmp_path / "spec.toml").write_text(BAR_SPEC)
+    out = tmp_path / "out"
+    r = CliRunner().invoke(main, ["sweep", str(tmp_path / "spec.toml"), "--out", str(out), "--workers", "0", "--no-figures"])
+    assert r.exit_code == 0, r.output
+    t = _table(out)
+    data = load_toml(locate("paper-calibration"))
+    data["solver"]["duration"] = "120 us"
+    data["output"]["snapshots"] = ["60 us"]
+    for k, v in enumerate((40, 80)):
+        data["projectile"]["velocity"] = f"{v} in/s"
+        ref = simulate_impact(bar_problem(data))
+        assert t["peak_force_N"][k] == pytest.approx(ref.peak_force, rel=1e-12)
+        assert t["contact_duration_s"][k] == pytest.approx(ref.contact_duration, rel=1e-12)
+
+
+@pytest.mark.parametrize(
+    "law, check",
+    [
+        ('normal = ["3000 in/s", "200 in/s"]', lambda v: (np.mean(v), np.std(v)) == pytest.approx((3000, 200), rel=0.05)),
+        ('uniform = ["1000 in/s", "2000 in/s"]', lambda v: v.min() >= 1000 and v.max() <= 2000 and np.mean(v) == pytest.approx(1500, rel=0.02)),
+        ('lognormal = ["2000 in/s", 0.2]', lambda v: (np.median(v), np.std(np.log(v))) == pytest.approx((2000, 0.2), rel=0.05)),
+    ],
+)
+def test_distributions(tmp_path, law, check):
+    """Draws follow the named law: normal [mean, sd], uniform [low, high], lognormal [median, sigma of ln]."""
+    spec = GRID.replace('method = "grid"', 'method = "monte-carlo"\nruns = 2000\nseed = 11').replace(
+        'values = ["1000 in/s", "3000 in/s", "5000 in/s"]', f"distribution = {{ {law} }}"
+    )
+    v = np.array([r.row["load.history.velocity"] for r in _spec_object(tmp_path, spec).runs()]) / INCH
+    assert check(v)
