@@ -212,7 +212,7 @@ def _resume_spec():
 def test_killed_sweep_resumes_and_computes_every_run_once(tmp_path):
     """A sweep killed half-way (SIGKILL) and started again keeps its checkpointed chunks untouched,
     computes only the rest, and ends with the table of an uninterrupted sweep."""
-    path = _write(tmp_path, _resume_spec().replace("runs = 200", "runs = 60"))
+    path = _write(tmp_path, _resume_spec().replace("runs = 200", "runs = 30"))
     out = tmp_path / "out"
     cmd = [os.path.join(os.path.dirname(sys.executable), "softimpact"), "sweep", str(path), "--out", str(out), "--workers", "0", "--no-figures"]
     proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
@@ -220,7 +220,7 @@ def test_killed_sweep_resumes_and_computes_every_run_once(tmp_path):
     folder = None
     while time.time() < deadline:
         found = list((out / "checkpoints").glob("*/chunk-*.json")) if (out / "checkpoints").exists() else []
-        if len(found) >= 8:
+        if len(found) >= 5:
             folder = found[0].parent
             break
         time.sleep(0.05)
@@ -229,13 +229,13 @@ def test_killed_sweep_resumes_and_computes_every_run_once(tmp_path):
     assert folder is not None, "no checkpoint appeared"
     before = {p.name: p.stat().st_mtime_ns for p in folder.glob("chunk-*.json")}
     saved = sum(len(json.loads(p.read_text())) for p in folder.glob("chunk-*.json"))
-    assert 0 < saved < 60
+    assert 0 < saved < 30
     done = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr
     summary = json.loads((out / "summary.json").read_text())
-    assert summary["from_checkpoints"] == saved and summary["computed_now"] == 60 - saved
+    assert summary["from_checkpoints"] == saved and summary["computed_now"] == 30 - saved
     after = {p.name: p.stat().st_mtime_ns for p in folder.glob("chunk-*.json")}
-    assert sum(len(json.loads(p.read_text())) for p in folder.glob("chunk-*.json")) == 60
+    assert sum(len(json.loads(p.read_text())) for p in folder.glob("chunk-*.json")) == 30
     assert all(after[k] == v for k, v in before.items())
     ref = tmp_path / "ref"
     r = CliRunner().invoke(main, ["sweep", str(path), "--out", str(ref), "--workers", "0", "--no-figures"])
