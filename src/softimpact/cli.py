@@ -269,6 +269,26 @@ def converge_cmd(case, levels, ratio, history, out, figures):
     _run(converge, out, case=case, levels=levels, ratio=ratio, history=history, figures=figures)
 
 
+@main.command("sweep", short_help="Grids and Monte Carlo of a case, local or on Dask.")
+@click.argument("spec")
+@click.option("--workers", type=int, default=None, help="Local Dask worker processes (default: the machine's cores; 0: a plain loop, no Dask).")
+@click.option("--scheduler", default=None, help="Address of a running Dask scheduler (tcp://host:8786) to run on instead.")
+@_out_option("sweep")
+@_figures_option
+@_guarded
+def sweep_cmd(spec, workers, scheduler, out, figures):
+    """Runs of a case varied as the SPEC file says (grid, Monte Carlo, Latin hypercube).
+
+    Writes runs.parquet (a row per run), summary.json (statistics, failures, rank
+    correlations) and, for damage outputs against velocity, thresholds.csv and
+    thresholds.png. Finished chunks are checkpointed in OUT/checkpoints: the same
+    command started again resumes where it stopped.
+    """
+    from .app.sweep import sweep
+
+    _run(sweep, out, spec=spec, out_dir=out, workers=workers, scheduler=scheduler, figures=figures)
+
+
 @main.command("reduce", short_help="Bar strain records -> force histories (Fig 7).")
 @click.argument("series")
 @_out_option("reduce")

@@ -30,6 +30,7 @@ from .bar import gauge_lag, run_bar
 from .calibrate import calibrate_tests, calibration_model, comparison, series_fits, start_pulse
 from .converge import STUDIES, study_case
 from .series import fit_series, reduce_series
+from .sweep import threshold_section
 
 __all__ = ["paper", "NOTES"]
 
@@ -194,6 +195,7 @@ def paper(figures: bool = True, progress: Progress = no_progress) -> Outcome:
         ("laminated beams (Figs 16-22)", beams),
         ("calibration, Tables II and III (Figs 23-25)", calibrations),
         ("discretisation error of the paper's meshes", discretisation),
+        ("damage thresholds (sweep)", lambda: sections.append(threshold_section(figures, files))),
     ]
     for k, (label, step) in enumerate(steps):
         progress(k, len(steps), label)

@@ -13,7 +13,7 @@ from pathlib import Path
 from .. import units
 from ..errors import InputError
 from ..fem.plane import SUPPORTS
-from ..models.empirical import PRESETS, PROJECTILES
+from ..models.empirical import PRESETS, PROJECTILES, ScalingLaw
 from ..models.laminate import PLANES, PLIES, Blend, Ply, Stack, parse_layup
 from ..models.materials import Material
 from ..models.pulses import SkewedPulse, TabulatedPulse
@@ -70,6 +70,10 @@ def read_history(tbl: Table, name: str, base: Path):
         proj = h.string("projectile", choices=tuple(PROJECTILES))
         P = PROJECTILES[proj]
         law = PRESETS[h.string("constants", P.law, choices=tuple(PRESETS))]
+        alphas = [f"alpha{i}" for i in range(1, 5)]
+        if any(a in h for a in alphas):  # the preset's α's, some replaced (sweeps draw them)
+            with naming({a: h.key(a) for a in alphas}):
+                law = ScalingLaw(*(h.number(a, getattr(law, a)) for a in alphas), name=f"{law.name} (alphas replaced)", source=h.path)
         pulse = law.pulse(P.mass, P.diameter, h.quantity("velocity", "velocity"))
     h.done()
     return pulse

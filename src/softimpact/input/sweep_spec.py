@@ -1,0 +1,438 @@
+"""Sweep specs (``softimpact sweep``): TOML → :class:`SweepSpec`, and the runs it asks for.
+
+A spec names a base case (file or built-in name), a method, the outputs to keep
+and the parameters to vary, each by the dotted path of a case key::
+
+    [sweep]
+    case = "paper-long-beam"
+    method = "monte-carlo"              # grid | monte-carlo | latin-hypercube
+    runs = 1000                         # draws (random methods)
+    seed = 1
+    outputs = ["peak_force_N", "strain_g1.peak"]
+    [[sweep.parameter]]
+    key = "load.history"                # a whole table replaced ...
+    value = { shape = "empirical", projectile = "rubber-1/2in", velocity = "1166 in/s" }
+    [[sweep.parameter]]
+    key = "load.history.velocity"       # ... or one key: values | range | distribution
+    distribution = { uniform = ["1000 in/s", "5000 in/s"] }
+    [[sweep.parameter]]
+    key = "load.history"                # the α's of a scaling.json, with their covariance
+    from = "out/fit/scaling.json"
+
+``values`` and ``range = [lo, hi, n]`` are levels: crossed as a grid with each
+other and, in the random methods, with the draws (every level combination gets
+the same ``runs`` draws: common random numbers, so threshold curves are
+smooth). ``distribution`` is ``normal = [mean, sd]``, ``uniform = [lo, hi]`` or
+``lognormal = [median, sigma of ln]``. Quantities keep their units in the spec
+and are written back to the case in SI; the run table holds SI numbers.
+"""
+
+from __future__ import annotations
+
+import copy
+import hashlib
+import itertools
+import json
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .. import units
+from ..errors import InputError
+from .toml import Table, load_toml, locate
+
+__all__ = [
+    "METHODS",
+    "DISTRIBUTIONS",
+    "Level",
+    "Drawn",
+    "Scaling",
+    "Fixed",
+    "SweepSpec",
+    "Run",
+    "load_sweep_spec",
+    "read_sweep_spec",
+    "scaling_covariance",
+    "set_dotted",
+    "get_dotted",
+    "quantity",
+]
+
+METHODS = ("grid", "monte-carlo", "latin-hypercube")
+DISTRIBUTIONS = ("normal", "uniform", "lognormal")
+_KINDS = ("length", "mass", "time", "velocity", "stress", "density", "force", "impulse", "energy", "frequency")
+_SI_UNIT = {
+    "length": "m",
+    "mass": "kg",
+    "time": "s",
+    "velocity": "m/s",
+    "stress": "Pa",
+    "density": "kg/m^3",
+    "force": "N",
+    "impulse": "N*s",
+    "energy": "J",
+    "frequency": "Hz",
+}
+
+
+def quantity(value, key: str) -> tuple[float, str]:
+    """A spec value as (SI number, SI unit text; "" for a plain number)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+        raise InputError(f"{key}: expected a number or a quantity with a unit, got {value!r}")
+    if isinstance(value, (int, float)):
+        return units.parse(value, "dimensionless", key), ""
+    for kind in _KINDS:
+        try:
+            return units.parse(value, kind, key), _SI_UNIT[kind]
+        except InputError:
+            continue
+    return units.parse(value, "dimensionless", key), ""
+
+
+def _written(x: float, unit: str):
+    """An SI number as the case value that reads back as it."""
+    return float(x) if not unit else f"{float(x)!r} {unit}"
+
+
+def get_dotted(data: dict, key: str):
+    node = data
+    for part in key.split("."):
+        if not isinstance(node, dict) or part not in node:
+            return None
+        node = node[part]
+    return node
+
+
+def set_dotted(data: dict, key: str, value) -> None:
+    """Set ``key`` (dotted) in nested dicts, creating tables on the way."""
+    parts = key.split(".")
+    node = data
+    for i, part in enumerate(parts[:-1]):
+        nxt = node.get(part)
+        if not isinstance(nxt, dict):
+            if nxt is not None:
+                raise InputError(f"{'.'.join(parts[: i + 1])}: is {nxt!r}, not a table, so {key} cannot be set")
+            nxt = node[part] = {}
+        node = nxt
+    node[parts[-1]] = value
+
+
+@dataclass(frozen=True)
+class Fixed:
+    """A key set to one value in every run (a whole table, or a scalar)."""
+
+    key: str
+    value: object
+
+    columns = ()
+
+
+@dataclass(frozen=True)
+class Level:
+    """A key taking each of ``values`` (case values) in turn; ``si`` for the run table."""
+
+    key: str
+    values: tuple
+    si: tuple
+
+    @property
+    def columns(self):
+        return (self.key,)
+
+
+@dataclass(frozen=True)
+class Drawn:
+    """A key drawn from ``law`` (normal|uniform|lognormal) with parameters (a, b) in SI."""
+
+    key: str
+    law: str
+    a: float
+    b: float
+    unit: str
+
+    columns = property(lambda self: (self.key,))
+    dims = 1
+
+    def transform(self, u: np.ndarray) -> np.ndarray:
+        """Uniforms u ∈ (0, 1) → draws (inverse CDF), shape of ``u``."""
+        from scipy.stats import norm
+
+        if self.law == "uniform":
+            return self.a + (self.b - self.a) * u
+        if self.law == "normal":
+            return self.a + self.b * norm.ppf(u)
+        return self.a * np.exp(self.b * norm.ppf(u))
+
+
+@dataclass(frozen=True)
+class Scaling:
+    """α1–α4 of a scaling.json as a joint normal (mean, covariance), set as ``key``.alpha1..4."""
+
+    key: str
+    mean: tuple[float, float, float, float]
+    covariance: tuple
+    source: str
+
+    dims = 4
+
+    @property
+    def columns(self):
+        return tuple(f"{self.key}.alpha{i}" for i in range(1, 5))
+
+    def transform(self, u: np.ndarray) -> np.ndarray:
+        """Uniforms (n, 4) → correlated normal draws (n, 4) through the Cholesky factor."""
+        from scipy.stats import norm
+
+        C = np.asarray(self.covariance, float)
+        L = np.linalg.cholesky(C + 1e-300 * np.eye(4)) if np.any(C) else np.zeros((4, 4))
+        return np.asarray(self.mean) + norm.ppf(u) @ L.T
+
+
+@dataclass(frozen=True)
+class Run:
+    """One run: its number, the case keys it sets (in order) and its row of varied values (SI)."""
+
+    index: int
+    sets: tuple[tuple[str, object], ...]
+    row: dict
+    draw: int = 0  # which of the random draws (shared across level combinations)
+
+
+@dataclass(frozen=True)
+class SweepSpec:
+    """A parsed sweep spec; :meth:`runs` lists the runs it asks for."""
+
+    path: Path
+    case_path: Path
+    case_data: dict
+    method: str
+    draws: int
+    seed: int
+    outputs: tuple[str, ...]
+    parameters: tuple
+    chunk: int
+    fingerprint: str
+
+    def runs(self, central: bool = False) -> list[Run]:
+        """The runs; with ``central``, one per level combination with every draw at its median."""
+        levels = [p for p in self.parameters if isinstance(p, Level)]
+        random = [p for p in self.parameters if isinstance(p, (Drawn, Scaling))]
+        draws = self._draws(random, central)
+        out = []
+        combos = list(itertools.product(*[range(len(p.values)) for p in levels]))
+        for combo in combos:
+            for d in range(len(draws) if random else 1):
+                sets, row = [], {}
+                pick = dict(zip((id(p) for p in levels), combo))
+                col = 0
+                for p in self.parameters:
+                    if isinstance(p, Fixed):
+                        sets.append((p.key, p.value))
+                    elif isinstance(p, Level):
+                        j = pick[id(p)]
+                        sets.append((p.key, p.values[j]))
+                        row[p.key] = p.si[j]
+                    elif isinstance(p, Drawn):
+                        x = float(draws[d, col])
+                        col += 1
+                        sets.append((p.key, _written(x, p.unit)))
+                        row[p.key] = x
+                    else:
+                        for name, x in zip(p.columns, draws[d, col : col + 4]):
+                            sets.append((name, float(x)))
+                            row[name] = float(x)
+                        col += 4
+                out.append(Run(len(out), tuple(sets), row, d))
+        return out
+
+    def _draws(self, random, central: bool = False) -> np.ndarray:
+        dims = sum(p.dims for p in random)
+        if not random:
+            return np.zeros((1, 0))
+        n = 1 if central else self.draws
+        if central:
+            u = np.full((1, dims), 0.5)
+        elif self.method == "latin-hypercube":
+            from scipy.stats import qmc
+
+            u = qmc.LatinHypercube(d=dims, seed=np.random.default_rng(self.seed)).random(self.draws)
+        else:
+            u = np.random.default_rng(self.seed).random((self.draws, dims))
+        u = np.clip(u, 1e-12, 1 - 1e-12)
+        cols, k = [], 0
+        for p in random:
+            x = p.transform(u[:, k : k + p.dims])
+            cols.append(x.reshape(n, p.dims))
+            k += p.dims
+        return np.hstack(cols)
+
+    def case_for(self, run: Run, expand=None) -> dict:
+        """The base case with the run's keys set (``expand(data, key)`` first makes a key settable)."""
+        data = copy.deepcopy(self.case_data)
+        for key, value in run.sets:
+            if expand is not None:
+                expand(data, key)
+            set_dotted(data, key, copy.deepcopy(value))
+        return data
+
+
+def _levels(p: Table, key: str) -> Level:
+    if "values" in p:
+        vals = p.raw("values")
+        if not isinstance(vals, list) or not vals:
+            raise InputError(f"{p.key('values')}: expected a non-empty list, got {vals!r}")
+        si = []
+        for i, v in enumerate(vals):
+            if isinstance(v, dict):
+                si.append(json.dumps(v, sort_keys=True))  # a whole table: its text in the run table
+            elif isinstance(v, str) and not _is_quantity(v):
+                si.append(v)  # a name (projectile, ply, shape)
+            else:
+                si.append(quantity(v, f"{p.key('values')}[{i}]")[0])
+        return Level(key, tuple(vals), tuple(si))
+    r = p.raw("range")
+    if not (isinstance(r, list) and len(r) == 3 and isinstance(r[2], int) and not isinstance(r[2], bool) and r[2] >= 2):
+        raise InputError(f"{p.key('range')}: expected [low, high, count >= 2], got {r!r}")
+    (lo, ulo), (hi, uhi) = quantity(r[0], p.key("range")), quantity(r[1], p.key("range"))
+    if ulo != uhi:
+        raise InputError(f"{p.key('range')}: low and high differ in kind ({r[0]!r}, {r[1]!r})")
+    xs = np.linspace(lo, hi, r[2])
+    return Level(key, tuple(_written(x, ulo) for x in xs), tuple(float(x) for x in xs))
+
+
+def _is_quantity(v) -> bool:
+    if not isinstance(v, str):
+        return False
+    try:
+        quantity(v, "")
+        return True
+    except InputError:
+        return False
+
+
+def _drawn(p: Table, key: str) -> Drawn:
+    d = p.raw("distribution")
+    if not (isinstance(d, dict) and len(d) == 1):
+        raise InputError(f"{p.key('distribution')}: expected one of {{ {' | '.join(f'{k} = [a, b]' for k in DISTRIBUTIONS)} }}, got {d!r}")
+    ((law, args),) = d.items()
+    where = f"{p.key('distribution')}.{law}"
+    if law not in DISTRIBUTIONS:
+        raise InputError(f"{p.key('distribution')}: {law!r} is not one of {', '.join(DISTRIBUTIONS)}")
+    if not (isinstance(args, list) and len(args) == 2):
+        raise InputError(f"{where}: expected two parameters, got {args!r}")
+    a, ua = quantity(args[0], where)
+    if law == "lognormal":
+        b, ub = quantity(args[1], where)
+        if ub or not b > 0 or not a > 0:
+            raise InputError(f"{where}: expected [median > 0, sigma of ln > 0 (a plain number)], got {args!r}")
+    else:
+        b, ub = quantity(args[1], where)
+        if ub != ua:
+            raise InputError(f"{where}: both parameters must be of one kind, got {args!r}")
+        if law == "normal" and not b > 0:
+            raise InputError(f"{where}: the standard deviation must be positive, got {args[1]!r}")
+        if law == "uniform" and not b > a:
+            raise InputError(f"{where}: expected [low, high] with high > low, got {args!r}")
+    return Drawn(key, law, a, b, ua)
+
+
+def scaling_covariance(data: dict, group: str = "pooled") -> tuple[tuple, tuple]:
+    """Mean and covariance of α1–α4 from the contents of a scaling.json.
+
+    Each α is a least-squares slope through the origin with a 95 % interval from
+    Student's t on n − 1 degrees of freedom, so its standard error is
+    ci_half/t(0.975, n − 1). The four slopes are fitted to the same tests, so
+    their errors correlate as their residuals do: ρ_jk = corr(r_j, r_k) over the
+    tests, and Cov(α_j, α_k) = ρ_jk·se_j·se_k. Raises KeyError/ValueError/TypeError
+    on a malformed file.
+    """
+    from scipy.stats import t
+
+    g = data["pooled"] if group == "pooled" else data["groups"][group]
+    mean = [float(g[f"alpha{i}"]["value"]) for i in range(1, 5)]
+    half = [0.5 * (float(g[f"alpha{i}"]["ci95"][1]) - float(g[f"alpha{i}"]["ci95"][0])) for i in range(1, 5)]
+    res = np.array([[float(r) for r in g[f"alpha{i}"]["residuals"]] for i in range(1, 5)])
+    n = res.shape[1]
+    if n < 3 or not all(math.isfinite(h) for h in half):
+        raise ValueError(f"group {group!r} has {n} tests; a covariance needs at least 3")
+    se = np.array(half) / float(t.ppf(0.975, n - 1))
+    rho = np.corrcoef(res) if np.all(res.std(axis=1) > 0) else np.eye(4)
+    return tuple(mean), tuple(map(tuple, rho * np.outer(se, se)))
+
+
+def _scaling(path: Path, group: str, where: str) -> tuple[tuple, tuple, str]:
+    try:
+        data = json.loads(Path(path).read_text(encoding="utf-8"))
+        mean, cov = scaling_covariance(data, group)
+    except OSError as exc:
+        raise InputError(f"{where}: cannot read {path} ({exc.strerror})") from None
+    except ValueError as exc:
+        raise InputError(f"{where}: {path}: {exc}") from None
+    except (KeyError, TypeError, IndexError, UnicodeDecodeError):
+        raise InputError(f"{where}: {path} is not a scaling.json with group {group!r}") from None
+    return mean, cov, f"{path}:{group}"
+
+
+def _parameter(p: Table, base: Path):
+    key = p.string("key")
+    if not key or any(not part for part in key.split(".")):
+        raise InputError(f"{p.key('key')}: expected a dotted case key such as 'load.history.velocity', got {key!r}")
+    given = [k for k in ("value", "values", "range", "distribution", "from") if k in p]
+    if len(given) != 1:
+        raise InputError(f"{p.path}: give exactly one of value, values, range, distribution, from (got {', '.join(given) or 'none'})")
+    kind = given[0]
+    if kind == "value":
+        out = Fixed(key, p.raw("value"))
+    elif kind in ("values", "range"):
+        out = _levels(p, key)
+    elif kind == "distribution":
+        out = _drawn(p, key)
+    else:
+        src = base / p.string("from")
+        group = p.string("group", "pooled")
+        out = Scaling(key, *_scaling(src, group, p.key("from")))
+    p.done()
+    return out
+
+
+def load_sweep_spec(spec: str) -> SweepSpec:
+    """Read and check a sweep spec file: every error is raised here, before any run."""
+    path = Path(spec)
+    if not path.is_file():
+        raise InputError(f"SPEC: {spec!r} is not a file")
+    return read_sweep_spec(load_toml(path), path.parent, path, path.read_bytes())
+
+
+def read_sweep_spec(data: dict, base: Path, path: Path | None = None, text: bytes = b"") -> SweepSpec:
+    """A parsed spec (TOML as a dict); ``base`` resolves relative files; ``text`` enters the fingerprint."""
+    top = Table(data)
+    s = top.table("sweep")
+    name = s.string("case")
+    case_path = base / name if (base / name).is_file() else locate(name)
+    method = s.string("method", "grid", choices=METHODS)
+    draws = s.integer("runs", 100) if method != "grid" else 1
+    seed = s.integer("seed", 1, minimum=0)
+    chunk = s.integer("chunk", 50)
+    outputs = s.raw("outputs")
+    if not (isinstance(outputs, list) and outputs and all(isinstance(o, str) and o for o in outputs)):
+        raise InputError(f"sweep.outputs: expected a non-empty list of summary keys, got {outputs!r}")
+    if len(set(outputs)) != len(outputs):
+        raise InputError("sweep.outputs: keys must be unique")
+    params = tuple(_parameter(p, base) for p in s.tables("parameter"))
+    if method == "grid" and any(isinstance(p, (Drawn, Scaling)) for p in params):
+        bad = next(i for i, p in enumerate(params) if isinstance(p, (Drawn, Scaling)))
+        raise InputError(f"sweep.parameter[{bad}]: draws need method = 'monte-carlo' or 'latin-hypercube' (method is 'grid')")
+    if method == "grid" and "runs" in s.data:
+        raise InputError("sweep.runs: only for the random methods (the grid's size is its levels')")
+    if not any(isinstance(p, (Level, Drawn, Scaling)) for p in params):
+        raise InputError("sweep.parameter: nothing varies (give values, range, distribution or from)")
+    s.done()
+    top.done()
+    h = hashlib.sha256(text or json.dumps(data, sort_keys=True, default=str).encode())
+    h.update(case_path.read_bytes())
+    for p in params:
+        if isinstance(p, Scaling):
+            h.update(repr(p.mean + p.covariance).encode())
+    return SweepSpec(path or base / "spec", case_path, load_toml(case_path), method, draws, seed, tuple(outputs), params, chunk, h.hexdigest()[:16])

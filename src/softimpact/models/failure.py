@@ -1,0 +1,130 @@
+"""Damage screening of laminates: ply stresses by classical lamination theory,
+first-ply failure indices and the Davies–Zhang delamination threshold.
+
+Axes as in :mod:`softimpact.models.laminate`: x along the beam, y across the
+width, z up from the mid-plane; ply material axes 1 (fibre), 2, 3. In-plane
+order (x, y, xy) / (1, 2, 12), engineering shear strains. Stresses in Pa.
+
+Every index is scaled so that 1 is failure by its criterion, and (except
+Hashin's quadratic modes, for which the square root is taken) it grows in
+proportion to the load: the threshold velocity is where it first reaches 1.
+
+- maximum strain: max over ε1, ε2, γ12 of the strain over its allowable
+  (allowables X/E1, Y/E2, S/G12);
+- Tsai–Wu (1971): 1/R with R the strength ratio solving
+  a·R² + b·R = 1, a = F11σ1² + F22σ2² + F66τ² + 2F12σ1σ2, b = F1σ1 + F2σ2,
+  F12 = −½·sqrt(F11·F22);
+- Hashin (1980, plane stress): the largest of the fibre and matrix modes,
+  square-rooted;
+- Davies–Zhang (1995): delamination starts at the force
+  P_c = π·sqrt(8·E·h³·G_IIc / (9·(1 − ν²))) [N] for a quasi-isotropic plate of
+  thickness h; the index is F/P_c.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import InputError
+from .laminate import ply_stiffness, reduced_stiffness
+
+__all__ = ["CRITERIA", "PlyStrength", "STRENGTHS", "ply_stresses", "failure_indices", "davies_zhang_force"]
+
+CRITERIA = ("max_strain", "tsai_wu", "hashin")
+
+
+@dataclass(frozen=True)
+class PlyStrength:
+    """Strengths of a ply [Pa]: fibre tension/compression X_t, X_c, transverse Y_t, Y_c,
+    in-plane shear S12, transverse shear S23, and the mode-II toughness G_IIc [J/m²]."""
+
+    Xt: float
+    Xc: float
+    Yt: float
+    Yc: float
+    S12: float
+    S23: float
+    GIIc: float
+    source: str = "user input"
+
+    def __post_init__(self):
+        for k in ("Xt", "Xc", "Yt", "Yc", "S12", "S23", "GIIc"):
+            v = getattr(self, k)
+            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+                raise InputError(f"{k} must be positive, got {v!r}", k)
+
+
+STRENGTHS = {
+    # T300/5208 of Tsai & Hahn (1980), Table 1.5, the usual stand-in for T300/934 (same fibre,
+    # a 177 °C epoxy); G_IIc of a brittle 934-type epoxy laminate (docs/modelling-notes.md).
+    "T300/934": PlyStrength(1500e6, 1500e6, 40e6, 246e6, 68e6, 68e6, 500.0, "Tsai & Hahn 1980 (T300/5208); G_IIc 0.5 kJ/m² representative"),
+}
+
+
+def ply_stresses(ply, angles, midplane_strain, curvature, z) -> tuple[np.ndarray, np.ndarray]:
+    """Material-axis strains and stresses at heights ``z`` [m] of a laminate.
+
+    ``midplane_strain`` (ε_x0, ε_y0, γ_xy0) and ``curvature`` (κ_x, κ_y, κ_xy),
+    each shape (3,) or (3, n) for n instants; ``angles[k]`` is the fibre angle [°]
+    of the ply holding height ``z[k]``. CLT kinematics ε(z) = ε0 + z·κ and plane
+    stress in each ply: σ_12 = Q·ε_12 with Q the ply's reduced stiffness.
+    Returns (strain, stress), each shape (len(z), 3) or (len(z), 3, n).
+    """
+    e0, k = np.asarray(midplane_strain, float), np.asarray(curvature, float)
+    z = np.atleast_1d(np.asarray(z, float))
+    angles = np.asarray(angles, float)
+    Q = reduced_stiffness(ply_stiffness(ply))
+    zs = z.reshape((-1,) + (1,) * e0.ndim)
+    eps = e0[None] + zs * k[None]  # (nz, 3[, n]) laminate strains
+    strain = np.empty_like(eps)
+    for a in np.unique(angles):
+        t = math.radians(a)
+        c, s = math.cos(t), math.sin(t)
+        # Engineering strain transformation, laminate (x, y, xy) → ply (1, 2, 12).
+        Te = np.array([[c * c, s * s, c * s], [s * s, c * c, -c * s], [-2 * c * s, 2 * c * s, c * c - s * s]])
+        m = angles == a
+        strain[m] = np.einsum("ij,kj...->ki...", Te, eps[m])
+    stress = np.einsum("ij,kj...->ki...", Q, strain)
+    return strain, stress
+
+
+def failure_indices(ply, strength: PlyStrength, strain: np.ndarray, stress: np.ndarray) -> dict[str, np.ndarray]:
+    """Indices of :data:`CRITERIA` from ply strains and stresses of shape (..., 3, ...) with
+    (1, 2, 12) on axis ``-2`` if 3-D or axis 0 otherwise (as :func:`ply_stresses` returns them)."""
+    ax = 1 if stress.ndim >= 2 else 0
+    s1, s2, s6 = np.take(stress, 0, ax), np.take(stress, 1, ax), np.take(stress, 2, ax)
+    e1, e2, e6 = np.take(strain, 0, ax), np.take(strain, 1, ax), np.take(strain, 2, ax)
+    X = strength
+    Q = reduced_stiffness(ply_stiffness(ply))
+    # Allowable strains of the unidirectional ply loaded along one axis: X/E1, Y/E2, S/G12.
+    E1, E2 = 1 / np.linalg.inv(Q)[0, 0], 1 / np.linalg.inv(Q)[1, 1]
+    max_strain = np.maximum.reduce(
+        [
+            np.where(e1 >= 0, e1 / (X.Xt / E1), -e1 / (X.Xc / E1)),
+            np.where(e2 >= 0, e2 / (X.Yt / E2), -e2 / (X.Yc / E2)),
+            np.abs(e6) / (X.S12 / Q[2, 2]),
+        ]
+    )
+    F1, F2 = 1 / X.Xt - 1 / X.Xc, 1 / X.Yt - 1 / X.Yc
+    F11, F22, F66 = 1 / (X.Xt * X.Xc), 1 / (X.Yt * X.Yc), 1 / X.S12**2
+    F12 = -0.5 * math.sqrt(F11 * F22)
+    a = F11 * s1**2 + F22 * s2**2 + F66 * s6**2 + 2 * F12 * s1 * s2
+    b = F1 * s1 + F2 * s2
+    # 1/R where a·R² + b·R − 1 = 0, R > 0: 1/R = (b + sqrt(b² + 4a))/2 (no division by a = 0).
+    tsai_wu = 0.5 * (b + np.sqrt(b * b + 4 * a))
+    fibre = np.where(s1 >= 0, (s1 / X.Xt) ** 2 + (s6 / X.S12) ** 2, (s1 / X.Xc) ** 2)
+    matrix = np.where(
+        s2 >= 0,
+        (s2 / X.Yt) ** 2 + (s6 / X.S12) ** 2,
+        (s2 / (2 * X.S23)) ** 2 + ((X.Yc / (2 * X.S23)) ** 2 - 1) * s2 / X.Yc + (s6 / X.S12) ** 2,
+    )
+    hashin = np.sqrt(np.maximum(np.maximum(fibre, matrix), 0.0))
+    return {"max_strain": max_strain, "tsai_wu": tsai_wu, "hashin": hashin}
+
+
+def davies_zhang_force(E: float, nu: float, thickness: float, GIIc: float) -> float:
+    """Delamination threshold force [N], Davies & Zhang (1995): π·sqrt(8·E·h³·G_IIc/(9(1 − ν²)))."""
+    return math.pi * math.sqrt(8 * E * thickness**3 * GIIc / (9 * (1 - nu**2)))
