@@ -43,6 +43,30 @@ DIMENSIONS = {
 }
 
 
+def _import_pint():
+    """Import pint without its optional array integrations.
+
+    At import, pint looks for dask (and babel, uncertainties) and imports dask
+    whole if it is installed (about 0.15 s, for pint's dask-array support, which
+    units of a case file never need). The ``sweep`` extra installs dask, so the
+    lookup is made to miss for the duration of pint's import: a ``None`` entry
+    in ``sys.modules`` is how ``importlib.util.find_spec`` reports a module as
+    absent. The entry is removed afterwards, so dask imports normally later.
+    """
+    import sys
+
+    blocked = [name for name in ("dask",) if name not in sys.modules]
+    for name in blocked:
+        sys.modules[name] = None
+    try:
+        import pint
+    finally:
+        for name in blocked:
+            if sys.modules.get(name, 0) is None:
+                del sys.modules[name]
+    return pint
+
+
 @functools.cache
 def registry():
     """The package's single pint registry (built on first use, not at import).
@@ -52,8 +76,7 @@ def registry():
     """
     from importlib import resources
 
-    import pint
-
+    pint = _import_pint()
     ureg = pint.UnitRegistry(None)
     ureg.load_definitions(str(resources.files("softimpact") / "data" / "units.txt"))
     return ureg

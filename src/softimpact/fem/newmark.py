@@ -58,16 +58,20 @@ class BandedCholesky:
         np.add.at(ab, (bw + row[upper] - col[upper], col[upper]), coo.data[upper])
         self.factor = scipy.linalg.cholesky_banded(ab, lower=False)
         self.bandwidth = bw
+        (self._pbtrs,) = scipy.linalg.get_lapack_funcs(("pbtrs",), (self.factor,))
 
     @staticmethod
     def _bandwidth(row: np.ndarray, col: np.ndarray) -> int:
         return int(np.max(np.abs(row - col))) if row.size else 0
 
     def solve(self, rhs: np.ndarray) -> np.ndarray:
-        if self.identity:
-            return scipy.linalg.cho_solve_banded((self.factor, False), rhs, check_finite=False)
-        x = scipy.linalg.cho_solve_banded((self.factor, False), rhs[self.perm], check_finite=False)
-        return x[self.inverse_perm]
+        # LAPACK's banded Cholesky solve (dpbtrs) called directly: scipy's
+        # cho_solve_banded wraps it in checks that cost as much as the solve on small bands.
+        b = rhs if self.identity else rhs[self.perm]
+        x, info = self._pbtrs(self.factor, b, lower=0)
+        if info != 0:
+            raise np.linalg.LinAlgError(f"banded Cholesky solve failed (LAPACK info {info})")
+        return x if self.identity else x[self.inverse_perm]
 
 
 @dataclass(frozen=True)

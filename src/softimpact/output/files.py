@@ -47,11 +47,19 @@ def csv_text(columns: dict[str, np.ndarray]) -> str:
     lengths = {len(d) for d in data}
     if len(lengths) != 1:
         raise ValueError(f"columns of unequal length: {dict(zip(names, map(len, data)))}")
+    cells = [_column(d) for d in data]
     buf = io.StringIO()
     buf.write(",".join(names) + "\n")
-    for row in zip(*data):
-        buf.write(",".join(_cell(v) for v in row) + "\n")
+    for row in zip(*cells):
+        buf.write(",".join(row) + "\n")
     return buf.getvalue()
+
+
+def _column(d: np.ndarray) -> list[str]:
+    """The cells of one column: floats as the shortest repr that reads back exactly, NaN empty."""
+    if d.dtype.kind == "f":
+        return ["" if c == "nan" else c for c in map(repr, d.tolist())]
+    return [_cell(v) for v in d]
 
 
 def _cell(v) -> str:
