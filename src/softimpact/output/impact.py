@@ -73,6 +73,7 @@ def impact_columns(result) -> dict[str, np.ndarray]:
         "impactor_velocity_m_s": result.impactor_velocity,
         "impactor_displacement_m": result.impactor_displacement,
         "approach_m": result.approach,
+        "approach_rate_m_s": result.approach_rate,
         "contact_radius_m": result.contact_radius,
         "target_displacement_m": result.target_displacement,
     }
