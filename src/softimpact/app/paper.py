@@ -26,6 +26,7 @@ from ..workflows.calibration import Measured, calibrate
 from . import Outcome, Progress, no_progress
 from .bar import gauge_lag, run_bar
 from .calibrate import calibrate_tests, calibration_model, comparison, series_fits, start_pulse
+from .impact import question_section
 from .series import fit_series, reduce_series
 
 __all__ = ["paper", "NOTES"]
@@ -175,6 +176,7 @@ def paper(figures: bool = True, progress: Progress = no_progress) -> Outcome:
         ("rubber-ball series, Table I (Figs 7-15)", rubber_series),
         ("laminated beams (Figs 16-22)", beams),
         ("calibration, Tables II and III (Figs 23-25)", calibrations),
+        ("the paper's question: coupled impact from bar tests", lambda: sections.append(question_section(figures, files))),
     ]
     for k, (label, step) in enumerate(steps):
         progress(k, len(steps), label)

@@ -2,7 +2,7 @@
 
 Layout (SI): ``family`` (``"soft-projectile"``), ``form`` (the law in words),
 ``units``, ``d_ref_m``, ``parameters`` (``k_ref``, ``p``, ``c_ref``, ``q_k``,
-``q_c``, each with ``value`` and ``ci95_half_width``), ``fit`` (``cost`` and
+``q_c``, ``q_p``, each with ``value`` and ``ci95_half_width``), ``fit`` (``cost`` and
 ``rms_over_F0`` per test), and, when the closure was run, ``closure`` per test
 (measured and simulated F0, T, I and their relative errors).
 """
@@ -16,13 +16,16 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError
-from ..workflows.identification import IdentifiedLaw
+from ..workflows.identification import PARAMETERS, IdentifiedLaw
 from .files import json_text
 
 __all__ = ["FAMILY", "law_summary", "law_json", "read_law"]
 
 FAMILY = "soft-projectile"
-FORM = "F = (m*V^2/d)*k*(alpha/d)^p*(1 + c*alpha_dot/V) >= 0, k = k_ref*(d/d_ref)^q_k, c = c_ref*(d/d_ref)^q_c; contact radius a = sqrt(d*alpha)"
+FORM = (
+    "F = (m*V^2/d)*k*(alpha/d)^n*(1 + c*alpha_dot/V) >= 0, k = k_ref*(d/d_ref)^q_k, c = c_ref*(d/d_ref)^q_c, "
+    "n = p*(d/d_ref)^q_p; contact radius a = sqrt(d*alpha)"
+)
 
 
 def law_summary(law: IdentifiedLaw, test_names, closure=None, series: str = "") -> dict:
@@ -62,12 +65,14 @@ def read_law(path, argument: str = "contact.law_file") -> IdentifiedLaw:
         raise InputError(f"{argument}: cannot read {path} ({exc.strerror})") from None
     except (ValueError, UnicodeDecodeError):
         raise InputError(f"{argument}: {path} is not JSON (expected a law.json from `softimpact identify`)") from None
-    names = ("k_ref", "p", "c_ref", "q_k", "q_c")
+    names = PARAMETERS
     try:
         if data["family"] != FAMILY:
             raise InputError(f"{argument}: {path} holds a {data['family']!r} law; only {FAMILY!r} laws are known")
-        values = np.array([float(data["parameters"][n]["value"]) for n in names])
-        half = np.array([float(data["parameters"][n].get("ci95_half_width", math.nan)) for n in names])
+        pars = data["parameters"]
+        # q_p (the exponent's size scaling) came last: a law without it has q_p = 0
+        values = np.array([float(pars[n]["value"]) if n in pars or n != "q_p" else 0.0 for n in names])
+        half = np.array([float(pars[n].get("ci95_half_width", math.nan)) if n in pars else 0.0 for n in names])
         d_ref = float(data["d_ref_m"])
         fit = data.get("fit", {})
         rms = np.array([float(v) for v in fit.get("rms_over_F0", {}).values()])
