@@ -238,19 +238,3 @@ def test_reconstructed_approach_momentum(rubber):
     a = reconstruct_approach(tests[0], rod)
     I = np.sum(0.5 * (a.force[1:] + a.force[:-1])) * (a.time[1] - a.time[0])
     assert tests[0].mass * (tests[0].velocity - a.impactor_velocity[-1]) == pytest.approx(I, rel=1e-12)
-
-
-@pytest.mark.slow
-def test_identified_law_closes_on_rubber_series(rubber):
-    """One soft-projectile law, fitted and refined, reproduces F0, T and impulse of every 1/2-in test
-    within 5 %; the 3/8-in tests reach 7 % only (target 5 %: T +4.4 %, I up to −6.5 % measured)."""
-    from softimpact.workflows.identification import closure, identify, refine
-
-    tests, rod = rubber
-    law, _ = identify(tests, rod)
-    law = refine(law, tests, rod)
-    assert np.all(np.isfinite(law.half_widths))
-    err = np.abs(closure(law, tests, rod).errors)
-    half_inch = np.array([t.diameter > 0.01 for t in tests])
-    assert np.max(err[half_inch]) < 0.05
-    assert np.max(err) < 0.07
