@@ -303,8 +303,9 @@ def refine(
 
     What limits the closure on the built-in rubber series is the law family: the
     rate term cuts the force off during the rebound, so no slow low tail follows
-    the main pulse, while the series' impulse carries one (eq 7 against the eq-15
-    pulse, 2F0T/π: about 5 % of I for the 1/2-in ball, 11 % for the 3/8-in).
+    the main pulse, while the series' impulse carries one: 1 − 2F0T/(πI), the share
+    of I beyond the eq-15 pulse, is 0–3 % for the 1/2-in tests and 4–11 % for the
+    3/8-in ones (Table I's α4 against α1·α2), against −1 to −3 % for the law's pulses.
     The 1/2-in tests close within 2 %; the 3/8-in tests are left at T ≈ +4 %,
     I ≈ −4 % (−6.5 % on the noisiest). A memory element (viscoelastic recovery)
     would carry the tail.
