@@ -7,15 +7,9 @@ position is the impact point, its force history is ignored), ``[impactor]``
 with the law's own keys), ``[solver]`` and optional ``[[gauges]]`` (default: the
 target case's). See README.md and ``data/cases/paper-long-beam-impact.toml``.
 
-Contact keys per law:
-
-- ``hertz``: ``target_modulus`` (default: a laminate's through-thickness modulus
-  E3 of its ply, Sun's form; an isotropic beam: Hertz with its material);
-- ``hertz-unloading``: those of hertz and ``critical_indentation`` (Yang–Sun α_cr,
-  default 0.08 mm, Yang & Sun's graphite/epoxy value);
-- ``hunt-crossley``: those of hertz, ``restitution`` e (required) and ``form``
-  (``lankarani-nikravesh`` or ``hunt-crossley``);
-- ``identified``: ``law_file``, a law.json from ``softimpact identify``.
+Contact keys: those of :mod:`softimpact.input.contact_law`, and for the Hertz
+laws ``target_modulus`` (default: a laminate's through-thickness modulus E3 of
+its ply, Sun's form; an isotropic beam: Hertz with its material).
 """
 
 from __future__ import annotations
@@ -25,19 +19,15 @@ from pathlib import Path
 
 from ..errors import InputError
 from ..fem.newmark import SolverSpec
-from ..models.contact_laws import HertzLaw, HuntCrossleyLaw, YangSunLaw
+from ..models.contact_laws import HertzLaw
 from ..models.materials import Material, sphere_mass
-from ..output.law_json import read_law
 from ..workflows.beam_impact import BeamLoad, BeamProblem
 from ..workflows.coupled import Impactor
 from .beam_case import beam_problem, read_beam_gauges
+from .contact_law import CONTACT_LAWS, read_contact_law
 from .toml import Table, load_toml, locate, naming, read_material, read_solver, read_units
 
 __all__ = ["CONTACT_LAWS", "ImpactProblem", "impact_problem", "load_impact_case"]
-
-CONTACT_LAWS = ("hertz", "hertz-unloading", "hunt-crossley", "identified")
-CRITICAL_INDENTATION = 0.08e-3  # m: Yang & Sun (1982), graphite/epoxy struck by a 12.7 mm steel ball
-HUNT_CROSSLEY_FORMS = ("lankarani-nikravesh", "hunt-crossley")
 
 
 @dataclass(frozen=True)
@@ -82,24 +72,6 @@ def _hertz(c: Table, target: BeamProblem, radius: float, sphere: Material) -> He
     return HertzLaw.sphere_on_flat(radius, sphere, beam.material)
 
 
-def _law(c: Table, name: str, target: BeamProblem, impactor: Impactor, sphere: Material, base: Path):
-    R = impactor.diameter / 2
-    if name == "identified":
-        file = c.string("law_file")
-        path = base / file if not Path(file).is_absolute() else Path(file)
-        return read_law(path, c.key("law_file")).law(impactor.mass, impactor.diameter, impactor.velocity), path
-    hertz = _hertz(c, target, R, sphere)
-    if name == "hertz":
-        return hertz, None
-    if name == "hertz-unloading":
-        return YangSunLaw(hertz, c.quantity("critical_indentation", "length", default=CRITICAL_INDENTATION)), None
-    restitution = c.number("restitution")
-    if not 0.0 < restitution <= 1.0:
-        raise InputError(f"{c.key('restitution')}: must be in (0, 1], got {restitution!r}")
-    form = c.string("form", HUNT_CROSSLEY_FORMS[0], choices=HUNT_CROSSLEY_FORMS)
-    return HuntCrossleyLaw(hertz.K, hertz.R, restitution, impactor.velocity, hertz.exponent, form), None
-
-
 def impact_problem(data: dict, base: Path = Path(".")) -> tuple[ImpactProblem, tuple[Path, ...]]:
     """An impact case (parsed TOML) as an ImpactProblem, and the files it read (target case, law file)."""
     top = Table(data)
@@ -117,7 +89,7 @@ def impact_problem(data: dict, base: Path = Path(".")) -> tuple[ImpactProblem, t
     i.done()
     c = top.table("contact")
     name = c.string("law", choices=CONTACT_LAWS)
-    law, law_path = _law(c, name, target, impactor, material, base)
+    law, law_path = read_contact_law(c, name, lambda: _hertz(c, target, diameter / 2, material), impactor.mass, diameter, velocity, base)
     c.done()
     solver = read_solver(top.table("solver"))
     gauges = read_beam_gauges(top) if "gauges" in top else target.gauges
