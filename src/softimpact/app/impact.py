@@ -111,7 +111,7 @@ def question_section(figures: bool, files: dict, prefix: str = "question/") -> S
     tests = bar_tests(reduce_series(series))
     rod = series.bar.rod()
     law, approaches = fit_law(tests, rod)
-    law = refine(law, _representatives(tests), rod, QUESTION_REFINE, steps_per_pulse=QUESTION_STEPS_PER_PULSE)
+    law = refine(law, _representatives(tests), rod, QUESTION_REFINE, steps_per_pulse=QUESTION_STEPS_PER_PULSE, bounded=True)
     cl = closure(law, tests, rod, QUESTION_STEPS_PER_PULSE)
     files.update(identify_files(series, tests, law, approaches, cl, figures, prefix))
     err = np.abs(cl.errors)
