@@ -4,12 +4,19 @@ Prints, measured here in one script on the same mesh and steps:
 - a prescribed-force run (BeamModel.direct, no energies) of the coupled run's own force history;
 - the coupled run (steel ball 0.5 in at 100 in/s, Hertz with E2 = 7.9 GPa), without and with the
   energy histories, its Newton iterations and back-substitutions.
-Usage: python benchmarks/bench_coupled.py
+Then, as whole processes (interpreter start, imports, case parsing, assembly, stepping, output),
+alternated: `softimpact impact paper-long-beam-impact --no-figures` (2000 steps of 0.5 µs)
+against `softimpact beam` on the same beam, mesh and steps (paper-long-beam with its
+time step set to 0.5 µs), and both at the beam case's own 1000 steps of 1 µs.
+Usage: python benchmarks/bench_coupled.py [repeats]
 """
 
 import math
 import platform
+import resource
+import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -49,5 +56,48 @@ def main():
     print(f"Newton iterations {res.newton_iterations} ({res.newton_iterations / n:.1f}/step incl. free flight), contacts {len(res.contacts)}")
 
 
+def _process(cmd) -> tuple[float, float]:
+    """(wall-clock, CPU user + system) seconds of one whole process: on a shared machine the CPU
+    time is the steadier measure."""
+    r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    wall = time.perf_counter() - t0
+    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return wall, (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
+
+
+def whole_process(repeats: int = 5):
+    from softimpact.input.toml import builtin_cases
+
+    exe = str(Path(sys.executable).parent / "softimpact")
+    cases = builtin_cases()
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        beam = cases["paper-long-beam"].read_text()
+        impact = cases["paper-long-beam-impact"].read_text()
+        (tmp / "beam-05us.toml").write_text(beam.replace('time_step = "1 us"', 'time_step = "0.5 us"'))
+        (tmp / "impact-1us.toml").write_text(impact.replace('time_step = "0.5 us"', 'time_step = "1 us"'))
+        out = str(tmp / "out")
+        runs = {
+            "impact paper-long-beam-impact (2000 x 0.5 us)": [exe, "impact", "paper-long-beam-impact", "--no-figures", "--out", out],
+            "beam paper-long-beam at 0.5 us (2000 x 0.5 us)": [exe, "beam", str(tmp / "beam-05us.toml"), "--no-figures", "--out", out],
+            "impact at 1 us (1000 x 1 us)": [exe, "impact", str(tmp / "impact-1us.toml"), "--no-figures", "--out", out],
+            "beam paper-long-beam (1000 x 1 us)": [exe, "beam", "paper-long-beam", "--no-figures", "--out", out],
+        }
+        times = {name: [] for name in runs}
+        for _ in range(repeats):
+            for name, cmd in runs.items():
+                times[name].append(_process(cmd))
+    print(f"whole processes, best and median of {repeats}, alternated (wall-clock; CPU user + system):")
+    for name, ts in times.items():
+        wall = sorted(t[0] for t in ts)
+        cpu = sorted(t[1] for t in ts)
+        print(
+            f"  softimpact {name:48s} wall best {wall[0]:.2f} s, median {wall[len(ts) // 2]:.2f} s; CPU best {cpu[0]:.2f} s, median {cpu[len(ts) // 2]:.2f} s"
+        )
+
+
 if __name__ == "__main__":
     main()
+    whole_process(int(sys.argv[1]) if len(sys.argv) > 1 else 5)

@@ -6,7 +6,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-import scipy.sparse.linalg as spl
 from scipy.integrate import solve_ivp
 from scipy.special import beta as beta_fn
 
@@ -211,101 +210,6 @@ def test_beam_separation_and_recontact(beam_runs):
     assert gap.any() and np.all(r.contact_force[gap] == 0.0)
 
 
-# --- THE independent implementation ----------------------------------------------------------
-
-
-def _independent_explicit(model, d, m, V, law_K, duration, dt_fraction=0.4):
-    """Same formulation, different code and scheme: explicit central differences on M, K of the
-    same mesh (consistent mass factored by SuperLU), contact force from the current approach, own
-    cosine patch integrals, own mid-surface and gauge functionals, step 0.4·dt_crit."""
-    pm = model.plane
-    M, K = pm.M.tocsc(), pm.K.tocsr()
-    lu = spl.splu(M)
-    op = spl.LinearOperator(K.shape, matvec=lambda q: lu.solve(K @ q))
-    w_max = math.sqrt(abs(spl.eigs(op, k=1, which="LM", return_eigenvectors=False)[0]))
-    dt = dt_fraction * 2 / w_max
-    steps = int(math.ceil(duration / dt))
-    xc, R = 3 * INCH, d / 2
-    X, Z = pm.node_x, pm.node_z
-    h = Z.max()
-    top = np.flatnonzero(np.isclose(Z, h))
-    top = top[np.abs(X[top] - xc) < R + 0.05 * INCH]
-    top = top[np.argsort(X[top])]
-    xt = X[top] - xc
-    edges = np.concatenate(([xt[0]], 0.5 * (xt[1:] + xt[:-1]), [xt[-1]]))
-    zdof = np.array([pm.dof(n, 1) for n in top])
-    mid = np.flatnonzero(np.isclose(Z, h / 2) & np.isclose(X, xc))
-    assert mid.size == 1
-    wdof = pm.dof(int(mid[0]), 1)
-    near = int(np.argmin(np.abs(xt)))
-
-    def gauge_dofs(g):
-        z = 0.0 if g.surface == "bottom" else h
-        face = np.flatnonzero(np.isclose(Z, z))
-        out = []
-        for xp, sgn in ((g.position + g.length / 2, 1), (g.position - g.length / 2, -1)):
-            i = face[np.argsort(X[face])]
-            k = np.searchsorted(X[i], xp) - 1
-            s = (xp - X[i[k]]) / (X[i[k + 1]] - X[i[k]])
-            out += [(pm.dof(i[k], 0), sgn * (1 - s) / g.length), (pm.dof(i[k + 1], 0), sgn * s / g.length)]
-        return out
-
-    gauges = [gauge_dofs(g) for g in model.problem.gauges]
-    u_prev = np.zeros(pm.n)
-    u = np.zeros(pm.n)
-    x_prev, x = -V * dt, 0.0
-    t = np.arange(steps + 1) * dt
-    F = np.zeros(steps + 1)
-    eps = np.zeros((len(gauges), steps + 1))
-    for k in range(steps + 1):
-        a = x + u[wdof]  # impactor moves down (+), mid-surface z is up (+): α = x − (−w_z)
-        f = law_K * a**1.5 if a > 0 else 0.0
-        F[k] = f
-        for j, g in enumerate(gauges):
-            eps[j, k] = sum(u[q] * c for q, c in g)
-        if k == steps:
-            break
-        load = np.zeros(pm.n)
-        if f > 0:
-            r = math.sqrt(R * a)
-            if r < 0.5 * np.min(np.diff(xt)):
-                load[zdof[near]] = -f
-            else:
-                lo, hi = np.clip(edges[:-1], -r, r), np.clip(edges[1:], -r, r)
-                # ∫ (πF/4r)·cos(πs/2r) ds over [lo, hi] = (F/2)(sin(πhi/2r) − sin(πlo/2r))
-                load[zdof] = -0.5 * f * (np.sin(np.pi * hi / (2 * r)) - np.sin(np.pi * lo / (2 * r)))
-        u_next = 2 * u - u_prev + dt * dt * lu.solve(load - K @ u)
-        x_next = 2 * x - x_prev - dt * dt * f / m
-        u_prev, u, x_prev, x = u, u_next, x, x_next
-    on = F > 0
-    k_end = int(np.flatnonzero(~on[1:])[0]) + 1  # first sample with no force after t = 0
-    return t, F, eps, k_end, dt
-
-
-@pytest.mark.slow
-@pytest.mark.parametrize("case", CASES)
-def test_long_beam_agrees_with_independent_explicit_solution(beam, beam_runs, case):
-    """Peak force, time of peak, contact duration, impulse and gauge-strain peaks agree with an
-    independent explicit central-difference integration of the same formulation to 1 %."""
-    m, V, r = beam_runs[case]
-    d = case[0] * INCH
-    law = HertzLaw.sphere_on_laminate(d / 2, STEEL, E2)
-    window = 400e-6
-    t, F, eps, k_end, dt = _independent_explicit(beam, d, m, V, law.K, window)
-    first = slice(0, k_end)
-    F0 = F[first].max()
-    tp = t[first][np.argmax(F[first])]
-    T = t[k_end - 1] + 0.5 * dt  # dt ≈ 25 ns: half-step resolution is 0.03 % of T
-    imp = np.sum(0.5 * (F[1 : k_end + 1] + F[:k_end])) * dt
-    assert r.peak_force == pytest.approx(F0, rel=0.01)
-    assert r.time_of_peak == pytest.approx(tp, rel=0.01)
-    assert r.contact_duration == pytest.approx(T, rel=0.01)
-    assert r.impulse == pytest.approx(imp, rel=0.01)
-    sel = r.time <= window
-    for j in range(eps.shape[0]):
-        assert np.max(np.abs(r.gauge_strain[j, sel])) == pytest.approx(np.max(np.abs(eps[j])), rel=0.01)
-
-
 # --- identification on the built-in rubber series ---------------------------------------------
 
 
@@ -334,19 +238,3 @@ def test_reconstructed_approach_momentum(rubber):
     a = reconstruct_approach(tests[0], rod)
     I = np.sum(0.5 * (a.force[1:] + a.force[:-1])) * (a.time[1] - a.time[0])
     assert tests[0].mass * (tests[0].velocity - a.impactor_velocity[-1]) == pytest.approx(I, rel=1e-12)
-
-
-@pytest.mark.slow
-def test_identified_law_closes_on_rubber_series(rubber):
-    """One soft-projectile law, fitted and refined, reproduces F0, T and impulse of every 1/2-in test
-    within 5 %; the 3/8-in tests reach 7 % only (target 5 %: T +4.4 %, I up to −6.5 % measured)."""
-    from softimpact.workflows.identification import closure, identify, refine
-
-    tests, rod = rubber
-    law, _ = identify(tests, rod)
-    law = refine(law, tests, rod)
-    assert np.all(np.isfinite(law.half_widths))
-    err = np.abs(closure(law, tests, rod).errors)
-    half_inch = np.array([t.diameter > 0.01 for t in tests])
-    assert np.max(err[half_inch]) < 0.05
-    assert np.max(err) < 0.07

@@ -417,6 +417,40 @@ def calibrate_cmd(case, measured, velocity, method, contact_radius, contact_time
     )
 
 
+@main.command("impact", short_help="Coupled impact of a rigid impactor on a beam through a contact law.")
+@click.argument("case")
+@_out_option("impact")
+@_figures_option
+@_guarded
+def impact_cmd(case, out, figures):
+    """Coupled impact of a rigid impactor on a beam (CASE: file or built-in name), the contact
+    force found each step from a contact law (hertz, hertz-unloading, hunt-crossley, identified).
+
+    Writes history.csv, summary.json and, with figures, force-history.png,
+    approach.png, gauge-strains.png, energy.png.
+    """
+    from .app.impact import impact
+
+    _run(impact, out, case=case, figures=figures)
+
+
+@main.command("identify", short_help="A soft projectile's contact law from bar tests (law.json).")
+@click.argument("series")
+@_out_option("identify")
+@_figures_option
+@_guarded
+def identify_cmd(series, out, figures):
+    """Identify one contact law of a SERIES of bar tests (file or built-in name): reduce the
+    records, reconstruct force against approach, fit, then check by coupled bar simulations.
+
+    Writes law.json, closure.csv, approach-<test>.csv per test and, with figures,
+    closure-forces.png and force-approach.png.
+    """
+    from .app.identify import identify
+
+    _run(identify, out, series_name=series, figures=figures)
+
+
 @main.command("paper", short_help="The whole paper, end to end, into report.html.")
 @_out_option("paper")
 @_figures_option

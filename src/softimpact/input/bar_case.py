@@ -1,6 +1,8 @@
 """Bar case files (``softimpact bar``): TOML → :class:`BarImpactProblem`.
 
-``[bar]`` (with ``[bar.end_cap]``), ``[projectile]``, ``[contact]``,
+``[bar]`` (with ``[bar.end_cap]``), ``[projectile]``, ``[contact]`` (``law`` and
+its keys, :mod:`softimpact.input.contact_law`; the Hertz laws use the sphere on
+the bar's end, or on its end cap),
 ``[solver]``, ``[[gauges]]`` and ``[output]``; see README.md for the format.
 """
 
@@ -10,9 +12,11 @@ from pathlib import Path
 
 from .. import units
 from ..errors import InputError
+from ..models.contact_laws import HertzLaw
 from ..models.materials import sphere_mass
 from ..models.specimens import BarSpec, EndCap, Gauge, Projectile
 from ..workflows.bar_impact import CONTACT_LAWS, BarImpactProblem, check_problem
+from .contact_law import read_contact_law
 from .toml import Table, load_toml, locate, naming, read_material, read_solver, read_units
 
 __all__ = ["read_bar", "read_gauges", "bar_problem", "load_bar_case"]
@@ -53,7 +57,7 @@ def read_gauges(top: Table, length: float) -> tuple[Gauge, ...]:
     return tuple(gauges)
 
 
-def bar_problem(data: dict) -> BarImpactProblem:
+def bar_problem(data: dict, base: Path = Path(".")) -> BarImpactProblem:
     """A bar case (already parsed TOML) as a :class:`BarImpactProblem`."""
     top = Table(data)
     title = top.string("title", "")
@@ -66,9 +70,16 @@ def bar_problem(data: dict) -> BarImpactProblem:
     projectile = Projectile(material, diameter, p.quantity("velocity", "velocity"), sphere_mass(material, diameter) if mass is None else mass)
     p.done()
     contact_tbl = top.table("contact", optional=True)
-    law = CONTACT_LAWS[0]
+    law, law_object = CONTACT_LAWS[0], None
     if contact_tbl is not None:
         law = contact_tbl.string("law", law, choices=CONTACT_LAWS)
+        if law != "hertz":
+            flat = bar.material if bar.end_cap is None else bar.end_cap.material
+
+            def hertz():
+                return HertzLaw.sphere_on_flat(diameter / 2, material, flat)
+
+            law_object, _ = read_contact_law(contact_tbl, law, hertz, projectile.mass, diameter, projectile.velocity, base)
         contact_tbl.done()
     solver = read_solver(top.table("solver"))
     gauges = read_gauges(top, bar.length)
@@ -85,13 +96,13 @@ def bar_problem(data: dict) -> BarImpactProblem:
         output.done()
     top.done()
     with naming({"gauges": "gauges", "contact": "contact.law"}):
-        return BarImpactProblem(bar, projectile, solver, gauges, law, title, system, snapshots)
+        return BarImpactProblem(bar, projectile, solver, gauges, law, title, system, snapshots, law_object)
 
 
 def load_bar_case(case: str) -> tuple[BarImpactProblem, Path]:
     """Read a bar case by path or built-in name; returns the problem and its file."""
     path = locate(case)
-    problem = bar_problem(load_toml(path))
+    problem = bar_problem(load_toml(path), path.parent)
     with naming({"elements": "bar.elements", "time_step": "solver.time_step"}):
         check_problem(problem)
     return problem, path

@@ -21,7 +21,7 @@ from ..workflows.beam_impact import LAMINATE_MODELS, BeamGauge, BeamLoad, BeamPr
 from .records import read_columns
 from .toml import Table, load_toml, locate, naming, read_material, read_solver, read_units
 
-__all__ = ["HISTORY_SHAPES", "MASS_MATRICES", "read_ply", "read_history", "beam_problem", "load_beam_case", "table_rows"]
+__all__ = ["HISTORY_SHAPES", "MASS_MATRICES", "read_ply", "read_history", "read_beam_gauges", "beam_problem", "load_beam_case", "table_rows"]
 
 HISTORY_SHAPES = ("skewed", "table", "empirical")  # eq (15), a CSV table, the empirical model of eqs (4)-(7)
 MASS_MATRICES = ("consistent", "lumped")
@@ -77,6 +77,24 @@ def read_history(tbl: Table, name: str, base: Path):
         pulse = law.pulse(P.mass, P.diameter, h.quantity("velocity", "velocity"))
     h.done()
     return pulse
+
+
+def read_beam_gauges(top: Table) -> tuple[BeamGauge, ...]:
+    """The ``[[gauges]]`` of a beam: name, position from the support, face, length."""
+    gauges = []
+    for g in top.tables("gauges", optional=True):
+        gauges.append(
+            BeamGauge(
+                g.string("name"),
+                g.quantity("position", "length", positive=False),
+                g.string("surface", "bottom", choices=("top", "bottom")),
+                g.quantity("length", "length", default=BeamGauge.length),
+            )
+        )
+        g.done()
+    if len({g.name for g in gauges}) != len(gauges):
+        raise InputError("gauges: names must be unique")
+    return tuple(gauges)
 
 
 def beam_problem(data: dict, base: Path = Path("."), history: int | None = None):
@@ -168,19 +186,7 @@ def beam_problem(data: dict, base: Path = Path("."), history: int | None = None)
             row._used.update(row.data)
     ld.done()
     solver = read_solver(top.table("solver"))
-    gauges = []
-    for g in top.tables("gauges", optional=True):
-        gauges.append(
-            BeamGauge(
-                g.string("name"),
-                g.quantity("position", "length", positive=False),
-                g.string("surface", "bottom", choices=("top", "bottom")),
-                g.quantity("length", "length", default=BeamGauge.length),
-            )
-        )
-        g.done()
-    if len({g.name for g in gauges}) != len(gauges):
-        raise InputError("gauges: names must be unique")
+    gauges = read_beam_gauges(top)
     top.done()
     keys = {"position": "load.position", "gauges": "gauges", "time_step": "solver.time_step", "history": "load.history"}
     with naming(keys):

@@ -46,8 +46,8 @@ Laws
     flattened area ∝ d·α, which is p = 1; the rate term makes the pulse rise fast
     and fall slowly (tF0/T ≈ 0.25) and dissipates energy (rebound e < 1), the
     role of the Hunt–Crossley term. k and c may scale with the diameter,
-    k = k_ref·(d/d_ref)^{q_k}, c = c_ref·(d/d_ref)^{q_c}; q = 0 is pure geometric
-    similarity. Its parameters are identified from bar tests
+    k = k_ref·(d/d_ref)^{q_k}, c = c_ref·(d/d_ref)^{q_c} (and, optionally, the
+    exponent p_ref·(d/d_ref)^{q_p}); q = 0 is pure geometric similarity. Its parameters are identified from bar tests
     (:mod:`softimpact.workflows.identification`).
 """
 
@@ -338,10 +338,10 @@ class SoftProjectileLaw:
             raise InputError(f"contact: rate coefficient c must be non-negative, got {self.c!r}")
 
     @classmethod
-    def scaled(cls, mass, diameter, velocity, k_ref, p, c_ref, d_ref, q_k=0.0, q_c=0.0) -> SoftProjectileLaw:
-        """k = k_ref·(d/d_ref)^q_k, c = c_ref·(d/d_ref)^q_c."""
+    def scaled(cls, mass, diameter, velocity, k_ref, p, c_ref, d_ref, q_k=0.0, q_c=0.0, q_p=0.0) -> SoftProjectileLaw:
+        """k = k_ref·(d/d_ref)^q_k, c = c_ref·(d/d_ref)^q_c, exponent p·(d/d_ref)^q_p."""
         s = diameter / d_ref
-        return cls(mass, diameter, velocity, k_ref * s**q_k, p, c_ref * s**q_c)
+        return cls(mass, diameter, velocity, k_ref * s**q_k, p * s**q_p, c_ref * s**q_c)
 
     @property
     def scale(self) -> float:

@@ -49,7 +49,7 @@ __all__ = [
     "check_problem",
 ]
 
-CONTACT_LAWS = ("hertz",)  # laws of the impactor–bar contact
+CONTACT_LAWS = ("hertz", "hertz-unloading", "hunt-crossley", "identified")  # laws of the impactor–bar contact
 NEWTON_TOL = 1e-13  # relative tolerance on the approach α in the contact Newton iteration
 NEWTON_MAXITER = 50  # the monotone Newton converges in < 10; this only guards bugs
 MIN_ELEMENTS_PER_PULSE = (2.0, 6.0)  # elements per contact pulse length c·T_c: floor, comfortable (paper: 14)
@@ -68,6 +68,7 @@ class BarImpactProblem:
     title: str = ""
     units: str = "in-lbf-s"
     snapshots: tuple[float, ...] = ()  # instants [s] at which the strain along the bar is reported (those in the run)
+    law: object = None  # the contact law object (models.contact_laws) of any law but the default "hertz"
 
     def __post_init__(self):
         for g in self.gauges:
@@ -75,6 +76,8 @@ class BarImpactProblem:
                 raise InputError(f"gauge {g.name!r}: position {g.position!r} m is outside the bar (length {self.bar.length!r} m)", "gauges")
         if self.contact not in CONTACT_LAWS:
             raise InputError(f"unknown contact law {self.contact!r} (known: {', '.join(CONTACT_LAWS)})", "contact")
+        if (self.law is None) != (self.contact == "hertz"):
+            raise InputError(f"contact law {self.contact!r} needs its law object (and 'hertz' none)", "contact")
 
     def contact_law(self) -> Hertz:
         """Eq (3): the sphere on the flat end of the bar (or of the end cap)."""
@@ -153,7 +156,14 @@ def _field_points(rod: Rod, per_element: int = 4) -> np.ndarray:
 
 
 def simulate_impact(problem: BarImpactProblem) -> BarImpactResult:
-    """Run the coupled impactor–bar Newmark integration (see module docstring)."""
+    """Run the coupled impactor–bar Newmark integration (see module docstring).
+
+    Laws other than the default Hertz (``problem.law``) go through the general
+    coupled stepping of :func:`softimpact.fem.impact.integrate_impact`, the
+    same Newmark rule with the law's rate and memory.
+    """
+    if problem.law is not None:
+        return _simulate_with_law(problem)
     rod = problem.bar.rod()
     model = assemble_rod(rod)
     solver = problem.solver
@@ -248,6 +258,60 @@ def simulate_impact(problem: BarImpactProblem) -> BarImpactResult:
         rebound_velocity=rebound,
         contacts=contacts,
         newton_iterations=iterations,
+    )
+
+
+def _simulate_with_law(problem: BarImpactProblem) -> BarImpactResult:
+    """simulate_impact for any contact law, by fem.impact's coupled stepping on the same rod."""
+    from ..fem.impact import ContactStructure, integrate_impact
+
+    rod = problem.bar.rod()
+    model = assemble_rod(rod)
+    solver = problem.solver
+    dt, steps = solver.time_step, solver.steps
+    m, V = problem.projectile.mass, problem.projectile.velocity
+    gauges = problem.gauges
+    bar_x = _field_points(rod)
+    probes = [model.strain_probe(np.array([g.position for g in gauges])).toarray()] if gauges else []
+    outputs = np.vstack(probes + [model.strain_probe(bar_x).toarray()])
+    end = np.zeros(model.n)
+    end[model.end_dof] = 1.0
+    structure = ContactStructure(model.M, model.K, np.array([0.0]), np.array([model.end_dof]), 1.0, 0.0, end, outputs)
+    stepper = NewmarkStepper(model.M, model.K, dt, params=solver.newmark)
+    h = integrate_impact(structure, problem.law, m, V, dt, steps, newmark=solver.newmark, stepper=stepper)
+    t, F, alpha, xv = h.time, h.contact_force, h.approach, h.impactor_velocity
+    ng = len(gauges)
+    energies = Energies(0.5 * m * xv**2, h.structure_kinetic, h.structure_strain, h.contact_energy)
+    peak, t_peak = refine_peak(t, F)
+    on = F > 0.0
+    on[0] = True  # first contact is at t = 0 by definition
+    contacts = 1 + np.count_nonzero(on[1:] & ~on[:-1])
+    ends = np.flatnonzero(on[:-1] & ~on[1:])
+    duration = rebound = math.nan
+    if len(ends):
+        k = int(ends[0])  # F[k] > 0 = F[k+1]: the first separation, at α's zero crossing when it is in the step
+        a0, a1 = alpha[k], alpha[k + 1]
+        # a law clipped at F = 0 (a rate term) may let go before α reaches zero: then at t[k+1]
+        duration = float(t[k] + dt * a0 / (a0 - a1)) if a0 > 0.0 >= a1 else float(t[k + 1])
+        rebound = float(xv[k + 1])
+    return BarImpactResult(
+        problem=problem,
+        time=t,
+        contact_force=F,
+        approach=alpha,
+        impactor_displacement=h.impactor_displacement,
+        impactor_velocity=xv,
+        gauge_strain=h.outputs[:ng],
+        bar_x=bar_x,
+        bar_strain=h.outputs[ng:],
+        energies=energies,
+        peak_force=peak,
+        time_of_peak=t_peak,
+        contact_duration=duration,
+        impulse=float(np.trapezoid(F, t)),
+        rebound_velocity=rebound,
+        contacts=contacts,
+        newton_iterations=h.newton_iterations,
     )
 
 

@@ -12,8 +12,9 @@ m, diameter d and velocity V; and the bar as a :class:`~softimpact.fem.bar.Rod`
    non-dispersive bar with no cap it is u̇_end = (F(t) + 2·Σ_k F(t − 2kL/c))/(ρcA)).
    α = x − u_end, α̇ = ẋ − u̇_end.
 2. Fit. ONE :class:`~softimpact.models.contact_laws.SoftProjectileLaw` for all
-   tests, F = (mV²/d)·k·(α/d)^p·(1 + c·α̇/V), k = k_ref·(d/d_ref)^{q_k},
-   c = c_ref·(d/d_ref)^{q_c}: nonlinear least squares of F(α, α̇) against the
+   tests, F = (mV²/d)·k·(α/d)^n·(1 + c·α̇/V), k = k_ref·(d/d_ref)^{q_k},
+   c = c_ref·(d/d_ref)^{q_c}, optionally n = p·(d/d_ref)^{q_p} (else n = p; with
+   one diameter the q's are 0): nonlinear least squares of F(α, α̇) against the
    measured F over each test's main pulse (until F falls to 15 % of F0 after
    the peak), residuals scaled by each test's F0 so every test weighs the same.
    95 % intervals from the Jacobian at the optimum, ±1.96·sqrt(diag(s²(JᵀJ)⁻¹)).
@@ -47,10 +48,14 @@ __all__ = [
     "closure",
     "pulse_figures",
     "refine",
+    "PARAMETERS",
 ]
 
 MAIN_PULSE_CUTOFF = 0.15  # the main pulse ends where F falls to this fraction of F0 (as in the reduction)
 STEPS_PER_PULSE = 400  # closure simulation: steps per measured main-pulse duration
+PARAMETERS = ("k_ref", "p", "c_ref", "q_k", "q_c", "q_p")  # the order of IdentifiedLaw.values
+LOWER = np.array([1e-6, 0.2, 0.0, -5.0, -5.0, -5.0])  # bounds of the fits: k > 0, an exponent from 0.2 to 6,
+UPPER = np.array([1e6, 6.0, 50.0, 5.0, 5.0, 5.0])  # a non-negative rate term, size powers within ±5
 Z95 = 1.959963984540054  # two-sided 95 % normal quantile (hundreds of samples: t ≈ z)
 
 
@@ -103,8 +108,8 @@ class IdentifiedLaw:
     cost: float
 
     def law(self, mass: float, diameter: float, velocity: float) -> SoftProjectileLaw:
-        k, p, c, qk, qc = self.values
-        return SoftProjectileLaw.scaled(mass, diameter, velocity, k, p, c, self.d_ref, qk, qc)
+        k, p, c, qk, qc, qp = _six(self.values)
+        return SoftProjectileLaw.scaled(mass, diameter, velocity, k, p, c, self.d_ref, qk, qc, qp)
 
 
 @dataclass(frozen=True)
@@ -149,20 +154,42 @@ def reconstruct_approach(test: BarTest, rod: Rod) -> Approach:
     return Approach(t, F, x - u, xv - ud, x, xv, u, ud, mask)
 
 
+def _six(values) -> np.ndarray:
+    """(k_ref, p, c_ref, q_k, q_c, q_p); a law of five parameters has q_p = 0."""
+    v = np.zeros(6)
+    v[: len(values)] = values
+    return v
+
+
 def _model_force(params, d_ref, approaches, tests):
-    k, p, c, qk, qc = params
+    k, p, c, qk, qc, qp = _six(params)
     out = []
     for a, tst in zip(approaches, tests):
         s = tst.diameter / d_ref
         scale = tst.mass * tst.velocity**2 / tst.diameter
         al = np.maximum(a.approach[a.main_pulse], 0.0) / tst.diameter
         g = 1.0 + c * s**qc * a.rate[a.main_pulse] / tst.velocity
-        out.append(np.maximum(scale * k * s**qk * al**p * g, 0.0))
+        out.append(np.maximum(scale * k * s**qk * al ** (p * s**qp) * g, 0.0))
     return out
 
 
-def identify(tests, rod: Rod, d_ref: float | None = None) -> tuple[IdentifiedLaw, tuple[Approach, ...]]:
-    """Fit one soft-projectile law to all tests (module docstring, step 2)."""
+def _free(tests, size_exponent: bool) -> list[int]:
+    """Indices of the parameters a fit may move: with one diameter the q's stay 0."""
+    if len({t.diameter for t in tests}) == 1:
+        return [0, 1, 2]
+    return [0, 1, 2, 3, 4, 5] if size_exponent else [0, 1, 2, 3, 4]
+
+
+def identify(tests, rod: Rod, d_ref: float | None = None, size_exponent: bool = False) -> tuple[IdentifiedLaw, tuple[Approach, ...]]:
+    """Fit one soft-projectile law to all tests (module docstring, step 2).
+
+    ``size_exponent``: let the exponent p scale with the diameter too (q_p), so each
+    diameter has three size-dependent shape parameters (k, p, c) for its three
+    independent pulse figures (F0·d/(mV²), T·V/d, I/(mV)). Off by default: on the
+    built-in rubber series it does not close the 3/8-in gap (measured: the 3/8-in
+    tests alone, k, p, c all free, still close at T +4 %, I −4 to −6 %; the gap is
+    the family's, see :func:`refine`).
+    """
     from scipy.optimize import least_squares
 
     tests = tuple(tests)
@@ -173,27 +200,29 @@ def identify(tests, rod: Rod, d_ref: float | None = None) -> tuple[IdentifiedLaw
     F0s = [a.force.max() for a in approaches]
     meas = [a.force[a.main_pulse] for a in approaches]
     weights = [1.0 / (F0 * math.sqrt(m.size)) for F0, m in zip(F0s, meas)]
-    varied_d = len({t.diameter for t in tests}) > 1
+    free = _free(tests, size_exponent)
+
+    def full(z):
+        v = np.zeros(6)
+        v[free] = z
+        return v
 
     def residual(z):
-        params = z if varied_d else np.concatenate((z, [0.0, 0.0]))
-        return np.concatenate([w * (f - m) for w, f, m in zip(weights, _model_force(params, d_ref, approaches, tests), meas)])
+        return np.concatenate([w * (f - m) for w, f, m in zip(weights, _model_force(full(z), d_ref, approaches, tests), meas)])
 
-    z0 = np.array([2.0, 1.0, 1.0, 0.0, 0.0]) if varied_d else np.array([2.0, 1.0, 1.0])
-    lo = [1e-6, 0.2, 0.0] + ([-5.0, -5.0] if varied_d else [])
-    hi = [1e6, 6.0, 50.0] + ([5.0, 5.0] if varied_d else [])
-    sol = least_squares(residual, z0, bounds=(lo, hi), x_scale="jac")
+    z0 = np.array([2.0, 1.0, 1.0, 0.0, 0.0, 0.0])[free]
+    sol = least_squares(residual, z0, bounds=(LOWER[free], UPPER[free]), x_scale="jac")
     J = sol.jac
     dof = max(sol.fun.size - sol.x.size, 1)
     # residuals carry weights 1/(F0·sqrt(n_i)): s² from the unweighted scale of the fit
     s2 = float(sol.fun @ sol.fun) / dof
     cov = s2 * np.linalg.pinv(J.T @ J)
-    half = Z95 * np.sqrt(np.maximum(np.diag(cov), 0.0))
-    values = sol.x if varied_d else np.concatenate((sol.x, [0.0, 0.0]))
-    half = half if varied_d else np.concatenate((half, [0.0, 0.0]))
+    half = np.zeros(6)
+    half[free] = Z95 * np.sqrt(np.maximum(np.diag(cov), 0.0))
+    values = full(sol.x)
     fits = _model_force(values, d_ref, approaches, tests)
     rms = np.array([math.sqrt(np.mean((f - m) ** 2)) / F0 for f, m, F0 in zip(fits, meas, F0s)])
-    law = IdentifiedLaw(("k_ref", "p", "c_ref", "q_k", "q_c"), values, half, d_ref, rms, float(sol.cost))
+    law = IdentifiedLaw(PARAMETERS, values, half, d_ref, rms, float(sol.cost))
     return law, approaches
 
 
@@ -237,14 +266,14 @@ def _rod_structure(rod: Rod) -> ContactStructure:
     )
 
 
-def closure(law: IdentifiedLaw, tests, rod: Rod) -> Closure:
+def closure(law: IdentifiedLaw, tests, rod: Rod, steps_per_pulse: int = STEPS_PER_PULSE) -> Closure:
     """Simulate each test with the identified law on the rod; compare F0, T, I (module docstring, step 3)."""
     structure = _rod_structure(rod)
     names, meas, sim, ts, fs = [], [], [], [], []
     for tst in tests:
         t, F = np.asarray(tst.time, float), np.asarray(tst.force, float)
         fig = pulse_figures(t, F)
-        dt = fig[1] / STEPS_PER_PULSE
+        dt = fig[1] / steps_per_pulse
         steps = int(math.ceil(t[-1] / dt))
         h = integrate_impact(
             structure,
@@ -264,30 +293,53 @@ def closure(law: IdentifiedLaw, tests, rod: Rod) -> Closure:
     return Closure(tuple(names), np.array(meas), np.array(sim), tuple(ts), tuple(fs))
 
 
-def refine(law: IdentifiedLaw, tests, rod: Rod, max_evaluations: int = 40) -> IdentifiedLaw:
+def refine(
+    law: IdentifiedLaw,
+    tests,
+    rod: Rod,
+    max_evaluations: int = 40,
+    size_exponent: bool = False,
+    steps_per_pulse: int = STEPS_PER_PULSE,
+    bounded: bool = False,
+) -> IdentifiedLaw:
     """Second stage: adjust the parameters so the coupled bar simulations reproduce each test's
     (F0, T, I) — least squares on the 3·n_tests relative errors, from the F(α, α̇) fit.
 
     Each evaluation runs every test once (closure); intervals from this Jacobian.
+    ``bounded``: keep the parameters within LOWER–UPPER (always with the size
+    exponent). Few tests leave the problem ill-conditioned and an unbounded step
+    can make k negative; on all 13 rubber tests the unbounded path lands at a
+    lower cost (max closure error 6.5 %, bounded 7.4 %, measured).
+
+    What limits the closure on the built-in rubber series is the law family: the
+    rate term cuts the force off during the rebound, so no slow low tail follows
+    the main pulse, while the series' impulse carries one: 1 − 2F0T/(πI), the share
+    of I beyond the eq-15 pulse, is 0–3 % for the 1/2-in tests and 4–11 % for the
+    3/8-in ones (Table I's α4 against α1·α2), against −1 to −3 % for the law's pulses.
+    The 1/2-in tests close within 2 %; the 3/8-in tests are left at T ≈ +4 %,
+    I ≈ −4 % (−6.5 % on the noisiest). A memory element (viscoelastic recovery)
+    would carry the tail.
     """
     from scipy.optimize import least_squares
 
     tests = tuple(tests)
-    free = [0, 1, 2, 3, 4] if len({t.diameter for t in tests}) > 1 else [0, 1, 2]
+    free = _free(tests, size_exponent)
+    start = _six(law.values)
 
     def with_values(z):
-        v = law.values.copy()
+        v = start.copy()
         v[free] = z
-        return IdentifiedLaw(law.names, v, law.half_widths, law.d_ref, law.rms_per_test, law.cost)
+        return IdentifiedLaw(PARAMETERS, v, law.half_widths, law.d_ref, law.rms_per_test, law.cost)
 
     def residual(z):
-        return closure(with_values(z), tests, rod).errors.ravel()
+        return closure(with_values(z), tests, rod, steps_per_pulse).errors.ravel()
 
-    z0 = law.values[free]
-    sol = least_squares(residual, z0, diff_step=1e-3, max_nfev=max_evaluations, x_scale=np.maximum(np.abs(z0), 0.1))
+    z0 = np.clip(start[free], LOWER[free], UPPER[free])
+    bounds = (LOWER[free], UPPER[free]) if bounded or len(free) == 6 else (-np.inf, np.inf)
+    sol = least_squares(residual, z0, bounds=bounds, diff_step=1e-3, max_nfev=max_evaluations, x_scale=np.maximum(np.abs(z0), 0.1))
     dof = max(sol.fun.size - sol.x.size, 1)
     cov = float(sol.fun @ sol.fun) / dof * np.linalg.pinv(sol.jac.T @ sol.jac)
-    half = np.zeros(5)
+    half = np.zeros(6)
     half[free] = Z95 * np.sqrt(np.maximum(np.diag(cov), 0.0))
     out = with_values(sol.x)
-    return IdentifiedLaw(law.names, out.values, half, law.d_ref, law.rms_per_test, float(sol.cost))
+    return IdentifiedLaw(PARAMETERS, out.values, half, law.d_ref, law.rms_per_test, float(sol.cost))

@@ -1,0 +1,108 @@
+"""Impact case files (``softimpact impact``): TOML → :class:`ImpactProblem`.
+
+``[target]`` (``case``: a beam case, file or built-in name; its ``[load]``
+position is the impact point, its force history is ignored), ``[impactor]``
+(``material``, ``diameter``, ``velocity`` toward the target, optional ``mass``),
+``[contact]`` (``law`` = hertz | hertz-unloading | hunt-crossley | identified,
+with the law's own keys), ``[solver]`` and optional ``[[gauges]]`` (default: the
+target case's). See README.md and ``data/cases/paper-long-beam-impact.toml``.
+
+Contact keys: those of :mod:`softimpact.input.contact_law`, and for the Hertz
+laws ``target_modulus`` (default: a laminate's through-thickness modulus E3 of
+its ply, Sun's form; an isotropic beam: Hertz with its material).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+from ..errors import InputError
+from ..fem.newmark import SolverSpec
+from ..models.contact_laws import HertzLaw
+from ..models.materials import Material, sphere_mass
+from ..workflows.beam_impact import BeamLoad, BeamProblem
+from ..workflows.coupled import Impactor
+from .beam_case import beam_problem, read_beam_gauges
+from .contact_law import CONTACT_LAWS, read_contact_law
+from .toml import Table, load_toml, locate, naming, read_material, read_solver, read_units
+
+__all__ = ["CONTACT_LAWS", "ImpactProblem", "impact_problem", "load_impact_case"]
+
+
+@dataclass(frozen=True)
+class ImpactProblem:
+    """A coupled impact case, resolved (SI): the target beam (its solver and gauges those of the
+    impact run, its force history dropped), the impactor, its material and the contact law."""
+
+    target: BeamProblem
+    target_case: str
+    impactor: Impactor
+    impactor_material: Material
+    law_name: str
+    law: object
+    title: str = ""
+    units: str = "in-lbf-s"
+
+    @property
+    def solver(self) -> SolverSpec:
+        return self.target.solver
+
+    @property
+    def position(self) -> float:
+        return self.target.load.position
+
+
+def _target(tbl: Table, base: Path) -> tuple[BeamProblem, Path]:
+    case = tbl.string("case")
+    path = base / case if (base / case).is_file() else locate(case)
+    try:
+        problem = beam_problem(load_toml(path), path.parent)
+    except InputError as exc:
+        raise InputError(f"{tbl.key('case')} ({path}): {exc}") from None
+    return problem, path
+
+
+def _hertz(c: Table, target: BeamProblem, radius: float, sphere: Material) -> HertzLaw:
+    beam = target.beam
+    if "target_modulus" in c or beam.stack is not None:
+        default = beam.stack.ply.E3 if beam.stack is not None else None
+        with naming({"transverse modulus E2": c.key("target_modulus")}):
+            return HertzLaw.sphere_on_laminate(radius, sphere, c.quantity("target_modulus", "stress", default=default))
+    return HertzLaw.sphere_on_flat(radius, sphere, beam.material)
+
+
+def impact_problem(data: dict, base: Path = Path(".")) -> tuple[ImpactProblem, tuple[Path, ...]]:
+    """An impact case (parsed TOML) as an ImpactProblem, and the files it read (target case, law file)."""
+    top = Table(data)
+    title = top.string("title", "")
+    system = read_units(top)
+    t = top.table("target")
+    target, target_path = _target(t, base)
+    t.done()
+    i = top.table("impactor")
+    material = read_material(i)
+    diameter = i.quantity("diameter", "length")
+    velocity = i.quantity("velocity", "velocity")
+    mass = i.quantity("mass", "mass", default=None)
+    impactor = Impactor(sphere_mass(material, diameter) if mass is None else mass, diameter, velocity)
+    i.done()
+    c = top.table("contact")
+    name = c.string("law", choices=CONTACT_LAWS)
+    law, law_path = read_contact_law(c, name, lambda: _hertz(c, target, diameter / 2, material), impactor.mass, diameter, velocity, base)
+    c.done()
+    solver = read_solver(top.table("solver"))
+    gauges = read_beam_gauges(top) if "gauges" in top else target.gauges
+    top.done()
+    load = BeamLoad(target.load.position, target.load.contact_radius, None)  # the force comes from the contact
+    with naming({"gauges": "gauges", "time_step": "solver.time_step", "position": f"target.case ({target_path}): load.position"}):
+        resolved = replace(target, load=load, solver=solver, gauges=gauges)
+    files = (target_path,) if law_path is None else (target_path, law_path)
+    return ImpactProblem(resolved, str(target_path), impactor, material, name, law, title, system), files
+
+
+def load_impact_case(case: str) -> tuple[ImpactProblem, tuple[Path, ...]]:
+    """Read an impact case by path or built-in name; returns the problem and every file it read (case first)."""
+    path = locate(case)
+    problem, files = impact_problem(load_toml(path), path.parent)
+    return problem, (path, *files)

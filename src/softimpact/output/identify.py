@@ -1,0 +1,90 @@
+"""Outputs of ``softimpact identify``: law.json, closure.csv, approach-<test>.csv, figures."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..units import display
+from .files import csv_text, figure_bytes
+from .law_json import law_json
+
+__all__ = ["closure_columns", "identify_files", "closure_figure", "force_approach_figure"]
+
+
+def closure_columns(tests, closure) -> dict:
+    """One row per test: diameter, velocity, measured and simulated F0, T, I and their relative errors."""
+    m, s, e = closure.measured, closure.simulated, closure.errors
+    cols = {
+        "test": np.array(closure.names),
+        "diameter_m": np.array([t.diameter for t in tests]),
+        "velocity_m_s": np.array([t.velocity for t in tests]),
+    }
+    for j, (key, unit) in enumerate((("peak_force", "N"), ("duration", "s"), ("impulse", "N_s"))):
+        cols[f"measured_{key}_{unit}"] = m[:, j]
+        cols[f"simulated_{key}_{unit}"] = s[:, j]
+        cols[f"error_{key}"] = e[:, j]
+    return cols
+
+
+def closure_figure(tests, closure, system: str, title: str = "Closure: measured force and the identified law on the coupled bar"):
+    """Measured force histories (solid) beside the coupled bar simulations with the identified law (dashed)."""
+    from .plots import _figure
+
+    tu, fu = display(system, "time"), display(system, "force")
+    fig, ax = _figure(7.5, 4.8)
+    for i, (t, cl_t, cl_f) in enumerate(zip(tests, closure.time, closure.force)):
+        c = f"C{i % 10}"
+        T = closure.measured[i, 1]
+        keep = t.time <= 1.5 * T
+        ax.plot(t.time[keep] * tu.factor, t.force[keep] * fu.factor, color=c, lw=1.2, label=t.name)
+        keep = cl_t <= 1.5 * T
+        ax.plot(cl_t[keep] * tu.factor, cl_f[keep] * fu.factor, color=c, lw=1.2, ls="--")
+    ax.set_xlabel(f"time since first contact [{tu.label}]")
+    ax.set_ylabel(f"contact force [{fu.label}]")
+    ax.set_title(title + " (dashed)", fontsize=10)
+    ax.legend(fontsize=7, ncol=2)
+    return fig
+
+
+def force_approach_figure(tests, law, approaches, system: str):
+    """Measured F against the reconstructed approach α/d (main pulses), and the fitted law on the same α, α̇."""
+    from .plots import _figure
+
+    fu = display(system, "force")
+    fig, ax = _figure(7.5, 4.8)
+    for i, (t, a) in enumerate(zip(tests, approaches)):
+        c = f"C{i % 10}"
+        m = a.main_pulse
+        ax.plot(a.approach[m] / t.diameter, a.force[m] * fu.factor, color=c, lw=1.0, label=t.name)
+        lw = law.law(t.mass, t.diameter, t.velocity)
+        model = [lw.force(x, r) for x, r in zip(a.approach[m], a.rate[m])]
+        ax.plot(a.approach[m] / t.diameter, np.array(model) * fu.factor, color=c, lw=1.0, ls="--")
+    ax.set_xlabel("approach α / d (impactor minus bar end, from the measured force)")
+    ax.set_ylabel(f"contact force [{fu.label}]")
+    ax.set_title("Force against approach: measured (solid), identified law (dashed)", fontsize=10)
+    ax.legend(fontsize=7, ncol=2)
+    return fig
+
+
+def identify_files(series, tests, law, approaches, closure, figures: bool = True, prefix: str = "") -> dict[str, bytes | str]:
+    """law.json, closure.csv, approach-<test>.csv and (optionally) closure-forces.png, force-approach.png."""
+    files = {
+        prefix + "law.json": law_json(law, [t.name for t in tests], closure, str(series.path)),
+        prefix + "closure.csv": csv_text(closure_columns(tests, closure)),
+    }
+    for a, t in zip(approaches, tests):
+        files[prefix + f"approach-{t.name}.csv"] = csv_text(
+            {
+                "time_s": a.time,
+                "force_N": a.force,
+                "approach_m": a.approach,
+                "approach_rate_m_s": a.rate,
+                "impactor_velocity_m_s": a.impactor_velocity,
+                "bar_end_displacement_m": a.end_displacement,
+                "in_fit": a.main_pulse.astype(float),
+            }
+        )
+    if figures:
+        files[prefix + "closure-forces.png"] = figure_bytes(closure_figure(tests, closure, series.units))
+        files[prefix + "force-approach.png"] = figure_bytes(force_approach_figure(tests, law, approaches, series.units))
+    return files

@@ -1,0 +1,158 @@
+"""Outputs of ``softimpact impact``: history.csv, summary.json and the figures of a coupled impact."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..units import display
+from .files import csv_text, figure_bytes, json_text
+
+__all__ = ["impact_summary", "impact_columns", "impact_files", "impact_figures"]
+
+
+def _contact(c) -> dict:
+    return {
+        "start_s": c.start,
+        "end_s": c.end,
+        "duration_s": c.duration,
+        "peak_force_N": c.peak_force,
+        "time_of_peak_s": c.time_of_peak,
+        "impulse_N_s": c.impulse,
+    }
+
+
+def impact_summary(problem, result) -> dict:
+    """The scalars of a coupled run (first contact), every contact, gauge peaks and the resolved case; SI."""
+    gauges = {}
+    for name, eps in zip(result.gauge_names, result.gauge_strain):
+        kmax, kmin = int(np.argmax(eps)), int(np.argmin(eps))
+        gauges[name] = {
+            "peak_tensile_strain": float(eps[kmax]),
+            "time_of_peak_tensile_strain_s": float(result.time[kmax]),
+            "peak_compressive_strain": float(eps[kmin]),
+            "time_of_peak_compressive_strain_s": float(result.time[kmin]),
+            "peak_abs_strain": float(np.max(np.abs(eps))),
+        }
+    first = result.contacts[0]
+    sel = result.time <= (first.end if math.isfinite(first.end) else result.time[-1])
+    E = result.energies
+    KE0 = result.impactor.kinetic_energy
+    balance = E.total - KE0 - E.surface_mismatch
+    return {
+        "title": problem.title,
+        "contact_law": problem.law_name,
+        "peak_force_N": result.peak_force,
+        "time_of_peak_s": result.time_of_peak,
+        "contact_duration_s": result.contact_duration,
+        "impulse_N_s": result.impulse,
+        "rebound_velocity_m_s": result.rebound_velocity,
+        "rebound_velocity_note": "impactor velocity after the first contact, positive toward the target (negative = bounced back), as for the bar",
+        "max_approach_m": float(np.max(result.approach[sel])),
+        "max_contact_radius_m": float(np.max(result.contact_radius[sel])),
+        "contacts": [_contact(c) for c in result.contacts],
+        "number_of_contacts": len(result.contacts),
+        "total_impulse_N_s": result.total_impulse,
+        "final_impactor_velocity_m_s": result.final_velocity,
+        "impactor_mass_kg": result.impactor.mass,
+        "impactor_kinetic_energy_J": KE0,
+        "energy_balance_relative": float(np.max(np.abs(balance)) / KE0) if np.all(np.isfinite(balance)) else None,
+        "surface_mismatch_relative_max": float(np.max(np.abs(E.surface_mismatch)) / KE0),
+        "newton_iterations": result.newton_iterations,
+        "gauges": gauges,
+        "case_SI": problem,
+    }
+
+
+def impact_columns(result) -> dict[str, np.ndarray]:
+    """The columns of history.csv: time, force, impactor, approach, radius, target, gauges, energies."""
+    cols = {
+        "time_s": result.time,
+        "contact_force_N": result.contact_force,
+        "impactor_velocity_m_s": result.impactor_velocity,
+        "impactor_displacement_m": result.impactor_displacement,
+        "approach_m": result.approach,
+        "approach_rate_m_s": result.approach_rate,
+        "contact_radius_m": result.contact_radius,
+        "target_displacement_m": result.target_displacement,
+    }
+    for name, eps in zip(result.gauge_names, result.gauge_strain):
+        cols[f"strain_{name}"] = eps
+    E = result.energies
+    cols["impactor_kinetic_energy_J"] = E.impactor_kinetic
+    cols["structure_kinetic_energy_J"] = E.structure_kinetic
+    cols["structure_strain_energy_J"] = E.structure_strain
+    cols["contact_work_J"] = E.contact_work
+    cols["contact_stored_energy_J"] = E.contact_energy
+    cols["surface_mismatch_J"] = E.surface_mismatch
+    return cols
+
+
+def impact_figures(problem, result, prefix: str = "") -> dict[str, bytes]:
+    """force-history.png, approach.png, gauge-strains.png, energy.png."""
+    from .plots import _figure
+
+    system = problem.units
+    tu, fu, lu, su = (display(system, k) for k in ("time", "force", "length", "strain"))
+    t = result.time * tu.factor
+    out = {}
+
+    fig, ax = _figure()
+    ax.plot(t, result.contact_force * fu.factor, label=f"contact force ({problem.law_name})")
+    for i, c in enumerate(result.contacts):
+        ax.axvline(c.start * tu.factor, color="0.6", lw=0.8, ls=":")
+        ax.annotate(f"contact {i + 1}", (c.start * tu.factor, c.peak_force * fu.factor), fontsize=8)
+    ax.set_xlabel(f"time since first contact [{tu.label}]")
+    ax.set_ylabel(f"contact force [{fu.label}] (compression +)")
+    ax.set_title(f"{problem.title}: contact force", fontsize=10)
+    ax.legend()
+    out[prefix + "force-history.png"] = figure_bytes(fig)
+
+    fig, ax = _figure()
+    ax.plot(t, result.impactor_displacement * lu.factor, label="impactor displacement")
+    ax.plot(t, result.target_displacement * lu.factor, label="target mid-surface displacement")
+    ax.plot(t, result.approach * lu.factor, label="approach α (contact law's indentation)")
+    ax.plot(t, result.contact_radius * lu.factor, "--", label="contact radius")
+    ax.set_xlabel(f"time since first contact [{tu.label}]")
+    ax.set_ylabel(f"[{lu.label}] (along the impact direction)")
+    ax.set_title("Approach: impactor minus target mid-surface", fontsize=10)
+    ax.legend(fontsize=8)
+    out[prefix + "approach.png"] = figure_bytes(fig)
+
+    fig, ax = _figure()
+    for name, eps in zip(result.gauge_names, result.gauge_strain):
+        ax.plot(t, eps * su.factor, label=f"gauge {name}")
+    ax.set_xlabel(f"time since first contact [{tu.label}]")
+    ax.set_ylabel(f"axial strain [{su.label}] (tension +)")
+    ax.set_title("Strain at the gauges, coupled impact", fontsize=10)
+    if len(result.gauge_names):
+        ax.legend()
+    out[prefix + "gauge-strains.png"] = figure_bytes(fig)
+
+    fig, ax = _figure()
+    E = result.energies
+    KE0 = result.impactor.kinetic_energy
+    for label, e in (
+        ("impactor kinetic", E.impactor_kinetic),
+        ("structure kinetic", E.structure_kinetic),
+        ("structure strain", E.structure_strain),
+        ("stored in the contact", E.contact_energy),
+        ("lost in the contact", E.contact_loss),
+        ("sum − surface mismatch", E.total - E.surface_mismatch),
+    ):
+        ax.plot(t, e / KE0, label=label)
+    ax.set_xlabel(f"time since first contact [{tu.label}]")
+    ax.set_ylabel("energy / impactor's initial kinetic energy")
+    ax.set_title("Energy balance", fontsize=10)
+    ax.legend(fontsize=8)
+    out[prefix + "energy.png"] = figure_bytes(fig)
+    return out
+
+
+def impact_files(problem, result, figures: bool = True, prefix: str = "") -> dict[str, bytes | str]:
+    """history.csv, summary.json and (optionally) the figures."""
+    files = {prefix + "history.csv": csv_text(impact_columns(result)), prefix + "summary.json": json_text(impact_summary(problem, result))}
+    if figures:
+        files.update(impact_figures(problem, result, prefix))
+    return files

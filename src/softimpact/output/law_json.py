@@ -1,0 +1,84 @@
+"""law.json: a soft projectile's contact law identified from bar tests, written and read in one place.
+
+Layout (SI): ``family`` (``"soft-projectile"``), ``form`` (the law in words),
+``units``, ``d_ref_m``, ``parameters`` (``k_ref``, ``p``, ``c_ref``, ``q_k``,
+``q_c``, ``q_p``, each with ``value`` and ``ci95_half_width``), ``fit`` (``cost`` and
+``rms_over_F0`` per test), and, when the closure was run, ``closure`` per test
+(measured and simulated F0, T, I and their relative errors).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import InputError
+from ..workflows.identification import PARAMETERS, IdentifiedLaw
+from .files import json_text
+
+__all__ = ["FAMILY", "law_summary", "law_json", "read_law"]
+
+FAMILY = "soft-projectile"
+FORM = (
+    "F = (m*V^2/d)*k*(alpha/d)^n*(1 + c*alpha_dot/V) >= 0, k = k_ref*(d/d_ref)^q_k, c = c_ref*(d/d_ref)^q_c, "
+    "n = p*(d/d_ref)^q_p; contact radius a = sqrt(d*alpha)"
+)
+
+
+def law_summary(law: IdentifiedLaw, test_names, closure=None, series: str = "") -> dict:
+    """The content of law.json (module docstring)."""
+    out = {
+        "family": FAMILY,
+        "form": FORM,
+        "units": "SI",
+        "series": series,
+        "d_ref_m": law.d_ref,
+        "parameters": {n: {"value": float(v), "ci95_half_width": float(h)} for n, v, h in zip(law.names, law.values, law.half_widths)},
+        "fit": {"cost": law.cost, "rms_over_F0": dict(zip(test_names, map(float, law.rms_per_test)))},
+    }
+    if closure is not None:
+        keys = ("peak_force_N", "duration_s", "impulse_N_s")
+        out["closure"] = {
+            name: {
+                "measured": dict(zip(keys, map(float, m))),
+                "simulated": dict(zip(keys, map(float, s))),
+                "relative_error": dict(zip(("peak_force", "duration", "impulse"), map(float, e))),
+            }
+            for name, m, s, e in zip(closure.names, closure.measured, closure.simulated, closure.errors)
+        }
+    return out
+
+
+def law_json(law: IdentifiedLaw, test_names, closure=None, series: str = "") -> str:
+    """The text of law.json."""
+    return json_text(law_summary(law, test_names, closure, series))
+
+
+def read_law(path, argument: str = "contact.law_file") -> IdentifiedLaw:
+    """The identified law of a law.json; anything else is an :class:`InputError` naming ``argument``."""
+    try:
+        data = json.loads(Path(path).read_text(encoding="utf-8"))
+    except OSError as exc:
+        raise InputError(f"{argument}: cannot read {path} ({exc.strerror})") from None
+    except (ValueError, UnicodeDecodeError):
+        raise InputError(f"{argument}: {path} is not JSON (expected a law.json from `softimpact identify`)") from None
+    names = PARAMETERS
+    try:
+        if data["family"] != FAMILY:
+            raise InputError(f"{argument}: {path} holds a {data['family']!r} law; only {FAMILY!r} laws are known")
+        pars = data["parameters"]
+        # q_p (the exponent's size scaling) came last: a law without it has q_p = 0
+        values = np.array([float(pars[n]["value"]) if n in pars or n != "q_p" else 0.0 for n in names])
+        half = np.array([float(pars[n].get("ci95_half_width", math.nan)) if n in pars else 0.0 for n in names])
+        d_ref = float(data["d_ref_m"])
+        fit = data.get("fit", {})
+        rms = np.array([float(v) for v in fit.get("rms_over_F0", {}).values()])
+        cost = float(fit.get("cost", math.nan))
+    except (KeyError, TypeError, ValueError, AttributeError):
+        raise InputError(f"{argument}: {path} is not a law.json (needs family, d_ref_m and parameters {', '.join(names)})") from None
+    if not (np.all(np.isfinite(values)) and values[0] > 0 and values[1] > 0 and values[2] >= 0 and math.isfinite(d_ref) and d_ref > 0):
+        raise InputError(f"{argument}: {path} has parameters out of range (k_ref > 0, p > 0, c_ref >= 0, d_ref_m > 0)")
+    return IdentifiedLaw(names, values, half, d_ref, rms, cost)
