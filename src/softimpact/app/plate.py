@@ -1,0 +1,32 @@
+"""``softimpact plate``: transverse impact of a laminated plate (FSDT, MITC4); and the
+paper report's beam-as-plate section (the plane-strain assumption measured)."""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from ..input.plate_case import load_plate_case
+from ..output.plate import plate_files, snapshot_steps
+from ..units import display
+from ..workflows.plate_impact import PlateModel
+from . import Outcome, Progress, no_progress
+
+__all__ = ["plate"]
+
+
+def plate(case: str, history: int | None = None, figures: bool = True, progress: Progress = no_progress) -> Outcome:
+    """Run a plate case (file or built-in name), optionally with row ``history`` of its [[load.table]]."""
+    problem, path = load_plate_case(case, history)
+    t0 = time.perf_counter()
+    model = PlateModel(problem)
+    steps = problem.solver.steps
+    result = model.direct(progress=lambda k: progress(k, steps, "stepping"), snapshots=snapshot_steps(steps) if figures else ())
+    progress(steps, steps, "stepping")
+    files = plate_files(model, result, figures)
+    su, lu = display(problem.units, "strain"), display(problem.units, "length")
+    peaks = "".join(f", {g.name} {eps[np.argmax(np.abs(eps))] * su.factor:.0f} {su.label}" for g, eps in zip(problem.gauges, result.strain))
+    w = result.deflection[0]
+    line = f"{model.fe.n} DOF, {steps} steps ({time.perf_counter() - t0:.1f} s); peak deflection {w[np.argmax(np.abs(w))] * lu.factor:.3g} {lu.label}{peaks}"
+    return Outcome(files, line, (path,))
