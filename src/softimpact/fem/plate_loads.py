@@ -34,7 +34,7 @@ import numpy as np
 from ..errors import InputError
 from .plate import PlateFE, W
 
-__all__ = ["CircularPatch", "cosine_pressure"]
+__all__ = ["CircularPatch", "DiscShares", "cosine_pressure"]
 
 SUBCELLS = 12  # pieces per diameter, besides the grid lines: resolves the disc edge to a few 1e-5
 TABLE = 129  # radii tabulated for a growing patch: linear interpolation error ~ (1/128)² of the shape change
@@ -167,3 +167,36 @@ class CircularPatch:
         tab = self.table()
         shape = tab[k] * (1 - frac)[:, None] + tab[k + 1] * frac[:, None]  # (n_t, n_nodes)
         return (shape * F[:, None]).T
+
+
+class DiscShares:
+    """Nodal shares of a unit contact force on a growing disc, for the coupled solver
+    (:class:`softimpact.fem.impact.ContactStructure`'s ``patch``).
+
+    ``shares(a)`` gives (s, ds/da) over ``patch.nodes`` for a disc of radius a ≤ the
+    patch's radius: linear interpolation in a of the tabulated exact distributions
+    (each summing to the patch's share), so s sums to the share for every a and
+    ds/da is the slope of the table's interval. At a = 0 the force is a point force
+    shared by the bilinear functions at the centre.
+    """
+
+    half_spacing = 0.0  # the disc's shares are defined for every a > 0
+
+    def __init__(self, patch: CircularPatch):
+        if not patch.grow:
+            raise InputError("contact shares need a patch tabulated for a growing radius (grow=True)")
+        self.patch = patch
+        self.table = patch.table()
+        self.n = self.table.shape[1]
+        self.step = patch.radius / (TABLE - 1)
+        self._point = self.table[0]
+
+    def shares(self, a: float) -> tuple[np.ndarray, np.ndarray]:
+        """(s, ds/da), each of shape (n_nodes,)."""
+        if a > self.patch.radius * (1 + 1e-12):
+            raise InputError(f"contact radius {a:.4g} m runs past the loadable disc ({self.patch.radius:.4g} m)")
+        pos = min(max(a / self.step, 0.0), TABLE - 1)
+        k = min(int(pos), TABLE - 2)
+        frac = pos - k
+        slope = (self.table[k + 1] - self.table[k]) / self.step
+        return self.table[k] * (1 - frac) + self.table[k + 1] * frac, slope
