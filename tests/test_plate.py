@@ -243,3 +243,21 @@ def test_coupled_hertz_impact_on_a_stiff_heavy_plate_tends_to_the_rigid_wall(sca
     r = simulate_coupled(structure, law, Impactor(m, d, V), solver)
     assert r.peak_force == pytest.approx(F_max, rel=tol)
     assert r.contact_duration == pytest.approx(T, rel=tol)
+
+
+def test_cantilever_strip_strain_matches_beam_theory():
+    """A 6 × 1 in [90/0]5s strip clamped at x = 0 (half strip, symmetry on the centre line), static
+    unit patch load at x = 3 in: the bottom-face strain at x = 2 in and 0.5 in is beam theory's
+    −F·(a − x)·(h/2)/(b·D*) within 1 %, D* = 1/(D⁻¹)₁₁ (a narrow strip; the plane-strain D11 differs
+    from it by only 0.14 % for this layup, whose D12 is small)."""
+    L, b, a = 6 * INCH, 1 * INCH, 3 * INCH
+    fe = PlateFE(Plate(L, b / 2, 96, 8, SECTION, ("clamped", "free", "symmetry", "free")))
+    patch = CircularPatch(fe, (a, 0.0), 0.25 * INCH, grow=False)
+    f = np.zeros(fe.n)
+    f[patch.dofs] = -patch.unit()  # half the unit force on the half strip, pushing down
+    u = spl.spsolve(fe.K.tocsc(), f)
+    d_star = 1 / np.linalg.inv(SECTION.D)[0, 0]
+    assert d_star == pytest.approx(SECTION.D[0, 0], rel=2e-3)
+    for x in (2 * INCH, 0.5 * INCH):
+        exact = -(a - x) * SECTION.thickness / 2 / (b * d_star)  # hogging: the bottom face is compressed
+        assert fe.surface_strain(x, 0.0, "bottom", "x", 0.031 * INCH) @ u == pytest.approx(exact, rel=0.01)

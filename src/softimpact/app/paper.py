@@ -175,6 +175,10 @@ def paper(figures: bool = True, progress: Progress = no_progress) -> Outcome:
         ("rubber-ball series, Table I (Figs 7-15)", rubber_series),
         ("laminated beams (Figs 16-22)", beams),
         ("calibration, Tables II and III (Figs 23-25)", calibrations),
+        (
+            "beams as 1-inch-wide plates: the plane-strain assumption",
+            lambda: sections.append(__import__("softimpact.app.plate", fromlist=["_"]).beam_as_plate_section(figures, files)),
+        ),
     ]
     for k, (label, step) in enumerate(steps):
         progress(k, len(steps), label)
