@@ -123,3 +123,26 @@ def test_bad_history_row(tmp_path):
     result, out = _run(tmp_path, SMALL, "--history", "3")
     assert result.exit_code == 2 and "load.table" in result.output
     assert not out.exists()
+
+
+def test_quarter_case_with_symmetry_edges_equals_the_full_case(tmp_path):
+    """The contract case on 12 × 12 and its quarter (x, y ≥ 4 in, symmetry on x0 and y0, load at the
+    corner) on 6 × 6 write the same history.csv deflection and strains to round-off."""
+    full, out_full = _run(tmp_path, SMALL, "--no-figures")
+    quarter_text = (
+        SMALL.replace('length = "8 in"', 'length = "4 in"')
+        .replace('width = "8 in"', 'width = "4 in"')
+        .replace("elements = [12, 12]", "elements = [6, 6]")
+        .replace('x0 = "simply-supported"', 'x0 = "symmetry"')
+        .replace('y0 = "simply-supported"', 'y0 = "symmetry"')
+        .replace('position = ["4 in", "4 in"]', 'position = ["0 in", "0 in"]')
+        .replace('position = ["5 in", "4 in"]', 'position = ["1 in", "0 in"]')
+        .replace('position = ["4 in", "6 in"]', 'position = ["0 in", "2 in"]')
+    )
+    case = tmp_path / "quarter.toml"
+    case.write_text(quarter_text)
+    out_q = tmp_path / "outq"
+    quarter = CliRunner().invoke(main, ["plate", str(case), "--out", str(out_q), "--no-figures"])
+    assert full.exit_code == 0 and quarter.exit_code == 0, quarter.output
+    (_, a), (_, b) = _history(out_full), _history(out_q)
+    assert np.max(np.abs(a[:, 2:] - b[:, 2:]) / np.max(np.abs(a[:, 2:]), axis=0)) < 1e-9

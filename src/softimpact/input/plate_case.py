@@ -20,7 +20,7 @@ from .toml import Table, load_toml, locate, naming, read_solver, read_units
 
 __all__ = ["PLATE_SUPPORTS", "PLATE_MODELS", "plate_problem", "load_plate_case"]
 
-PLATE_SUPPORTS = ("clamped", "simply-supported", "free")
+PLATE_SUPPORTS = ("clamped", "simply-supported", "free", "symmetry")  # symmetry: a mirror plane (quarter models)
 PLATE_MODELS = ("fsdt", "solid")
 MIN_ELEMENTS = 2  # per direction: one MITC4 element cannot place a load or gauge inside the plate
 
