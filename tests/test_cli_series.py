@@ -55,11 +55,12 @@ def test_one_bad_record_is_reported_and_the_others_reduce(tmp_path):
 
 
 def test_wrong_unit_header_names_the_file(tmp_path):
-    """A record whose header has no known unit is refused with the file named."""
+    """A record whose header states no unit (and no bridge to read volts) is bad input: file named, exit 2, nothing written."""
     series = _mini_series(tmp_path, "time,strain_gauge\n0,0\n1,0\n")
     result = CliRunner().invoke(main, ["reduce", str(series), "--out", str(tmp_path / "o"), "--no-figures"])
-    assert result.exit_code == 0
-    assert "bad.csv" in result.output and "time_s" in result.output
+    assert result.exit_code == 2
+    assert "bad.csv" in result.output and "unit" in result.output
+    assert not (tmp_path / "o").exists()
 
 
 def test_all_records_bad_exits_2_and_writes_nothing(tmp_path):

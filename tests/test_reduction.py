@@ -5,9 +5,10 @@ import pytest
 from conftest import INCH
 
 from softimpact.errors import InputError
+from softimpact.models.bridge import Bridge
 from softimpact.models.materials import lookup
 from softimpact.models.pulses import SkewedPulse, TailedPulse
-from softimpact.models.specimens import BarSpec, Bridge, EndCap
+from softimpact.models.specimens import BarSpec, EndCap
 from softimpact.workflows.reduction import Record, reduce_record, wave_separation
 from softimpact.workflows.synthetic import gauge_model, synthetic_record
 
@@ -93,11 +94,11 @@ def test_wave_separation_inverts_dalembert():
 
 
 def test_quarter_bridge_against_exact_wheatstone():
-    """ε from V_out matches the exact quarter-bridge output V·(ΔR/R)/(4 + 2ΔR/R) to the linearisation error."""
+    """ε from V_out inverts the exact quarter-bridge output V·(ΔR/R)/(4 + 2ΔR/R) (tension reading positive: polarity −1)."""
     GF, Vexc, gain, eps = 2.1, 5.0, 100.0, -250e-6
     dr = GF * eps
     vout = gain * Vexc * dr / (4 + 2 * dr)
-    assert Bridge(GF, 1, Vexc, gain).strain(vout) == pytest.approx(eps, rel=1e-3)
+    assert Bridge("quarter", GF, Vexc, gain, polarity=-1).strain(vout) == pytest.approx(eps, rel=1e-12)
 
 
 def _clean(n=800):

@@ -6,7 +6,7 @@ from scipy.linalg import toeplitz
 from scipy.signal import lfilter
 
 from softimpact.models.pulses import SkewedPulse
-from softimpact.workflows.regularisation import (
+from softimpact.models.regularisation import (
     choose_discrepancy,
     choose_gcv,
     choose_l_curve,

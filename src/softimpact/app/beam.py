@@ -21,7 +21,7 @@ def beam(case: str, history: int | None = None, figures: bool = True, progress: 
     t0 = time.perf_counter()
     model = BeamModel(problem)
     steps = problem.solver.steps
-    result = model.direct(progress=lambda k: progress(k, steps, "stepping"))
+    result = model.direct(progress=lambda k: progress(k, steps, "stepping"), displacement=figures)
     progress(steps, steps, "stepping")
     files = beam_files(model, result, figures)
     su = display(problem.units, "strain")

@@ -22,12 +22,13 @@ from ..models.empirical import PRESETS, PROJECTILES
 from ..models.pulses import SkewedPulse
 from ..output.calibration import SeriesComparison, calibration_files, series_calibration_files
 from ..workflows.beam_impact import BeamModel
-from ..workflows.calibration import METHODS, Calibration, Measured, calibrate
+from ..workflows.calibration import METHODS, Calibration, Measured, calibrate, calibrate_checked
+from ..workflows.refinement import refine_beam
 from ..workflows.scaling import TestPoint, fit_groups
 from . import Outcome, Progress, no_progress
 from .predict import scaling_law
 
-__all__ = ["CalibratedTest", "start_pulse", "calibration_model", "calibrate_tests", "series_fits", "comparison", "calibrate_command"]
+__all__ = ["CalibratedTest", "ModelLadder", "start_pulse", "calibration_model", "calibrate_tests", "series_fits", "comparison", "calibrate_command"]
 
 
 @dataclass(frozen=True)
@@ -56,26 +57,107 @@ def start_pulse(projectile: str, constants: str | None, velocity: float, system:
     return law.pulse(P.mass, P.diameter, velocity)
 
 
-def calibration_model(problem, radii, fit_radius: bool) -> BeamModel:
-    """A beam model whose contact patch covers every r0 to be used (and 1.5 r0 when r0 is fitted)."""
-    reach = max(radii) * (1.5 if fit_radius else 1.0)
-    x, L = problem.load.position, problem.beam.length
-    return BeamModel(problem, patch_radius=min(reach, x, L - x))
+DEFAULT_BUDGET = 20.0  # s: what refining the calibration model may cost (building the refined response engines)
+# flop/s of banded back-substitutions assumed in cost predictions: conservative for one core
+# (the standard machine does about 5.7e9 on the beam meshes).
+SOLVE_RATE = 2e9
 
 
-def calibrate_tests(model, tests, projectile, constants, method, fit_radius=False, deconvolve=True, progress: Progress = no_progress) -> list[CalibratedTest]:
-    """Calibrate each test; a bad test is reported and the others go on."""
+class ModelLadder:
+    """The case's beam model (level 0) and its refinements by ``ratio``^k, each built on
+    first use and kept, with a contact patch that covers every r0 to be used.
+
+    :meth:`affordable` is the highest level whose response engine the time budget
+    allows (:meth:`engine_seconds`).
+    """
+
+    def __init__(self, problem, radii, fit_radius: bool = False, ratio: int = 2):
+        reach = max(radii) * (1.5 if fit_radius else 1.0)
+        x, L = problem.load.position, problem.beam.length
+        self.problem, self.ratio, self.reach = problem, ratio, min(reach, x, L - x)
+        self.models: dict[int, BeamModel] = {}
+
+    def __call__(self, level: int) -> BeamModel:
+        if level not in self.models:
+            problem = self.problem if level == 0 else refine_beam(self.problem, self.ratio**level)
+            self.models[level] = BeamModel(problem, patch_radius=self.reach, outputs="strain")
+        return self.models[level]
+
+    def engine_seconds(self, level: int) -> float:
+        """Predicted cost of level's response engine [s]: its back-substitutions (steps × gauges)
+        at SOLVE_RATE; a level above 0 scales level 0's by ratio⁴ (DOFs ratio², band ratio,
+        steps ratio). A prediction from the problem's size, not a timing, so that the choice
+        of model does not depend on what else the machine is running."""
+        m = self(0)
+        work = m.stepper.solve_flops() * m.steps * len(m.problem.gauges)
+        return work * self.ratio ** (4 * level) / SOLVE_RATE
+
+    def affordable(self, budget: float) -> int:
+        """The highest level whose engine fits in ``budget`` seconds (at least 0, at most 3)."""
+        level = 0
+        while level < 3 and self.engine_seconds(level + 1) <= budget:
+            level += 1
+        return level
+
+    def finest(self) -> BeamModel:
+        """The finest level built so far."""
+        return self(max(self.models, default=0))
+
+    def describe(self, level: int) -> dict:
+        """Mesh and step of a level (SI)."""
+        b, s = self(level).problem.beam, self(level).problem.solver
+        return {"level": level, "factor": self.ratio**level, "elements": [b.nx, b.nz], "time_step_s": s.time_step}
+
+
+def calibration_model(problem, radii, fit_radius: bool) -> ModelLadder:
+    """The ladder of calibration models for a case (level 0: its own mesh)."""
+    return ModelLadder(problem, radii, fit_radius)
+
+
+def calibrate_tests(
+    models: ModelLadder,
+    tests,
+    projectile,
+    constants,
+    method,
+    fit_radius=False,
+    deconvolve=True,
+    budget: float = DEFAULT_BUDGET,
+    progress: Progress = no_progress,
+) -> list[CalibratedTest]:
+    """Calibrate each test on a model whose discretisation error is checked (and refined within
+    ``budget`` seconds); a bad test is reported and the others go on."""
     out = []
+    problem = models.problem
+    max_level = models.affordable(budget)
     for i, test in enumerate(tests):
         try:
-            start = start_pulse(projectile, constants, test.velocity, model.problem.units)
+            start = start_pulse(projectile, constants, test.velocity, problem.units)
             t, strains = read_strains(test.measured)
             measured = Measured(test.measured.name, t, strains)
-            r0 = test.contact_radius or model.problem.load.contact_radius
-            cal = calibrate(model, measured, start, method, contact_time=test.contact_time, radius=r0, fit_radius=fit_radius)
+            r0 = test.contact_radius or problem.load.contact_radius
+            cal = calibrate_checked(
+                models,
+                measured,
+                start,
+                method,
+                max_level=max_level,
+                contact_time=test.contact_time,
+                radius=r0,
+                fit_radius=fit_radius,
+                progress=lambda label, i=i, name=test.name: progress(i, len(tests), f"{name}: {label}"),
+            )
             dec = None
             if deconvolve and method != "deconvolve":
-                dec = calibrate(model, measured, start, "deconvolve", contact_time=cal.prepared.contact_time, radius=r0)
+                dec = calibrate(
+                    models(cal.check.level),
+                    measured,
+                    start,
+                    "deconvolve",
+                    contact_time=cal.prepared.contact_time,
+                    radius=r0,
+                    error_to_noise=cal.check.error_to_noise,
+                )
             out.append(CalibratedTest(test, cal, dec))
         except InputError as exc:
             out.append(CalibratedTest(test, None, None, str(exc)))
@@ -132,9 +214,13 @@ def calibrate_command(
     projectile: str = "rubber-1/2in",
     constants: str | None = None,
     figures: bool = True,
+    budget: float = DEFAULT_BUDGET,
     progress: Progress = no_progress,
 ) -> Outcome:
-    """Calibrate a beam case against one measured file, or every test of a calibration series."""
+    """Calibrate a beam case against one measured file, or every test of a calibration series.
+    ``budget`` [s]: what refining the model (to bound its discretisation error) may cost."""
+    if not (isinstance(budget, (int, float)) and math.isfinite(budget) and budget >= 0):
+        raise InputError(f"--budget: must be a non-negative number of seconds, got {budget!r}")
     if method not in METHODS:
         raise InputError(f"--method: {method!r} is not one of {', '.join(METHODS)}")
     if projectile not in PROJECTILES:
@@ -146,12 +232,12 @@ def calibrate_command(
         series = load_calibration_series(case)
         problem, case_path = load_beam_case(series.case)
         radii = [t.contact_radius or problem.load.contact_radius for t in series.tests]
-        model = calibration_model(problem, radii, fit_radius)
-        items = calibrate_tests(model, series.tests, series.projectile, series.constants, method, fit_radius, progress=progress)
+        models = calibration_model(problem, radii, fit_radius)
+        items = calibrate_tests(models, series.tests, series.projectile, series.constants, method, fit_radius, budget=budget, progress=progress)
         warnings = tuple(i.error for i in items if i.calibration is None)
         if len(warnings) == len(items):
             raise InputError("no test of the series could be calibrated")
-        files = series_calibration_files(model, series, items, series_fits(series, items), figures)
+        files = series_calibration_files(models, series, items, series_fits(series, items), figures)
         line = f"{len(items) - len(warnings)} of {len(items)} tests calibrated ({time.perf_counter() - t0:.1f} s); calibration.json"
         return Outcome(files, line, (series.path, case_path, *(t.measured for t in series.tests)), warnings)
     if not measured or not velocity:
@@ -161,16 +247,17 @@ def calibrate_command(
     tc = units.parse(contact_time, "time", "--contact-time") if contact_time else None
     problem, case_path = load_beam_case(case)
     test = CalibrationTest(Path(measured).stem, Path(measured), V, r0, tc)
-    model = calibration_model(problem, [r0 or problem.load.contact_radius], fit_radius)
-    items = calibrate_tests(model, [test], projectile, constants, method, fit_radius)
+    models = calibration_model(problem, [r0 or problem.load.contact_radius], fit_radius)
+    items = calibrate_tests(models, [test], projectile, constants, method, fit_radius, budget=budget, progress=progress)
     if items[0].calibration is None:
         raise InputError(items[0].error)
-    files = calibration_files(model, items, figures, single=True)
+    files = calibration_files(models, items, figures, single=True)
     c = items[0].calibration
     fu, tu = units.display(problem.units, "force"), units.display(problem.units, "time")
     se = c.standard_errors.get("peak_force")
     line = (
         f"{c.method}: F0 {c.peak_force * fu.factor:.1f} {fu.label}{f' ± {se * fu.factor:.2g}' if se else ''}, "
-        f"tF0 {c.time_of_peak * tu.factor:.1f} {tu.label}, T {c.duration * tu.factor:.1f} {tu.label} ({c.message}); {time.perf_counter() - t0:.1f} s"
+        f"tF0 {c.time_of_peak * tu.factor:.1f} {tu.label}, T {c.duration * tu.factor:.1f} {tu.label} ({c.message}); "
+        f"{c.check.message if c.check else ''}; {time.perf_counter() - t0:.1f} s"
     )
     return Outcome(files, line, (case_path, Path(measured)))

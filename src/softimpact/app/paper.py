@@ -17,15 +17,18 @@ from ..output import plots
 from ..output.bar import bar_files, bar_section
 from ..output.beam import beam_files, beam_section
 from ..output.calibration import calibration_section, series_calibration_files, tables_rows
+from ..output.converge import converge_files, converge_section
 from ..output.files import figure_bytes
 from ..output.report import Section, render_report
 from ..output.series import reduction_files, scaling_files, scaling_section
 from ..units import INCH, display
 from ..workflows.beam_impact import BeamModel
 from ..workflows.calibration import Measured, calibrate
+from ..workflows.refinement import coarsen_beam
 from . import Outcome, Progress, no_progress
 from .bar import gauge_lag, run_bar
 from .calibrate import calibrate_tests, calibration_model, comparison, series_fits, start_pulse
+from .converge import STUDIES, study_case
 from .series import fit_series, reduce_series
 
 __all__ = ["paper", "NOTES"]
@@ -137,12 +140,12 @@ def paper(figures: bool = True, progress: Progress = no_progress) -> Outcome:
         for beam in ("long", "short"):
             series = load_calibration_series(f"paper-{beam}-calibration")
             problem, _ = load_beam_case(series.case)
-            model = calibration_model(problem, [t.contact_radius or problem.load.contact_radius for t in series.tests], False)
-            items = calibrate_tests(model, series.tests, series.projectile, series.constants, "least-squares")
+            models = calibration_model(problem, [t.contact_radius or problem.load.contact_radius for t in series.tests], False)
+            items = calibrate_tests(models, series.tests, series.projectile, series.constants, "least-squares")
             truths = [SkewedPulse(r[1], r[2], r[3]) for r in series.reference] if len(series.reference) == len(items) else None
             prefix = f"calibration-{beam}/"
             fits = series_fits(series, items)
-            files.update(series_calibration_files(model, series, items, fits, figures, prefix, truths))
+            files.update(series_calibration_files(models, series, items, fits, figures, prefix, truths))
             paper_method = None
             if beam == "long":
                 # The paper's procedure on history 1, from the bar model with the Table's tF0/T (see NOTES).
@@ -151,8 +154,9 @@ def paper(figures: bool = True, progress: Progress = no_progress) -> Outcome:
                 ref = series.reference[0]
                 start = SkewedPulse(bar.peak_force, ref[2] / ref[3] * bar.duration, bar.duration)
                 t, strains = read_strains(test.measured)
-                paper_method = calibrate(model, Measured(test.measured.name, t, strains), start, "paper", radius=test.contact_radius)
-            sections.append(calibration_section(model, series, items, comparison(model, series, items, fits), prefix, figures, paper_method))
+                paper_method = calibrate(models(0), Measured(test.measured.name, t, strains), start, "paper", radius=test.contact_radius)
+            compared = comparison(models.finest(), series, items, fits)
+            sections.append(calibration_section(models, series, items, compared, prefix, figures, paper_method))
             groups[f"{beam} beam, calibrated"] = [r[:4] for r in tables_rows(items)]
             groups[f"{beam} beam, Table {'II' if beam == 'long' else 'III'} (paper)"] = [r[:4] for r in series.reference]
         if figures:
@@ -170,11 +174,26 @@ def paper(figures: bool = True, progress: Progress = no_progress) -> Outcome:
                 )
             )
 
+    def discretisation():
+        problem, _ = load_bar_case("paper-calibration")
+        result, sizes = study_case(STUDIES["bar"], problem, 3, 2)
+        files.update(converge_files(result, sizes, problem, "bar", figures, prefix="convergence/bar/"))
+        sections.append(converge_section(result, sizes, "Discretisation error: the bar (paper-calibration)", "convergence/bar/", figures))
+        for name in ("paper-long-beam", "paper-short-beam"):
+            problem, _ = load_beam_case(name, 1)
+            base = coarsen_beam(problem, 2)  # levels ½, 1, 2: the paper's mesh in the middle
+            result, sizes = study_case(STUDIES["beam"], base, 3, 2)
+            prefix = f"convergence/{name.removeprefix('paper-')}/"
+            files.update(converge_files(result, sizes, base, "beam", figures, prefix=prefix))
+            title = f"Discretisation error: the {name.removeprefix('paper-').replace('-', ' ')} (history 1)"
+            sections.append(converge_section(result, sizes, title, prefix, figures, case_level=1))
+
     steps = [
         ("bar calibration (Figs 4-6)", bar_calibration),
         ("rubber-ball series, Table I (Figs 7-15)", rubber_series),
         ("laminated beams (Figs 16-22)", beams),
         ("calibration, Tables II and III (Figs 23-25)", calibrations),
+        ("discretisation error of the paper's meshes", discretisation),
         (
             "beams as 1-inch-wide plates: the plane-strain assumption",
             lambda: sections.append(__import__("softimpact.app.plate", fromlist=["_"]).beam_as_plate_section(figures, files)),

@@ -150,6 +150,12 @@ class NewmarkStepper:
         self.nsolve = 0
         self._H = None
 
+    def solve_flops(self) -> float:
+        """Floating-point operations of one solve with one right-hand side (for cost estimates)."""
+        if self.dense:
+            return 2.0 * self.n**2
+        return 4.0 * self.n * (self._factor.bandwidth + 1)
+
     def solve(self, rhs: np.ndarray) -> np.ndarray:
         """K_eff⁻¹·rhs; rhs of shape (n,) or (n, k)."""
         self.nsolve += 1

@@ -81,7 +81,8 @@ class LabRecord:
     ``metadata``: ``file``, ``source_format``, ``channel``, ``unit`` (as written
     in the file), ``unit_stated``, ``sample_rate`` [Hz], ``time_start`` [s]
     (negative: pre-trigger), ``pretrigger_samples``, ``date`` (ISO text or
-    None), and the format's own header items under ``header``.
+    None), ``trigger`` (the header's trigger item as text, or None), and the
+    format's own header items under ``header``.
     """
 
     time: np.ndarray
@@ -229,6 +230,8 @@ def _finish(path, fmt, name, t, y, written_unit, header=None, date=None, trigger
         _fail(path, f"time is not increasing at sample {k + 1} ({t[k]!r} then {t[k + 1]!r})")
     unit, factor, stated = _unit(written_unit)
     dt = float(np.median(d))
+    if trigger is None:  # the header's own trigger item (Tektronix "Trigger Point", LeCroy "Trigger Time", ...)
+        trigger = next((_one_line(v) for k, v in (header or {}).items() if "trig" in str(k).lower() and "date" not in str(k).lower()), None)
     meta = {
         "file": str(path),
         "source_format": fmt,

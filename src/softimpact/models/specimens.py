@@ -1,9 +1,9 @@
 """Specimens: the parameter objects of test articles and instruments (SI).
 
 A bar (:class:`BarSpec`, with an optional :class:`EndCap`), a sphere striking
-it (:class:`Projectile`), a strain gauge on it (:class:`Gauge`) and the bridge
-that turns its resistance change into volts (:class:`Bridge`). Positions on a
-bar are measured from the struck end. Every workflow that needs one takes it
+it (:class:`Projectile`) and a strain gauge on it (:class:`Gauge`); the bridge
+that turns its resistance change into volts is :class:`softimpact.models.bridge.Bridge`.
+Positions on a bar are measured from the struck end. Every workflow that needs one takes it
 from here, so workflows never import each other for their inputs.
 """
 
@@ -12,13 +12,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numpy as np
-
-from ..errors import InputError
 from ..fem.bar import Rod
 from .materials import Material, sphere_mass
 
-__all__ = ["EndCap", "BarSpec", "Projectile", "Gauge", "Bridge"]
+__all__ = ["EndCap", "BarSpec", "Projectile", "Gauge"]
 
 
 @dataclass(frozen=True)
@@ -82,34 +79,3 @@ class Gauge:
 
     name: str
     position: float
-
-
-@dataclass(frozen=True)
-class Bridge:
-    """Wheatstone bridge of strain gauges: V_out = gain·V_exc·(arms/4)·GF·ε (small strain).
-
-    ``active_arms``: 1 quarter, 2 half, 4 full bridge. ``polarity`` −1 for a
-    bridge wired so that compression reads positive.
-    """
-
-    gauge_factor: float
-    active_arms: int
-    excitation: float  # V
-    gain: float = 1.0
-    polarity: float = 1.0
-
-    ARMS = {"quarter": 1, "half": 2, "full": 4}
-
-    def __post_init__(self):
-        if not self.gauge_factor > 0:
-            raise InputError(f"gauge_factor must be positive, got {self.gauge_factor!r}")
-        if self.active_arms not in (1, 2, 4):
-            raise InputError(f"bridge: active arms must be 1, 2 or 4, got {self.active_arms!r}")
-        if not self.excitation > 0 or self.gain == 0:
-            raise InputError(f"excitation must be positive and gain non-zero, got {self.excitation!r}, {self.gain!r}")
-        if self.polarity not in (1.0, -1.0):
-            raise InputError(f"polarity must be 1 or -1, got {self.polarity!r}")
-
-    def strain(self, volts):
-        """ε = polarity·4·V/(arms·GF·V_exc·gain)."""
-        return self.polarity * 4.0 * np.asarray(volts) / (self.active_arms * self.gauge_factor * self.excitation * self.gain)

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..models.features import first_zero_crossing
 from ..units import display
-from ..workflows.calibration import first_zero_crossing
 from .files import csv_text, figure_bytes, json_text
 from .report import Section
 
@@ -54,8 +54,6 @@ def beam_summary(model, result) -> dict:
 
 def beam_files(model, result, figures: bool = True, prefix: str = "") -> dict[str, bytes | str]:
     """history.csv, summary.json and Figs 18, 20–22 and the deformed beam."""
-    from . import plots
-
     p = result.problem
     cols = {"time_s": result.time, "force_N": result.force}
     for g, eps in zip(p.gauges, result.strain):
@@ -65,6 +63,8 @@ def beam_files(model, result, figures: bool = True, prefix: str = "") -> dict[st
     cols["deflection_under_load_m"] = result.deflection
     files = {prefix + "history.csv": csv_text(cols), prefix + "summary.json": json_text(beam_summary(model, result))}
     if figures:
+        from . import plots
+
         system = p.units
         files[prefix + "fig21-22-gauge-strains.png"] = figure_bytes(plots.beam_gauge_strains(result, system))
         tp = getattr(p.load.history, "time_of_peak", result.time[np.argmax(result.force)])

@@ -123,6 +123,34 @@ def force_history(reduction, system: str, title: str = ""):
     return fig
 
 
+def dispersion_comparison(corrected, uncorrected, system: str):
+    """Force history with and without the Pochhammer–Chree correction, on the corrected one's clock."""
+    tu, fu = display(system, "time"), display(system, "force")
+    fig, ax = _figure()
+    shift = uncorrected.first_contact_record_time - corrected.first_contact_record_time
+    ax.plot(
+        (uncorrected.time + shift) * tu.factor,
+        uncorrected.force * fu.factor,
+        lw=0.8,
+        color="0.55",
+        label=f"uncorrected: non-dispersive bar (F0 = {uncorrected.peak_force * fu.factor:.4g})",
+    )
+    ax.plot(
+        corrected.time * tu.factor,
+        corrected.force * fu.factor,
+        lw=0.9,
+        color="C0",
+        label=f"Pochhammer–Chree corrected (F0 = {corrected.peak_force * fu.factor:.4g})",
+    )
+    T = corrected.duration * tu.factor
+    ax.set_xlim(-0.1 * T, min(corrected.time[-1] * tu.factor, 2.0 * T))
+    ax.set_xlabel(f"time since first contact [{tu.label}]")
+    ax.set_ylabel(f"contact force [{fu.label}]")
+    ax.set_title("Dispersion correction of the force history")
+    ax.legend(fontsize="small")
+    return fig
+
+
 def _groups(fits):
     return [(label, f) for label, f in fits.items() if label != "pooled"] or list(fits.items())
 
@@ -336,7 +364,7 @@ def calibration_strains(cal, model, system: str, title: str):
     tu, su = display(system, "time"), display(system, "strain")
     gauges = model.problem.gauges
     fig, axes = plt.subplots(len(gauges), 1, figsize=(6.6, 2.5 * len(gauges) + 0.6), sharex=True, layout="constrained", squeeze=False)
-    tm = model.problem.solver.times()
+    tm = cal.time if cal.time is not None else model.problem.solver.times()
     p = cal.prepared
     for ax, g, y, c in zip(axes[:, 0], gauges, p.strains, cal.computed):
         ax.grid(True, alpha=0.3)

@@ -40,6 +40,20 @@ def reduction_files(series, reduced, figures: bool = True, prefix: str = "") -> 
             "first_contact_record_time_s",
         )
     }
+    reduction_cols = list(cols)[4:]
+    corrected = getattr(series, "dispersion", "none") != "none"
+    record_cols = {  # the record's own metadata (input/lab_records.py), as read
+        "record_format": "source_format",
+        "record_channel": "channel",
+        "record_unit": "unit",
+        "sample_rate_Hz": "sample_rate",
+        "record_start_s": "time_start",
+        "pretrigger_samples": "pretrigger_samples",
+        "trigger": "trigger",
+        "record_date": "date",
+    }
+    for k in ("status", "rejected_because", "conditioning_notes", *record_cols, "dispersion") + (("uncorrected_peak_force_N",) if corrected else ()):
+        cols[k] = []
     files: dict[str, bytes | str] = {}
     for item in reduced:
         t, r = item.test, item.reduction
@@ -47,8 +61,21 @@ def reduction_files(series, reduced, figures: bool = True, prefix: str = "") -> 
         cols["velocity_m_s"].append(t.velocity)
         cols["mass_kg"].append(t.mass)
         cols["diameter_m"].append(t.diameter)
+        cols["status"].append(getattr(item, "status", "ok" if r is not None else "error"))
+        conditioned = getattr(item, "conditioning", None)
+        cols["rejected_because"].append(_text(getattr(item, "rejected", ())))
+        rejected = getattr(item, "rejected", ())
+        cols["conditioning_notes"].append(_text([f for f in (conditioned.flags if conditioned is not None else ()) if f not in rejected]))
+        meta = getattr(item, "metadata", {})
+        for k, m in record_cols.items():
+            v = meta.get(m)
+            cols[k].append(v if isinstance(v, (int, float)) and not isinstance(v, bool) else ("" if v is None else _text([str(v)])))
+        cols["dispersion"].append(getattr(series, "dispersion", "none"))
+        if corrected:
+            u = getattr(item, "uncorrected", None)
+            cols["uncorrected_peak_force_N"].append(u.peak_force if u is not None else math.nan)
         if r is None:
-            for k in list(cols)[4:]:
+            for k in reduction_cols:
                 cols[k].append("error: " + item.error.replace(",", ";") if k == "flags" else math.nan)
             continue
         for k, v in (
@@ -70,8 +97,15 @@ def reduction_files(series, reduced, figures: bool = True, prefix: str = "") -> 
         files[f"{prefix}history-{stem(t.name)}.csv"] = csv_text({"time_s": r.time, "force_N": r.force})
         if figures:
             files[f"{prefix}fig07-force-{stem(t.name)}.png"] = figure_bytes(plots.force_history(r, series.units))
+            if corrected and getattr(item, "uncorrected", None) is not None:
+                files[f"{prefix}dispersion-{stem(t.name)}.png"] = figure_bytes(plots.dispersion_comparison(r, item.uncorrected, series.units))
     files[prefix + "tests.csv"] = csv_text({k: np.array(v, dtype=object) for k, v in cols.items()})
     return files
+
+
+def _text(items) -> str:
+    """Sentences joined for one CSV cell (commas would split it)."""
+    return "; ".join(items).replace(",", ";")
 
 
 def scaling_files(fits, system: str, figures: bool = True, prefix: str = "") -> dict[str, bytes | str]:

@@ -135,6 +135,9 @@ class BeamProblem:
             )
 
 
+OUTPUTS = ("all", "strain")  # what a BeamModel observes (BeamModel's ``outputs``)
+
+
 @dataclass(frozen=True)
 class BeamResult:
     """Histories (time on the last axis) of a beam run."""
@@ -146,15 +149,20 @@ class BeamResult:
     bending: np.ndarray  # (n_gauges, n): (ε_face − ε_opposite)/2
     deflection: np.ndarray  # (n,) m, z-displacement of the top face under the impact point (up +)
     displacement: np.ndarray | None = None  # (n_dofs, n) view, reduced DOFs, direct stepping only
-    energy: dict = field(default_factory=dict)  # kinetic, strain, work [J] histories, direct stepping only
+    energy: dict = field(default_factory=dict)  # kinetic, strain, work [J] at the steps energy["step"], direct stepping only
 
 
 class BeamModel:
     """Assembled beam with its stepper, patch and output rows, for one (mesh, dt)."""
 
-    def __init__(self, problem: BeamProblem, patch_radius: float | None = None):
-        """``patch_radius``: the widest contact radius the model must load (for fits of r0)."""
-        self.problem = problem
+    def __init__(self, problem: BeamProblem, patch_radius: float | None = None, outputs: str = "all"):
+        """``patch_radius``: the widest contact radius the model must load (for fits of r0).
+        ``outputs``: "all" (gauge strains, bending strains, deflection under the load) or
+        "strain" (the gauge strains only: the response engine then costs one right-hand
+        side per gauge instead of two per gauge and one; bending and deflection are NaN)."""
+        if outputs not in OUTPUTS:
+            raise InputError(f"outputs: {outputs!r} is not one of {', '.join(OUTPUTS)}", "outputs")
+        self.problem, self.outputs = problem, outputs
         self.plane = PlaneModel(problem.beam.plane_beam())
         pm = self.plane
         M, K = pm.M, pm.K
@@ -171,8 +179,10 @@ class BeamModel:
         for g in problem.gauges:
             other = "top" if g.surface == "bottom" else "bottom"
             rows.append(pm.surface_strain(g.position, g.surface, g.length))
-            rows.append(pm.surface_strain(g.position, other, g.length))
-        rows.append(pm.displacement(problem.load.position, "top", 1))
+            if outputs == "all":
+                rows.append(pm.surface_strain(g.position, other, g.length))
+        if outputs == "all":
+            rows.append(pm.displacement(problem.load.position, "top", 1))
         self.O = np.array(rows) if rows else np.zeros((0, pm.n))
         self._engine = None
 
@@ -185,8 +195,16 @@ class BeamModel:
         or the problem's contact radius)."""
         return self.patch.forces(force, self.problem.load.contact_radius if radius is None else radius)
 
+    def gauge_rows(self) -> np.ndarray:
+        """Indices of the gauge strain rows among the model's outputs (and the engine's kernel)."""
+        ng = len(self.problem.gauges)
+        return np.arange(ng) if self.outputs == "strain" else 2 * np.arange(ng)
+
     def _split(self, y: np.ndarray):
         ng = len(self.problem.gauges)
+        if self.outputs == "strain":
+            nan = np.full(y.shape[1:], np.nan)
+            return y, np.full(y.shape, np.nan), nan
         face, other = y[0 : 2 * ng : 2], y[1 : 2 * ng : 2]
         return face, 0.5 * (face - other), y[2 * ng]
 
@@ -209,35 +227,58 @@ class BeamModel:
         strain, bending, defl = self._split(y)
         return BeamResult(self.problem, self.problem.solver.times(), F, strain, bending, defl)
 
-    def direct(self, history=None, progress=None, energy: bool = True) -> BeamResult:
-        """Direct Newmark stepping of all DOFs; with ``energy``, the energy balance.
+    def direct(
+        self, history=None, progress=None, energy: bool = True, displacement: bool = True, energy_samples: int = 200, radius: float | None = None
+    ) -> BeamResult:
+        """Direct Newmark stepping of all DOFs; with ``energy``, the energy balance;
+        with ``displacement``, the whole displacement history (for deformed shapes:
+        n_dofs × n_steps floats; without it only the outputs are kept); ``radius``:
+        r0 of this history (default the problem's contact radius).
 
-        Work done by the load is summed as ½(f_k + f_{k+1})·(u_{k+1} − u_k), the
-        rule under which average acceleration balances energy exactly.
+        Work done by the load is summed over every step as ½(f_k + f_{k+1})·(u_{k+1} − u_k),
+        the rule under which average acceleration balances energy exactly; the
+        kinetic and strain energies are evaluated at about ``energy_samples``
+        evenly spaced steps (``energy["step"]``), which is what the balance check needs
+        and keeps the quadratic forms off the stepping's critical path.
         """
         F = self.force_samples(history)
         st = self.stepper
         n, N = self.plane.n, self.steps
-        f = np.zeros((N + 1, n))  # time-major: each step reads and writes contiguous rows
-        f[:, self.load_dofs] = -self.nodal_loads(F).T
-        u = np.zeros((N + 1, n))
-        v = np.zeros((N + 1, n))
-        acc = st.initial_acceleration(u[0], v[0], f[0])
-        M, K = self.plane.M, self.plane.K
+        loads = -self.nodal_loads(F, radius)  # (p, N+1): patch forces on the load DOFs (down)
+        f0 = np.zeros(n)
+        f0[self.load_dofs] = loads[:, 0]
+        stride = max(1, N // max(1, energy_samples))
+        sampled = np.unique(np.r_[np.arange(0, N + 1, stride), N]) if energy else np.zeros(0, int)
+        u_all = np.zeros((N + 1, n)) if displacement else None
+        y = np.zeros((N + 1, self.O.shape[0]))  # outputs, time-major
+        u_load = np.zeros((N + 1, self.load_dofs.size))  # for the work done by the load
+        u_samples, v_samples = np.zeros((sampled.size, n)), np.zeros((sampled.size, n))
+        u, v = np.zeros(n), np.zeros(n)
+        acc = st.initial_acceleration(u, v, f0)
+        j = 1 if sampled.size and sampled[0] == 0 else 0  # the zero state is already stored
         for k in range(N):
-            u[k + 1] = st.solve(f[k + 1] + st.predictor(u[k], v[k], acc))
-            v[k + 1], acc = st.correct(u[k + 1], u[k], v[k], acc)
+            rhs = st.predictor(u, v, acc)
+            rhs[self.load_dofs] += loads[:, k + 1]
+            u1 = st.solve(rhs)
+            v, acc = st.correct(u1, u, v, acc)
+            u = u1
+            y[k + 1] = self.O @ u
+            u_load[k + 1] = u[self.load_dofs]
+            if u_all is not None:
+                u_all[k + 1] = u
+            if j < sampled.size and sampled[j] == k + 1:
+                u_samples[j], v_samples[j], j = u, v, j + 1
             if progress is not None and k % 100 == 0:
                 progress(k)
-        strain, bending, defl = self._split((u @ self.O.T).T)
+        strain, bending, defl = self._split(y.T)
         energies = {}
         if energy:
-            # After the loop, all steps at once: one sparse product per quadratic form.
-            kinetic = 0.5 * np.einsum("kn,kn->k", v, (M @ v.T).T)
-            strain_energy = 0.5 * np.einsum("kn,kn->k", u, (K @ u.T).T)
-            increments = 0.5 * np.einsum("kn,kn->k", f[:-1] + f[1:], np.diff(u, axis=0))
-            energies = {"kinetic": kinetic, "strain": strain_energy, "work": np.concatenate(([0.0], np.cumsum(increments)))}
-        return BeamResult(self.problem, self.problem.solver.times(), F, strain, bending, defl, u.T, energies)
+            M, K = self.plane.M, self.plane.K
+            kinetic = 0.5 * np.einsum("kn,kn->k", v_samples, (M @ v_samples.T).T)
+            strain_energy = 0.5 * np.einsum("kn,kn->k", u_samples, (K @ u_samples.T).T)
+            work = np.concatenate(([0.0], np.cumsum(0.5 * np.einsum("pk,kp->k", loads[:, :-1] + loads[:, 1:], np.diff(u_load, axis=0)))))
+            energies = {"step": sampled, "kinetic": kinetic, "strain": strain_energy, "work": work[sampled]}
+        return BeamResult(self.problem, self.problem.solver.times(), F, strain, bending, defl, None if u_all is None else u_all.T, energies)
 
     def moduli(self) -> dict:
         """Effective engineering constants and the plane matrix of the (smeared) material."""

@@ -19,8 +19,11 @@ of a force history costs milliseconds.
   the noise, not a mismatch of the model).
 - ``deconvolve``: a non-parametric force history. With the patch frozen at r0
   the strains are linear in F: y_g = h_g * F. F is sought as hat functions on a
-  coarse grid, with Tikhonov regularisation of its second difference (λ by
-  generalised cross-validation), non-negative, and zero before first contact.
+  coarse grid, with Tikhonov regularisation of its second difference,
+  non-negative, and zero before first contact. λ by the discrepancy principle
+  (default: the largest λ whose residual is within the measured noise, raised by
+  the model's estimated error), the L-curve, or generalised cross-validation
+  (:mod:`softimpact.models.regularisation`).
 
 Measured strains arrive with an offset per gauge and on their own clock: the
 offsets are the means of the pre-impact part; the instant of first contact is
@@ -31,17 +34,19 @@ noise with the same instant in the model.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from ..errors import InputError
+from ..models.features import first_lobe_peak, first_zero_crossing
 from ..models.noise import white_noise_sigma
 from ..models.pulses import SkewedPulse, TabulatedPulse, fit_skewed
 
-__all__ = ["Measured", "Prepared", "Calibration", "prepare", "calibrate", "METHODS", "first_zero_crossing"]
+__all__ = ["Measured", "Prepared", "Calibration", "ModelCheck", "prepare", "calibrate", "calibrate_checked", "METHODS"]
 
 METHODS = ("least-squares", "paper", "deconvolve")
+WEAK_CORRELATION = 0.9  # |correlation| of two estimates beyond which they are called weakly identifiable
 DEPARTURE_SIGMAS = 6.0  # a gauge "leaves the noise" at this many σ of its pre-impact part
 
 
@@ -68,6 +73,29 @@ class Prepared:
 
 
 @dataclass(frozen=True)
+class ModelCheck:
+    """How good the calibration model is (:func:`calibrate_checked`).
+
+    ``level``: the refinement level used (0 = the case's own mesh, k = refined by
+    ratio^k); ``error_to_noise``: per gauge, the RMS of the model's estimated
+    discretisation error over the record's window divided by the gauge's noise σ;
+    ``shifts``: per parameter, how far the fit moves when the estimated model
+    error is corrected (defect correction toward the Richardson-extrapolated model);
+    ``noise_errors``: the standard errors from the noise alone; ``meets``:
+    whether every shift is within ``tolerance`` × its noise standard error.
+    """
+
+    level: int
+    factor: int
+    error_to_noise: np.ndarray
+    shifts: dict
+    noise_errors: dict
+    tolerance: float
+    meets: bool
+    message: str
+
+
+@dataclass(frozen=True)
 class Calibration:
     """A calibrated force history and how it was found."""
 
@@ -84,6 +112,15 @@ class Calibration:
     start: SkewedPulse
     history: list = field(default_factory=list)  # per iteration (paper method): (F0, tF0, T)
     fit_pulse: object = None  # deconvolve: the eq-15 least-squares pulse beside it
+    time: np.ndarray | None = None  # the model's grid of ``computed`` [s]
+    check: ModelCheck | None = None  # the discretisation check, when the model was checked
+    regularisation: object = None  # deconvolve: the LambdaChoice (λ, rule, curve, reason)
+    correlations: dict = field(default_factory=dict)  # least squares: "a~b" → correlation of the estimates, for |r| ≥ 0.5
+
+    @property
+    def weakly_identified(self) -> list[str]:
+        """Parameters whose estimate trades against another (|correlation| ≥ WEAK_CORRELATION)."""
+        return [f"{pair.replace('~', ' trades against ')} (correlation {r:+.2f})" for pair, r in self.correlations.items() if abs(r) >= WEAK_CORRELATION]
 
     @property
     def peak_force(self) -> float:
@@ -103,27 +140,6 @@ class Calibration:
         """T; for a deconvolved history, that of its eq-15 fit."""
         p = self.fit_pulse if isinstance(self.pulse, TabulatedPulse) else self.pulse
         return math.nan if p is None else float(p.duration)
-
-
-def first_zero_crossing(t, y, fraction: float = 0.25) -> float:
-    """Time at which y first changes sign after its first excursion beyond ``fraction``·max|y|."""
-    big = np.flatnonzero(np.abs(y) > fraction * np.max(np.abs(y)))
-    if big.size == 0:
-        return math.nan
-    k0 = big[0]
-    later = np.flatnonzero(np.sign(y[k0:]) == -np.sign(y[k0]))
-    if later.size == 0:
-        return math.nan
-    k = k0 + later[0]
-    return float(t[k - 1] + (t[k] - t[k - 1]) * y[k - 1] / (y[k - 1] - y[k]))
-
-
-def first_lobe_peak(t, y, fraction: float = 0.25) -> float:
-    """Largest |y| of the first main lobe: from the first excursion beyond ``fraction``·max|y|
-    to the first zero crossing after it (the strain amplitude the paper compares)."""
-    z = first_zero_crossing(t, y, fraction)
-    sel = t <= z if math.isfinite(z) else np.ones(t.size, bool)
-    return float(np.max(np.abs(y[sel])))
 
 
 def _departure(t, y, sigma, level=None):
@@ -209,9 +225,16 @@ def calibrate(
     fit_origin: bool = True,
     tol: float = 1e-4,
     max_iterations: int = 200,
+    defect=None,
+    rule: str = "discrepancy",
+    error_to_noise=None,
 ) -> Calibration:
     """Calibrate the force history by ``method`` (module docstring); ``radius``: r0 of the test
-    (default the case's), at most the model's patch radius."""
+    (default the case's), at most the model's patch radius. ``defect`` (n_gauges, n_steps + 1)
+    on the model's grid: the model's discretisation error (its strains minus a better model's),
+    subtracted from every computed strain (defect correction; least-squares only). ``rule``:
+    the deconvolution's choice of λ; ``error_to_noise``: the model's estimated error per gauge
+    (in noise σ), which the discrepancy principle adds to the noise."""
     r0 = model.problem.load.contact_radius if radius is None else radius
     if not 0 < r0 <= model.patch.radius * (1 + 1e-12):
         raise InputError(f"contact_radius: {r0!r} m must be positive and within the model's patch ({model.patch.radius!r} m)")
@@ -226,8 +249,8 @@ def calibrate(
     if method == "paper":
         return _paper(model, prep, start, r0, tol, max_iterations, contact_time is not None)
     if method == "least-squares":
-        return _least_squares(model, prep, start, r0, fit_radius, fit_origin)
-    return _deconvolve(model, prep, start, r0)
+        return _least_squares(model, prep, start, r0, fit_radius, fit_origin, defect)
+    return _deconvolve(model, prep, start, r0, rule=rule, error_to_noise=error_to_noise)
 
 
 def _strains(model, pulse, radius=None):
@@ -296,10 +319,10 @@ def _paper(model, prep, start, r0, tol, max_iterations, given_contact=False):
     pulse = SkewedPulse(F0, skew * T, T)
     computed = model.respond(pulse, r0).strain
     msg = f"converged in {it} iterations" if converged else f"not converged after {it} iterations (ratios {f_ratio:.4f}, {t_ratio:.4f})"
-    return Calibration("paper", pulse, r0, {}, it, converged, msg, _residual_rms(model, prep, computed), computed, prep, start, history)
+    return Calibration("paper", pulse, r0, {}, it, converged, msg, _residual_rms(model, prep, computed), computed, prep, start, history, time=tm)
 
 
-def _least_squares(model, prep, start, r0, fit_radius, fit_origin):
+def _least_squares(model, prep, start, r0, fit_radius, fit_origin, defect=None):
     """Eq (15) fitted to every sample up to the end of the model's run, pre-impact part
     included, with a baseline correction per gauge fitted alongside: the offsets' own
     uncertainty then reaches the standard errors instead of biasing F0 unseen."""
@@ -327,6 +350,8 @@ def _least_squares(model, prep, start, r0, fit_radius, fit_origin):
         if not (0 < tp < T) or F0 <= 0 or r <= 0:
             return np.full(ys.size, 1e6)
         c = _strains(model, SkewedPulse(F0, tp, T), r)
+        if defect is not None:
+            c = c - defect
         comp = np.array([np.interp(ts - shift, tm, ci, left=0.0) for ci in c]) + offs[:, None]
         return ((comp - ys) * weights).ravel()
 
@@ -339,22 +364,48 @@ def _least_squares(model, prep, start, r0, fit_radius, fit_origin):
     sol = least_squares(residual, p0, bounds=(lo, hi), x_scale="jac", diff_step=1e-6, ftol=1e-12, xtol=1e-10, gtol=1e-12)
     dof = max(sol.fun.size - len(names), 1)
     s2 = float(sol.fun @ sol.fun) / dof
+    correlations = {}
     try:
         cov = np.linalg.inv(sol.jac.T @ sol.jac) * s2
         se = {n: float(math.sqrt(max(cov[i, i], 0.0)) * scale[i]) for i, n in enumerate(names)}
+        d = np.sqrt(np.maximum(np.diag(cov), 1e-300))
+        corr = cov / np.outer(d, d)
+        for i in range(n_main):
+            for j in range(i + 1, n_main):
+                if abs(corr[i, j]) >= 0.5:
+                    correlations[f"{names[i]}~{names[j]}"] = float(corr[i, j])
     except np.linalg.LinAlgError:
         se = {}
     F0, tp, T, r, shift, offs = unpack(sol.x)
     pulse = SkewedPulse(F0, tp, T)
-    comp = _strains(model, pulse, r)
+    comp = _strains(model, pulse, r) - (0.0 if defect is None else defect)
     rel = prep.time - shift
     prep = Prepared(prep.name, rel, prep.strains - offs[:, None], prep.noise, prep.offsets + offs, prep.contact_time + shift, (rel >= 0) & (rel <= tm[-1]))
-    return Calibration("least-squares", pulse, r, se, int(sol.nfev), bool(sol.success), sol.message, _residual_rms(model, prep, comp), comp, prep, start)
+    return Calibration(
+        "least-squares",
+        pulse,
+        r,
+        se,
+        int(sol.nfev),
+        bool(sol.success),
+        sol.message,
+        _residual_rms(model, prep, comp),
+        comp,
+        prep,
+        start,
+        time=tm,
+        correlations=correlations,
+    )
 
 
-def _deconvolve(model, prep, start, r0, knots: int = 160):
-    """Tikhonov-regularised, non-negative deconvolution through the impulse responses (module docstring)."""
-    from scipy.optimize import lsq_linear
+RULES = ("discrepancy", "l-curve", "gcv", "gcv-floored")  # choices of the deconvolution's λ
+
+
+def _deconvolve(model, prep, start, r0, knots: int = 160, rule: str = "discrepancy", error_to_noise=None):
+    """Tikhonov-regularised, non-negative deconvolution through the impulse responses (module docstring).
+    ``rule`` chooses λ (:mod:`softimpact.models.regularisation`); ``error_to_noise`` (per gauge) raises
+    the discrepancy level by the model's estimated error."""
+    from ..models.regularisation import choose_discrepancy, choose_gcv, choose_l_curve
 
     tm = model.problem.solver.times()
     N = tm.size
@@ -362,7 +413,7 @@ def _deconvolve(model, prep, start, r0, knots: int = 160):
     shape = model.nodal_loads(np.array([0.0, 1.0]), r0)[:, 1]
     eng = model.engine()
     n_g = len(model.problem.gauges)
-    h = np.tensordot(eng.kernel[0 : 2 * n_g : 2], shape, axes=([1], [0]))  # (n_g, N-1): strain per unit force at step 1
+    h = np.tensordot(eng.kernel[model.gauge_rows()], shape, axes=([1], [0]))  # (n_g, N-1): strain per unit force at step 1
     # Basis: hat functions on a coarse grid over the window where the force may act.
     span = min(tm[-1], 2.5 * start.duration)
     grid = np.linspace(0.0, span, knots + 1)
@@ -387,20 +438,27 @@ def _deconvolve(model, prep, start, r0, knots: int = 160):
     A = np.vstack(rows)
     y = np.concatenate(rhs)
     L = np.diff(np.eye(knots), 2, axis=0)
-    # GCV over λ (unconstrained problem).
-    AtA, Aty, LtL = A.T @ A, A.T @ y, L.T @ L
-    best = None
-    scale = np.trace(AtA) / np.trace(LtL)
-    for lam in scale * np.logspace(-8, 1, 37):
-        Ainv = np.linalg.inv(AtA + lam * LtL)
-        c = Ainv @ Aty
-        res = A @ c - y
-        trace_h = float(np.sum(Ainv * AtA))  # trace(A (AᵀA + λLᵀL)⁻¹ Aᵀ) = trace((AᵀA + λLᵀL)⁻¹ AᵀA)
-        gcv = y.size * float(res @ res) / (y.size - trace_h) ** 2
-        if best is None or gcv < best[0]:
-            best = (gcv, lam)
-    lam = best[1]
-    sol = lsq_linear(np.vstack((A, math.sqrt(lam) * L)), np.concatenate((y, np.zeros(L.shape[0]))), bounds=(0.0, np.inf))
+    # The data are in units of each gauge's noise; with a model error estimate the
+    # expected misfit per sample is √(1 + (e/σ)²) (the discrepancy principle's level).
+    level = 1.0 if error_to_noise is None else float(np.sqrt(1.0 + np.mean(np.square(error_to_noise))))
+    scale = math.sqrt(np.trace(A.T @ A) / np.trace(L.T @ L))
+    lambdas = scale * np.logspace(-4, 2, 31)
+    if rule == "discrepancy":
+        choice = choose_discrepancy(A, y, L, lambdas, level)
+    elif rule == "l-curve":
+        choice = choose_l_curve(A, y, L, lambdas)
+    elif rule == "gcv":
+        choice = choose_gcv(A, y, L, lambdas, floor=False)
+    elif rule == "gcv-floored":
+        choice = choose_gcv(A, y, L, lambdas, level)
+    else:
+        raise InputError(f"rule: {rule!r} is not one of {', '.join(RULES)}", "rule")
+    lam = choice.lam
+
+    class _Solution:  # the chosen non-negative solution, as lsq_linear reported it before
+        x, nit, success, message = choice.solution, 0, True, choice.reason
+
+    sol = _Solution
     F = Phi @ sol.x
     pulse = TabulatedPulse(tm, F)
     computed = np.array([np.convolve(h[g], F[1:])[: N - 1] for g in range(n_g)])
@@ -419,10 +477,106 @@ def _deconvolve(model, prep, start, r0, knots: int = 160):
         {},
         int(sol.nit),
         bool(sol.success),
-        f"λ = {lam:.3g} by GCV; {sol.message}",
+        f"λ = {lam:.3g} by {choice.method}: {choice.reason}",
         _residual_rms(model, prep, computed),
         computed,
         prep,
         start,
         fit_pulse=fit_pulse,
+        time=tm,
+        regularisation=choice,
     )
+
+
+MAIN = ("peak_force", "time_of_peak", "duration")  # the parameters the check judges
+# Roache's factor of safety when the order is assumed, not observed (two levels): the
+# model-error shift Δ becomes a 95 % bound 3|Δ|, i.e. a standard uncertainty 3|Δ|/1.96.
+ASSUMED_ORDER_SAFETY = 3.0
+
+
+def _on_grid(t_to, t_from, y):
+    """Histories y (n_g, n) on grid t_from, linearly interpolated onto t_to."""
+    return np.array([np.interp(t_to, t_from, yi) for yi in y])
+
+
+def calibrate_checked(
+    level_model,
+    measured: Measured,
+    start: SkewedPulse,
+    method: str = "least-squares",
+    *,
+    ratio: int = 2,
+    order: float = 2.0,
+    tolerance: float = 0.5,
+    max_level: int = 1,
+    contact_time=None,
+    radius: float | None = None,
+    fit_radius: bool = False,
+    progress=None,
+) -> Calibration:
+    """Calibrate with a model whose discretisation error is known and bounded.
+
+    ``level_model(k)`` gives the model refined by ratio^k (k = 0: the case's own);
+    models of coarser levels stay in use (they are built once by the caller).
+    At level L the model error is estimated by Richardson from two levels at the
+    current fit p̂: e_L = (y_{L+1} − y_L)·r^p/(r^p − 1) for the case's own level
+    (one direct run of the next level), e_L = (y_L − y_{L−1})/(r^p − 1) above it
+    (formal order p, ``order``). The fit is repeated with e_L subtracted from the
+    model (defect correction); the parameter shifts Δ it causes are the model's
+    bias. If any |Δ| exceeds ``tolerance`` × its noise standard error, the next
+    level is used, up to ``max_level`` (the caller's time budget). The reported
+    standard errors are √(SE_noise² + Δ²): noise and discretisation together.
+    Least squares carries the check; another ``method`` is then run on the chosen level.
+    """
+
+    def note(label):
+        if progress is not None:
+            progress(label)
+
+    r_p = float(ratio) ** order
+    level, model = 0, level_model(0)
+    note("fitting on the case's mesh")
+    cal = calibrate(model, measured, start, "least-squares", contact_time=contact_time, radius=radius, fit_radius=fit_radius)
+    while True:
+        tm = model.problem.solver.times()
+        y = model.respond(cal.pulse, cal.contact_radius).strain
+        if level == 0:
+            note("estimating the model's error (one run of the refined mesh)")
+            finer = level_model(1)
+            y_next = finer.direct(cal.pulse, energy=False, displacement=False, radius=cal.contact_radius).strain
+            y_next = _on_grid(tm, finer.problem.solver.times(), y_next)
+            error = (y_next - y) * r_p / (r_p - 1.0)
+        else:
+            coarser = level_model(level - 1)
+            y_prev = _on_grid(tm, coarser.problem.solver.times(), coarser.respond(cal.pulse, cal.contact_radius).strain)
+            error = (y - y_prev) / (r_p - 1.0)
+        prep = cal.prepared
+        w = (prep.time >= 0) & (prep.time <= tm[-1])
+        err_w = _on_grid(prep.time[w], tm, error)
+        error_to_noise = np.sqrt(np.mean(err_w**2, axis=1)) / prep.noise
+        note("correcting the model's error (defect correction)")
+        corrected = calibrate(model, measured, cal.pulse, "least-squares", contact_time=contact_time, radius=radius, fit_radius=fit_radius, defect=error)
+        names = [n for n in cal.standard_errors if n in corrected.standard_errors]
+        values = lambda c: {"peak_force": c.peak_force, "time_of_peak": c.time_of_peak, "duration": c.duration, "contact_radius": c.contact_radius}  # noqa: E731
+        v0, v1 = values(cal), values(corrected)
+        shifts = {n: v1[n] - v0[n] for n in v0 if n in names}
+        noise = dict(cal.standard_errors)
+        meets = all(abs(shifts[n]) <= tolerance * noise[n] for n in MAIN if n in shifts and noise.get(n))
+        if meets or level >= max_level:
+            break
+        level += 1
+        note(f"refining the model (×{ratio**level})")
+        model = level_model(level)
+        cal = calibrate(model, measured, cal.pulse, "least-squares", contact_time=contact_time, radius=radius, fit_radius=fit_radius)
+    total = {n: math.hypot(se, ASSUMED_ORDER_SAFETY / 1.96 * shifts.get(n, 0.0)) for n, se in noise.items()}
+    worst = max((abs(shifts[n]) / noise[n] for n in MAIN if n in shifts and noise.get(n)), default=0.0)
+    message = (
+        f"model ×{ratio**level}: its estimated discretisation error is {np.max(error_to_noise):.2g} × the noise (RMS), "
+        f"and moves the fit by up to {worst:.2g} noise standard errors"
+        + ("" if meets else f" (above {tolerance:g}: the time budget stopped the refinement; the standard errors include it)")
+    )
+    check = ModelCheck(level, ratio**level, error_to_noise, shifts, noise, tolerance, meets, message)
+    if method == "least-squares":
+        return replace(cal, standard_errors=total, check=check)
+    other = calibrate(model, measured, start, method, contact_time=cal.prepared.contact_time, radius=cal.contact_radius, error_to_noise=error_to_noise)
+    return replace(other, check=check)

@@ -17,9 +17,14 @@ geometry; d'Alembert):
 The incident window runs from t_a until the signal has come back to the
 baseline (within 3σ, for 2 µs or 3 samples), and never past the first
 reflection at t_a + 2(L − x)/c. A *double hit* is an onset of the incident
-sign that matches none of the predicted arrival times within a tolerance of
-max(5 samples, 2 µs, 2 % of the elapsed time — the uncertainty of c): a second
-impact of the projectile (a rebound, or a bounce off the support).
+sign that matches none of the predicted arrival times (of either sign: a
+reflection off a mass-loaded end starts with a lobe of the other sign) within
+a tolerance of max(5 samples, 2 µs, 2 % of the elapsed time — the uncertainty
+of c): a second impact of the projectile (a rebound, or a bounce off the
+support). An end cap of mass m delays each struck-end reflection by 2m/(ρcA)
+(``end_delay``). When the incident pulse is still going as its first
+reflection returns, later onsets are mixtures of waves and are not classified
+by their times; only a second rise inside the incident window counts then.
 
 Baseline: median of the pre-trigger (samples before t = 0, or before the
 arrival less a margin, whichever holds more); noise σ: median absolute
@@ -183,12 +188,17 @@ def first_arrival(t, y, baseline: float, noise: float, settings: ConditioningSet
     return _foot(t, sign * dev, i_det, level, noise), i_det, sign
 
 
-def expected_arrivals(arrival: float, gauge_position: float, bar_length: float, wave_speed: float, count: int = 6):
-    """(incident-sign times, opposite-sign times) after ``arrival`` on a free–free bar (module docstring)."""
+def expected_arrivals(arrival: float, gauge_position: float, bar_length: float, wave_speed: float, count: int = 6, end_delay: float = 0.0):
+    """(incident-sign times, opposite-sign times) after ``arrival`` on a free–free bar (module docstring).
+
+    ``end_delay`` [s]: the delay of each reflection at the struck end (2m/(ρcA)
+    for an end cap of mass m: the low-frequency group delay of a mass-loaded
+    free end, whose reflection coefficient is −(Z − iωm)/(Z + iωm)).
+    """
     period = 2 * bar_length / wave_speed
     tau = 2 * (bar_length - gauge_position) / wave_speed
-    same = tuple(arrival + k * period for k in range(1, count + 1))
-    opposite = tuple(arrival + tau + k * period for k in range(count))
+    same = tuple(arrival + k * (period + end_delay) for k in range(1, count + 1))
+    opposite = tuple(arrival + tau + k * (period + end_delay) for k in range(count))
     return same, opposite
 
 
@@ -219,11 +229,13 @@ def condition_record(
     pretrigger_end: float | None = None,
     adc_range: tuple[float, float] | None = None,
     settings: ConditioningSettings = ConditioningSettings(),
+    end_delay: float = 0.0,
 ) -> Conditioned:
     """Baseline, noise, clipping, first arrival, incident window, reflections, double hits (module docstring).
 
     ``pretrigger_end``: the record time before which the signal is pre-trigger
     (default: t = 0 if the record starts before it, else found from the arrival).
+    ``end_delay``: delay of each struck-end reflection (:func:`expected_arrivals`).
     """
     t, y = _arrays(t, y)
     for name, v in (("gauge_position", gauge_position), ("bar_length", bar_length), ("wave_speed", wave_speed)):
@@ -261,7 +273,7 @@ def condition_record(
     clip_reasons = detect_clipping(y, noise, settings.clip_run, adc_range)
     flags.extend(clip_reasons)
 
-    same, opposite = expected_arrivals(arrival if math.isfinite(arrival) else 0.0, gauge_position, bar_length, wave_speed, settings.reflections)
+    same, opposite = expected_arrivals(arrival if math.isfinite(arrival) else 0.0, gauge_position, bar_length, wave_speed, settings.reflections, end_delay)
     if not math.isfinite(arrival):
         flags.append(f"no pulse: nothing leaves the noise (σ = {noise:.3g}) by {settings.detection_sigmas:g}σ")
         return Conditioned(t, dev, base, noise, n_pre, math.nan, -1, 0, 0.0, (math.nan, math.nan), same, opposite, (), bool(clip_reasons), False, tuple(flags))
@@ -283,10 +295,11 @@ def condition_record(
     window_end = float(t[k_end]) if k_end is not None else min(float(t[-1]), arrival + tau)
     in_window = (t >= arrival) & (t <= window_end)
     peak = float(np.max(s_dev[in_window])) if in_window.any() else float(s_dev[i_det])
-    if window_end >= arrival + tau - dt:
+    overlapping = window_end >= arrival + tau - dt
+    if overlapping:
         flags.append(
             f"incident pulse still going when the first reflection returns at {tau * 1e6:.0f} µs after arrival: "
-            "the incident window is cut there (reflections overlap the pulse)"
+            "the incident window is cut there (reflections overlap the pulse; later onsets not classified)"
         )
 
     # Later onsets, classified against the predicted arrivals.
@@ -295,14 +308,18 @@ def condition_record(
     double = False
     start = int(np.searchsorted(t, window_end))
     sources = [arrival]  # impacts so far: each one's reflections are expected
-    for i in _onsets(t[start:], dev[start:], level, quiet_samples):
+    # While the incident pulse overlaps its reflections, an onset is a mixture of
+    # waves and cannot be told from a new impact by its time: none is classified.
+    for i in _onsets(t[start:], dev[start:], level, quiet_samples) if not overlapping else ():
         i += start
         s = 1 if dev[i] * sign > 0 else -1
         t_on = _foot(t, s * sign * dev, i, level, noise)
         predicted = []
         for t_hit in sources:
-            p_same, p_opp = expected_arrivals(t_hit, gauge_position, bar_length, wave_speed, settings.reflections)
-            predicted += [(p, max(5 * dt, 2e-6, 0.02 * (p - t_hit))) for p in (p_same if s > 0 else p_opp)]
+            p_same, p_opp = expected_arrivals(t_hit, gauge_position, bar_length, wave_speed, settings.reflections, end_delay)
+            # Either sign: a reflection off a mass-loaded or imperfect end starts with a lobe
+            # of the other sign, so an onset at a predicted time of either sign is explained.
+            predicted += [(p, max(5 * dt, 2e-6, 0.02 * (p - t_hit))) for p in p_same + p_opp]
         explained = any(abs(t_on - p) <= tol for p, tol in predicted)
         onsets.append((float(t_on), s, bool(explained)))
         if s > 0 and not explained:

@@ -20,6 +20,12 @@ ended (a tail) and the pre-trigger value is kept and flagged. A baseline error
 δ biases the force by about δ·EA·L/(L − x) for the rest of the record, so the
 impulse's uncertainty grows with the record's length: it is reported.
 
+Two options leave the non-dispersive, free-far-end picture: ``dispersion``
+replaces each pure delay by the first-mode (Pochhammer–Chree) move along the
+bar and turns surface strain into force by the radial factors
+(:func:`dispersive_wave_separation`); a second gauge separates the waves from
+the two stations, so the far end need not be free (:func:`two_gauge_separation`).
+
 An end cap of mass m_c (lumped at the struck end) is corrected for: the contact
 force is the bar force plus m_c times the end acceleration, the end velocity
 being (G(t) + G(t − P))/(ρcA).
@@ -46,11 +52,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
+from ..models.dispersion import RoundBar, disperse, radial_band_edge, rayleigh_speed_ratio
 from ..models.noise import white_noise_sigma
 from ..models.pulses import SkewedPulse, fit_skewed
 from ..models.specimens import BarSpec
 
-__all__ = ["Record", "ReductionSettings", "Reduction", "reduce_record", "wave_separation"]
+__all__ = ["Record", "ReductionSettings", "Reduction", "reduce_record", "wave_separation", "dispersive_wave_separation", "two_gauge_separation"]
 
 MIN_SAMPLES = 64  # fewer cannot hold a pre-trigger baseline and a pulse
 BASELINE_RESOLUTION = 1e-6  # of the peak strain: the finest resolution a record can claim (noise-free data)
@@ -162,13 +169,80 @@ def _smooth(y, dt, scale):
     return savgol_filter(y, window, 3)
 
 
-def _bar_force(y, baseline, tt, tau, period, EA, cap_mass, Z, window, dt):
-    """Contact force at the struck end from the gauge strain (module docstring)."""
-    F, G = wave_separation(-EA * (y - baseline), tt, tau, period)
+def dispersive_wave_separation(s: np.ndarray, t: np.ndarray, x: float, length: float, bar: RoundBar) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`wave_separation` with the first-mode (Pochhammer–Chree) dispersion of each path.
+
+    ``s`` is −EA·ε_surface at the gauge on ``t`` (zero at first contact + x/c0).
+    Harmonic by harmonic, s_x = D(x) G − D(2L − x) G with D(d) the move by d
+    (:func:`softimpact.models.dispersion.propagate`), and the surface strain is
+    turned into force by M1·M2. Moving back by x, with the bulk delays kept on
+    the clock as in the non-dispersive case:
+
+        s0 = Δ(−x)[M1 M2 s],   G(t) = s0(t) + Δ(2(L − x))[G](t − τ),   F(t) = G(t) − Δ(2L)[G](t − P),
+
+    with Δ(d) the dispersion of a move by d without its bulk delay
+    (:func:`softimpact.models.dispersion.disperse`). Δ(d > 0) is causal, so the
+    recursion is solved as before, a pass per τ of record. Returns (F, G, Δ(2L)[G](t − P)).
+    """
+    c0 = bar.wave_speed
+    tau, period = 2 * (length - x) / c0, 2 * length / c0
+    s0 = disperse(t, s, -x, bar, surface_to_force=True)
+    # Iterated over the whole record rather than block by block: band-limited, the
+    # operators put a few µs of precursor before each front, which a block that
+    # starts at k·τ would miss. Each pass makes G right for another τ.
+    G = s0.copy()
+    for _ in range(int((t[-1] - t[0]) // tau) + 1):
+        G = s0 + np.interp(t - tau, t, disperse(t, G, 2 * (length - x), bar), left=0.0)
+    back = np.interp(t - period, t, disperse(t, G, 2 * length, bar), left=0.0)
+    return G - back, G, back
+
+
+def two_gauge_separation(n1: np.ndarray, n2: np.ndarray, t: np.ndarray, delay: float) -> tuple[np.ndarray, np.ndarray]:
+    """Waves at station 1 from the axial forces at two stations (Lundberg & Henchoz 1977).
+
+    With N = −EA·ε = a + b at station 1 (a travelling away from the struck end,
+    b toward it) and the second station ``delay`` = (x2 − x1)/c further on,
+    N2(t) = a(t − Δ) + b(t + Δ), so
+
+        b(t) = N2(t − Δ) − N1(t − 2Δ) + b(t − 2Δ),   a = N1 − b,
+
+    a causal recursion (all quiet before the record starts) that needs nothing
+    of the far end: its reflections are whatever comes back as b. A baseline
+    error δ in N2 − N1 adds δ to b every 2Δ. Returns (a, b) on ``t``.
+    """
+    if not delay > 0:
+        raise InputError(f"two gauges: the second must lie beyond the first (delay {delay!r} s)", "second_position")
+    source = np.interp(t - delay, t, n2, left=0.0) - np.interp(t - 2 * delay, t, n1, left=0.0)
+    b = source.copy()
+    k = 1
+    while t[0] + 2 * k * delay <= t[-1]:
+        block = t >= t[0] + 2 * k * delay
+        b[block] = source[block] + np.interp(t[block] - 2 * delay, t, b, left=0.0)
+        k += 1
+    return n1 - b, b
+
+
+def _bar_force(y, baseline, tt, tau, period, EA, cap_mass, Z, window, dt, dispersion=None, x=0.0, length=0.0, second=None):
+    """Contact force at the struck end from the gauge strain (module docstring).
+
+    ``second``: (strain at the second gauge less its baseline, delay Δ to it, c): two-gauge separation.
+    """
+    if second is not None:
+        y2, delay, c = second
+        a, b = two_gauge_separation(-EA * (y - baseline), -EA * y2, tt, delay)
+        # At the struck end: a left it x/c before it passed the gauge (tt's clock is shifted so);
+        # b passed the gauge x/c before it gets there.
+        b0 = np.interp(tt - 2 * x / c, tt, b, left=0.0)
+        F, G, back = a + b0, a, -b0
+    elif dispersion is None:
+        F, G = wave_separation(-EA * (y - baseline), tt, tau, period)
+        back = np.interp(tt - period, tt, G, left=0.0)
+    else:
+        F, G, back = dispersive_wave_separation(-EA * (y - baseline), tt, x, length, dispersion)
     if cap_mass > 0:
         from scipy.signal import savgol_filter
 
-        v_end = (G + np.interp(tt - period, tt, G, left=0.0)) / Z
+        v_end = (G + back) / Z
         F = F + cap_mass * savgol_filter(v_end, window, 3, deriv=1, delta=dt)
     return F
 
@@ -187,8 +261,24 @@ def _late_baseline(y, tt, start, period):
     return float(np.mean(y[sel])), int(sel.sum())
 
 
-def reduce_record(record: Record, bar: BarSpec, gauge_position: float, settings: ReductionSettings = ReductionSettings()) -> Reduction:
-    """Force history at the struck end and its pulse parameters (module docstring)."""
+def reduce_record(
+    record: Record,
+    bar: BarSpec,
+    gauge_position: float,
+    settings: ReductionSettings = ReductionSettings(),
+    dispersion: bool = False,
+    second: Record | None = None,
+    second_position: float | None = None,
+) -> Reduction:
+    """Force history at the struck end and its pulse parameters (module docstring).
+
+    ``dispersion``: correct for the bar's first-mode (Pochhammer–Chree)
+    dispersion, ν from the bar's material (:func:`dispersive_wave_separation`).
+    ``second``, ``second_position``: the record of a second gauge further from
+    the struck end (on the same clock): the waves are separated from the two
+    stations (:func:`two_gauge_separation`), so the far end's condition need not
+    be known (not with ``dispersion``).
+    """
     name = record.name
     L, x = bar.length, gauge_position
     if not 0 <= x < L:
@@ -196,9 +286,21 @@ def reduce_record(record: Record, bar: BarSpec, gauge_position: float, settings:
     rod = bar.rod()
     c, EA, Z = rod.wave_speed, rod.axial_stiffness, rod.impedance
     tau, period = 2 * (L - x) / c, 2 * L / c
+    round_bar = RoundBar(c, bar.material.poisson_ratio, bar.diameter / 2) if dispersion else None
     t, y, dt = _validate(record)
     _check_clipping(name, y)
     flags = []
+    y2 = None
+    if second is not None:
+        if dispersion:
+            _fail(name, "two-gauge separation with dispersion correction is not implemented: use one or the other")
+        if second_position is None or not x < second_position < L:
+            _fail(name, f"second gauge position {second_position!r} m must lie beyond the first ({x!r} m) on the bar")
+        t2, y2, _ = _validate(second)
+        _check_clipping(second.name, y2)
+        if t2[0] > t[0] + dt or t2[-1] < t[-1] - dt:
+            _fail(name, f"the second gauge's record ({second.name}) must cover the first's time span (same clock)")
+        y2 = np.interp(t, t2, y2)
 
     sigma = white_noise_sigma(y)
     head = max(8, y.size // 20)
@@ -212,6 +314,7 @@ def reduce_record(record: Record, bar: BarSpec, gauge_position: float, settings:
     if dev[i_cross] > 0:
         flags.append("first excursion tensile: signal inverted (compression assumed first)")
         y, dev, base0 = -y, -dev, -base0
+        y2 = None if y2 is None else -y2
     # Rough arrival: extrapolate the rising edge (10 % to 40 % of the first peak) back to zero.
     first = -dev
     k90 = int(np.argmax(first >= 0.9 * first.max()))  # the incident pulse's first approach to its peak
@@ -231,6 +334,11 @@ def reduce_record(record: Record, bar: BarSpec, gauge_position: float, settings:
     baseline = float(np.mean(y[pre]))
     noise = float(np.std(y[pre]))
     n_base = int(pre.sum())
+    two = None
+    if y2 is not None:  # the second gauge is further on: quiet at least as long
+        delay = (second_position - x) / c
+        two = (y2 - float(np.mean(y2[pre])), delay, c)
+        flags.append(f"two-gauge wave separation ({x * 1e3:.0f} and {second_position * 1e3:.0f} mm): far-end condition not used")
 
     # Force at the struck end, on a clock from the (rough) first contact.
     tt = t - t_arrive
@@ -266,14 +374,14 @@ def reduce_record(record: Record, bar: BarSpec, gauge_position: float, settings:
         t_thr = float(tt[below[0]]) - t0 if below.size else math.nan
         return fit, t0, rms, F0, t_pk, t_thr
 
-    F = _bar_force(y, baseline, tt, tau, period, EA, cap_mass, Z, window, dt)
+    F = _bar_force(y, baseline, tt, tau, period, EA, cap_mass, Z, window, dt, round_bar, x, L, two)
     fit, t0, rms, F0, t_pk, t_thr = parameters(F)
 
     # A baseline error δ adds about δ·EA·L/(L − x) to F for the rest of the record,
     # so the impulse needs the baseline well. Where the record runs on for whole
     # periods P after the main pulse, their mean strain is a second estimate.
     # (Not with an end cap: a mass-loaded end breaks the P-periodicity.)
-    late, n_late = _late_baseline(y, tt, t0 + 3.0 * fit.duration, period) if cap_mass == 0 else (math.nan, 0)
+    late, n_late = _late_baseline(y, tt, t0 + 3.0 * fit.duration, period) if cap_mass == 0 and two is None else (math.nan, 0)
     if n_late:
         # The standard error of the difference, floored at the resolution a record can
         # claim, so that a noise-free record (σ = 0) does not divide by zero.
@@ -281,7 +389,7 @@ def reduce_record(record: Record, bar: BarSpec, gauge_position: float, settings:
         if abs(late - baseline) <= 3 * se:
             baseline = (n_base * baseline + n_late * late) / (n_base + n_late)
             n_base += n_late
-            F = _bar_force(y, baseline, tt, tau, period, EA, cap_mass, Z, window, dt)
+            F = _bar_force(y, baseline, tt, tau, period, EA, cap_mass, Z, window, dt, round_bar, x, L, two)
             fit, t0, rms, F0, t_pk, t_thr = parameters(F)
         else:
             flags.append(
@@ -291,20 +399,35 @@ def reduce_record(record: Record, bar: BarSpec, gauge_position: float, settings:
 
     time = tt - t0
     keep = time >= 0
+    if round_bar is not None:
+        # Moving the record back by x needs it up to x(1/c_R − 1/c0) past each instant: the end is dropped.
+        lost = x * (1 / (rayleigh_speed_ratio(round_bar.poisson_ratio) * c) - 1 / c)
+        keep &= tt <= tt[-1] - lost
+        flags.append(
+            f"Pochhammer-Chree dispersion corrected (nu = {round_bar.poisson_ratio:g}; band to {radial_band_edge(round_bar) / 1e3:.0f} kHz); "
+            f"last {lost * 1e6:.0f} us of the record dropped (the correction needs the record beyond it)"
+        )
     time, force = time[keep], F[keep]
     force_start = float(np.interp(0.0, tt - t0, F))
     time = np.concatenate(([0.0], time))
     force = np.concatenate(([force_start], force))
     impulse = float(np.trapezoid(force, time))
     valid_until = float(time[-1])
-    direct_until = tau - t0 if tau - t0 < valid_until else valid_until
-    if not math.isfinite(t_thr) or t_thr > direct_until:
-        flags.append(f"pulse longer than the reflection return 2(L-x)/c = {tau * 1e6:.0f} µs: reflection-corrected beyond")
+    if two is None:
+        direct_until = tau - t0 if tau - t0 < valid_until else valid_until
+        if not math.isfinite(t_thr) or t_thr > direct_until:
+            flags.append(f"pulse longer than the reflection return 2(L-x)/c = {tau * 1e6:.0f} µs: reflection-corrected beyond")
+        terms = 1 + int(valid_until // tau) + int(valid_until // period)
+        impulse_sd = EA * noise / math.sqrt(n_base) * L / (L - x) * valid_until
+    else:
+        # The separation adds a term every 2Δ; a baseline error δ grows the force by δ·EA per 2Δ.
+        spacing = 2 * two[1]
+        direct_until = valid_until  # the returning waves are measured, not inferred from the far end
+        terms = 2 + 2 * int(valid_until // spacing)
+        impulse_sd = EA * noise / math.sqrt(n_base) * math.sqrt(2) * valid_until * (1 + valid_until / (2 * spacing))
     if not math.isfinite(t_thr):
         flags.append("the force never falls below 5 % of F0 within the record: threshold duration undefined")
-    terms = 1 + int(valid_until // tau) + int(valid_until // period)
     end_noise = EA * noise * math.sqrt(terms)
-    impulse_sd = EA * noise / math.sqrt(n_base) * L / (L - x) * valid_until
     if end_noise > 0.05 * F0:
         flags.append(f"reflection corrections amplify the noise to {end_noise / F0:.0%} of F0 by the end")
     return Reduction(

@@ -12,7 +12,7 @@ from dataclasses import replace
 
 from ..errors import InputError
 
-__all__ = ["refine_bar", "refine_beam", "refine_solver"]
+__all__ = ["refine_bar", "refine_beam", "refine_solver", "coarsen_beam"]
 
 
 def _check(factor) -> int:
@@ -48,3 +48,18 @@ def refine_beam(problem, factor: int, *, space: bool = True, time: bool = True):
     if time:
         out = replace(out, solver=refine_solver(out.solver, factor))
     return out
+
+
+def coarsen_beam(problem, factor: int):
+    """The beam problem with nx/factor × nz/factor elements and dt·factor: the level
+    below a case's own, so that a study (factor, 1, 1/factor) brackets the case's
+    discretisation. The element counts must divide by ``factor``; the duration must
+    stay a whole number of the coarser steps."""
+    factor = _check(factor)
+    b, s = problem.beam, problem.solver
+    if b.nx % factor or b.nz % factor:
+        raise InputError(f"cannot coarsen a {b.nx} × {b.nz} mesh by {factor}: the element counts must divide by it")
+    steps = s.duration / (s.time_step * factor)
+    if abs(steps - round(steps)) > 1e-9 * steps:
+        raise InputError(f"cannot coarsen dt = {s.time_step!r} s by {factor}: the duration is not a whole number of the coarser steps")
+    return replace(problem, beam=replace(b, nx=b.nx // factor, nz=b.nz // factor), solver=replace(s, time_step=s.time_step * factor))

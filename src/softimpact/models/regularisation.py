@@ -8,6 +8,8 @@ difference operator; d: (m,) data). Three rules choose λ over a grid:
   ‖G f_λ − d‖² ≤ τ²·m·σ², with σ the noise level measured from the data (the
   pre-trigger part or a residual) as the normal-scaled median absolute
   deviation, robust to the odd spike; τ = ``DISCREPANCY_TAU`` slightly above 1.
+  When no λ gets there (the model cannot fit the data to the noise), the
+  smallest residual reached stands for the noise: the largest λ within τ of it.
 - **L-curve** (Hansen 1992, *SIAM Review* 34, 561): the corner of
   (log ‖G f − d‖, log ‖L f‖), the point of largest curvature.
 - **GCV** (Golub, Heath & Wahba 1979, *Technometrics* 21, 215): minimiser of
@@ -127,8 +129,14 @@ def choose_discrepancy(G, d, L, lambdas, sigma: float, tau: float = DISCREPANCY_
     target = tau * math.sqrt(len(d)) * sigma
     ok = np.flatnonzero(curve.residual_norms <= target)
     if ok.size == 0:
-        k = 0
-        reason = f"no λ on the grid brings the residual down to τ√m·σ = {target:.3g}: smallest λ taken (model cannot fit the data?)"
+        # The model cannot fit the data to the noise (model error): the smallest residual
+        # reached is the floor, and the discrepancy is measured from it instead.
+        floor = float(np.min(curve.residual_norms))
+        k = int(np.flatnonzero(curve.residual_norms <= tau * floor)[-1])
+        reason = (
+            f"no λ on the grid brings the residual down to τ√m·σ = {target:.3g} (model error?): largest λ within τ of the "
+            f"smallest residual reached, {floor:.3g}"
+        )
     else:
         k = int(ok[-1])
         reason = f"largest λ with residual {curve.residual_norms[k]:.3g} ≤ τ√m·σ = {target:.3g} (σ = {sigma:.3g}, τ = {tau:g})"

@@ -1,0 +1,167 @@
+"""Outputs of ``softimpact converge``: convergence.csv, summary.json, convergence.png, histories.png.
+
+One row per output: its status, observed order, the value at each level (scalars),
+the Richardson-extrapolated value, the relative error of each level against it
+(normalised RMS for a history) and the grid convergence indices. Level 1 is the
+case's own discretisation.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..units import display
+from ..workflows.convergence import STATUSES
+from .files import csv_text, figure_bytes, json_text
+from .report import Section
+
+__all__ = ["converge_files", "converge_section", "quantity_kind"]
+
+
+def quantity_kind(name: str) -> str:
+    """The display kind of an output, from its name."""
+    if name.endswith("_N_s"):
+        return "impulse"
+    if name.startswith("strain_") and not name.endswith("_s"):
+        return "strain"
+    if name.endswith("_s"):
+        return "time"
+    if "force" in name:
+        return "force"
+    if name.endswith("_m"):
+        return "length"
+    return ""
+
+
+def _rows(result) -> dict[str, list]:
+    n = len(result.levels)
+    cols = {"output": [], "kind": [], "status": [], "observed_order": []}
+    cols.update({f"value_level_{i + 1}": [] for i in range(n)})
+    cols["extrapolated"] = []
+    cols.update({f"relative_error_level_{i + 1}": [] for i in range(n)})
+    for key in ("gci_fine", "gci_coarse", "asymptotic_ratio"):
+        cols[key] = []
+    for o in result.outputs:
+        cols["output"].append(o.name)
+        cols["kind"].append(o.kind)
+        cols["status"].append(o.status)
+        cols["observed_order"].append(o.order)
+        for i in range(n):
+            cols[f"value_level_{i + 1}"].append(o.values[i] if o.kind == "scalar" else np.nan)
+            cols[f"relative_error_level_{i + 1}"].append(o.errors[i])
+        cols["extrapolated"].append(o.extrapolated if o.kind == "scalar" else np.nan)
+        cols["gci_fine"].append(o.gci_fine)
+        cols["gci_coarse"].append(o.gci_coarse)
+        cols["asymptotic_ratio"].append(o.asymptotic_ratio)
+    return cols
+
+
+def _summary(result, sizes, problem, kind: str) -> dict:
+    return {
+        "kind": kind,
+        "title": getattr(problem, "title", ""),
+        "ratio": result.ratio,
+        "levels": sizes,
+        "case_discretisation_error": {o.name: float(o.errors[0]) for o in result.outputs},
+        "outputs": {
+            o.name: {
+                "kind": o.kind,
+                "status": o.status,
+                "meaning": STATUSES[o.status],
+                "observed_order": o.order,
+                "values": o.values.tolist() if o.kind == "scalar" else None,
+                "extrapolated": o.extrapolated if o.kind == "scalar" else None,
+                "relative_errors": o.errors.tolist(),
+                "gci_fine": o.gci_fine,
+                "gci_coarse": o.gci_coarse,
+                "message": o.message,
+            }
+            for o in result.outputs
+        },
+        "case_SI": problem,
+    }
+
+
+def _error_figure(result, title: str):
+    from .plots import _figure
+
+    fig, ax = _figure(7.0, 4.6)
+    h = result.ratio ** -np.arange(len(result.levels), dtype=float)
+    for o in result.outputs:
+        e = np.asarray(o.errors, float)
+        ok = np.isfinite(e) & (e > 0)
+        if ok.sum() >= 2:
+            ax.loglog(h[ok], 100 * e[ok], "o-" if o.kind == "history" else ".--", lw=1.6 if o.kind == "history" else 1, label=o.name)
+    finite = [100 * e for o in result.outputs for e in o.errors if np.isfinite(e) and e > 0]
+    if finite:
+        top = max(finite)
+        ax.loglog(h, top * h**2, "k:", lw=1, label="slope 2 (formal order)")
+    ax.set_xlabel("h / h of the case (mesh and time step refined together)")
+    ax.set_ylabel("error against the extrapolated value [%]")
+    ax.set_title(title)
+    ax.invert_xaxis()
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    return fig
+
+
+def _history_figure(result, time: np.ndarray, system: str, title: str):
+    from .plots import _figure
+
+    histories = [o for o in result.outputs if o.kind == "history"]
+    fig, ax = _figure(7.0, 4.0 + 1.2 * max(0, len(histories) - 1))
+    fig.clear()
+    axes = fig.subplots(len(histories), 1, sharex=True, squeeze=False)[:, 0]
+    tu = display(system, "time")
+    for axis, o in zip(axes, histories):
+        q = quantity_kind(o.name)
+        du = display(system, q) if q else None
+        f = du.factor if du else 1.0
+        for i, y in enumerate(o.values):
+            axis.plot(time * tu.factor, y * f, lw=1, label=f"level {i + 1} (×{round(result.ratio**i)})")
+        axis.plot(time * tu.factor, np.asarray(o.extrapolated) * f, "k--", lw=1, label="Richardson extrapolation")
+        axis.set_ylabel(f"{o.name}" + (f" [{du.label}]" if du else ""), fontsize=8)
+        axis.grid(True, alpha=0.3)
+    axes[0].set_title(title)
+    axes[0].legend(fontsize=7, loc="upper right")
+    axes[-1].set_xlabel(f"time [{tu.label}]")
+    return fig
+
+
+def converge_files(result, sizes, problem, kind: str, figures: bool = True, prefix: str = "") -> dict[str, bytes | str]:
+    """convergence.csv, summary.json and (optionally) the error and history figures."""
+    files = {prefix + "convergence.csv": csv_text(_rows(result)), prefix + "summary.json": json_text(_summary(result, sizes, problem, kind))}
+    if figures:
+        title = getattr(problem, "title", "") or kind
+        files[prefix + "convergence.png"] = figure_bytes(_error_figure(result, f"Discretisation error: {title}"))
+        if any(o.kind == "history" for o in result.outputs):
+            time = problem.solver.times()
+            files[prefix + "histories.png"] = figure_bytes(_history_figure(result, time, problem.units, f"Histories at each level: {title}"))
+    return files
+
+
+def converge_section(result, sizes, title: str, prefix: str, figures: bool, case_level: int = 0) -> Section:
+    """A report section: the distance from converged of level ``case_level`` (the case's own), output by output."""
+    rows = []
+    for o in result.outputs:
+        rows.append(
+            [
+                o.name,
+                o.status,
+                f"{o.order:.2f}",
+                f"{100 * o.errors[case_level]:.3g} %",
+                f"{100 * o.errors[-1]:.2g} %",
+                f"{100 * o.gci_fine:.2g} %" if np.isfinite(o.gci_fine) else "",
+            ]
+        )
+    levels = ", ".join(f"{' × '.join(map(str, s['elements']))} elements, dt {s['time_step_s'] * 1e6:g} µs" for s in sizes)
+    header = ["output", "status", "observed order p", f"error of the case's mesh (level {case_level + 1})", f"error of level {len(sizes)}", "GCI of the finest"]
+    figs = [(prefix + "convergence.png", f"{title}: error of each level against the Richardson extrapolation")] if figures else []
+    return Section(
+        title,
+        [
+            f"Levels (mesh and time step refined together): {levels}. Errors are relative to the Richardson extrapolation "
+            "(normalised RMS for a history); 'asymptotic' means monotone convergence with the order observed from the three finest levels."
+        ],
+        [(title, header, rows)],
+        figs,
+    )
