@@ -6,11 +6,20 @@ factored by scipy's ``splu`` (COLAMD); then the response engine: building the
 impulse responses at two gauges and the centre deflection (reciprocity), and one
 new force history through it. The gauge strains of the two loops are compared.
 
-Run: ``python benchmarks/bench_plate.py [nx ...]`` (default 32 48 64).
+Whole process (``--whole``): ``softimpact plate`` on the built-in plate-ss-8in case
+with the mesh set to n × n (interpreter start, imports, case, assembly, factor,
+1000 steps with the energy balance, five natural frequencies for the summary,
+history.csv and summary.json) against ``benchmarks/plain_plate.py`` (the same
+matrices stepped with ``splu``, a CSV written), alternated, best of ``REPEATS``.
+
+Run: ``python benchmarks/bench_plate.py [--whole] [nx ...]`` (default 32 48 64).
 """
 
+import subprocess
 import sys
+import tempfile
 import time
+from pathlib import Path
 
 import numpy as np
 import scipy.sparse.linalg as spl
@@ -78,5 +87,36 @@ def main(meshes):
         )
 
 
+HERE = Path(__file__).resolve().parent
+REPEATS = 3
+
+
+def whole(meshes):
+    from softimpact.input.toml import locate
+
+    base = locate("plate-ss-8in").read_text()
+    print(f"{'mesh':>7} {'softimpact plate s':>19} {'plain script s':>15} {'speed-up':>9}")
+    with tempfile.TemporaryDirectory() as tmp:
+        for n in meshes:
+            case = Path(tmp) / f"plate{n}.toml"
+            case.write_text(base.replace("elements = [48, 48]", f"elements = [{n}, {n}]"))
+            cmds = {
+                "softimpact": [str(Path(sys.executable).parent / "softimpact"), "plate", str(case), "--no-figures", "--out", str(Path(tmp) / f"out{n}")],
+                "plain": [sys.executable, str(HERE / "plain_plate.py"), str(n), str(Path(tmp) / f"plain{n}.csv")],
+            }
+            times = {k: [] for k in cmds}
+            for _ in range(REPEATS):
+                for k, cmd in cmds.items():
+                    t0 = time.perf_counter()
+                    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                    times[k].append(time.perf_counter() - t0)
+            a, b = min(times["softimpact"]), min(times["plain"])
+            print(f"{n:>3}×{n:<3} {a:>19.2f} {b:>15.2f} {b / a:>8.1f}×", flush=True)
+
+
 if __name__ == "__main__":
-    main([int(a) for a in sys.argv[1:]] or [32, 48, 64])
+    args = sys.argv[1:]
+    if args and args[0] == "--whole":
+        whole([int(a) for a in args[1:]] or [32, 48, 64])
+    else:
+        main([int(a) for a in args] or [32, 48, 64])

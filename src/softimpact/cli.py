@@ -289,6 +289,23 @@ def sweep_cmd(spec, workers, scheduler, out, figures):
     _run(sweep, out, spec=spec, out_dir=out, workers=workers, scheduler=scheduler, figures=figures)
 
 
+@main.command("plate", short_help="Transverse impact of a laminated plate (FSDT).")
+@click.argument("case")
+@click.option("--history", type=int, default=None, help="Row N of the case's [[load.table]].")
+@_out_option("plate")
+@_figures_option
+@_guarded
+def plate_cmd(case, history, out, figures):
+    """Transverse impact of a laminated plate, FSDT MITC4 elements (CASE: file or built-in name).
+
+    Writes history.csv, summary.json and, with figures, plate-mesh.png,
+    deflection.png, histories.png.
+    """
+    from .app.plate import plate
+
+    _run(plate, out, case=case, history=history, figures=figures)
+
+
 @main.command("reduce", short_help="Bar strain records -> force histories (Fig 7).")
 @click.argument("series")
 @_out_option("reduce")

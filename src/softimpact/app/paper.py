@@ -30,6 +30,7 @@ from .bar import gauge_lag, run_bar
 from .calibrate import calibrate_tests, calibration_model, comparison, series_fits, start_pulse
 from .converge import STUDIES, study_case
 from .impact import question_section
+from .plate import beam_as_plate_section
 from .series import fit_series, reduce_series
 from .sweep import threshold_section
 
@@ -198,6 +199,7 @@ def paper(figures: bool = True, progress: Progress = no_progress) -> Outcome:
         ("discretisation error of the paper's meshes", discretisation),
         ("damage thresholds (sweep)", lambda: sections.append(threshold_section(figures, files))),
         ("the paper's question: coupled impact from bar tests", lambda: sections.append(question_section(figures, files))),
+        ("beams as 1-inch-wide plates: the plane-strain assumption", lambda: sections.append(beam_as_plate_section(figures, files))),
     ]
     for k, (label, step) in enumerate(steps):
         progress(k, len(steps), label)

@@ -73,6 +73,10 @@ class ContactStructure:
     ``approach_row`` (n,): w = approach_row·u, the displacement along the impact
     direction used in α (mid-surface for beams and plates).
     ``outputs`` (n_out, n): rows for output histories (gauge strains); ``output_names``.
+    ``patch``: the shares of the surface nodes for a two-dimensional contact (an object
+    with ``shares(a) -> (s, ds/da)``, ``half_spacing`` and ``_point``, e.g. a plate's
+    disc, :class:`softimpact.fem.plate_loads.DiscShares`); None: the cosine line patch
+    :class:`ContactPatch` over ``surface_x``.
     """
 
     M: object
@@ -85,11 +89,12 @@ class ContactStructure:
     outputs: np.ndarray
     output_names: tuple[str, ...] = ()
     C: object = None
+    patch: object = None
 
     def __post_init__(self):
         n = self.M.shape[0]
         x = np.asarray(self.surface_x, float)
-        if x.ndim != 1 or x.size < 1 or np.any(np.diff(x) <= 0):
+        if self.patch is None and (x.ndim != 1 or x.size < 1 or np.any(np.diff(x) <= 0)):
             raise InputError("structure.surface_x must be a sorted 1-D array of node positions")
         if np.shape(self.surface_dofs) != x.shape:
             raise InputError("structure.surface_dofs must have one DOF per surface node")
@@ -192,7 +197,7 @@ def integrate_impact(
     c = np.asarray(structure.approach_row, float)
     dofs = np.asarray(structure.surface_dofs, int)
     sign = float(structure.load_sign)
-    patch = ContactPatch(structure.surface_x, structure.center)
+    patch = ContactPatch(structure.surface_x, structure.center) if structure.patch is None else structure.patch
     B = np.zeros((n, dofs.size))
     B[dofs, np.arange(dofs.size)] = sign
     G = st.solve(B)  # (n, p): displacement per unit force on each patch node, solved once

@@ -36,6 +36,11 @@ class BandedCholesky:
     band: a beam's band of ~20 and a plate's of ~200 alike. For the beam meshes
     here a banded solve is about twice as fast as a general sparse LU solve, for
     the plate meshes 1.6–3.3 times (benchmarks/bench_plate.py).
+
+    The factorisation runs with one BLAS thread: LAPACK's banded Cholesky hands
+    OpenBLAS blocks too small to share, and its threads spin waiting for each
+    other, so on a busy 2-core machine two threads were 10× (band 400) to 5000×
+    (band 17) slower than one (1.6 s against 16.6 s; 1 ms against 6 s).
     """
 
     def __init__(self, A):
@@ -56,7 +61,10 @@ class BandedCholesky:
         upper = col >= row
         ab = np.zeros((bw + 1, n))
         np.add.at(ab, (bw + row[upper] - col[upper], col[upper]), coo.data[upper])
-        self.factor = scipy.linalg.cholesky_banded(ab, lower=False)
+        from threadpoolctl import threadpool_limits
+
+        with threadpool_limits(1, user_api="blas"):
+            self.factor = scipy.linalg.cholesky_banded(ab, lower=False)
         self.bandwidth = bw
         (self._pbtrs,) = scipy.linalg.get_lapack_funcs(("pbtrs",), (self.factor,))
 

@@ -42,7 +42,10 @@ Supports, per edge ``x0`` (x = 0), ``x1`` (x = Lx), ``y0``, ``y1``:
 ``clamped`` (all five DOFs zero), ``simply-supported`` (Navier's hard simple
 support: w = 0, the tangential in-plane displacement and the tangential
 rotation zero, the normal rotation and normal displacement free: on an x-edge
-w = v = φy = 0) and ``free``. When the section is symmetric (B = 0, I1 = 0) and
+w = v = φy = 0), ``free`` and ``symmetry`` (a mirror plane: the normal
+in-plane displacement and the normal rotation zero, on an x-edge u = φx = 0;
+a plate and load symmetric about both mid-lines can be modelled by a quarter,
+as the convergence study of ``tests/test_plate_slow.py`` does). When the section is symmetric (B = 0, I1 = 0) and
 nothing loads the mid-plane, stretching decouples from bending and the in-plane
 DOFs are dropped (``membrane=None``, the default, decides; ``True`` keeps them).
 
@@ -66,7 +69,7 @@ from ..models.plate_laminate import PlateSection
 __all__ = ["EDGES", "SUPPORT_KINDS", "Plate", "PlateFE", "U", "V", "W", "PHI_X", "PHI_Y"]
 
 EDGES = ("x0", "x1", "y0", "y1")
-SUPPORT_KINDS = ("clamped", "simply-supported", "free")
+SUPPORT_KINDS = ("clamped", "simply-supported", "free", "symmetry")
 U, V, W, PHI_X, PHI_Y = range(5)
 _GAUSS2 = (0.5 - 0.5 / math.sqrt(3.0), 0.5 + 0.5 / math.sqrt(3.0))  # on [0, 1]
 
@@ -223,6 +226,8 @@ class PlateFE:
                 comps = [U, V, W, PHI_X, PHI_Y]
             elif kind == "simply-supported":
                 comps = [W, V, PHI_Y] if edge[0] == "x" else [W, U, PHI_X]
+            elif kind == "symmetry":
+                comps = [U, PHI_X] if edge[0] == "x" else [V, PHI_Y]
             else:
                 comps = []
             fixed += [nd[c, nodes] for c in comps]

@@ -34,7 +34,7 @@ import numpy as np
 from ..errors import InputError
 from .plate import PlateFE, W
 
-__all__ = ["CircularPatch", "cosine_pressure"]
+__all__ = ["CircularPatch", "DiscShares", "cosine_pressure"]
 
 SUBCELLS = 12  # pieces per diameter, besides the grid lines: resolves the disc edge to a few 1e-5
 TABLE = 129  # radii tabulated for a growing patch: linear interpolation error ~ (1/128)² of the shape change
@@ -53,7 +53,8 @@ class CircularPatch:
     ``nodes``: the mesh nodes the largest disc (``radius``) can load; ``dofs``:
     their w DOFs in the reduced system (all free: the patch must not touch a
     supported edge's w). ``forces(F, r0)`` gives shape (n_nodes, n_t), compression
-    (pushing the plate down, −z) positive.
+    (pushing the plate down, −z) positive. A disc centred on a ``symmetry`` edge
+    (or corner) loads the plate with its share ``share`` of the force (1/2, 1/4).
     """
 
     def __init__(self, fe: PlateFE, center: tuple[float, float], radius: float, grow: bool = True):
@@ -61,8 +62,20 @@ class CircularPatch:
         if not (math.isfinite(radius) and radius > 0):
             raise InputError(f"contact radius must be positive, got {radius!r} m")
         xs, ys = fe.xs, fe.ys
-        if cx - radius < xs[0] or cx + radius > xs[-1] or cy - radius < ys[0] or cy + radius > ys[-1]:
+        # A disc centred on a symmetry edge is mirrored there: the plate carries its share
+        # (1/2 on an edge, 1/4 at a corner) and the rest belongs to the mirror image.
+        tol = 1e-9 * max(xs[-1] - xs[0], ys[-1] - ys[0])
+        mirror = dict(zip(("x0", "x1", "y0", "y1"), (abs(cx - xs[0]) <= tol, abs(cx - xs[-1]) <= tol, abs(cy - ys[0]) <= tol, abs(cy - ys[-1]) <= tol)))
+        mirror = {e: on and dict(zip(("x0", "x1", "y0", "y1"), fe.plate.supports))[e] == "symmetry" for e, on in mirror.items()}
+        inside = {
+            "x0": cx - radius >= xs[0] - tol,
+            "x1": cx + radius <= xs[-1] + tol,
+            "y0": cy - radius >= ys[0] - tol,
+            "y1": cy + radius <= ys[-1] + tol,
+        }
+        if not all(inside[e] or mirror[e] for e in inside):
             raise InputError(f"contact patch of radius {radius!r} m about ({cx!r}, {cy!r}) m does not fit on the plate")
+        self.share = (0.5 if mirror["x0"] or mirror["x1"] else 1.0) * (0.5 if mirror["y0"] or mirror["y1"] else 1.0)
         self.fe, self.center, self.radius, self.grow = fe, (cx, cy), float(radius), grow
         # Nodes of every element the largest disc overlaps: the smaller discs load a subset.
         self.nodes = self._candidate_nodes()
@@ -98,7 +111,7 @@ class CircularPatch:
             wy = (0.5 * (by[1:, None] - by[:-1, None]) * _W4).ravel()
             X, Y = np.meshgrid(gx, gy, indexing="ij")
             wgt = np.outer(wx, wy) * cosine_pressure(np.hypot(X - cx, Y - cy), r)
-            keep = wgt > 0
+            keep = (wgt > 0) & (X >= fe.xs[0]) & (X <= fe.xs[-1]) & (Y >= fe.ys[0]) & (Y <= fe.ys[-1])
             X, Y, wgt = X[keep], Y[keep], wgt[keep]
             i = np.clip(np.searchsorted(fe.xs, X) - 1, 0, fe.xs.size - 2)
             j = np.clip(np.searchsorted(fe.ys, Y) - 1, 0, fe.ys.size - 2)
@@ -112,7 +125,7 @@ class CircularPatch:
                 (g[i, j + 1], (1 - s) * t),
             ):
                 out += np.bincount(nodes, weights=wgt * N, minlength=n_all)
-        out /= out.sum()  # Σ N_i = 1: the total is the quadrature of p, made exactly 1
+        out *= self.share / out.sum()  # Σ N_i = 1: the total is the quadrature of p, made exactly the share
         return out if all_nodes else out[self.nodes]
 
     def table(self) -> np.ndarray:
@@ -136,7 +149,7 @@ class CircularPatch:
 
     def forces(self, F: np.ndarray, radius: float | None = None) -> np.ndarray:
         """Nodal forces (n_nodes, n_t) [N] for the history F (n_t,) [N]; ``radius``: r0 of this
-        history, at most the patch's own. They sum to F(t) at every instant."""
+        history, at most the patch's own. They sum to share·F(t) at every instant."""
         F = np.asarray(F, float)
         r0 = self.radius if radius is None else float(radius)
         if not 0 < r0 <= self.radius * (1 + 1e-12):
@@ -154,3 +167,36 @@ class CircularPatch:
         tab = self.table()
         shape = tab[k] * (1 - frac)[:, None] + tab[k + 1] * frac[:, None]  # (n_t, n_nodes)
         return (shape * F[:, None]).T
+
+
+class DiscShares:
+    """Nodal shares of a unit contact force on a growing disc, for the coupled solver
+    (:class:`softimpact.fem.impact.ContactStructure`'s ``patch``).
+
+    ``shares(a)`` gives (s, ds/da) over ``patch.nodes`` for a disc of radius a ≤ the
+    patch's radius: linear interpolation in a of the tabulated exact distributions
+    (each summing to the patch's share), so s sums to the share for every a and
+    ds/da is the slope of the table's interval. At a = 0 the force is a point force
+    shared by the bilinear functions at the centre.
+    """
+
+    half_spacing = 0.0  # the disc's shares are defined for every a > 0
+
+    def __init__(self, patch: CircularPatch):
+        if not patch.grow:
+            raise InputError("contact shares need a patch tabulated for a growing radius (grow=True)")
+        self.patch = patch
+        self.table = patch.table()
+        self.n = self.table.shape[1]
+        self.step = patch.radius / (TABLE - 1)
+        self._point = self.table[0]
+
+    def shares(self, a: float) -> tuple[np.ndarray, np.ndarray]:
+        """(s, ds/da), each of shape (n_nodes,)."""
+        if a > self.patch.radius * (1 + 1e-12):
+            raise InputError(f"contact radius {a:.4g} m runs past the loadable disc ({self.patch.radius:.4g} m)")
+        pos = min(max(a / self.step, 0.0), TABLE - 1)
+        k = min(int(pos), TABLE - 2)
+        frac = pos - k
+        slope = (self.table[k + 1] - self.table[k]) / self.step
+        return self.table[k] * (1 - frac) + self.table[k + 1] * frac, slope

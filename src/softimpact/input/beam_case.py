@@ -21,7 +21,17 @@ from ..workflows.beam_impact import LAMINATE_MODELS, BeamGauge, BeamLoad, BeamPr
 from .records import read_columns
 from .toml import Table, load_toml, locate, naming, read_material, read_solver, read_units
 
-__all__ = ["HISTORY_SHAPES", "MASS_MATRICES", "read_ply", "read_history", "read_beam_gauges", "beam_problem", "load_beam_case", "table_rows"]
+__all__ = [
+    "HISTORY_SHAPES",
+    "MASS_MATRICES",
+    "read_ply",
+    "read_history",
+    "read_load_history",
+    "read_beam_gauges",
+    "beam_problem",
+    "load_beam_case",
+    "table_rows",
+]
 
 HISTORY_SHAPES = ("skewed", "table", "empirical")  # eq (15), a CSV table, the empirical model of eqs (4)-(7)
 MASS_MATRICES = ("consistent", "lumped")
@@ -95,6 +105,26 @@ def read_beam_gauges(top: Table) -> tuple[BeamGauge, ...]:
     if len({g.name for g in gauges}) != len(gauges):
         raise InputError("gauges: names must be unique")
     return tuple(gauges)
+
+
+def read_load_history(ld: Table, base: Path, history: int | None, radius: float):
+    """The ``[load]`` table's force history and contact radius: its ``history``, or with
+    ``history`` = N the N-th row (1-based) of its ``[[load.table]]`` (eq-15 parameters,
+    optionally its own contact radius). Shared by the beam and plate cases."""
+    pulse = read_history(ld, "history", base)
+    rows = ld.tables("table", optional=True)
+    if history is not None:
+        if not 1 <= history <= len(rows):
+            raise InputError(f"load.table: history {history} is not a row of [[load.table]] (1 to {len(rows)})")
+        row = rows[history - 1]
+        pulse = SkewedPulse(row.quantity("peak_force", "force"), row.quantity("time_of_peak", "time"), row.quantity("duration", "time"))
+        radius = row.quantity("contact_radius", "length", default=radius)
+        row.quantity("velocity", "velocity", default=None)
+        row.done()
+    else:
+        for row in rows:
+            row._used.update(row.data)
+    return pulse, radius
 
 
 def beam_problem(data: dict, base: Path = Path("."), history: int | None = None):
@@ -171,19 +201,7 @@ def beam_problem(data: dict, base: Path = Path("."), history: int | None = None)
     ld = top.table("load")
     position = ld.quantity("position", "length")
     radius = ld.quantity("contact_radius", "length")
-    pulse = read_history(ld, "history", base)
-    rows = ld.tables("table", optional=True)
-    if history is not None:
-        if not 1 <= history <= len(rows):
-            raise InputError(f"load.table: history {history} is not a row of [[load.table]] (1 to {len(rows)})")
-        row = rows[history - 1]
-        pulse = SkewedPulse(row.quantity("peak_force", "force"), row.quantity("time_of_peak", "time"), row.quantity("duration", "time"))
-        radius = row.quantity("contact_radius", "length", default=radius)
-        row.quantity("velocity", "velocity", default=None)
-        row.done()
-    else:
-        for row in rows:
-            row._used.update(row.data)
+    pulse, radius = read_load_history(ld, base, history, radius)
     ld.done()
     solver = read_solver(top.table("solver"))
     gauges = read_beam_gauges(top)

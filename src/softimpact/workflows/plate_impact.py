@@ -21,9 +21,10 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
+from threadpoolctl import threadpool_limits
 
 from ..errors import InputError
-from ..fem.newmark import NewmarkStepper, SolverSpec
+from ..fem.newmark import BandedCholesky, NewmarkStepper, SolverSpec
 from ..fem.plate import EDGES, SUPPORT_KINDS, Plate, PlateFE
 from ..fem.plate_loads import CircularPatch
 from ..fem.response import ImpulseResponse
@@ -125,16 +126,22 @@ class PlateProblem:
     gauges: tuple[PlateGauge, ...] = ()
     points: tuple[tuple[float, float], ...] = ()
     title: str = ""
+    units: str = "SI"  # display system of the outputs (the numbers stay SI)
 
     def __post_init__(self):
         Lx, Ly = self.plate.length_x, self.plate.length_y
 
+        tol = 1e-12 * max(Lx, Ly)  # round-off of cos 90°
+
         def on_plate(p) -> bool:
-            return 0 <= p[0] <= Lx and 0 <= p[1] <= Ly
+            return -tol <= p[0] <= Lx + tol and -tol <= p[1] <= Ly + tol
 
         x, y = self.load.position
         r = self.load.contact_radius
-        if not (r <= x <= Lx - r and r <= y <= Ly - r):
+        sx0, sx1, sy0, sy1 = (s == "symmetry" for s in self.plate.supports)
+        fits_x = (r <= x or (sx0 and x == 0)) and (x <= Lx - r or (sx1 and x == Lx))
+        fits_y = (r <= y or (sy0 and y == 0)) and (y <= Ly - r or (sy1 and y == Ly))
+        if not (fits_x and fits_y):
             raise InputError(f"load position {self.load.position!r} m with contact_radius {r!r} m: the patch is not inside the plate ({Lx!r} × {Ly!r} m)")
         for g in self.gauges:
             theta = math.radians(0.0 if g.direction == "x" else 90.0 if g.direction == "y" else float(g.direction))
@@ -161,8 +168,9 @@ class PlateResult:
     force: np.ndarray  # (n,) N
     strain: np.ndarray  # (n_gauges, n)
     deflection: np.ndarray  # (1 + n_points, n) m, up +: impact point first, then problem.points
-    displacement: np.ndarray | None = None  # (n_dofs, n), free DOFs, direct stepping only
+    displacement: np.ndarray | None = None  # (n_dofs, n_kept), free DOFs, direct stepping only
     energy: dict = field(default_factory=dict)  # kinetic, strain, work [J], direct stepping only
+    kept: np.ndarray | None = None  # step indices of the columns of ``displacement``
 
 
 class PlateModel:
@@ -203,7 +211,8 @@ class PlateModel:
     def engine(self) -> ImpulseResponse:
         """The response engine (impulse responses of the outputs to each patch node), built once."""
         if self._engine is None:
-            self._engine = ImpulseResponse.reciprocal(self.stepper, self.B, self.steps, self.O)
+            with threadpool_limits(1, user_api="blas"):  # see direct()
+                self._engine = ImpulseResponse.reciprocal(self.stepper, self.B, self.steps, self.O)
         return self._engine
 
     def _split(self, y: np.ndarray):
@@ -219,34 +228,61 @@ class PlateModel:
         strain, defl = self._split(y)
         return PlateResult(self.problem, self.problem.solver.times(), F, strain, defl)
 
-    def direct(self, history=None, progress=None, energy: bool = True) -> PlateResult:
+    def direct(self, history=None, progress=None, energy: bool = True, snapshots=None) -> PlateResult:
         """Direct Newmark stepping of all DOFs; with ``energy``, the energy balance.
 
-        Work done by the load is summed as ½(f_k + f_{k+1})·(u_{k+1} − u_k), the
-        rule under which average acceleration balances energy exactly.
+        ``snapshots``: step indices at which to keep the displacement of all DOFs
+        (``None``: every step, memory n_dofs × n_steps). Work done by the load is
+        summed as ½(f_k + f_{k+1})·(u_{k+1} − u_k), the rule under which average
+        acceleration balances energy exactly.
         """
         F = self.force_samples(history)
         st, fe = self.stepper, self.fe
         n, N = fe.n, self.steps
-        f = np.zeros((N + 1, n))  # time-major: each step reads and writes contiguous rows
-        f[:, self.load_dofs] = -self.nodal_loads(F).T
-        u = np.zeros((N + 1, n))
-        v = np.zeros((N + 1, n))
-        acc = st.initial_acceleration(u[0], v[0], f[0])
-        M, K = st.M, st.K
+        loads = -self.nodal_loads(F)  # (n_patch, N + 1)
+        dofs = self.load_dofs
+        keep = np.arange(N + 1) if snapshots is None else np.asarray(snapshots, int)
+        if keep.size and (keep.min() < 0 or keep.max() > N):
+            raise InputError(f"snapshots: step indices must lie in 0 … {N}, got {snapshots!r}")
+        slot = {int(k): i for i, k in enumerate(keep)}
+        saved = np.zeros((keep.size, n))
+        out = np.zeros((N + 1, self.O.shape[0]))
+        u, v = np.zeros(n), np.zeros(n)
+        f0 = np.zeros(n)
+        f0[dofs] = loads[:, 0]
+        acc = st.initial_acceleration(u, v, f0)
         kinetic, strain_energy, work = (np.zeros(N + 1) for _ in range(3))
-        for k in range(N):
-            u[k + 1] = st.solve(f[k + 1] + st.predictor(u[k], v[k], acc))
-            v[k + 1], acc = st.correct(u[k + 1], u[k], v[k], acc)
-            if energy:
-                kinetic[k + 1] = 0.5 * v[k + 1] @ (M @ v[k + 1])
-                strain_energy[k + 1] = 0.5 * u[k + 1] @ (K @ u[k + 1])
-                work[k + 1] = work[k] + 0.5 * (f[k] + f[k + 1]) @ (u[k + 1] - u[k])
+        with threadpool_limits(1, user_api="blas"):
+            self._march(loads, dofs, u, v, acc, out, slot, saved, (kinetic, strain_energy, work) if energy else None, progress)
+        strain, defl = self._split(out.T)
+        energies = {"kinetic": kinetic, "strain": strain_energy, "work": work} if energy else {}
+        return PlateResult(self.problem, self.problem.solver.times(), F, strain, defl, saved.T, energies, keep)
+
+    def _march(self, loads, dofs, u, v, acc, out, slot, saved, energy, progress) -> None:
+        """The stepping loop of :meth:`direct`, filling ``out``, ``saved`` and the energies in place.
+
+        Run with one BLAS thread: the per-step products are small (a few gauge rows,
+        dot products), and OpenBLAS threads spin on a busy machine (at 64 × 64 this
+        loop took 22 s of overhead with two threads against 5 s of solves).
+        """
+        st = self.stepper
+        M, K = st.M, st.K
+        for k in range(self.steps):
+            rhs = st.predictor(u, v, acc)
+            rhs[dofs] += loads[:, k + 1]
+            u1 = st.solve(rhs)
+            v1, acc = st.correct(u1, u, v, acc)
+            if energy is not None:
+                kinetic, strain_energy, work = energy
+                kinetic[k + 1] = 0.5 * v1 @ (M @ v1)
+                strain_energy[k + 1] = 0.5 * u1 @ (K @ u1)
+                work[k + 1] = work[k] + 0.5 * (loads[:, k] + loads[:, k + 1]) @ (u1[dofs] - u[dofs])
+            u, v = u1, v1
+            out[k + 1] = self.O @ u
+            if k + 1 in slot:
+                saved[slot[k + 1]] = u
             if progress is not None and k % 100 == 0:
                 progress(k)
-        strain, defl = self._split((u @ self.O.T).T)
-        energies = {"kinetic": kinetic, "strain": strain_energy, "work": work} if energy else {}
-        return PlateResult(self.problem, self.problem.solver.times(), F, strain, defl, u.T, energies)
 
     def frequencies(self, count: int = 5) -> np.ndarray:
         """The ``count`` lowest natural frequencies [Hz] of the undamped plate (shift-invert Lanczos)."""
@@ -254,5 +290,12 @@ class PlateModel:
 
         if not (isinstance(count, int) and 1 <= count < self.fe.n - 1):
             raise InputError(f"count must be an integer from 1 to {self.fe.n - 2}, got {count!r}")
-        vals = spl.eigsh(self.fe.K, k=count, M=self.fe.M, sigma=0.0, which="LM", return_eigenvectors=False)
+        K, M = self.fe.K, self.fe.M
+        try:  # a supported plate: K is positive definite, and the banded factor is the fast K⁻¹
+            with threadpool_limits(1, user_api="blas"):
+                factor = BandedCholesky(K)
+            op = spl.LinearOperator(K.shape, matvec=factor.solve, dtype=float)
+        except np.linalg.LinAlgError:  # rigid modes: let ARPACK factor K − 0·M its own way
+            op = None
+        vals = spl.eigsh(K, k=count, M=M, sigma=0.0, which="LM", OPinv=op, return_eigenvectors=False)
         return np.sqrt(np.abs(np.sort(vals))) / (2 * np.pi)

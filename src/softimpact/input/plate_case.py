@@ -1,0 +1,108 @@
+"""Plate case files (``softimpact plate``): TOML → :class:`PlateProblem`.
+
+``[plate]`` (length, width, elements, support per edge, model, ``[plate.laminate]``),
+``[load]`` (position, contact_radius, history and ``[[load.table]]`` rows, read as in
+beam cases), ``[solver]`` and ``[[gauges]]``; see README.md and
+``data/cases/plate-ss-8in.toml``.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from .. import units
+from ..errors import InputError
+from ..fem.plate import EDGES
+from ..models.laminate import Stack, parse_layup
+from ..workflows.plate_impact import DEFAULT_GAUGE_LENGTH, PlateGauge, PlateLoad, PlateProblem, PlateSpec
+from .beam_case import read_load_history, read_ply
+from .toml import Table, load_toml, locate, naming, read_solver, read_units
+
+__all__ = ["PLATE_SUPPORTS", "PLATE_MODELS", "plate_problem", "load_plate_case"]
+
+PLATE_SUPPORTS = ("clamped", "simply-supported", "free", "symmetry")  # symmetry: a mirror plane (quarter models)
+PLATE_MODELS = ("fsdt", "solid")
+MIN_ELEMENTS = 2  # per direction: one MITC4 element cannot place a load or gauge inside the plate
+
+
+def _point(tbl: Table, name: str) -> tuple[float, float]:
+    value = tbl.raw(name)
+    if not (isinstance(value, list) and len(value) == 2):
+        raise InputError(f"{tbl.key(name)}: expected [x, y] (two lengths), got {value!r}")
+    return tuple(units.parse(v, "length", tbl.key(name)) for v in value)
+
+
+def _supports(tbl: Table) -> tuple[str, str, str, str]:
+    value = tbl.raw("support")
+    if not isinstance(value, dict):
+        raise InputError(f"{tbl.key('support')}: expected a table {{ x0 = ..., x1 = ..., y0 = ..., y1 = ... }}, got {value!r}")
+    s = Table(value, tbl.key("support"))
+    out = tuple(s.string(e, choices=PLATE_SUPPORTS) for e in EDGES)
+    s.done()
+    clamped = out.count("clamped")
+    hinged = out.count("simply-supported")
+    if clamped == 0 and hinged < 2:
+        raise InputError(f"{tbl.key('support')}: {dict(zip(EDGES, out))} leaves the plate a mechanism (it needs a clamped edge or two simply supported edges)")
+    return out
+
+
+def plate_problem(data: dict, base: Path = Path("."), history: int | None = None) -> PlateProblem:
+    """A plate case (parsed TOML) as a PlateProblem; ``history`` picks a row of [[load.table]] (1-based)."""
+    top = Table(data)
+    title = top.string("title", "")
+    system = read_units(top)
+    p = top.table("plate")
+    model = p.string("model", PLATE_MODELS[0], choices=PLATE_MODELS)
+    if model == "solid":
+        raise InputError(f"{p.key('model')}: the layered solid model is not implemented yet (use 'fsdt')")
+    elements = p.raw("elements", [48, 48])
+    if not (isinstance(elements, list) and len(elements) == 2 and all(isinstance(e, int) and not isinstance(e, bool) for e in elements)):
+        raise InputError(f"{p.key('elements')}: expected [along x, along y] (two integers), got {elements!r}")
+    if min(elements) < MIN_ELEMENTS:
+        raise InputError(f"{p.key('elements')}: the FSDT plate needs at least {MIN_ELEMENTS} elements each way, got {elements!r}")
+    supports = _supports(p)
+    lam = p.table("laminate")
+    ply = read_ply(lam)
+    with naming({None: lam.key("layup")}):
+        stack = Stack(ply, parse_layup(lam.string("layup")))
+    lam.done()
+    spec = PlateSpec(p.quantity("length", "length"), p.quantity("width", "length"), tuple(elements), stack, supports)
+    p.done()
+
+    ld = top.table("load")
+    position = _point(ld, "position")
+    radius = ld.quantity("contact_radius", "length")
+    grow = ld.raw("grow", True)
+    if not isinstance(grow, bool):
+        raise InputError(f"{ld.key('grow')}: expected true or false, got {grow!r}")
+    pulse, radius = read_load_history(ld, base, history, radius)
+    ld.done()
+    solver = read_solver(top.table("solver"))
+    gauges = []
+    for g in top.tables("gauges", optional=True):
+        direction = g.raw("direction", "x")
+        if isinstance(direction, bool) or not isinstance(direction, (str, int, float)):
+            raise InputError(f"{g.key('direction')}: expected 'x', 'y' or an angle in degrees from x, got {direction!r}")
+        if isinstance(direction, str) and direction not in ("x", "y"):
+            raise InputError(f"{g.key('direction')}: {direction!r} is not 'x', 'y' or an angle in degrees from x")
+        with naming({None: g.path}):
+            gauges.append(
+                PlateGauge(
+                    g.string("name"),
+                    _point(g, "position"),
+                    g.string("surface", "bottom", choices=("top", "bottom")),
+                    direction if isinstance(direction, str) else float(direction),
+                    g.quantity("length", "length", default=DEFAULT_GAUGE_LENGTH),
+                )
+            )
+        g.done()
+    if len({g.name for g in gauges}) != len(gauges):
+        raise InputError("gauges: names must be unique")
+    top.done()
+    with naming({None: "case"}):
+        return PlateProblem(spec, PlateLoad(position, radius, pulse, grow), solver, tuple(gauges), title=title, units=system)
+
+
+def load_plate_case(case: str, history: int | None = None) -> tuple[PlateProblem, Path]:
+    path = locate(case)
+    return plate_problem(load_toml(path), path.parent, history), path

@@ -1,0 +1,77 @@
+"""Outputs of ``softimpact plate``: history.csv, summary.json and the figures."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .files import csv_text, figure_bytes, json_text
+
+__all__ = ["plate_summary", "plate_files", "SNAPSHOTS"]
+
+SNAPSHOTS = 6  # instants of the deflected-shape figure, spread over the run
+
+
+def snapshot_steps(steps: int) -> np.ndarray:
+    """Step indices of the deflected-shape figure: SNAPSHOTS instants after t = 0, the last at the end."""
+    return np.unique(np.round(np.linspace(0, steps, SNAPSHOTS + 1)[1:]).astype(int))
+
+
+def plate_summary(model, result) -> dict:
+    """The scalars of a plate run, SI with unit-suffixed keys, and the resolved case.
+
+    A gauge's peak is the extreme within the run's window; when it sits on the
+    window's last sample the strain may still be growing, and the summary says so.
+    """
+    p = result.problem
+    last = result.time.size - 1
+    gauges = {}
+    for g, eps in zip(p.gauges, result.strain):
+        kmax, kmin = int(np.argmax(eps)), int(np.argmin(eps))
+        gauges[g.name] = {
+            "position_m": list(g.position),
+            "surface": g.surface,
+            "direction": g.direction,
+            "length_m": g.length,
+            "peak_tensile_strain": float(eps[kmax]),
+            "time_of_peak_tensile_strain_s": float(result.time[kmax]),
+            "peak_compressive_strain": float(eps[kmin]),
+            "time_of_peak_compressive_strain_s": float(result.time[kmin]),
+            "peak_at_window_end": [name for name, k in (("tensile", kmax), ("compressive", kmin)) if k == last],
+        }
+    w = result.deflection[0]
+    k = int(np.argmax(np.abs(w)))
+    out = {
+        "title": p.title,
+        "model": "fsdt (MITC4)",
+        "dofs": model.fe.n,
+        "elements": list(p.plate.elements),
+        "supports": dict(zip(("x0", "x1", "y0", "y1"), p.plate.supports)),
+        "natural_frequencies_Hz": [float(f) for f in model.frequencies(min(5, model.fe.n - 2))],
+        "peak_force_N": float(result.force.max()),
+        "impulse_N_s": float(np.trapezoid(result.force, result.time)),
+        "peak_deflection_at_load_m": float(w[k]),
+        "time_of_peak_deflection_s": float(result.time[k]),
+        "gauges": gauges,
+        "case_SI": p,
+    }
+    if result.energy:
+        e = result.energy
+        out["energy_balance_relative"] = float(np.max(np.abs(e["kinetic"] + e["strain"] - e["work"])) / max(np.max(np.abs(e["work"])), 1e-300))
+    return out
+
+
+def plate_files(model, result, figures: bool = True) -> dict[str, bytes | str]:
+    """history.csv, summary.json and, with figures, plate-mesh.png, deflection.png, histories.png."""
+    p = result.problem
+    cols = {"time_s": result.time, "force_N": result.force, "deflection_m": result.deflection[0]}
+    for g, eps in zip(p.gauges, result.strain):
+        cols[f"strain_{g.name}"] = eps
+    files = {"history.csv": csv_text(cols), "summary.json": json_text(plate_summary(model, result))}
+    if figures:
+        from . import plate_plots
+
+        files["plate-mesh.png"] = figure_bytes(plate_plots.plate_mesh(model, p.units))
+        files["histories.png"] = figure_bytes(plate_plots.plate_histories(result, p.units))
+        if result.displacement is not None and result.displacement.shape[1]:
+            files["deflection.png"] = figure_bytes(plate_plots.plate_deflection(model, result, p.units))
+    return files
