@@ -49,7 +49,7 @@ def test_contract_files_and_force_column(tmp_path):
     assert summary["impulse_N_s"] == pytest.approx(2 * F0 * T / math.pi, rel=1e-4)
     assert summary["energy_balance_relative"] < 1e-9
     assert summary["peak_deflection_at_load_m"] < 0  # pushed down
-    assert {p.name for p in out.iterdir()} == {"history.csv", "summary.json", "plate-mesh.png", "deflection.png", "histories.png"}
+    assert {p.name for p in out.iterdir()} == {"history.csv", "summary.json", "plate-mesh.png", "deflection.png", "histories.png", "manifest.json"}
 
 
 def test_slow_load_gives_the_navier_static_deflection(tmp_path):
@@ -87,7 +87,7 @@ def test_history_row_and_no_figures(tmp_path):
     assert result.exit_code == 0, result.output
     summary = json.loads((out / "summary.json").read_text())
     assert summary["peak_force_N"] == pytest.approx(80 * LBF, rel=1e-3)
-    assert {p.name for p in out.iterdir()} == {"history.csv", "summary.json"}
+    assert {p.name for p in out.iterdir()} == {"history.csv", "summary.json", "manifest.json"}
 
 
 @pytest.mark.parametrize(

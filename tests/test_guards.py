@@ -283,7 +283,9 @@ def test_read_strains_ignores_columns_that_are_not_gauges(tmp_path):
 
 @pytest.mark.slow
 def test_beam_then_calibrate_workflow_of_the_readme(tmp_path):
-    """README workflow: calibrate on the history.csv that `softimpact beam` wrote recovers the case's Table II row 1 pulse (44 lbf, 30 us, 355 us)."""
+    """README workflow: calibrate on the history.csv that `softimpact beam` wrote recovers the case's Table II row 1 pulse
+    (44 lbf, 30 us, 355 us) — to the discretisation error of the case's mesh, which wrote the strains, since
+    calibrate checks and refines its own model (issue 9): F0 and T within 3 %, t_F0 within 10 %."""
     beam_out = tmp_path / "beam"
     result = invoke("beam", "paper-long-beam", "--out", beam_out, "--no-figures")
     assert result.exit_code == 0, result.output
@@ -293,8 +295,8 @@ def test_beam_then_calibrate_workflow_of_the_readme(tmp_path):
     assert "ignored column(s) force_N" in result.stderr
     test = json.loads((out / "calibration.json").read_text())["tests"][0]
     lbf = 4.4482216152605  # N, exact (NIST)
-    assert test["peak_force_N"] == pytest.approx(44 * lbf, rel=0.01)
-    assert test["time_of_peak_s"] == pytest.approx(30e-6, rel=0.02) and test["duration_s"] == pytest.approx(355e-6, rel=0.01)
+    assert test["peak_force_N"] == pytest.approx(44 * lbf, rel=0.03)
+    assert test["time_of_peak_s"] == pytest.approx(30e-6, rel=0.10) and test["duration_s"] == pytest.approx(355e-6, rel=0.03)
 
 
 # --- catch-all ------------------------------------------------------------------------------------

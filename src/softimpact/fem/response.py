@@ -160,21 +160,9 @@ class ImpulseResponse:
         return y
 
     def convolve(self, loads: np.ndarray) -> np.ndarray:
-        """:meth:`respond` for histories starting from zero (F(0) = 0), by products with the
-        kernel's spectrum computed once: for many histories on one model (sweeps), where the
-        kernel's FFT would otherwise dominate. Equal to :meth:`respond` to round-off."""
+        """:meth:`respond` for histories that start from zero (F(0) = 0): a product of spectra,
+        the kernel's computed once per engine (sweeps run many histories on one model)."""
         F = np.asarray(loads, dtype=float)
-        if F.ndim == 1:
-            F = F[None, :]
-        N = self.steps
-        if F.shape != (self.B.shape[1], N + 1):
-            raise ValueError(f"loads must have shape {(self.B.shape[1], N + 1)}, got {F.shape}")
-        if np.any(F[:, 0] != 0.0):
+        if np.any((F[None, :] if F.ndim == 1 else F)[:, 0] != 0.0):
             raise ValueError("convolve needs loads that start from zero (F(0) = 0); use respond")
-        nfft = 2 * N  # linear convolution of two N-sample sequences, no wrap-around in the first N
-        if getattr(self, "_spectrum", None) is None:
-            self._spectrum = np.fft.rfft(self.kernel, nfft, axis=-1)  # (q, p, nfft/2 + 1)
-        Fs = np.fft.rfft(F[:, 1:], nfft, axis=-1)  # (p, nfft/2 + 1)
-        y = np.zeros((self.kernel.shape[0], N + 1))
-        y[:, 1:] = np.fft.irfft(np.einsum("qpf,pf->qf", self._spectrum, Fs), nfft, axis=-1)[:, :N]
-        return y
+        return self.respond(F)

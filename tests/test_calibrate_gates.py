@@ -1,0 +1,62 @@
+"""calibrate never silently wrong (issue 14): a finely resampled record is recovered, a reversed one fails its gate.
+
+The record is the built-in synthetic long-beam test at 1166 in/s, made from Table
+II's history 1 (F0 44 lbf, t_F0 30 µs, T 355 µs) by a finer model with 1.5 % noise.
+"""
+
+import json
+from importlib import resources
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+from softimpact.cli import main
+from softimpact.input.records import read_strains
+from softimpact.output.files import csv_text
+
+LBF = 4.4482216152605
+RECORD = resources.files("softimpact") / "data" / "series" / "paper-long-calibration" / "long-V1166.csv"
+
+
+def _write(path, t, strains):
+    path.write_text(csv_text({"time_s": t, **{f"strain_{g}": y for g, y in strains.items()}}))
+    return path
+
+
+def _calibrate(tmp_path, record, *extra):
+    out = tmp_path / "out"
+    args = ["calibrate", "paper-long-beam", "--measured", str(record), "--velocity", "1166 in/s", "--no-figures", "--out", str(out), *extra]
+    return CliRunner().invoke(main, args), out
+
+
+@pytest.mark.slow
+def test_record_resampled_to_a_tenth_of_a_microsecond_is_recovered(tmp_path):
+    """Resampled (linear interpolation) from 1 µs to 0.1 µs: first contact near the record's 100 µs,
+    and the history of Table II within 3 % (F0, T) and 10 % (t_F0), exit 0."""
+    t, strains = read_strains(RECORD)
+    fine = np.arange(t[0], t[-1], 0.1e-6)
+    record = _write(tmp_path / "resampled.csv", fine, {g: np.interp(fine, t, y) for g, y in strains.items()})
+    result, out = _calibrate(tmp_path, record)
+    assert result.exit_code == 0, result.output
+    entry = json.loads((out / "calibration.json").read_text())["tests"][0]
+    assert entry["first_contact_record_time_s"] == pytest.approx(100e-6, abs=5e-6)
+    assert entry["peak_force_N"] == pytest.approx(44 * LBF, rel=0.03)
+    assert entry["duration_s"] == pytest.approx(355e-6, rel=0.03)
+    assert entry["time_of_peak_s"] == pytest.approx(30e-6, rel=0.10)
+
+
+@pytest.mark.slow
+def test_reversed_polarity_fails_its_gate(tmp_path):
+    """Both gauges' signs reversed: exit 3 with a one-line reason naming the residual; the diagnostics
+    are written and marked failed; --accept-poor exits 0 with the status in the manifest."""
+    t, strains = read_strains(RECORD)
+    record = _write(tmp_path / "reversed.csv", t, {g: -y for g, y in strains.items()})
+    result, out = _calibrate(tmp_path, record)
+    assert result.exit_code == 3, result.output
+    assert "check failed" in result.output and "noise" in result.output
+    assert json.loads((out / "manifest.json").read_text())["status"] == "failed"
+    assert json.loads((out / "calibration.json").read_text())["quality"]["status"] == "failed"
+    accepted, out2 = _calibrate(tmp_path, record, "--accept-poor")
+    assert accepted.exit_code == 0, accepted.output
+    assert json.loads((out2 / "manifest.json").read_text())["status"] == "accepted-poor"
