@@ -187,7 +187,7 @@ def paper(figures: bool = True, progress: Progress = no_progress) -> Outcome:
             base = coarsen_beam(problem, 2)  # levels ½, 1, 2: the paper's mesh in the middle
             result, sizes = study_case(STUDIES["beam"], base, 3, 2)
             prefix = f"convergence/{name.removeprefix('paper-')}/"
-            files.update(converge_files(result, sizes, base, "beam", figures, prefix=prefix))
+            files.update(converge_files(result, sizes, base, "beam", figures, prefix=prefix, case_level=1))
             title = f"Discretisation error: the {name.removeprefix('paper-').replace('-', ' ')} (history 1)"
             sections.append(converge_section(result, sizes, title, prefix, figures, case_level=1))
 

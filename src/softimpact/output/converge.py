@@ -82,11 +82,13 @@ def _summary(result, sizes, problem, kind: str) -> dict:
     }
 
 
-def _error_figure(result, title: str):
+def _error_figure(result, title: str, case_level: int = 0):
+    from fractions import Fraction
+
     from .plots import _figure
 
     fig, ax = _figure(7.0, 4.6)
-    h = result.ratio ** -np.arange(len(result.levels), dtype=float)
+    h = result.ratio ** (case_level - np.arange(len(result.levels), dtype=float))
     for o in result.outputs:
         e = np.asarray(o.errors, float)
         ok = np.isfinite(e) & (e > 0)
@@ -95,10 +97,12 @@ def _error_figure(result, title: str):
     finite = [100 * e for o in result.outputs for e in o.errors if np.isfinite(e) and e > 0]
     if finite:
         top = max(finite)
-        ax.loglog(h, top * h**2, "k:", lw=1, label="slope 2 (formal order)")
+        ax.loglog(h, top * (h / h[0]) ** 2, "k:", lw=1, label="slope 2 (formal order)")
     ax.set_xlabel("h / h of the case (mesh and time step refined together)")
     ax.set_ylabel("error against the extrapolated value [%]")
     ax.set_title(title)
+    ax.set_xticks(h, [str(Fraction(x).limit_denominator(64)) for x in h])
+    ax.minorticks_off()
     ax.invert_xaxis()
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     return fig
@@ -127,12 +131,13 @@ def _history_figure(result, time: np.ndarray, system: str, title: str):
     return fig
 
 
-def converge_files(result, sizes, problem, kind: str, figures: bool = True, prefix: str = "") -> dict[str, bytes | str]:
-    """convergence.csv, summary.json and (optionally) the error and history figures."""
+def converge_files(result, sizes, problem, kind: str, figures: bool = True, prefix: str = "", case_level: int = 0) -> dict[str, bytes | str]:
+    """convergence.csv, summary.json and (optionally) the error and history figures; ``case_level``:
+    which level is the case's own discretisation (0 unless the study started below it)."""
     files = {prefix + "convergence.csv": csv_text(_rows(result)), prefix + "summary.json": json_text(_summary(result, sizes, problem, kind))}
     if figures:
         title = getattr(problem, "title", "") or kind
-        files[prefix + "convergence.png"] = figure_bytes(_error_figure(result, f"Discretisation error: {title}"))
+        files[prefix + "convergence.png"] = figure_bytes(_error_figure(result, f"Discretisation error: {title}", case_level))
         if any(o.kind == "history" for o in result.outputs):
             time = problem.solver.times()
             files[prefix + "histories.png"] = figure_bytes(_history_figure(result, time, problem.units, f"Histories at each level: {title}"))
