@@ -108,8 +108,9 @@ def _gcv(G, d, L, lam):
     return m * float(r @ r) / (m - trace) ** 2
 
 
-def regularisation_curve(G, d, L, lambdas) -> tuple[RegularisationCurve, np.ndarray]:
-    """Non-negative solutions over the grid ``lambdas`` (sorted increasing); returns the curve and the solutions (n_λ, n)."""
+def regularisation_curve(G, d, L, lambdas, gcv: bool = True) -> tuple[RegularisationCurve, np.ndarray]:
+    """Non-negative solutions over the grid ``lambdas`` (sorted increasing); returns the curve and the solutions (n_λ, n).
+    ``gcv``: also the GCV function (one n × n solve per λ; NaN when not asked for)."""
     G, d, L = _check(G, d, L)
     lam = np.sort(np.asarray(lambdas, float))
     if lam.size < 3 or np.any(lam <= 0):
@@ -117,15 +118,15 @@ def regularisation_curve(G, d, L, lambdas) -> tuple[RegularisationCurve, np.ndar
     sols = np.array([solve_nonnegative(G, d, L, x) for x in lam])
     res = np.linalg.norm(sols @ G.T - d, axis=1)
     semi = np.linalg.norm(sols @ L.T, axis=1)
-    gcv = np.array([_gcv(G, d, L, x) for x in lam])
-    return RegularisationCurve(lam, res, semi, gcv), sols
+    values = np.array([_gcv(G, d, L, x) for x in lam]) if gcv else np.full(lam.size, np.nan)
+    return RegularisationCurve(lam, res, semi, values), sols
 
 
 def choose_discrepancy(G, d, L, lambdas, sigma: float, tau: float = DISCREPANCY_TAU) -> LambdaChoice:
     """Largest λ with ‖G f_λ − d‖ ≤ τ·sqrt(m)·σ (Morozov)."""
     if not (math.isfinite(sigma) and sigma > 0):
         raise InputError(f"discrepancy: the noise level σ must be positive, got {sigma!r}")
-    curve, sols = regularisation_curve(G, d, L, lambdas)
+    curve, sols = regularisation_curve(G, d, L, lambdas, gcv=False)
     target = tau * math.sqrt(len(d)) * sigma
     ok = np.flatnonzero(curve.residual_norms <= target)
     if ok.size == 0:
@@ -147,7 +148,7 @@ def choose_discrepancy(G, d, L, lambdas, sigma: float, tau: float = DISCREPANCY_
 
 def choose_l_curve(G, d, L, lambdas) -> LambdaChoice:
     """Corner of the L-curve: largest curvature of (log ‖r‖, log ‖L f‖) against log λ."""
-    curve, sols = regularisation_curve(G, d, L, lambdas)
+    curve, sols = regularisation_curve(G, d, L, lambdas, gcv=False)
     x = np.log(np.maximum(curve.residual_norms, 1e-300))
     y = np.log(np.maximum(curve.solution_norms, 1e-300))
     s = np.log(curve.lambdas)

@@ -562,7 +562,10 @@ def calibrate_checked(
         if level == 0:
             note("estimating the model's error (one run of the refined mesh)")
             finer = level_model(1)
-            y_next = finer.direct(cal.pulse, energy=False, displacement=False, radius=cal.contact_radius).strain
+            if max_level >= 1:  # its response engine will serve the refined fit too: build it now
+                y_next = finer.respond(cal.pulse, cal.contact_radius).strain
+            else:  # one direct run is cheaper than an engine used once
+                y_next = finer.direct(cal.pulse, energy=False, displacement=False, radius=cal.contact_radius).strain
             y_next = _on_grid(tm, finer.problem.solver.times(), y_next)
             error = (y_next - y) * r_p / (r_p - 1.0)
         else:
