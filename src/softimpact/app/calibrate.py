@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -24,7 +24,8 @@ from ..models.pulses import SkewedPulse
 from ..output.calibration import SeriesComparison, calibration_files, series_calibration_files
 from ..workflows.beam_impact import BeamModel
 from ..workflows.calibration import METHODS, Calibration, Measured, calibrate, calibrate_checked
-from ..workflows.refinement import refine_beam
+from ..workflows.convergence import richardson
+from ..workflows.refinement import coarsen_beam, refine_beam
 from ..workflows.scaling import TestPoint, fit_groups
 from . import Outcome, Progress, no_progress
 from .predict import scaling_law
@@ -89,8 +90,13 @@ class ModelLadder:
         self.models: dict[int, BeamModel] = {}
 
     def __call__(self, level: int) -> BeamModel:
+        """Level ``level``: refined by ratio^level (coarsened for a negative level, when the
+        element counts divide; InputError otherwise)."""
         if level not in self.models:
-            problem = self.problem if level == 0 else refine_beam(self.problem, self.ratio**level)
+            if level < 0:
+                problem = coarsen_beam(self.problem, self.ratio**-level)
+            else:
+                problem = self.problem if level == 0 else refine_beam(self.problem, self.ratio**level)
             self.models[level] = BeamModel(problem, patch_radius=self.reach, outputs="strain")
         return self.models[level]
 
@@ -112,12 +118,46 @@ class ModelLadder:
 
     def finest(self) -> BeamModel:
         """The finest level built so far."""
-        return self(max(self.models, default=0))
+        return self(max((k for k in self.models if k >= 0), default=0))
 
     def describe(self, level: int) -> dict:
         """Mesh and step of a level (SI)."""
         b, s = self(level).problem.beam, self(level).problem.solver
         return {"level": level, "factor": self.ratio**level, "elements": [b.nx, b.nz], "time_step_s": s.time_step}
+
+
+PARAMETERS = ("peak_force", "time_of_peak", "duration")
+
+
+def parameter_convergence(models: ModelLadder, measured, start, cal, contact_time, fit_radius) -> dict:
+    """How the calibrated parameters themselves converge: the least-squares fit repeated on the
+    level below the one used and the level below that (cheap engines: the data, and so the noise,
+    are the same in all three fits, so their differences are discretisation), then Richardson on
+    each parameter (workflows/convergence). Returns name → (95 % discretisation uncertainty of
+    the value at the level used, the convergence record); {} when fewer than three levels exist."""
+    level = cal.check.level
+    ladder = (level - 2, level - 1, level) if level >= 1 else (-2, -1, 0)
+    fits = {}
+    for k in ladder:
+        if k == level:
+            fits[k] = cal
+            continue
+        try:
+            fits[k] = calibrate(models(k), measured, cal.pulse, "least-squares", contact_time=contact_time, radius=cal.contact_radius, fit_radius=fit_radius)
+        except InputError:  # a mesh that cannot be coarsened, or a level too coarse to fit
+            return {}
+    out = {}
+    for name in PARAMETERS:
+        values = [getattr(fits[k], name) for k in ladder]
+        conv = richardson(values, float(models.ratio), 2.0, name)
+        if conv.status == "converged to round-off":
+            u95 = 0.0
+        elif conv.status == "asymptotic":
+            u95 = conv.safety_factor * abs(values[-1] - conv.extrapolated)
+        else:  # oscillatory, diverging: half the range, with the assumed order's safety
+            u95 = 3.0 * 0.5 * (max(values) - min(values))
+        out[name] = (float(u95), conv)
+    return out
 
 
 def calibration_model(problem, radii, fit_radius: bool) -> ModelLadder:
@@ -158,6 +198,8 @@ def calibrate_tests(
                 fit_radius=fit_radius,
                 progress=lambda label, i=i, name=test.name: progress(i, len(tests), f"{name}: {label}"),
             )
+            if method == "least-squares":
+                cal = with_parameter_convergence(models, measured, start, cal, test.contact_time, fit_radius)
             dec = None
             if deconvolve and method != "deconvolve":
                 dec = calibrate(
@@ -202,6 +244,27 @@ def calibration_gates(items: list[CalibratedTest]) -> tuple[Gate, ...]:
         gates.append(at_most(f"pulse-skew[{name}]", skew, MAX_SKEW, f"{name}: degenerate pulse, tF0/T = {{value:.2f}} (limit {{limit:.2f}})"))
         gates.append(passed_if(f"optimiser[{name}]", c.converged, f"{name}: the {c.method} fit did not converge ({c.message})"))
     return tuple(gates)
+
+
+def with_parameter_convergence(models, measured, start, cal, contact_time, fit_radius):
+    """The calibration with its standard errors widened, where the parameters' own convergence
+    (:func:`parameter_convergence`) shows a larger discretisation error than the check's estimate."""
+    conv = parameter_convergence(models, measured, start, cal, contact_time, fit_radius)
+    if not conv:
+        return cal
+    se = dict(cal.standard_errors)
+    noise = cal.check.noise_errors
+    for name, (u95, _) in conv.items():
+        if name in se and name in noise:
+            se[name] = max(se[name], math.hypot(noise[name], u95 / 1.96))
+    orders = {name: c.order for name, (_, c) in conv.items()}
+    check = replace(
+        cal.check,
+        parameter_orders=orders,
+        parameter_uncertainty_95={name: u for name, (u, _) in conv.items()},
+        parameter_status={name: c.status for name, (_, c) in conv.items()},
+    )
+    return replace(cal, standard_errors=se, check=check)
 
 
 def _points(rows, projectile) -> list[TestPoint]:

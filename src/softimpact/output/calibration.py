@@ -75,6 +75,13 @@ def calibration_entry(item, gauges) -> dict:
             "noise_standard_errors": k.noise_errors,
             "shift_tolerance_in_noise_se": k.tolerance,
             "meets_tolerance": k.meets,
+            "order_of_the_error": k.order,
+            "order_observed": k.order_observed,
+            "safety_factor": k.safety,
+            "parameter_convergence": {
+                n: {"observed_order": k.parameter_orders.get(n), "uncertainty_95": k.parameter_uncertainty_95.get(n), "status": k.parameter_status.get(n)}
+                for n in k.parameter_orders
+            },
             "message": k.message,
             "standard_errors_include": "noise and the estimated discretisation error (added in quadrature)" if c.method == "least-squares" else "none",
         }

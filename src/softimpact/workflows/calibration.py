@@ -94,6 +94,12 @@ class ModelCheck:
     tolerance: float
     meets: bool
     message: str
+    order: float = math.nan  # of the discretisation error used in the estimate
+    order_observed: bool = False  # from three levels (else the formal order, assumed)
+    safety: float = math.nan  # Roache's factor applied to the shifts in the standard errors
+    parameter_orders: dict = field(default_factory=dict)  # observed order of each parameter's convergence (app)
+    parameter_uncertainty_95: dict = field(default_factory=dict)  # its 95 % discretisation uncertainty (app)
+    parameter_status: dict = field(default_factory=dict)  # asymptotic, oscillatory, ... (app)
 
 
 @dataclass(frozen=True)
@@ -513,6 +519,23 @@ MAIN = ("peak_force", "time_of_peak", "duration")  # the parameters the check ju
 ASSUMED_ORDER_SAFETY = 3.0
 
 
+def _observed_order(ys: dict, low: int, mid: int, high: int, ratio: float, formal: float) -> float | None:
+    """The order p of the model's discretisation error, observed from three levels' strain
+    histories (``ys``: level → (time, strains)) on the coarsest grid: p = ln(‖ε_low‖/‖ε_high‖)/ln r
+    for monotone convergence (⟨ε_low, ε_high⟩ > 0, ‖ε_high‖ < ‖ε_low‖), at most the formal
+    order (a higher one would shrink the estimate below what the scheme promises); None
+    when it cannot be observed."""
+    if not all(k in ys for k in (low, mid, high)):
+        return None
+    t = ys[low][0]
+    a = _on_grid(t, *ys[mid]) - ys[low][1]
+    b = _on_grid(t, *ys[high]) - _on_grid(t, *ys[mid])
+    na, nb = float(np.linalg.norm(a)), float(np.linalg.norm(b))
+    if not (nb > 0 and nb < na and float(np.sum(a * b)) > 0):
+        return None
+    return min(math.log(na / nb) / math.log(ratio), formal)
+
+
 def _on_grid(t_to, t_from, y):
     """Histories y (n_g, n) on grid t_from, linearly interpolated onto t_to."""
     return np.array([np.interp(t_to, t_from, yi) for yi in y])
@@ -538,9 +561,10 @@ def calibrate_checked(
     ``level_model(k)`` gives the model refined by ratio^k (k = 0: the case's own);
     models of coarser levels stay in use (they are built once by the caller).
     At level L the model error is estimated by Richardson from two levels at the
-    current fit p̂: e_L = (y_{L+1} − y_L)·r^p/(r^p − 1) for the case's own level
-    (one direct run of the next level), e_L = (y_L − y_{L−1})/(r^p − 1) above it
-    (formal order p, ``order``). The fit is repeated with e_L subtracted from the
+    current fit p̂: e_L = (y_{L+1} − y_L)·r^p/(r^p − 1) for the case's own level,
+    e_L = (y_L − y_{L−1})/(r^p − 1) above it, with the order p observed from three
+    levels (one below the case's mesh included: cheap) and at most the formal
+    ``order``; where it cannot be observed, the formal order. The fit is repeated with e_L subtracted from the
     model (defect correction); the parameter shifts Δ it causes are the model's
     bias. If any |Δ| exceeds ``tolerance`` × its noise standard error, the next
     level is used, up to ``max_level`` (the caller's time budget). The reported
@@ -552,26 +576,37 @@ def calibrate_checked(
         if progress is not None:
             progress(label)
 
-    r_p = float(ratio) ** order
     level, model = 0, level_model(0)
     note("fitting on the case's mesh")
     cal = calibrate(model, measured, start, "least-squares", contact_time=contact_time, radius=radius, fit_radius=fit_radius)
     while True:
         tm = model.problem.solver.times()
         y = model.respond(cal.pulse, cal.contact_radius).strain
+        # Three levels (the two around this one and one below) give the observed order p.
+        low, mid, high = (-1, 0, 1) if level <= 1 else (level - 2, level - 1, level)
+        note("estimating the model's error (refined and coarsened meshes)")
+        ys = {level: (tm, y)}
+        for k in (low, mid, high):
+            if k in ys:
+                continue
+            try:
+                m = level_model(k)
+            except InputError:  # a mesh that cannot be coarsened: the order stays assumed
+                continue
+            if k == level + 1 and max_level < 1:  # one direct run is cheaper than an engine used once
+                yk = m.direct(cal.pulse, energy=False, displacement=False, radius=cal.contact_radius).strain
+            else:  # an engine that a refined fit will reuse, or a coarse one that costs little
+                yk = m.respond(cal.pulse, cal.contact_radius).strain
+            ys[k] = (m.problem.solver.times(), yk)
+        p_obs = _observed_order(ys, low, mid, high, float(ratio), order)
+        # The order observed is the strain histories'; a parameter's shift keeps the assumed-order
+        # safety (its own order is not observed here: the app's parameter_convergence does that).
+        p_used, safety = (p_obs if p_obs is not None else order), ASSUMED_ORDER_SAFETY
+        r_p = float(ratio) ** p_used
         if level == 0:
-            note("estimating the model's error (one run of the refined mesh)")
-            finer = level_model(1)
-            if max_level >= 1:  # its response engine will serve the refined fit too: build it now
-                y_next = finer.respond(cal.pulse, cal.contact_radius).strain
-            else:  # one direct run is cheaper than an engine used once
-                y_next = finer.direct(cal.pulse, energy=False, displacement=False, radius=cal.contact_radius).strain
-            y_next = _on_grid(tm, finer.problem.solver.times(), y_next)
-            error = (y_next - y) * r_p / (r_p - 1.0)
+            error = (_on_grid(tm, *ys[1]) - y) * r_p / (r_p - 1.0)
         else:
-            coarser = level_model(level - 1)
-            y_prev = _on_grid(tm, coarser.problem.solver.times(), coarser.respond(cal.pulse, cal.contact_radius).strain)
-            error = (y - y_prev) / (r_p - 1.0)
+            error = (y - _on_grid(tm, *ys[level - 1])) / (r_p - 1.0)
         prep = cal.prepared
         w = (prep.time >= 0) & (prep.time <= tm[-1])
         err_w = _on_grid(prep.time[w], tm, error)
@@ -590,14 +625,15 @@ def calibrate_checked(
         note(f"refining the model (×{ratio**level})")
         model = level_model(level)
         cal = calibrate(model, measured, cal.pulse, "least-squares", contact_time=contact_time, radius=radius, fit_radius=fit_radius)
-    total = {n: math.hypot(se, ASSUMED_ORDER_SAFETY / 1.96 * shifts.get(n, 0.0)) for n, se in noise.items()}
+    total = {n: math.hypot(se, safety / 1.96 * shifts.get(n, 0.0)) for n, se in noise.items()}
     worst = max((abs(shifts[n]) / noise[n] for n in MAIN if n in shifts and noise.get(n)), default=0.0)
     message = (
-        f"model ×{ratio**level}: its estimated discretisation error is {np.max(error_to_noise):.2g} × the noise (RMS), "
+        f"model ×{ratio**level}: its estimated discretisation error (order {p_used:.2f}, {'observed' if p_obs is not None else 'assumed'}) "
+        f"is {np.max(error_to_noise):.2g} × the noise (RMS), "
         f"and moves the fit by up to {worst:.2g} noise standard errors"
         + ("" if meets else f" (above {tolerance:g}: the time budget stopped the refinement; the standard errors include it)")
     )
-    check = ModelCheck(level, ratio**level, error_to_noise, shifts, noise, tolerance, meets, message)
+    check = ModelCheck(level, ratio**level, error_to_noise, shifts, noise, tolerance, meets, message, p_used, p_obs is not None, safety)
     if method == "least-squares":
         return replace(cal, standard_errors=total, check=check)
     other = calibrate(model, measured, start, method, contact_time=cal.prepared.contact_time, radius=cal.contact_radius, error_to_noise=error_to_noise)
