@@ -316,7 +316,7 @@ def reduce_cmd(series, out, figures, accept_poor):
     """Bar strain records of a SERIES file → force histories and pulse parameters.
 
     Writes tests.csv, history-<test>.csv per test, summary.json and, with figures,
-    fig07-force-<test>.png per test.
+    fig07-force-<test>.png per test (and dispersion-<test>.png with dispersion correction).
     """
     from .app.series import reduce
 
