@@ -107,3 +107,19 @@ def test_coarsen_beam_checks_divisibility():
     assert (coarse.beam.nx, coarse.beam.nz, coarse.solver.time_step) == (100, 3, pytest.approx(2e-6))
     with pytest.raises(InputError, match="divide"):
         coarsen_beam(problem, 4)
+
+
+def test_cli_plate_errors_fall_with_refinement(tmp_path):
+    """`converge` on a plate case (12 × 12, ×2, ×4): the deflection history's error against the
+    extrapolation falls at every level, and the summary lists the plate's element counts."""
+    case = tmp_path / "plate.toml"
+    text = locate("plate-ss-8in").read_text().replace("elements = [48, 48]", "elements = [12, 12]")
+    case.write_text(text.replace('duration = "1000 us"', 'duration = "300 us"'))
+    out = tmp_path / "out"
+    result = CliRunner().invoke(main, ["converge", str(case), "--out", str(out), "--no-figures"])
+    assert result.exit_code == 0, result.output
+    rows = {r["output"]: r for r in csv.DictReader((out / "convergence.csv").open())}
+    e = [float(rows["deflection_under_load_history_m"][f"relative_error_level_{k}"]) for k in (1, 2, 3)]
+    assert e[0] > e[1] > e[2]
+    summary = json.loads((out / "summary.json").read_text())
+    assert [lv["elements"] for lv in summary["levels"]] == [[12, 12], [24, 24], [48, 48]]

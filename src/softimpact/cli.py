@@ -253,7 +253,7 @@ def beam_cmd(case, history, out, figures):
 @_figures_option
 @_guarded
 def converge_cmd(case, levels, ratio, history, out, figures):
-    """Run a bar or beam CASE on refined meshes and time steps; estimate the observed
+    """Run a bar, beam or plate CASE on refined meshes and time steps; estimate the observed
     order and the discretisation error of each output by Richardson extrapolation.
 
     Level 1 is the case as written; its error is the case's own distance from

@@ -21,10 +21,10 @@ from ..input.toml import case_kind
 from ..models.features import first_lobe_peak, first_zero_crossing
 from ..output.converge import converge_files
 from ..workflows.convergence import ConvergenceStudy, convergence_study
-from ..workflows.refinement import refine_bar, refine_beam
+from ..workflows.refinement import refine_bar, refine_beam, refine_plate
 from . import Outcome, Progress, no_progress
 
-__all__ = ["Study", "STUDIES", "converge", "study_case", "bar_outputs", "beam_outputs"]
+__all__ = ["Study", "STUDIES", "converge", "study_case", "bar_outputs", "beam_outputs", "plate_outputs"]
 
 MAX_LEVELS = 5
 
@@ -62,6 +62,20 @@ def beam_outputs(problem, stride: int, progress: Callable[[int], None] | None = 
     return out, {"elements": [problem.beam.nx, problem.beam.nz], "time_step_s": problem.solver.time_step, "dofs": model.plane.n}
 
 
+def plate_outputs(problem, stride: int, progress: Callable[[int], None] | None = None) -> tuple[dict, dict]:
+    """Peak deflection under the load, gauge peaks and histories of a plate run; its size."""
+    from ..workflows.plate_impact import PlateModel
+
+    model = PlateModel(problem)
+    r = model.direct(progress=progress, energy=False, snapshots=[])
+    w = r.deflection[0]
+    out = {"peak_deflection_under_load_m": float(w[np.argmax(np.abs(w))]), "deflection_under_load_history_m": w[::stride]}
+    for g, eps in zip(problem.gauges, r.strain):
+        out[f"strain_{g.name}_peak"] = float(eps[np.argmax(np.abs(eps))])
+        out[f"strain_{g.name}_history"] = eps[::stride]
+    return out, {"elements": list(problem.plate.elements), "time_step_s": problem.solver.time_step, "dofs": int(model.fe.n)}
+
+
 @dataclass(frozen=True)
 class Study:
     """How to study one kind of case: ``load(case, history) -> (problem, path)``,
@@ -86,7 +100,17 @@ def _load_beam(case, history):
     return load_beam_case(case, history)
 
 
-STUDIES = {"bar": Study(_load_bar, refine_bar, bar_outputs), "beam": Study(_load_beam, refine_beam, beam_outputs)}
+def _load_plate(case, history):
+    from ..input.plate_case import load_plate_case
+
+    return load_plate_case(case, history)
+
+
+STUDIES = {
+    "bar": Study(_load_bar, refine_bar, bar_outputs),
+    "beam": Study(_load_beam, refine_beam, beam_outputs),
+    "plate": Study(_load_plate, refine_plate, plate_outputs),
+}
 
 
 def study_case(study: Study, problem, levels: int, ratio: int, progress: Progress = no_progress) -> tuple[ConvergenceStudy, list[dict]]:

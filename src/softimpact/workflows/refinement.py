@@ -2,7 +2,8 @@
 
 Duck-typed on the problem's attributes so that this module imports no other
 workflow: a bar problem has ``bar.elements`` and ``solver.time_step``; a beam
-problem has ``beam.nx``, ``beam.nz`` and ``solver.time_step``. Only the
+problem has ``beam.nx``, ``beam.nz`` and ``solver.time_step``; a plate problem
+``plate.elements`` (nx, ny) and ``solver.time_step``. Only the
 discretisation changes; the physics, the run's duration and its outputs do not.
 """
 
@@ -12,7 +13,7 @@ from dataclasses import replace
 
 from ..errors import InputError
 
-__all__ = ["refine_bar", "refine_beam", "refine_solver", "coarsen_beam"]
+__all__ = ["refine_bar", "refine_beam", "refine_plate", "refine_solver", "coarsen_beam"]
 
 
 def _check(factor) -> int:
@@ -45,6 +46,19 @@ def refine_beam(problem, factor: int, *, space: bool = True, time: bool = True):
     out = problem
     if space:
         out = replace(out, beam=replace(out.beam, nx=out.beam.nx * factor, nz=out.beam.nz * factor))
+    if time:
+        out = replace(out, solver=refine_solver(out.solver, factor))
+    return out
+
+
+def refine_plate(problem, factor: int, *, space: bool = True, time: bool = True):
+    """A plate problem with factor × the elements along x and y and/or dt/factor
+    (the load patch, gauges and points are unchanged)."""
+    factor = _check(factor)
+    out = problem
+    if space:
+        nx, ny = out.plate.elements
+        out = replace(out, plate=replace(out.plate, elements=(nx * factor, ny * factor)))
     if time:
         out = replace(out, solver=refine_solver(out.solver, factor))
     return out
