@@ -45,7 +45,7 @@ SAMPLES = 7  # rows of each CSV column kept (evenly spaced), besides its sum
 
 def fingerprint(folder: Path) -> dict:
     """Files, CSV columns (sum and a few samples) and JSON numeric leaves of an output folder."""
-    out = {"files": sorted(p.name for p in folder.iterdir() if not p.name.startswith("."))}
+    out = {"files": sorted(p.name for p in folder.iterdir() if not p.name.startswith(".") and p.name != "manifest.json")}
     for path in sorted(folder.glob("*.csv")):
         with open(path, newline="", encoding="utf-8") as fh:
             rows = list(csv.reader(fh))
@@ -63,7 +63,7 @@ def fingerprint(folder: Path) -> dict:
             finite = [v for v in values if v == v]
             cols[name] = {"rows": n, "sum": sum(finite), "samples": [values[i] if values[i] == values[i] else None for i in picks]}
         out[path.name] = cols
-    for path in sorted(folder.glob("*.json")):
+    for path in sorted(p for p in folder.glob("*.json") if p.name != "manifest.json"):  # the manifest holds this run's paths
         out[path.name] = leaves(json.loads(path.read_text(encoding="utf-8")))
     return out
 
