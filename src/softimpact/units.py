@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 from .errors import InputError
 
-__all__ = ["registry", "parse", "display", "DisplayUnit", "DISPLAY_SYSTEMS", "DIMENSIONS", "INCH", "POUND_FORCE", "POUND_MASS", "PSI"]
+__all__ = ["registry", "parse", "display", "DisplayUnit", "DISPLAY_SYSTEMS", "DIMENSIONS", "SI_UNITS", "INCH", "POUND_FORCE", "POUND_MASS", "PSI"]
 
 # Exact definitions (NIST SP 811), for catalogue data written in US customary units
 # without building the unit registry; nothing else in the package converts units.
@@ -125,15 +125,15 @@ def parse(value, kind: str, key: str) -> float:
         q = ureg.Quantity(number, ureg.parse_units(unit.replace(" ", "").replace("**", "^")))
     except Exception:  # pint raises several unrelated types for unknown names
         raise InputError(f"{key}: unknown unit {unit!r} in {value!r} {example}") from None
-    if q.dimensionality != ureg.Quantity(1, _SI[kind]).dimensionality:
+    if q.dimensionality != ureg.Quantity(1, SI_UNITS[kind]).dimensionality:
         raise InputError(f"{key}: {value!r} is not a {kind} (its dimension is {q.dimensionality})")
-    si = float(q.to(_SI[kind]).magnitude)
+    si = float(q.to(SI_UNITS[kind]).magnitude)
     if not math.isfinite(si):
         raise InputError(f"{key}: {value!r} is not a finite {kind}")
     return si
 
 
-_SI = {
+SI_UNITS = {
     "length": "m",
     "mass": "kg",
     "time": "s",
@@ -210,6 +210,6 @@ def display(system: str, kind: str) -> DisplayUnit:
         raise InputError(f"units: unknown display system {system!r} (choose from {', '.join(DISPLAY_SYSTEMS)})")
     unit = DISPLAY_SYSTEMS[system][kind]
     ureg = registry()
-    si = "dimensionless" if kind == "strain" else _SI[kind]
+    si = "dimensionless" if kind == "strain" else SI_UNITS[kind]
     factor = float(ureg.Quantity(1.0, si).to(unit).magnitude)
     return DisplayUnit(factor, _LABELS.get(unit, unit))

@@ -63,18 +63,6 @@ __all__ = [
 METHODS = ("grid", "monte-carlo", "latin-hypercube")
 DISTRIBUTIONS = ("normal", "uniform", "lognormal")
 _KINDS = ("length", "mass", "time", "velocity", "stress", "density", "force", "impulse", "energy", "frequency")
-_SI_UNIT = {
-    "length": "m",
-    "mass": "kg",
-    "time": "s",
-    "velocity": "m/s",
-    "stress": "Pa",
-    "density": "kg/m^3",
-    "force": "N",
-    "impulse": "N*s",
-    "energy": "J",
-    "frequency": "Hz",
-}
 
 
 def quantity(value, key: str) -> tuple[float, str]:
@@ -85,7 +73,7 @@ def quantity(value, key: str) -> tuple[float, str]:
         return units.parse(value, "dimensionless", key), ""
     for kind in _KINDS:
         try:
-            return units.parse(value, kind, key), _SI_UNIT[kind]
+            return units.parse(value, kind, key), units.SI_UNITS[kind]
         except InputError:
             continue
     return units.parse(value, "dimensionless", key), ""
