@@ -13,8 +13,6 @@ Usage: python benchmarks/bench_coupled.py [repeats]
 
 import math
 import platform
-import resource
-import subprocess
 import sys
 import tempfile
 import time
@@ -23,7 +21,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
 from coupled_helpers import INCH, beam_structure, long_beam_model  # noqa: E402
-from timing import best  # noqa: E402
+from timing import best, process  # noqa: E402
 
 from softimpact.models.contact_laws import HertzLaw  # noqa: E402
 from softimpact.models.materials import Material  # noqa: E402
@@ -56,17 +54,6 @@ def main():
     print(f"Newton iterations {res.newton_iterations} ({res.newton_iterations / n:.1f}/step incl. free flight), contacts {len(res.contacts)}")
 
 
-def _process(cmd) -> tuple[float, float]:
-    """(wall-clock, CPU user + system) seconds of one whole process: on a shared machine the CPU
-    time is the steadier measure."""
-    r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
-    t0 = time.perf_counter()
-    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    wall = time.perf_counter() - t0
-    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return wall, (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
-
-
 def whole_process(repeats: int = 5):
     from softimpact.input.toml import builtin_cases
 
@@ -88,7 +75,7 @@ def whole_process(repeats: int = 5):
         times = {name: [] for name in runs}
         for _ in range(repeats):
             for name, cmd in runs.items():
-                times[name].append(_process(cmd))
+                times[name].append(process(cmd))
     print(f"whole processes, best and median of {repeats}, alternated (wall-clock; CPU user + system):")
     for name, ts in times.items():
         wall = sorted(t[0] for t in ts)

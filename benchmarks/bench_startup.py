@@ -4,7 +4,7 @@ Both beam runs are whole processes (interpreter start, imports, assembly, 1000
 Newmark steps, output), measured alternately in one run of this script:
 - `softimpact beam paper-long-beam --no-figures` (writes its CSV and JSON);
 - `python benchmarks/plain_beam.py`: the same mesh and steps with scikit-fem + splu.
-Bytecode is cached as in a user's environment (see ENV) and each command is
+Bytecode is cached as in a user's environment (timing.USER_ENV) and each command is
 run once before timing. Wall clock suffers from whatever else the machine runs; the CPU time of each
 process (user + system) much less, so both are printed. BLAS is held to one
 thread in both processes (OMP_NUM_THREADS=1).
@@ -13,29 +13,14 @@ Usage: python benchmarks/bench_startup.py [repeats]
 
 import os
 import platform
-import resource
-import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
+from timing import USER_ENV, process
+
 HERE = Path(__file__).resolve().parent
-# As a user's shell has it: bytecode cached (this machine's environment sets
-# PYTHONDONTWRITEBYTECODE, which makes an editable install recompile its sources
-# on every start while pip-installed packages keep their .pyc), one BLAS thread.
-ENV = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"} | {"OMP_NUM_THREADS": "1"}
 BIN = Path(sys.executable).parent
-
-
-def timed(cmd) -> tuple[float, float]:
-    """Wall time and CPU time (user + system, from the child's resource usage) of a whole process."""
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    t0 = time.perf_counter()
-    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=ENV)
-    wall = time.perf_counter() - t0
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
 def main(repeats: int = 5):
@@ -48,10 +33,10 @@ def main(repeats: int = 5):
         }
         times = {name: [] for name in runs}
         for cmd in runs.values():  # warm-up: bytecode written, files in the page cache
-            timed(cmd)
+            process(cmd, USER_ENV)
         for _ in range(repeats):
             for name, cmd in runs.items():
-                times[name].append(timed(cmd))
+                times[name].append(process(cmd, USER_ENV))
     print(f"  load average {os.getloadavg()[0]:.1f}; wall clock (best, median) and CPU time (best, median), one BLAS thread each")
     for name, ts in times.items():
         wall = sorted(w for w, _ in ts)
