@@ -23,7 +23,7 @@ from ..models.empirical import PRESETS, PROJECTILES
 from ..models.pulses import SkewedPulse
 from ..output.calibration import SeriesComparison, calibration_files, series_calibration_files
 from ..workflows.beam_impact import BeamModel
-from ..workflows.calibration import METHODS, Calibration, Measured, calibrate, calibrate_checked
+from ..workflows.calibration import ASSUMED_ORDER_SAFETY, MAIN, METHODS, Calibration, Measured, calibrate, calibrate_checked
 from ..workflows.convergence import richardson
 from ..workflows.refinement import coarsen_beam, refine_beam
 from ..workflows.scaling import TestPoint, fit_groups
@@ -126,36 +126,35 @@ class ModelLadder:
         return {"level": level, "factor": self.ratio**level, "elements": [b.nx, b.nz], "time_step_s": s.time_step}
 
 
-PARAMETERS = ("peak_force", "time_of_peak", "duration")
-
-
 def parameter_convergence(models: ModelLadder, measured, start, cal, contact_time, fit_radius) -> dict:
-    """How the calibrated parameters themselves converge: the least-squares fit repeated on the
-    level below the one used and the level below that (cheap engines: the data, and so the noise,
-    are the same in all three fits, so their differences are discretisation), then Richardson on
-    each parameter (workflows/convergence). Returns name → (95 % discretisation uncertainty of
-    the value at the level used, the convergence record); {} when fewer than three levels exist."""
+    """How the calibrated parameters themselves converge: the least-squares fits on the level
+    used and the two below it (those the check made are reused; cheap engines: the data, and so
+    the noise, are the same in all three fits, so their differences are discretisation), then
+    Richardson on each parameter (workflows/convergence). Returns name → (95 % discretisation
+    uncertainty of the value at the level used, the convergence record); {} when fewer than
+    three levels exist."""
     level = cal.check.level
     ladder = (level - 2, level - 1, level) if level >= 1 else (-2, -1, 0)
-    fits = {}
+    fits = dict(cal.check.level_fits)
+    fits[level] = tuple(getattr(cal, n) for n in MAIN)
     for k in ladder:
-        if k == level:
-            fits[k] = cal
+        if k in fits:
             continue
         try:
-            fits[k] = calibrate(models(k), measured, cal.pulse, "least-squares", contact_time=contact_time, radius=cal.contact_radius, fit_radius=fit_radius)
+            c = calibrate(models(k), measured, cal.pulse, "least-squares", contact_time=contact_time, radius=cal.contact_radius, fit_radius=fit_radius)
         except InputError:  # a mesh that cannot be coarsened, or a level too coarse to fit
             return {}
+        fits[k] = tuple(getattr(c, n) for n in MAIN)
     out = {}
-    for name in PARAMETERS:
-        values = [getattr(fits[k], name) for k in ladder]
+    for i, name in enumerate(MAIN):
+        values = [fits[k][i] for k in ladder]
         conv = richardson(values, float(models.ratio), 2.0, name)
         if conv.status == "converged to round-off":
             u95 = 0.0
         elif conv.status == "asymptotic":
             u95 = conv.safety_factor * abs(values[-1] - conv.extrapolated)
         else:  # oscillatory, diverging: half the range, with the assumed order's safety
-            u95 = 3.0 * 0.5 * (max(values) - min(values))
+            u95 = ASSUMED_ORDER_SAFETY * 0.5 * (max(values) - min(values))
         out[name] = (float(u95), conv)
     return out
 

@@ -97,6 +97,7 @@ class ModelCheck:
     order: float = math.nan  # of the discretisation error used in the estimate
     order_observed: bool = False  # from three levels (else the formal order, assumed)
     safety: float = math.nan  # Roache's factor applied to the shifts in the standard errors
+    level_fits: dict = field(default_factory=dict)  # level → (F0, t_F0, T) of its least-squares fit in the check
     parameter_orders: dict = field(default_factory=dict)  # observed order of each parameter's convergence (app)
     parameter_uncertainty_95: dict = field(default_factory=dict)  # its 95 % discretisation uncertainty (app)
     parameter_status: dict = field(default_factory=dict)  # asymptotic, oscillatory, ... (app)
@@ -571,7 +572,9 @@ def calibrate_checked(
     model (defect correction); the parameter shifts Δ it causes are the model's
     bias. If any |Δ| exceeds ``tolerance`` × its noise standard error, the next
     level is used, up to ``max_level`` (the caller's time budget). The reported
-    standard errors are √(SE_noise² + Δ²): noise and discretisation together.
+    standard errors are √(SE_noise² + (Fs·Δ/1.96)²), Fs = 3 (Roache's factor for an
+    order not observed for the parameter itself): noise and discretisation together.
+    The least-squares fits made on the way are kept (``check.level_fits``).
     Least squares carries the check; another ``method`` is then run on the chosen level.
     """
 
@@ -582,7 +585,9 @@ def calibrate_checked(
     level, model = 0, level_model(0)
     note("fitting on the case's mesh")
     cal = calibrate(model, measured, start, "least-squares", contact_time=contact_time, radius=radius, fit_radius=fit_radius)
+    level_fits = {}
     while True:
+        level_fits[level] = tuple(getattr(cal, n) for n in MAIN)
         tm = model.problem.solver.times()
         y = model.respond(cal.pulse, cal.contact_radius).strain
         # Three levels (the two around this one and one below) give the observed order p.
@@ -636,7 +641,7 @@ def calibrate_checked(
         f"and moves the fit by up to {worst:.2g} noise standard errors"
         + ("" if meets else f" (above {tolerance:g}: the time budget stopped the refinement; the standard errors include it)")
     )
-    check = ModelCheck(level, ratio**level, error_to_noise, shifts, noise, tolerance, meets, message, p_used, p_obs is not None, safety)
+    check = ModelCheck(level, ratio**level, error_to_noise, shifts, noise, tolerance, meets, message, p_used, p_obs is not None, safety, level_fits)
     if method == "least-squares":
         return replace(cal, standard_errors=total, check=check)
     other = calibrate(model, measured, start, method, contact_time=cal.prepared.contact_time, radius=cal.contact_radius, error_to_noise=error_to_noise)
