@@ -31,6 +31,7 @@ import numpy as np
 from ..errors import InputError
 from ..input.sweep_spec import get_dotted, set_dotted
 from ..input.toml import naming
+from ..output.files import strain_peaks
 
 __all__ = ["CaseAdapter", "BeamCase", "BarCase", "ADAPTERS", "adapter_for", "flatten"]
 
@@ -135,13 +136,8 @@ class BeamCase:
             "gauges": {},
         }
         for g, eps in zip(problem.gauges, result.strain):
-            kmax, kmin, k = int(np.argmax(eps)), int(np.argmin(eps)), int(np.argmax(np.abs(eps)))
-            out["gauges"][g.name] = {
-                "peak_tensile_strain": float(eps[kmax]),
-                "peak_compressive_strain": float(eps[kmin]),
-                "time_of_peak_tensile_strain_s": float(t[kmax]),
-                "time_of_peak_compressive_strain_s": float(t[kmin]),
-            }
+            k = int(np.argmax(np.abs(eps)))
+            out["gauges"][g.name] = strain_peaks(t, eps)
             out[f"strain_{g.name}"] = {"peak": float(eps[k]), "peak_abs": float(abs(eps[k]))}
         stack = problem.beam.stack
         wanted = not outputs or any(o.startswith("damage.") for o in outputs)

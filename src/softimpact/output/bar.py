@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..units import display
-from .files import csv_text, figure_bytes, json_text
+from .files import csv_text, figure_bytes, json_text, strain_peaks
 from .report import Section
 
 __all__ = ["bar_summary", "bar_files", "bar_section"]
@@ -18,14 +18,7 @@ def bar_summary(result) -> dict:
     p = result.problem
     gauges = {}
     for g, eps in zip(p.gauges, result.gauge_strain):
-        kc, kt = int(np.argmin(eps)), int(np.argmax(eps))
-        gauges[g.name] = {
-            "position_m": g.position,
-            "peak_compressive_strain": float(eps[kc]),
-            "time_of_peak_compressive_strain_s": float(result.time[kc]),
-            "peak_tensile_strain": float(eps[kt]),
-            "time_of_peak_tensile_strain_s": float(result.time[kt]),
-        }
+        gauges[g.name] = {"position_m": g.position, **strain_peaks(result.time, eps)}
     e = result.energies.total
     return {
         "title": p.title,

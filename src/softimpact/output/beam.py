@@ -6,7 +6,7 @@ import numpy as np
 
 from ..models.features import first_zero_crossing
 from ..units import display
-from .files import csv_text, figure_bytes, json_text
+from .files import csv_text, energy_balance, figure_bytes, json_text, strain_peaks
 from .report import Section
 
 __all__ = ["beam_summary", "beam_files", "beam_section"]
@@ -21,19 +21,12 @@ def beam_summary(model, result) -> dict:
     """
     p = result.problem
     gauges = {}
-    last = result.time.size - 1
     for g, eps, bend in zip(p.gauges, result.strain, result.bending):
-        kmax, kmin = int(np.argmax(eps)), int(np.argmin(eps))
-        zero = first_zero_crossing(result.time, bend)
         gauges[g.name] = {
             "position_m": g.position,
             "surface": g.surface,
-            "peak_tensile_strain": float(eps[kmax]),
-            "time_of_peak_tensile_strain_s": float(result.time[kmax]),
-            "peak_compressive_strain": float(eps[kmin]),
-            "time_of_peak_compressive_strain_s": float(result.time[kmin]),
-            "first_zero_crossing_of_bending_strain_s": zero,
-            "peak_at_window_end": [name for name, k in (("tensile", kmax), ("compressive", kmin)) if k == last],
+            **strain_peaks(result.time, eps, window_end=True),
+            "first_zero_crossing_of_bending_strain_s": first_zero_crossing(result.time, bend),
         }
     out = {
         "title": p.title,
@@ -47,8 +40,7 @@ def beam_summary(model, result) -> dict:
         "case_SI": p,
     }
     if result.energy:
-        e = result.energy
-        out["energy_balance_relative"] = float(np.max(np.abs(e["kinetic"] + e["strain"] - e["work"])) / max(np.max(np.abs(e["work"])), 1e-300))
+        out["energy_balance_relative"] = energy_balance(result.energy)
     return out
 
 

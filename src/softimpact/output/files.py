@@ -40,6 +40,28 @@ STAGING_PREFIX = ".softimpact-"  # staging folders: .softimpact-<pid>-<random>
 STALE_AGE = 3600.0  # s: a staging folder without a readable pid this old is a leftover
 
 
+def strain_peaks(time: np.ndarray, eps: np.ndarray, window_end: bool = False) -> dict:
+    """A gauge's peak tensile and compressive strain and their times, the fields every
+    command's summary gives; with ``window_end``, which of them sit on the run's last sample
+    (the strain may still be growing there)."""
+    kmax, kmin = int(np.argmax(eps)), int(np.argmin(eps))
+    out = {
+        "peak_tensile_strain": float(eps[kmax]),
+        "time_of_peak_tensile_strain_s": float(time[kmax]),
+        "peak_compressive_strain": float(eps[kmin]),
+        "time_of_peak_compressive_strain_s": float(time[kmin]),
+    }
+    if window_end:
+        last = len(time) - 1
+        out["peak_at_window_end"] = [name for name, k in (("tensile", kmax), ("compressive", kmin)) if k == last]
+    return out
+
+
+def energy_balance(energy: dict) -> float:
+    """Largest |kinetic + strain − work| over the run, relative to the largest work."""
+    return float(np.max(np.abs(energy["kinetic"] + energy["strain"] - energy["work"])) / max(np.max(np.abs(energy["work"])), 1e-300))
+
+
 def csv_text(columns: dict[str, np.ndarray]) -> str:
     """CSV text of equal-length columns, full precision (repr of float64)."""
     names = list(columns)

@@ -7,7 +7,7 @@ import math
 import numpy as np
 
 from ..units import display
-from .files import csv_text, figure_bytes, json_text
+from .files import csv_text, figure_bytes, json_text, strain_peaks
 
 __all__ = ["impact_summary", "impact_columns", "impact_files", "impact_figures"]
 
@@ -27,14 +27,7 @@ def impact_summary(problem, result) -> dict:
     """The scalars of a coupled run (first contact), every contact, gauge peaks and the resolved case; SI."""
     gauges = {}
     for name, eps in zip(result.gauge_names, result.gauge_strain):
-        kmax, kmin = int(np.argmax(eps)), int(np.argmin(eps))
-        gauges[name] = {
-            "peak_tensile_strain": float(eps[kmax]),
-            "time_of_peak_tensile_strain_s": float(result.time[kmax]),
-            "peak_compressive_strain": float(eps[kmin]),
-            "time_of_peak_compressive_strain_s": float(result.time[kmin]),
-            "peak_abs_strain": float(np.max(np.abs(eps))),
-        }
+        gauges[name] = {**strain_peaks(result.time, eps), "peak_abs_strain": float(np.max(np.abs(eps)))}
     first = result.contacts[0]
     sel = result.time <= (first.end if math.isfinite(first.end) else result.time[-1])
     E = result.energies

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .files import csv_text, figure_bytes, json_text
+from .files import csv_text, energy_balance, figure_bytes, json_text, strain_peaks
 
 __all__ = ["plate_summary", "plate_files", "SNAPSHOTS"]
 
@@ -23,20 +23,14 @@ def plate_summary(model, result) -> dict:
     window's last sample the strain may still be growing, and the summary says so.
     """
     p = result.problem
-    last = result.time.size - 1
     gauges = {}
     for g, eps in zip(p.gauges, result.strain):
-        kmax, kmin = int(np.argmax(eps)), int(np.argmin(eps))
         gauges[g.name] = {
             "position_m": list(g.position),
             "surface": g.surface,
             "direction": g.direction,
             "length_m": g.length,
-            "peak_tensile_strain": float(eps[kmax]),
-            "time_of_peak_tensile_strain_s": float(result.time[kmax]),
-            "peak_compressive_strain": float(eps[kmin]),
-            "time_of_peak_compressive_strain_s": float(result.time[kmin]),
-            "peak_at_window_end": [name for name, k in (("tensile", kmax), ("compressive", kmin)) if k == last],
+            **strain_peaks(result.time, eps, window_end=True),
         }
     w = result.deflection[0]
     k = int(np.argmax(np.abs(w)))
@@ -55,8 +49,7 @@ def plate_summary(model, result) -> dict:
         "case_SI": p,
     }
     if result.energy:
-        e = result.energy
-        out["energy_balance_relative"] = float(np.max(np.abs(e["kinetic"] + e["strain"] - e["work"])) / max(np.max(np.abs(e["work"])), 1e-300))
+        out["energy_balance_relative"] = energy_balance(result.energy)
     return out
 
 
