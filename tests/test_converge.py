@@ -89,6 +89,15 @@ def test_cli_bad_options(tmp_path, args, needle):
     assert not out.exists()
 
 
+def test_cli_refuses_a_study_too_big_for_the_machine(tmp_path):
+    """Five levels at ratio 4 make the finest beam 3200 × 96 over 16 000 steps: refused before
+    the first level runs, with the estimate, exit 2, nothing written."""
+    out = tmp_path / "out"
+    result = CliRunner().invoke(main, ["converge", "paper-long-beam", "--levels", "5", "--ratio", "4", "--out", str(out)])
+    assert result.exit_code == 2 and "3200 x 96" in result.output and "memory" in result.output
+    assert not out.exists()
+
+
 def test_cli_refuses_series_and_bar_history(tmp_path):
     """A series is not a case; a bar case has no --history: one line, exit 2."""
     r1 = CliRunner().invoke(main, ["converge", "paper-rubber-series", "--out", str(tmp_path / "a")])

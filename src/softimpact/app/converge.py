@@ -79,11 +79,14 @@ def plate_outputs(problem, stride: int, progress: Callable[[int], None] | None =
 @dataclass(frozen=True)
 class Study:
     """How to study one kind of case: ``load(case, history) -> (problem, path)``,
-    ``refine(problem, factor)``, ``outputs(problem, stride, progress) -> (values, size)``."""
+    ``refine(problem, factor)``, ``outputs(problem, stride, progress) -> (values, size)``,
+    and ``check(problem)``, the kind's resource guard (None: the kind has none), applied
+    to every level before the first is run."""
 
     load: Callable
     refine: Callable
     outputs: Callable
+    check: Callable | None = None
 
 
 def _load_bar(case, history):
@@ -106,9 +109,21 @@ def _load_plate(case, history):
     return load_plate_case(case, history)
 
 
+def _check_bar(problem):
+    from ..workflows.bar_impact import check_problem
+
+    check_problem(problem)
+
+
+def _check_beam(problem):
+    from ..workflows.beam_impact import check_problem
+
+    check_problem(problem)
+
+
 STUDIES = {
-    "bar": Study(_load_bar, refine_bar, bar_outputs),
-    "beam": Study(_load_beam, refine_beam, beam_outputs),
+    "bar": Study(_load_bar, refine_bar, bar_outputs, _check_bar),
+    "beam": Study(_load_beam, refine_beam, beam_outputs, _check_beam),
     "plate": Study(_load_plate, refine_plate, plate_outputs),
 }
 
@@ -117,6 +132,9 @@ def study_case(study: Study, problem, levels: int, ratio: int, progress: Progres
     """Run ``levels`` refinements of ``problem`` (factors 1, r, r², …) and analyse them."""
     factors = [ratio**k for k in range(levels)]
     problems = [study.refine(problem, f) for f in factors]
+    if study.check is not None:  # the finest level decides whether the study fits the machine
+        for p in problems:
+            study.check(p)
     work = [p.solver.steps for p in problems]
     total = sum(work)
     sizes = []
