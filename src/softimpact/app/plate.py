@@ -1,4 +1,4 @@
-"""``softimpact plate``: transverse impact of a laminated plate (FSDT, MITC4); and the
+"""``softimpact plate``: transverse impact of a laminated plate (FSDT, MITC9 or MITC4); and the
 paper report's beam-as-plate section (the plane-strain assumption measured)."""
 
 from __future__ import annotations

@@ -66,9 +66,10 @@ import numpy as np
 from ..errors import InputError
 from ..models.plate_laminate import PlateSection
 
-__all__ = ["EDGES", "SUPPORT_KINDS", "Plate", "PlateFE", "U", "V", "W", "PHI_X", "PHI_Y"]
+__all__ = ["EDGES", "ELEMENTS", "SUPPORT_KINDS", "Plate", "PlateFE", "U", "V", "W", "PHI_X", "PHI_Y"]
 
 EDGES = ("x0", "x1", "y0", "y1")
+ELEMENTS = ("mitc4", "mitc9")
 SUPPORT_KINDS = ("clamped", "simply-supported", "free", "symmetry")
 U, V, W, PHI_X, PHI_Y = range(5)
 _GAUSS2 = (0.5 - 0.5 / math.sqrt(3.0), 0.5 + 0.5 / math.sqrt(3.0))  # on [0, 1]
@@ -88,8 +89,11 @@ class Plate:
     membrane: bool | None = None
     xs: tuple[float, ...] | None = None
     ys: tuple[float, ...] | None = None
+    element: str = "mitc4"
 
     def __post_init__(self):
+        if self.element not in ELEMENTS:
+            raise InputError(f"plate element: {self.element!r} is not one of {', '.join(ELEMENTS)}")
         for k in ("length_x", "length_y"):
             v = getattr(self, k)
             if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
@@ -119,29 +123,84 @@ def _tensor_rule(nx_points: int, ny_points: int) -> tuple[np.ndarray, np.ndarray
     return X, np.outer(wx, wy).ravel()
 
 
+class _Numbering:
+    """DOF numbering of the MITC9 model, shaped like scikit-fem's basis: ``nodal_dofs[c, node]``
+    = 5·node + c, ``N`` the number of DOFs."""
+
+    def __init__(self, n_nodes: int):
+        self.nodal_dofs = np.arange(5 * n_nodes).reshape(n_nodes, 5).T
+        self.N = 5 * n_nodes
+
+
+def _lagrange(order: int, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """1-D Lagrange functions on [0, 1] (nodes 0, 1 or 0, ½, 1) and their derivatives, shape (k, order + 1)."""
+    s = np.asarray(s, float)[..., None]
+    if order == 1:
+        return np.concatenate((1 - s, s), -1), np.concatenate((-np.ones_like(s), np.ones_like(s)), -1)
+    N = np.concatenate((2 * (s - 0.5) * (s - 1), -4 * s * (s - 1), 2 * s * (s - 0.5)), -1)
+    dN = np.concatenate((4 * s - 3, 4 - 8 * s, 4 * s - 1), -1)
+    return N, dN
+
+
+def _gauss01(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """n-point Gauss rule on [0, 1] (weights sum to 1)."""
+    g, w = np.polynomial.legendre.leggauss(n)
+    return 0.5 * (g + 1), 0.5 * w
+
+
 class PlateFE:
     """Assembled plate: reduced ``K``, ``M`` over the free DOFs, and output rows.
 
-    ``n``: number of free DOFs; ``free``: their indices into scikit-fem's global
-    DOF numbering; ``basis.nodal_dofs[c, node]`` is the global DOF of component c.
+    ``n``: number of free DOFs; ``free``: their indices into the global DOF
+    numbering; ``basis.nodal_dofs[c, node]`` is the global DOF of component c.
+    ``xs``, ``ys``: the element grid lines; ``node_xs``, ``node_ys``: the node
+    lines (the same for MITC4; with the mid-side lines for MITC9), node (i, j)
+    at (node_xs[i], node_ys[j]) being ``grid_node[i, j]``.
     """
 
     def __init__(self, plate: Plate):
-        from skfem import Basis, BilinearForm, ElementQuad1, ElementVector, MeshQuad
-
         self.plate = plate
         sec = plate.section
         xs, ys = plate.grid()
         if np.any(np.diff(xs) <= 0) or np.any(np.diff(ys) <= 0):
             raise InputError("plate grid lines must increase strictly")
         self.xs, self.ys = xs, ys
-        # Node (i, j) at (xs[i], ys[j]) is number i·(ny + 1) + j; each element lists its nodes
-        # counter-clockwise from its lower-left corner, so the reference ξ runs along x in every
+        self.order = 2 if plate.element == "mitc9" else 1
+        if self.order == 1:
+            self.node_xs, self.node_ys = xs, ys
+            # Each element lists its nodes counter-clockwise from its lower-left corner.
+            self._local = ((0, 0), (1, 0), (1, 1), (0, 1))
+        else:
+            self.node_xs = np.insert(xs, np.arange(1, xs.size), 0.5 * (xs[:-1] + xs[1:]))
+            self.node_ys = np.insert(ys, np.arange(1, ys.size), 0.5 * (ys[:-1] + ys[1:]))
+            self._local = tuple((a, b) for a in range(3) for b in range(3))
+        # Node (i, j) at (node_xs[i], node_ys[j]) is number i·(len(node_ys)) + j.
+        nxp, nyp = self.node_xs.size, self.node_ys.size
+        self.grid_node = np.arange(nxp * nyp).reshape(nxp, nyp)
+        self.membrane = (not sec.is_symmetric()) if plate.membrane is None else bool(plate.membrane)
+        if self.order == 1:
+            self._assemble_mitc4(sec)
+        else:
+            self.basis = _Numbering(nxp * nyp)
+        self.fixed = self._support_dofs()
+        self.free = np.setdiff1d(np.arange(self.basis.N), self.fixed)
+        self.n = self.free.size
+        self._index = np.full(self.basis.N, -1)
+        self._index[self.free] = np.arange(self.n)
+        if self.order == 1:
+            self.K = self.K_full[self.free][:, self.free].tocsc()
+            self.M = self.M_full[self.free][:, self.free].tocsc()
+        else:
+            self.K, self.M = self._assemble_mitc9(sec)
+
+    def _assemble_mitc4(self, sec: PlateSection) -> None:
+        from skfem import Basis, BilinearForm, ElementQuad1, ElementVector, MeshQuad
+
+        g = self.grid_node
+        points = np.array([np.repeat(self.xs, self.ys.size), np.tile(self.ys, self.xs.size)])
+        # Counter-clockwise from the lower-left corner, so the reference ξ runs along x in every
         # element, as the direction-selective shear rules below require.
-        nxp, nyp = xs.size, ys.size
-        grid = np.arange(nxp * nyp).reshape(nxp, nyp)
-        points = np.array([np.repeat(xs, nyp), np.tile(ys, nxp)])
-        cells = np.array([grid[:-1, :-1].ravel(), grid[1:, :-1].ravel(), grid[1:, 1:].ravel(), grid[:-1, 1:].ravel()])
+        cells = np.array([g[:-1, :-1].ravel(), g[1:, :-1].ravel(), g[1:, 1:].ravel(), g[:-1, 1:].ravel()])
         mesh = MeshQuad(points, cells)
         element = ElementVector(ElementQuad1(), 5)
         self.mesh, self.element = mesh, element
@@ -201,15 +260,99 @@ class PlateFE:
         M = mass.assemble(full)
         self.K_full, self.M_full = K.tocsr(), M.tocsr()
 
-        self.grid_node = grid
-        self.membrane = (not sec.is_symmetric()) if plate.membrane is None else bool(plate.membrane)
-        self.fixed = self._support_dofs()
-        self.free = np.setdiff1d(np.arange(full.N), self.fixed)
-        self.n = self.free.size
-        self._index = np.full(full.N, -1)
-        self._index[self.free] = np.arange(self.n)
-        self.K = self.K_full[self.free][:, self.free].tocsc()
-        self.M = self.M_full[self.free][:, self.free].tocsc()
+    # ---- MITC9 ----------------------------------------------------------------------
+    def _element_matrices(self, sec: PlateSection, hx: float, hy: float, comps: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray]:
+        """Stiffness and consistent mass of one hx × hy MITC9 rectangle over the DOFs
+        (local node k, component comps[c]) ordered k·len(comps) + c."""
+        nc, npe = len(comps), len(self._local)
+        pos = {c: i for i, c in enumerate(comps)}
+        a_idx = np.array([a for a, _ in self._local])
+        b_idx = np.array([b for _, b in self._local])
+
+        def rule(px, py):
+            (sx, wx), (sy, wy) = _gauss01(px), _gauss01(py)
+            Nx, dNx = _lagrange(2, sx)
+            Ny, dNy = _lagrange(2, sy)
+            N = (Nx[:, None, a_idx] * Ny[None, :, b_idx]).reshape(-1, npe)
+            Dx = (dNx[:, None, a_idx] * Ny[None, :, b_idx]).reshape(-1, npe) / hx
+            Dy = (Nx[:, None, a_idx] * dNy[None, :, b_idx]).reshape(-1, npe) / hy
+            return N, Dx, Dy, np.outer(wx, wy).ravel() * hx * hy
+
+        def op(rows, nq):
+            return np.zeros((nq, rows, npe, nc))
+
+        def energy(B, C, w):
+            B = B.reshape(B.shape[0], B.shape[1], npe * nc)
+            return np.einsum("q,qip,ij,qjr->pr", w, B, C, B)
+
+        # Membrane and bending: 3 × 3 Gauss, exact on a rectangle.
+        N, Dx, Dy, w = rule(3, 3)
+        nq = w.size
+        B = op(6, nq)
+        for row, comp, d in ((0, U, Dx), (1, V, Dy), (2, U, Dy), (2, V, Dx), (3, PHI_X, Dx), (4, PHI_Y, Dy), (5, PHI_X, Dy), (5, PHI_Y, Dx)):
+            if comp in pos:
+                B[:, row, :, pos[comp]] = d
+        if U in pos:
+            K = energy(B, sec.stiffness(), w)
+        else:
+            K = energy(B[:, 3:], sec.D, w)
+        # Mass: 3 × 3 Gauss, exact.
+        Nd = op(5, nq)
+        for c in comps:
+            Nd[:, c, :, pos[c]] = N
+        I = np.diag([sec.I0, sec.I0, sec.I0, sec.I2, sec.I2])
+        I[U, PHI_X] = I[PHI_X, U] = I[V, PHI_Y] = I[PHI_Y, V] = sec.I1
+        M = energy(Nd, I, w)
+
+        # Transverse shear, MITC9's tied strains on a rectangle (module docstring): γxz by 2 × 3
+        # Gauss, γyz by 3 × 2, the cross term by 2 × 2, of the displacement-based strains.
+        def gamma(px, py):
+            N, Dx, Dy, w = rule(px, py)
+            G = op(2, w.size)
+            G[:, 0, :, pos[W]], G[:, 0, :, pos[PHI_X]] = Dx, N
+            G[:, 1, :, pos[W]], G[:, 1, :, pos[PHI_Y]] = Dy, N
+            return G, w
+
+        S = sec.S
+        G, w = gamma(2, 3)
+        K = K + energy(G[:, :1], S[:1, :1], w)
+        G, w = gamma(3, 2)
+        K = K + energy(G[:, 1:], S[1:, 1:], w)
+        if S[0, 1] != 0.0:
+            G, w = gamma(2, 2)
+            K = K + energy(G, np.array([[0.0, S[0, 1]], [S[0, 1], 0.0]]), w)
+        return K, M
+
+    def _assemble_mitc9(self, sec: PlateSection):
+        """K and M over the free DOFs: element matrices per distinct (hx, hy), scattered at once."""
+        import scipy.sparse
+
+        comps = (U, V, W, PHI_X, PHI_Y) if self.membrane else (W, PHI_X, PHI_Y)
+        nc = len(comps)
+        hx, hy = np.diff(self.xs), np.diff(self.ys)
+        ux, ix = np.unique(np.round(hx / hx.max(), 12), return_inverse=True)
+        uy, iy = np.unique(np.round(hy / hy.max(), 12), return_inverse=True)
+        mats = [[self._element_matrices(sec, a * hx.max(), b * hy.max(), comps) for b in uy] for a in ux]
+        Ke = np.array([[k for k, _ in row] for row in mats])  # (n_hx, n_hy, ndof, ndof)
+        Me = np.array([[m for _, m in row] for row in mats])
+        nx, ny = hx.size, hy.size
+        I, J = np.meshgrid(np.arange(nx), np.arange(ny), indexing="ij")
+        I, J = I.ravel(), J.ravel()
+        nodes = np.stack([self.grid_node[2 * I + a, 2 * J + b] for a, b in self._local], axis=1)  # (ne, 9)
+        dofs = self._index[(5 * nodes[:, :, None] + np.array(comps)).reshape(I.size, -1)]  # (ne, ndof)
+        group = ix[I] * uy.size + iy[J]
+        Ke = Ke.reshape(-1, *Ke.shape[2:])
+        Me = Me.reshape(-1, *Me.shape[2:])
+        nd = dofs.shape[1]
+        rows = np.broadcast_to(dofs[:, :, None], (I.size, nd, nd)).ravel()
+        cols = np.broadcast_to(dofs[:, None, :], (I.size, nd, nd)).ravel()
+        keep = (rows >= 0) & (cols >= 0)
+        rows, cols = rows[keep], cols[keep]
+        out = []
+        for E in (Ke, Me):
+            data = E[group].ravel()[keep]
+            out.append(scipy.sparse.csc_matrix((data, (rows, cols)), shape=(self.n, self.n)))
+        return out
 
     # ---- supports -------------------------------------------------------------------
     def edge_nodes(self, edge: str) -> np.ndarray:
@@ -262,8 +405,28 @@ class PlateFE:
         return out
 
     def _element_nodes(self, i: int, j: int) -> np.ndarray:
-        g = self.grid_node
-        return np.array([g[i, j], g[i + 1, j], g[i + 1, j + 1], g[i, j + 1]])
+        g, p = self.grid_node, self.order
+        return np.array([g[p * i + a, p * j + b] for a, b in self._local])
+
+    def shape(self, i, j, s, t):
+        """Nodes and shape functions of element(s) (i, j) at local (s, t) ∈ [0, 1]² (arrays
+        broadcast): (nodes, N), each of shape (..., nodes per element)."""
+        i, j, s, t = np.broadcast_arrays(*(np.asarray(a) for a in (i, j, s, t)))
+        Nx, _ = _lagrange(self.order, s)
+        Ny, _ = _lagrange(self.order, t)
+        a = np.array([a for a, _ in self._local])
+        b = np.array([b for _, b in self._local])
+        nodes = self.grid_node[self.order * i[..., None] + a, self.order * j[..., None] + b]
+        return nodes, Nx[..., a] * Ny[..., b]
+
+    def _shape_gradient(self, i: int, j: int, s: float, t: float) -> tuple[np.ndarray, np.ndarray]:
+        """∂N/∂x, ∂N/∂y of element (i, j) at local (s, t)."""
+        Nx, dNx = _lagrange(self.order, np.array([s]))
+        Ny, dNy = _lagrange(self.order, np.array([t]))
+        a = np.array([a for a, _ in self._local])
+        b = np.array([b for _, b in self._local])
+        hx, hy = self.xs[i + 1] - self.xs[i], self.ys[j + 1] - self.ys[j]
+        return dNx[0, a] * Ny[0, b] / hx, Nx[0, a] * dNy[0, b] / hy
 
     def _row(self, entries) -> np.ndarray:
         """Row over free DOFs from (global DOF, weight) pairs; fixed DOFs dropped."""
@@ -275,9 +438,10 @@ class PlateFE:
         return row
 
     def interpolation(self, x: float, y: float) -> tuple[np.ndarray, np.ndarray]:
-        """Nodes and bilinear weights at (x, y) (one element holding it)."""
+        """Nodes and shape-function weights at (x, y) (one element holding it)."""
         i, j, s, t = self._locate(x, y)[0]
-        return self._element_nodes(i, j), np.array([(1 - s) * (1 - t), s * (1 - t), s * t, (1 - s) * t])
+        nodes, N = self.shape(i, j, s, t)
+        return nodes, N
 
     def deflection(self, x: float, y: float) -> np.ndarray:
         """Row r with r·u = w(x, y) [m] (up +)."""
@@ -286,9 +450,7 @@ class PlateFE:
 
     def _strain_entries(self, i, j, s, t, z, c, sn, weight):
         """(global DOF, weight) of ε_θ at local (s, t) of element (i, j), height z."""
-        hx, hy = self.xs[i + 1] - self.xs[i], self.ys[j + 1] - self.ys[j]
-        dNx = np.array([-(1 - t), 1 - t, t, -t]) / hx
-        dNy = np.array([-(1 - s), -s, s, 1 - s]) / hy
+        dNx, dNy = self._shape_gradient(i, j, s, t)
         nodes = self._element_nodes(i, j)
         nd = self.basis.nodal_dofs
         # ε_θ = c² εx + s² εy + s c γxy with εx = u,x + z φx,x etc.
@@ -353,13 +515,15 @@ class PlateFE:
 
     def load_vector(self, pressure) -> np.ndarray:
         """Consistent nodal loads (free DOFs) of a transverse pressure q(x, y) [Pa], up +,
-        ``pressure`` a callable of (x, y) arrays or a constant."""
-        from skfem import Basis, LinearForm
-
-        @LinearForm
-        def form(v, w):
-            q = pressure(w.x[0], w.x[1]) if callable(pressure) else pressure
-            return q * v[W]
-
-        f = form.assemble(Basis(self.mesh, self.element, intorder=4))
-        return f[self.free]
+        ``pressure`` a callable of (x, y) arrays or a constant (4 × 4 Gauss per element)."""
+        g, wg = _gauss01(4)
+        I, J, S, T = np.meshgrid(np.arange(self.xs.size - 1), np.arange(self.ys.size - 1), g, g, indexing="ij")
+        hx, hy = np.diff(self.xs)[I], np.diff(self.ys)[J]
+        X, Y = self.xs[I] + S * hx, self.ys[J] + T * hy
+        q = pressure(X, Y) if callable(pressure) else np.full(X.shape, float(pressure))
+        wgt = q * hx * hy * wg[None, None, :, None] * wg[None, None, None, :]
+        nodes, N = self.shape(I, J, S, T)
+        f = np.bincount(nodes.ravel(), weights=(N * wgt[..., None]).ravel(), minlength=self.grid_node.size)
+        full = np.zeros(self.basis.N)
+        full[self.basis.nodal_dofs[W]] = f
+        return full[self.free]

@@ -92,7 +92,8 @@ class CircularPatch:
         i1 = min(int(np.searchsorted(fe.xs, cx + r, side="left")), fe.xs.size - 1)
         j0 = max(int(np.searchsorted(fe.ys, cy - r, side="right")) - 1, 0)
         j1 = min(int(np.searchsorted(fe.ys, cy + r, side="left")), fe.ys.size - 1)
-        return np.sort(fe.grid_node[i0 : i1 + 1, j0 : j1 + 1].ravel())
+        p = fe.order
+        return np.sort(fe.grid_node[p * i0 : p * i1 + 1, p * j0 : p * j1 + 1].ravel())
 
     def _distribution(self, r: float, all_nodes: bool = False) -> np.ndarray:
         """∫ N_i p dA for unit force on a disc of radius r: over all nodes, or over ``self.nodes``."""
@@ -101,7 +102,8 @@ class CircularPatch:
         out = np.zeros(n_all)
         if r <= 0.0:
             i, j, s, t = fe._locate(cx, cy)[0]  # a point force: F·N_i(c)
-            out[fe._element_nodes(i, j)] = [(1 - s) * (1 - t), s * (1 - t), s * t, (1 - s) * t]
+            nodes, N = fe.shape(i, j, s, t)
+            out[nodes] = N
         else:
             bx = np.unique(np.concatenate((np.linspace(cx - r, cx + r, SUBCELLS + 1), fe.xs[(fe.xs > cx - r) & (fe.xs < cx + r)])))
             by = np.unique(np.concatenate((np.linspace(cy - r, cy + r, SUBCELLS + 1), fe.ys[(fe.ys > cy - r) & (fe.ys < cy + r)])))
@@ -117,14 +119,8 @@ class CircularPatch:
             j = np.clip(np.searchsorted(fe.ys, Y) - 1, 0, fe.ys.size - 2)
             s = (X - fe.xs[i]) / (fe.xs[i + 1] - fe.xs[i])
             t = (Y - fe.ys[j]) / (fe.ys[j + 1] - fe.ys[j])
-            g = fe.grid_node
-            for nodes, N in (
-                (g[i, j], (1 - s) * (1 - t)),
-                (g[i + 1, j], s * (1 - t)),
-                (g[i + 1, j + 1], s * t),
-                (g[i, j + 1], (1 - s) * t),
-            ):
-                out += np.bincount(nodes, weights=wgt * N, minlength=n_all)
+            nodes, N = fe.shape(i, j, s, t)
+            out += np.bincount(nodes.ravel(), weights=(wgt[:, None] * N).ravel(), minlength=n_all)
         out *= self.share / out.sum()  # Σ N_i = 1: the total is the quadrature of p, made exactly the share
         return out if all_nodes else out[self.nodes]
 

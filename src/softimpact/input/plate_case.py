@@ -1,6 +1,7 @@
 """Plate case files (``softimpact plate``): TOML → :class:`PlateProblem`.
 
-``[plate]`` (length, width, elements, support per edge, model, ``[plate.laminate]``),
+``[plate]`` (length, width, elements, element ``mitc9`` (default) or ``mitc4``, support per
+edge, model, ``[plate.laminate]``),
 ``[load]`` (position, contact_radius, history and ``[[load.table]]`` rows, read as in
 beam cases), ``[solver]`` and ``[[gauges]]``; see README.md and
 ``data/cases/plate-ss-8in.toml``.
@@ -12,7 +13,7 @@ from pathlib import Path
 
 from .. import units
 from ..errors import InputError
-from ..fem.plate import EDGES
+from ..fem.plate import EDGES, ELEMENTS
 from ..models.laminate import Stack, parse_layup
 from ..workflows.plate_impact import DEFAULT_GAUGE_LENGTH, PlateGauge, PlateLoad, PlateProblem, PlateSpec
 from .beam_case import read_load_history, read_ply
@@ -22,7 +23,8 @@ __all__ = ["PLATE_SUPPORTS", "PLATE_MODELS", "plate_problem", "load_plate_case"]
 
 PLATE_SUPPORTS = ("clamped", "simply-supported", "free", "symmetry")  # symmetry: a mirror plane (quarter models)
 PLATE_MODELS = ("fsdt", "solid")
-MIN_ELEMENTS = 2  # per direction: one MITC4 element cannot place a load or gauge inside the plate
+MIN_ELEMENTS = 2  # per direction: one element cannot place a load or gauge inside the plate
+DEFAULT_ELEMENT = "mitc9"  # O(h⁴) flexural dispersion: 1.8 % on the issue's plate at 48², where MITC4 needs ~360²
 
 
 def _point(tbl: Table, name: str) -> tuple[float, float]:
@@ -55,7 +57,8 @@ def plate_problem(data: dict, base: Path = Path("."), history: int | None = None
     model = p.string("model", PLATE_MODELS[0], choices=PLATE_MODELS)
     if model == "solid":
         raise InputError(f"{p.key('model')}: the layered solid model is not implemented yet (use 'fsdt')")
-    elements = p.raw("elements", [48, 48])
+    element = p.string("element", DEFAULT_ELEMENT, choices=ELEMENTS)
+    elements = p.raw("elements", [24, 24])
     if not (isinstance(elements, list) and len(elements) == 2 and all(isinstance(e, int) and not isinstance(e, bool) for e in elements)):
         raise InputError(f"{p.key('elements')}: expected [along x, along y] (two integers), got {elements!r}")
     if min(elements) < MIN_ELEMENTS:
@@ -66,7 +69,7 @@ def plate_problem(data: dict, base: Path = Path("."), history: int | None = None
     with naming({None: lam.key("layup")}):
         stack = Stack(ply, parse_layup(lam.string("layup")))
     lam.done()
-    spec = PlateSpec(p.quantity("length", "length"), p.quantity("width", "length"), tuple(elements), stack, supports)
+    spec = PlateSpec(p.quantity("length", "length"), p.quantity("width", "length"), tuple(elements), stack, supports, element=element)
     p.done()
 
     ld = top.table("load")

@@ -36,7 +36,8 @@ def plate_summary(model, result) -> dict:
     k = int(np.argmax(np.abs(w)))
     out = {
         "title": p.title,
-        "model": "fsdt (MITC4)",
+        "model": f"fsdt ({p.plate.element.upper()})",
+        "element": p.plate.element,
         "dofs": model.fe.n,
         "elements": list(p.plate.elements),
         "supports": dict(zip(("x0", "x1", "y0", "y1"), p.plate.supports)),

@@ -75,7 +75,7 @@ def plate_mesh(model, system: str):
     ax.set_aspect("equal")
     ax.set_xlabel(f"x (0° fibres) [{lu.label}]")
     ax.set_ylabel(f"y [{lu.label}]")
-    ax.set_title(f"Plate mesh: {fe.xs.size - 1} × {fe.ys.size - 1} MITC4 elements, {fe.n} DOF", fontsize="medium")
+    ax.set_title(f"Plate mesh: {fe.xs.size - 1} × {fe.ys.size - 1} {fe.plate.element.upper()} elements, {fe.n} DOF", fontsize="medium")
     ax.legend(fontsize="small", loc="upper center", bbox_to_anchor=(0.5, -0.1), ncol=3, frameon=False)
     return fig
 
@@ -89,12 +89,12 @@ def plate_deflection(model, result, system: str):
     lu, tu = display(system, "length"), display(system, "time")
     fe = model.fe
     full = fe.expand(result.displacement)
-    w = full[fe.basis.nodal_dofs[W]]  # (n_nodes, n_kept), node (i, j) = i·(ny+1) + j
+    w = full[fe.basis.nodal_dofs[W]]  # (n_nodes, n_kept), node (i, j) at (node_xs[i], node_ys[j]) is grid_node[i, j]
     shape = fe.grid_node.shape
     n = w.shape[1]
     cols = min(n, 3)
     rows = math.ceil(n / cols)
-    X, Y = np.meshgrid(fe.xs * lu.factor, fe.ys * lu.factor, indexing="ij")
+    X, Y = np.meshgrid(fe.node_xs * lu.factor, fe.node_ys * lu.factor, indexing="ij")
     vmax = np.max(np.abs(w)) * lu.factor or 1.0
     fig, axes = plt.subplots(rows, cols, figsize=(3.3 * cols + 0.8, 3.1 * rows + 0.6), layout="constrained", squeeze=False)
     for k in range(rows * cols):
