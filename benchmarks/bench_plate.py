@@ -1,7 +1,7 @@
 """Benchmark: transverse impact of the 8 × 8 in SS [90/0]5s plate (eq-15 pulse, 0.25-in cosine patch).
 
-Per mesh: softimpact's direct stepping (1000 steps of 1 µs, MITC4 FSDT,
-banded Cholesky of K_eff) against a plain Newmark loop on the same K, M
+Per mesh: softimpact's direct stepping (1000 steps of 1 µs, MITC9 FSDT by default,
+K_eff factored by ``softimpact.fem.newmark.spd_factor``) against a plain Newmark loop on the same K, M
 factored by scipy's ``splu`` (COLAMD); then the response engine: building the
 impulse responses at two gauges and the centre deflection (reciprocity), and one
 new force history through it. The gauge strains of the two loops are compared.
@@ -12,7 +12,8 @@ with the mesh set to n × n (interpreter start, imports, case, assembly, factor,
 history.csv and summary.json) against ``benchmarks/plain_plate.py`` (the same
 matrices stepped with ``splu``, a CSV written), alternated, best of ``REPEATS``.
 
-Run: ``python benchmarks/bench_plate.py [--whole] [nx ...]`` (default 32 48 64).
+Run: ``python benchmarks/bench_plate.py [--element mitc9|mitc4] [--whole] [nx ...]``
+(MITC9 by default, the element of ``softimpact plate``).
 """
 
 import subprocess
@@ -32,9 +33,12 @@ from softimpact.workflows.plate_impact import PlateGauge, PlateLoad, PlateModel,
 IN, LBF = 0.0254, 4.4482216152605
 
 
+ELEMENT = "mitc9"
+
+
 def problem(n):
     return PlateProblem(
-        PlateSpec(8 * IN, 8 * IN, (n, n), Stack(PLIES["T300/934"], parse_layup("[90/0]5s"))),
+        PlateSpec(8 * IN, 8 * IN, (n, n), Stack(PLIES["T300/934"], parse_layup("[90/0]5s")), element=ELEMENT),
         PlateLoad((4 * IN, 4 * IN), 0.25 * IN, SkewedPulse(100 * LBF, 20e-6, 250e-6)),
         SolverSpec(1e-6, 1000e-6),
         (PlateGauge("x1", (5 * IN, 4 * IN), "bottom", "x"), PlateGauge("y2", (4 * IN, 6 * IN), "bottom", "y")),
@@ -99,10 +103,10 @@ def whole(meshes):
     with tempfile.TemporaryDirectory() as tmp:
         for n in meshes:
             case = Path(tmp) / f"plate{n}.toml"
-            case.write_text(base.replace("elements = [48, 48]", f"elements = [{n}, {n}]"))
+            case.write_text(base.replace("elements = [24, 24]", f"elements = [{n}, {n}]").replace('element = "mitc9"', f'element = "{ELEMENT}"'))
             cmds = {
                 "softimpact": [str(Path(sys.executable).parent / "softimpact"), "plate", str(case), "--no-figures", "--out", str(Path(tmp) / f"out{n}")],
-                "plain": [sys.executable, str(HERE / "plain_plate.py"), str(n), str(Path(tmp) / f"plain{n}.csv")],
+                "plain": [sys.executable, str(HERE / "plain_plate.py"), str(n), str(Path(tmp) / f"plain{n}.csv"), "--element", ELEMENT],
             }
             times = {k: [] for k in cmds}
             for _ in range(REPEATS):
@@ -116,7 +120,11 @@ def whole(meshes):
 
 if __name__ == "__main__":
     args = sys.argv[1:]
+    if "--element" in args:
+        i = args.index("--element")
+        ELEMENT = args[i + 1]
+        del args[i : i + 2]
     if args and args[0] == "--whole":
-        whole([int(a) for a in args[1:]] or [32, 48, 64])
+        whole([int(a) for a in args[1:]] or [24, 48])
     else:
-        main([int(a) for a in args] or [32, 48, 64])
+        main([int(a) for a in args] or [16, 24, 32, 48])

@@ -296,7 +296,7 @@ def sweep_cmd(spec, workers, scheduler, out, figures):
 @_figures_option
 @_guarded
 def plate_cmd(case, history, out, figures):
-    """Transverse impact of a laminated plate, FSDT MITC4 elements (CASE: file or built-in name).
+    """Transverse impact of a laminated plate, FSDT MITC9 (or MITC4) elements (CASE: file or built-in name).
 
     Writes history.csv, summary.json and, with figures, plate-mesh.png,
     deflection.png, histories.png.

@@ -325,5 +325,8 @@ class PlateModel:
             op = spl.LinearOperator(K.shape, matvec=factor.solve, dtype=float)
         except np.linalg.LinAlgError:  # rigid modes: let ARPACK factor K − 0·M its own way
             op = None
-        vals = spl.eigsh(K, k=count, M=M, sigma=0.0, which="LM", OPinv=op, return_eigenvectors=False)
+        # tol 1e-10 (relative, on the shift-inverted values): the frequencies to ~1e-13 and, on the
+        # 48 × 48 MITC9 plate, 21 solves instead of ARPACK's default (machine precision) 32.
+        ncv = min(max(2 * count + 1, 20), self.fe.n - 1)
+        vals = spl.eigsh(K, k=count, M=M, sigma=0.0, which="LM", OPinv=op, ncv=ncv, tol=1e-10, return_eigenvectors=False)
         return np.sqrt(np.abs(np.sort(vals))) / (2 * np.pi)
