@@ -10,8 +10,10 @@ The radius is fixed, r = r0, or grows with the force as r(t) = r0·sqrt(F/F0),
 eq (10), F0 the peak of the history (docs/modelling-notes.md, errata: eq (14) is meant over the
 instantaneous radius).
 
-The nodal forces are the consistent ones, f_i = ∫ N_i p dA with the bilinear
-shape functions N_i of the plate mesh. The integral is taken over the square
+The nodal forces are the consistent ones, f_i = ∫ N_i p dA with the shape
+functions N_i of the plate mesh (bilinear for MITC4, biquadratic for MITC9, whose
+corner-node shares of a small patch are negative, as consistent loads of
+quadratic elements are). The integral is taken over the square
 [c − r, c + r]², cut along the grid lines (so N_i is one polynomial on each
 cell) and into SUBCELLS × SUBCELLS pieces, with a 4 × 4 Gauss rule on each
 cell; only the kink of p at ρ = r is not resolved exactly (nodal forces within
@@ -173,7 +175,7 @@ class DiscShares:
     patch's radius: linear interpolation in a of the tabulated exact distributions
     (each summing to the patch's share), so s sums to the share for every a and
     ds/da is the slope of the table's interval. At a = 0 the force is a point force
-    shared by the bilinear functions at the centre.
+    shared by the element's shape functions at the centre.
     """
 
     half_spacing = 0.0  # the disc's shares are defined for every a > 0
