@@ -14,7 +14,7 @@ from conftest import INCH
 
 from softimpact.errors import InputError
 from softimpact.fem.newmark import SolverSpec
-from softimpact.fem.plate import PHI_X, PHI_Y, W, Plate, PlateFE
+from softimpact.fem.plate import PHI_X, PHI_Y, Plate, PlateFE, W
 from softimpact.fem.plate_loads import CircularPatch
 from softimpact.models.laminate import PLIES, Stack, parse_layup
 from softimpact.models.plate_laminate import PlateSection, plate_section
