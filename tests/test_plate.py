@@ -161,6 +161,26 @@ def test_mitc9_element_is_the_tied_strain_element_with_shear_coupling():
     assert np.max(np.abs(K - ref)) < 1e-9 * np.max(np.abs(ref))
 
 
+def test_mitc9_output_rows_are_exact_for_quadratic_fields():
+    """On a graded 3 × 2 MITC9 mesh, with w = x y + y², φx = x², φy = x y (in the element space): the
+    deflection row gives w at a point, and the bottom-face strain row of a 30° gauge 0.7 in long gives
+    z(c² φx,x + s² φy,y + s c (φx,y + φy,x)) at its centre (linear along the gauge), to round-off;
+    node_xy lists the nodes of grid_node."""
+    fe = PlateFE(Plate(A, A, 3, 2, SECTION, ("free",) * 4, element="mitc9", xs=(0, 0.05, 0.12, A), ys=(0, 0.09, A)))
+    x, y = fe.node_xy()
+    nd = fe.basis.nodal_dofs
+    u = np.zeros(fe.basis.N)
+    u[nd[W]], u[nd[PHI_X]], u[nd[PHI_Y]] = x * y + y * y, x * x, x * y
+    u = u[fe.free]
+    px, py = 0.117, 0.081
+    assert fe.deflection(px, py) @ u == pytest.approx(px * py + py * py, rel=1e-12)
+    c, sn = math.cos(math.radians(30)), math.sin(math.radians(30))
+    z = -SECTION.thickness / 2
+    exact = z * (c * c * 2 * px + sn * sn * px + sn * c * py)
+    assert fe.surface_strain(px, py, "bottom", 30.0, 0.7 * INCH) @ u == pytest.approx(exact, rel=1e-10)
+    assert np.allclose(fe.node_xy()[:, fe.grid_node[3, 2]], [fe.node_xs[3], fe.node_ys[2]])
+
+
 def test_mitc9_assembly_equals_scikit_fem():
     """The package's own MITC9 assembly (one element matrix per element size, scattered at once) and a plain
     scikit-fem assembly (``ElementQuad2`` forms with the same rules, benchmarks/plain_plate.py) give the
@@ -236,10 +256,11 @@ def test_transient_converges_to_navier_fsdt(smooth_navier):
 
 # ---- invariants ------------------------------------------------------------------------------
 @pytest.mark.parametrize("center", [(A / 2, A / 2), (3.1 * INCH, 4.37 * INCH)])
-@pytest.mark.parametrize("grow", [False, True])
-def test_patch_forces_sum_to_the_force_and_centre_on_the_impact_point(center, grow):
-    """Nodal patch forces sum to F(t) to round-off and their first moment is F(t)·(xc, yc) (the disc is symmetric)."""
-    fe = PlateFE(Plate(A, A, 16, 16, SECTION))
+@pytest.mark.parametrize("grow, element", [(False, "mitc4"), (True, "mitc4"), (True, "mitc9")])
+def test_patch_forces_sum_to_the_force_and_centre_on_the_impact_point(center, grow, element):
+    """Nodal patch forces sum to F(t) to round-off and their first moment is F(t)·(xc, yc) (the disc is
+    symmetric; the element's shape functions reproduce x and y)."""
+    fe = PlateFE(Plate(A, A, 16 if element == "mitc4" else 8, 16 if element == "mitc4" else 8, SECTION, element=element))
     patch = CircularPatch(fe, center, 0.4 * INCH, grow=grow)
     F = PAPER_PULSE(np.arange(301) * 1e-6)
     f = patch.forces(F)
@@ -263,9 +284,11 @@ def test_energy_balance_of_direct_stepping():
     assert np.max(np.abs(E["kinetic"] + E["strain"] - E["work"])) < 1e-10 * np.max(E["work"])
 
 
-def test_direct_stepping_equals_response_engine():
-    """Gauge strains and deflection through the reciprocal response engine equal direct stepping to 1e-9 of peak (growing patch)."""
-    model = PlateModel(_problem(12, duration=400e-6, grow=True))
+@pytest.mark.parametrize("grow", [True, False])
+def test_direct_stepping_equals_response_engine(grow):
+    """Gauge strains and deflection through the reciprocal response engine equal direct stepping to 1e-9 of
+    peak (growing patch: one convolution per patch node; fixed patch: the kernel combined over the patch)."""
+    model = PlateModel(_problem(12, duration=400e-6, grow=grow))
     d, e = model.direct(energy=False), model.respond()
     assert np.max(np.abs(d.strain - e.strain)) < 1e-9 * np.max(np.abs(d.strain))
     assert np.max(np.abs(d.deflection - e.deflection)) < 1e-9 * np.max(np.abs(d.deflection))

@@ -419,8 +419,8 @@ class PlateFE:
         return int(self._index[self.basis.nodal_dofs[component, node]])
 
     def node_xy(self) -> np.ndarray:
-        """Node coordinates, shape (2, n_nodes) [m]."""
-        return self.mesh.p
+        """Node coordinates, shape (2, n_nodes) [m]: node grid_node[i, j] at (node_xs[i], node_ys[j])."""
+        return np.array([np.repeat(self.node_xs, self.node_ys.size), np.tile(self.node_ys, self.node_xs.size)])
 
     def _locate(self, x: float, y: float) -> list[tuple[int, int, float, float]]:
         """Elements (i, j) whose closed rectangle holds (x, y), with local coordinates s, t ∈ [0, 1]."""

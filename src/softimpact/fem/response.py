@@ -159,6 +159,26 @@ class ImpulseResponse:
             y[:, 1:] += np.einsum("qpk,p->qk", h0, F[:, 0])
         return y
 
+    def respond_pattern(self, pattern: np.ndarray, history: np.ndarray) -> np.ndarray:
+        """:meth:`respond` for the loads ``np.outer(pattern, history)`` (one spatial pattern scaled
+        by one history, F(0) = 0) in one convolution per output: the kernel's spectrum is combined
+        over the pattern once (cached for the last pattern), so a new history no longer costs a
+        transform per loaded DOF."""
+        pattern = np.asarray(pattern, dtype=float)
+        F = np.asarray(history, dtype=float)
+        N = self.steps
+        if pattern.shape != (self.B.shape[1],) or F.shape != (N + 1,):
+            raise ValueError(f"pattern must have shape {(self.B.shape[1],)} and history {(N + 1,)}, got {pattern.shape}, {F.shape}")
+        if F[0] != 0.0:
+            return self.respond(np.outer(pattern, F))
+        Hk, nfft = self._spectrum()
+        last = self.__dict__.get("_pattern")
+        if last is None or last[0].shape != pattern.shape or not np.array_equal(last[0], pattern):
+            last = self._pattern = (pattern.copy(), np.einsum("qpk,p->qk", Hk, pattern))
+        y = np.zeros((Hk.shape[0], N + 1))
+        y[:, 1:] = np.fft.irfft(last[1] * np.fft.rfft(F[1:], nfft), nfft, axis=-1)[:, :N]
+        return y
+
     def convolve(self, loads: np.ndarray) -> np.ndarray:
         """:meth:`respond` for histories that start from zero (F(0) = 0): a product of spectra,
         the kernel's computed once per engine (sweeps run many histories on one model)."""

@@ -223,11 +223,18 @@ class PlateModel:
         return y[:ng], y[ng:]
 
     def respond(self, history=None, radius: float | None = None) -> PlateResult:
-        """Gauge strains and deflections for a force history through the response engine."""
+        """Gauge strains and deflections for a force history through the response engine.
+
+        A patch of fixed radius loads one pattern scaled by F(t): the engine then combines its
+        impulse responses over the patch once and convolves each output with F alone."""
         F = self.force_samples(history)
         if F[0] != 0.0:
             raise InputError("history: the force must be zero at first contact (t = 0)")
-        y = self.engine().respond(self.nodal_loads(F, radius))
+        if self.patch.grow:
+            y = self.engine().respond(self.nodal_loads(F, radius))
+        else:
+            r0 = self.problem.load.contact_radius if radius is None else radius
+            y = self.engine().respond_pattern(self.nodal_loads(np.ones(1), r0)[:, 0], F)
         strain, defl = self._split(y)
         return PlateResult(self.problem, self.problem.solver.times(), F, strain, defl)
 
