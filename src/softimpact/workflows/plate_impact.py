@@ -1,7 +1,7 @@
 """Transverse soft impact of a laminated plate: the beam workflow in two dimensions.
 
 The laminate is a first-order shear deformation (FSDT) plate section (A, B, D,
-transverse shear with k = 5/6, rotary inertia), meshed with MITC4 elements
+transverse shear with k = 5/6, rotary inertia), meshed with MITC9 or MITC4 elements
 (:mod:`softimpact.fem.plate`), loaded on its top face by the force history
 spread over a circular contact patch with the cosine distribution of eq (11)
 and the radius of eq (10) (:mod:`softimpact.fem.plate_loads`), and integrated
@@ -46,7 +46,11 @@ def _positive(name: str, value) -> None:
 class PlateSpec:
     """The plate: lengths along x (the 0° fibres) and y [m], elements (nx, ny),
     supports of the edges (x0, x1, y0, y1), the laminate stack, the shear
-    correction factor and Rayleigh damping (α [1/s], β [s]: C = αM + βK)."""
+    correction factor, Rayleigh damping (α [1/s], β [s]: C = αM + βK) and the
+    element, ``"mitc4"`` or ``"mitc9"`` (:mod:`softimpact.fem.plate`). The default
+    here stays MITC4, so that code built on ``elements`` keeps its meaning and
+    cost; plate case files (``softimpact plate``) default to MITC9, which reaches
+    2 % on the issue's plate at 48 × 48 where MITC4 needs ~360 × 360."""
 
     length_x: float
     length_y: float
