@@ -357,12 +357,13 @@ def test_quarter_model_with_symmetry_edges_is_the_full_plate():
     assert np.max(np.abs(quarter.deflection[0] - full.deflection[0])) < 1e-9 * np.max(np.abs(full.deflection[0]))
 
 
-@pytest.mark.parametrize("scale, tol", [(1e2, 0.03), (1e5, 2e-4)])
-def test_coupled_hertz_impact_on_a_stiff_heavy_plate_tends_to_the_rigid_wall(scale, tol):
+@pytest.mark.parametrize("scale, tol, element", [(1e2, 0.03, "mitc4"), (1e5, 2e-4, "mitc4"), (1e5, 2e-4, "mitc9")])
+def test_coupled_hertz_impact_on_a_stiff_heavy_plate_tends_to_the_rigid_wall(scale, tol, element):
     """A 1/2-in steel ball at 100 in/s on the SS plate through plate_structure: with moduli and density
     scaled by ``scale`` (impedance ∝ scale) the peak force and contact duration tend to Hertz's
     rigid-wall closed form (written here from the energy integral): within 3 % at 1e2, 2e-4 at 1e5
-    (measured 1.5 %, 2.3e-5: the error falls like 1/scale; unscaled, the plate halves the peak force)."""
+    (measured 1.5 %, 2.3e-5: the error falls like 1/scale; unscaled, the plate halves the peak force); on
+    MITC9 too, whose consistent shares of a small disc are negative at corner nodes."""
     from scipy.special import beta as beta_fn
 
     from softimpact.app.plate import plate_structure
@@ -378,7 +379,10 @@ def test_coupled_hertz_impact_on_a_stiff_heavy_plate_tends_to_the_rigid_wall(sca
     F_max, T = law.K * a_max**1.5, 2 * a_max / V * 0.4 * beta_fn(0.4, 0.5)
     ply = replace(PLY, **{k: getattr(PLY, k) * scale for k in ("E1", "E2", "E3", "G12", "G13", "G23", "density")})
     solver = SolverSpec(T / 400, 1.3 * T)
-    problem = PlateProblem(PlateSpec(A, A, (8, 8), Stack(ply, STACK.angles)), PlateLoad((A / 2, A / 2), 0.1 * INCH, SMOOTH_PULSE), SolverSpec(1e-6, 1e-5))
+    n = 8 if element == "mitc4" else 4
+    problem = PlateProblem(
+        PlateSpec(A, A, (n, n), Stack(ply, STACK.angles), element=element), PlateLoad((A / 2, A / 2), 0.1 * INCH, SMOOTH_PULSE), SolverSpec(1e-6, 1e-5)
+    )
     model = PlateModel(problem)
     structure = plate_structure(model, (A / 2, A / 2), 2 * math.sqrt(law.R * a_max))
     r = simulate_coupled(structure, law, Impactor(m, d, V), solver)
