@@ -103,7 +103,7 @@ def whole(meshes):
     with tempfile.TemporaryDirectory() as tmp:
         for n in meshes:
             case = Path(tmp) / f"plate{n}.toml"
-            case.write_text(base.replace("elements = [24, 24]", f"elements = [{n}, {n}]").replace('element = "mitc9"', f'element = "{ELEMENT}"'))
+            case.write_text(base.replace("elements = [48, 48]", f'elements = [{n}, {n}]\nelement = "{ELEMENT}"'))
             cmds = {
                 "softimpact": [str(Path(sys.executable).parent / "softimpact"), "plate", str(case), "--no-figures", "--out", str(Path(tmp) / f"out{n}")],
                 "plain": [sys.executable, str(HERE / "plain_plate.py"), str(n), str(Path(tmp) / f"plain{n}.csv"), "--element", ELEMENT],
