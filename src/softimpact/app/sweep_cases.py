@@ -259,8 +259,13 @@ class PlateCase:
             problem = dataclasses.replace(problem, gauges=problem.gauges + extra)
         model = PlateModel(problem)
         if runs > 1:
-            model.engine()
-            model.stepper = None  # the factorisation stays behind: the engine alone answers a new history
+            engine = model.engine()
+            model.nodal_loads(model.force_samples())  # the patch tabulates its distributions once, on the mesh
+            # Only the kernels, the patch's tables and the problem travel to the workers: the mesh,
+            # the matrices and the factorisation (which does not pickle) stay behind (15 MB → under 1 MB).
+            model.stepper = engine.stepper = None
+            model.fe = model.patch.fe = None
+            model.O = engine.O = None
         return model
 
     def run(self, prepared, data, base, outputs=()):
