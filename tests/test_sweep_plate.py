@@ -239,3 +239,29 @@ range = ["3000 in/s", "7000 in/s", 17]
     if "delamination" in th and math.isfinite(th["delamination"]):
         _, one = _direct(CASE, 1.02 * th["delamination"])
         assert one["peak_force_N"] > pc
+
+
+def test_first_order_sobol_indices_from_given_runs():
+    """Closed forms: Y = X1 + 2·X2 with X uniform independent has S1 = 1/5, S2 = 4/5, and an unused
+    X3 has 0; the Ishigami function (a = 7, b = 0.1) has S1 = 0.3139, S2 = 0.4424, S3 = 0.
+    A level input (a grid's few values) is binned by its values."""
+    from softimpact.app.sweep import sobol_first_order
+
+    rng = np.random.default_rng(2)
+    n = 4000
+    x1, x2, x3 = rng.uniform(-1, 1, (3, n))
+    got = {d["parameter"]: d["S1"] for d in sobol_first_order({"x1": x1, "x2": x2, "x3": x3}, x1 + 2 * x2)}
+    assert got["x1"] == pytest.approx(0.2, abs=0.02) and got["x2"] == pytest.approx(0.8, abs=0.02) and got["x3"] < 0.01
+    a, b = 7.0, 0.1
+    u = rng.uniform(-np.pi, np.pi, (3, n))
+    y = np.sin(u[0]) + a * np.sin(u[1]) ** 2 + b * u[2] ** 4 * np.sin(u[0])
+    V = a**2 / 8 + b * np.pi**4 / 5 + b**2 * np.pi**8 / 18 + 0.5
+    exact = {"u1": 0.5 * (1 + b * np.pi**4 / 5) ** 2 / V, "u2": a**2 / 8 / V, "u3": 0.0}
+    got = {d["parameter"]: d["S1"] for d in sobol_first_order(dict(zip(("u1", "u2", "u3"), u)), y)}
+    for k, v in exact.items():
+        assert got[k] == pytest.approx(v, abs=0.04), (k, got[k], v)
+    level = rng.integers(0, 4, n).astype(float)
+    got = sobol_first_order({"level": level, "x": x1}, level + 0.5 * x1)
+    assert got[0]["parameter"] == "level" and got[0]["bins"] == 4
+    # Var(level) = 5/4, Var(0.5·x) = 1/12: S_level = (5/4) / (5/4 + 1/12)
+    assert got[0]["S1"] == pytest.approx(1.25 / (1.25 + 1 / 12), abs=0.02)

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import functools
 import json
+import math
 import os
 import time
 from dataclasses import dataclass
@@ -36,6 +37,7 @@ __all__ = [
     "sweep",
     "statistics",
     "sensitivity",
+    "sobol_first_order",
     "thresholds",
     "paper_thresholds",
     "paper_plate_case",
@@ -286,6 +288,47 @@ def sensitivity(columns: dict[str, np.ndarray], y: np.ndarray) -> list[dict]:
     return sorted(out, key=lambda d: -abs(d["spearman"]))
 
 
+def sobol_first_order(columns: dict[str, np.ndarray], y: np.ndarray) -> list[dict]:
+    """First-order Sobol indices S_i = Var(E[Y | X_i]) / Var(Y) of the varied inputs, from the runs
+    already made (a given-data estimate: no extra design), ranked largest first.
+
+    E[Y | X_i] is estimated by the mean of Y over bins of X_i: its distinct values when
+    there are few (levels), else ⌈√n⌉ bins of equal count by rank. The between-bin share of
+    the variance, S_raw, is biased up by (M − 1)/(n − 1) for M bins when Y does not depend
+    on X_i; that bias is removed, S = (S_raw − b)/(1 − b), and S clipped at 0. Assumes the
+    inputs independent (the α's of a scaling.json are not: their indices share the
+    variance their correlation carries). Finite runs only; needs 10 or more.
+    """
+    y = np.asarray(y, float)
+    ok = np.isfinite(y)
+    n = int(ok.sum())
+    if n < 10 or np.ptp(y[ok]) == 0:
+        return []
+    yk = y[ok]
+    total = float(np.sum((yk - yk.mean()) ** 2))
+    out = []
+    for name, x in columns.items():
+        x = np.asarray(x)
+        if x.dtype.kind not in "fiu":
+            continue
+        xk = x[ok].astype(float)
+        if np.ptp(xk) == 0:
+            continue
+        levels = np.unique(xk)
+        M = math.ceil(math.sqrt(n))
+        if levels.size <= M:
+            labels = np.searchsorted(levels, xk)
+            M = levels.size
+        else:
+            labels = np.minimum((np.argsort(np.argsort(xk, kind="stable"), kind="stable") * M) // n, M - 1)
+        counts = np.bincount(labels, minlength=M)
+        means = np.bincount(labels, weights=yk, minlength=M) / np.maximum(counts, 1)
+        raw = float(np.sum(counts * (means - yk.mean()) ** 2)) / total
+        bias = (M - 1) / (n - 1)
+        out.append({"parameter": name, "S1": max(0.0, (raw - bias) / (1 - bias)), "bins": int(M)})
+    return sorted(out, key=lambda d: -d["S1"])
+
+
 def _table(plan: SweepPlan, rows: dict) -> dict[str, np.ndarray | list]:
     spec = plan.spec
     names = []
@@ -389,6 +432,7 @@ def sweep_files(plan: SweepPlan, rows: dict, computed: int, figures: bool, syste
         "failures": failures,
         "statistics": {o: statistics(cols[o]) for o in spec.outputs},
         "sensitivity_spearman": {o: sensitivity(varied, np.asarray(cols[o], float)) for o in spec.outputs},
+        "sensitivity_sobol_first_order": {o: sobol_first_order(varied, np.asarray(cols[o], float)) for o in spec.outputs},
     }
     files = {"runs.parquet": _parquet(cols)}
     th = thresholds(plan, cols)
