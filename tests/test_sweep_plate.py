@@ -265,3 +265,25 @@ def test_first_order_sobol_indices_from_given_runs():
     assert got[0]["parameter"] == "level" and got[0]["bins"] == 4
     # Var(level) = 5/4, Var(0.5·x) = 1/12: S_level = (5/4) / (5/4 + 1/12)
     assert got[0]["S1"] == pytest.approx(1.25 / (1.25 + 1 / 12), abs=0.02)
+
+
+def test_a_prepared_plate_pickles_small_and_answers_as_direct_stepping():
+    """What a Dask worker receives (the group's shared part, pickled) answers a new force history as
+    direct stepping of the full model does, and leaves the mesh and factorisation behind."""
+    import pickle
+    import tomllib
+    from pathlib import Path
+
+    from softimpact.app.sweep_cases import PlateCase
+
+    data = tomllib.loads(CASE)
+    shipped = pickle.dumps(PlateCase().prepare(data, Path("."), 2))
+    assert len(shipped) < 1_000_000
+    data["load"]["history"]["velocity"] = "4500 in/s"  # another run of the group
+    got = PlateCase().run(pickle.loads(shipped), data, Path("."))
+    _, ref = _direct(CASE, 4500 * INCH)
+    for key in ("peak_force_N", "peak_deflection_at_load_m"):
+        assert got[key] == pytest.approx(ref[key], rel=1e-9)
+    assert got["strain_g1"]["peak"] == pytest.approx(ref["strain_g1"]["peak"], rel=1e-9)
+    for c in ("max_strain", "tsai_wu", "hashin", "delamination"):
+        assert got["damage"][c] == pytest.approx(ref["damage"][c], rel=1e-9)
