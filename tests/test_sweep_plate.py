@@ -287,3 +287,13 @@ def test_a_prepared_plate_pickles_small_and_answers_as_direct_stepping():
     assert got["strain_g1"]["peak"] == pytest.approx(ref["strain_g1"]["peak"], rel=1e-9)
     for c in ("max_strain", "tsai_wu", "hashin", "delamination"):
         assert got["damage"][c] == pytest.approx(ref["damage"][c], rel=1e-9)
+
+
+def test_csv_text_quotes_cells_holding_commas():
+    """Threshold labels such as "long beam, rubber-3/8in" read back as one cell (RFC 4180 quoting)."""
+    import csv
+
+    from softimpact.output.files import csv_text
+
+    text = csv_text({"levels": np.array(["long beam, rubber-3/8in", 'a "b"'], dtype=object), "v": np.array([1.5, np.nan])})
+    assert list(csv.reader(text.splitlines())) == [["levels", "v"], ["long beam, rubber-3/8in", "1.5"], ['a "b"', ""]]
