@@ -22,7 +22,7 @@ if TYPE_CHECKING:
 from . import Outcome, Progress, no_progress
 from .plate import plate_structure
 
-__all__ = ["impact", "run_impact", "beam_contact_structure", "plate_reach", "question_section"]
+__all__ = ["impact", "run_impact", "beam_contact_structure", "plate_reach", "impact_model", "question_section"]
 
 
 def beam_contact_structure(model: BeamModel, position: float, reach: float):
@@ -50,10 +50,21 @@ def plate_reach(model: PlateModel, position: tuple[float, float], diameter: floa
             continue
         room = min(room, dist - (1.01 * hh if kind in ("clamped", "simply-supported") else 0.0))
     if not room > 0:
-        raise InputError(
-            f"target.case: load.position {tuple(position)!r} m is too close to the plate's edge for the contact disc (within one element of a supported edge)"
-        )
+        raise InputError("the impact point is within one element of a supported edge: no room for the contact disc")
     return room
+
+
+def impact_model(problem: ImpactProblem) -> BeamModel | PlateModel:
+    """The target's model for the impact run (a plate's checked for room about the impact point
+    first: errors name the target case's load.position)."""
+    if not problem.on_plate:
+        return BeamModel(problem.target)
+    try:
+        model = PlateModel(problem.target, patch_radius=min(problem.target.load.contact_radius, problem.impactor.diameter))
+        plate_reach(model, problem.position, problem.impactor.diameter)
+    except InputError as exc:
+        raise InputError(f"target.case ({problem.target_case}): load.position {tuple(problem.position)!r} m: {exc}") from None
+    return model
 
 
 def _whole_plate(result: CoupledResult, share: float) -> CoupledResult:
@@ -83,12 +94,10 @@ def run_impact(
     sqrt(R·α) and a flattened sphere's sqrt(d·α) stay within it while α < d (on a plate,
     :func:`plate_reach`).
     """
+    model = model or impact_model(problem)
     if problem.on_plate:
-        model = model or PlateModel(problem.target)
-        reach = plate_reach(model, problem.position, problem.impactor.diameter)
-        structure = plate_structure(model, problem.position, reach)
+        structure = plate_structure(model, problem.position, plate_reach(model, problem.position, problem.impactor.diameter))
     else:
-        model = model or BeamModel(problem.target)
         structure = beam_contact_structure(model, problem.position, problem.impactor.diameter)
     try:
         result = simulate_coupled(structure, problem.law, problem.impactor, problem.solver, energy, model.stepper, stop_after, snapshots)
@@ -106,9 +115,10 @@ def impact(case: str, figures: bool = True, progress: Progress = no_progress) ->
     problem, inputs = load_impact_case(case)
     t0 = time.perf_counter()
     steps = problem.solver.steps
+    model = impact_model(problem)
     progress(0, steps, "stepping")
     snaps = snapshot_steps(steps) if figures and problem.on_plate else ()
-    model, result = run_impact(problem, snapshots=snaps)
+    model, result = run_impact(problem, model, snapshots=snaps)
     progress(steps, steps, "stepping")
     files = impact_files(problem, result, figures, model=model)
     fu, tu, su = (display(problem.units, k) for k in ("force", "time", "strain"))
