@@ -63,6 +63,8 @@ def impact_model(problem: ImpactProblem) -> BeamModel | PlateModel:
         model = PlateModel(problem.target, patch_radius=min(problem.target.load.contact_radius, problem.impactor.diameter))
         plate_reach(model, problem.position, problem.impactor.diameter)
     except InputError as exc:
+        if "patch" not in str(exc) and "contact disc" not in str(exc):
+            raise
         raise InputError(f"target.case ({problem.target_case}): load.position {tuple(problem.position)!r} m: {exc}") from None
     return model
 
