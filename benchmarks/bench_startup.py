@@ -5,7 +5,10 @@ Newmark steps, output), measured alternately in one run of this script:
 - `softimpact beam paper-long-beam --no-figures` (writes its CSV and JSON);
 - `python benchmarks/plain_beam.py`: the same mesh and steps with scikit-fem + splu.
 Bytecode is cached as in a user's environment (timing.USER_ENV) and each command is
-run once before timing. Wall clock suffers from whatever else the machine runs; the CPU time of each
+run once before timing, which also fills softimpact's unit-factor cache (a
+fresh folder here) as a user's first run does; the same command with the cache
+turned off (``SOFTIMPACT_CACHE_DIR=""``: pint imported every run, as on a first
+run) is timed beside it. Wall clock suffers from whatever else the machine runs; the CPU time of each
 process (user + system) much less, so both are printed. BLAS is held to one
 thread in both processes (OMP_NUM_THREADS=1).
 Usage: python benchmarks/bench_startup.py [repeats]
@@ -25,18 +28,21 @@ BIN = Path(sys.executable).parent
 
 def main(repeats: int = 5):
     print(f"machine: {platform.machine()}, python {platform.python_version()}; best and median of {repeats} whole processes")
-    with tempfile.TemporaryDirectory() as tmp:
+    with tempfile.TemporaryDirectory() as tmp, tempfile.TemporaryDirectory() as cache:
+        beam = [str(BIN / "softimpact"), "beam", "paper-long-beam", "--no-figures", "--out", tmp]
+        env = USER_ENV | {"SOFTIMPACT_CACHE_DIR": cache}
         runs = {
-            "softimpact beam paper-long-beam --no-figures": [str(BIN / "softimpact"), "beam", "paper-long-beam", "--no-figures", "--out", tmp],
-            "plain scikit-fem + splu script": [sys.executable, str(HERE / "plain_beam.py")],
-            "softimpact --help": [str(BIN / "softimpact"), "--help"],
+            "softimpact beam paper-long-beam --no-figures": (beam, env),
+            "  the same, unit cache off (pint imported)": (beam, env | {"SOFTIMPACT_CACHE_DIR": ""}),
+            "plain scikit-fem + splu script": ([sys.executable, str(HERE / "plain_beam.py")], env),
+            "softimpact --help": ([str(BIN / "softimpact"), "--help"], env),
         }
         times = {name: [] for name in runs}
-        for cmd in runs.values():  # warm-up: bytecode written, files in the page cache
-            process(cmd, USER_ENV)
+        for cmd, e in runs.values():  # warm-up: bytecode written, files in the page cache, unit cache filled
+            process(cmd, e)
         for _ in range(repeats):
-            for name, cmd in runs.items():
-                times[name].append(process(cmd, USER_ENV))
+            for name, (cmd, e) in runs.items():
+                times[name].append(process(cmd, e))
     print(f"  load average {os.getloadavg()[0]:.1f}; wall clock (best, median) and CPU time (best, median), one BLAS thread each")
     for name, ts in times.items():
         wall = sorted(w for w, _ in ts)

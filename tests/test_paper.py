@@ -48,3 +48,25 @@ def test_assumptions_and_synthetic_labels(report):
     """The report lists the assumptions of docs/modelling-notes.md and labels synthetic data as such."""
     html = report[1]
     assert "Assumptions and errata" in html and html.count("SYNTHETIC") >= 2
+
+
+def test_threshold_curves_of_the_beams_and_a_plate(report):
+    """Issue 13: threshold velocities of the paper's beams and of a plate are in the report (figure and
+    CSV each). The delamination index depends on the force alone (the ball's law) and the laminate's P_c,
+    so the plate's delamination threshold is the beams'; the heavier 1/2-in ball reaches every index
+    at a lower velocity than the 3/8-in one."""
+    import csv
+
+    out, html = report
+    assert "Damage thresholds of the paper" in html and "beams and of a plate" in html
+    rows = {}
+    for name in ("thresholds", "plate-thresholds"):
+        assert (out / "thresholds" / f"{name}.png").is_file()
+        for r in csv.DictReader((out / "thresholds" / f"{name}.csv").read_text().splitlines()):
+            rows[(r["levels"], r["index"])] = float(r["threshold_velocity_median_m_s"])
+    plate = {k: v for k, v in rows.items() if k[0].startswith("8-in plate")}
+    assert len(plate) == 8 and all(1000 * 0.0254 <= v <= 8000 * 0.0254 for v in plate.values())
+    for ball in ("rubber-3/8in", "rubber-1/2in"):
+        assert plate[(f"8-in plate, {ball}", "delamination")] == pytest.approx(rows[(f"long beam, {ball}", "delamination")], rel=1e-9)
+    for index in ("max_strain", "tsai_wu", "hashin", "delamination"):
+        assert plate[("8-in plate, rubber-1/2in", index)] < plate[("8-in plate, rubber-3/8in", index)]

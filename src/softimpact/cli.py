@@ -434,17 +434,17 @@ def calibrate_cmd(case, measured, velocity, method, contact_radius, contact_time
     )
 
 
-@main.command("impact", short_help="Coupled impact of a rigid impactor on a beam through a contact law.")
+@main.command("impact", short_help="Coupled impact of a rigid impactor on a beam or plate through a contact law.")
 @click.argument("case")
 @_out_option("impact")
 @_figures_option
 @_guarded
 def impact_cmd(case, out, figures):
-    """Coupled impact of a rigid impactor on a beam (CASE: file or built-in name), the contact
-    force found each step from a contact law (hertz, hertz-unloading, hunt-crossley, identified).
+    """Coupled impact of a rigid impactor on a beam or plate (CASE: file or built-in name), the
+    contact force found each step from a contact law (hertz, hertz-unloading, hunt-crossley, identified).
 
     Writes history.csv, summary.json and, with figures, force-history.png,
-    approach.png, gauge-strains.png, energy.png.
+    approach.png, gauge-strains.png, energy.png (and on a plate plate-mesh.png, deflection.png).
     """
     from .app.impact import impact
 

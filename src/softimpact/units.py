@@ -11,9 +11,14 @@ quantity.
 from __future__ import annotations
 
 import functools
+import hashlib
+import json
 import math
+import os
 import re
+import tempfile
 from dataclasses import dataclass
+from pathlib import Path
 
 from .errors import InputError
 
@@ -67,6 +72,71 @@ def _import_pint():
     return pint
 
 
+class _FactorCache:
+    """pint's conversion factors, remembered between runs.
+
+    Importing pint costs about 0.12 s of CPU, more than a whole beam run's
+    stepping; a case names the same few units every time. So the factor pint
+    computes for a unit (to SI for a kind of quantity, or from SI to a display
+    unit) is kept in ``units-<hash>.json`` in the user's cache folder
+    (``$SOFTIMPACT_CACHE_DIR``, else ``$XDG_CACHE_HOME/softimpact``, else
+    ``~/.cache/softimpact``), and pint is imported only for a unit not seen before.
+    pint stays the only source of the numbers: the cache holds nothing pint did
+    not compute, and its name carries the hash of ``data/units.txt``, so a change
+    of the definitions starts a new cache. Only accepted units are cached
+    (errors always come from pint); a cache that cannot be read is ignored, one
+    that cannot be written is not written (``SOFTIMPACT_CACHE_DIR=""`` turns it off).
+    """
+
+    def __init__(self):
+        self._factors: dict[str, float] | None = None
+
+    @functools.cached_property
+    def path(self) -> Path | None:
+        root = os.environ.get("SOFTIMPACT_CACHE_DIR")
+        if root is None:
+            base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+            root = os.path.join(base, "softimpact")
+        if not root:
+            return None
+        digest = hashlib.sha256(_DEFINITIONS.read_bytes()).hexdigest()[:16]
+        return Path(root) / f"units-{digest}.json"
+
+    def _load(self) -> dict[str, float]:
+        if self._factors is None:
+            self._factors = {}
+            try:
+                data = json.loads(self.path.read_text(encoding="utf-8")) if self.path else {}
+                if isinstance(data, dict) and all(isinstance(v, float) and math.isfinite(v) and v > 0 for v in data.values()):
+                    self._factors = data
+            except (OSError, ValueError):
+                pass
+        return self._factors
+
+    def get(self, kind: str, unit: str) -> float | None:
+        return self._load().get(f"{kind}|{unit}")
+
+    def put(self, kind: str, unit: str, factor: float) -> float:
+        factors = self._load()
+        factors[f"{kind}|{unit}"] = factor
+        if self.path is not None:
+            tmp = None
+            try:  # atomically: a concurrent reader sees the old file or the new one
+                self.path.parent.mkdir(parents=True, exist_ok=True)
+                fd, tmp = tempfile.mkstemp(dir=self.path.parent, prefix=".units-", suffix=".tmp")
+                with os.fdopen(fd, "w", encoding="utf-8") as f:
+                    json.dump(factors, f, sort_keys=True)
+                os.replace(tmp, self.path)
+            except OSError:
+                if tmp is not None and os.path.exists(tmp):
+                    os.unlink(tmp)
+        return factor
+
+
+_DEFINITIONS = Path(__file__).resolve().parent / "data" / "units.txt"
+_FACTORS = _FactorCache()
+
+
 @functools.cache
 def registry():
     """The package's single pint registry (built on first use, not at import).
@@ -74,11 +144,9 @@ def registry():
     It holds only the units of ``data/units.txt`` (SI, US customary, their
     prefixes): it builds in milliseconds, and a name that is not a unit is an error.
     """
-    from importlib import resources
-
     pint = _import_pint()
     ureg = pint.UnitRegistry(None)
-    ureg.load_definitions(str(resources.files("softimpact") / "data" / "units.txt"))
+    ureg.load_definitions(str(_DEFINITIONS))
     return ureg
 
 
@@ -120,14 +188,18 @@ def parse(value, kind: str, key: str) -> float:
         raise InputError(f"{key}: missing unit in {value!r} {example}")
     if not _UNIT.match(unit.replace(" ", "")):
         raise InputError(f"{key}: cannot read the unit {unit!r} of {value!r} (unit names joined by * and /, powers as ^2) {example}")
-    ureg = registry()
-    try:
-        q = ureg.Quantity(number, ureg.parse_units(unit.replace(" ", "").replace("**", "^")))
-    except Exception:  # pint raises several unrelated types for unknown names
-        raise InputError(f"{key}: unknown unit {unit!r} in {value!r} {example}") from None
-    if q.dimensionality != ureg.Quantity(1, SI_UNITS[kind]).dimensionality:
-        raise InputError(f"{key}: {value!r} is not a {kind} (its dimension is {q.dimensionality})")
-    si = float(q.to(SI_UNITS[kind]).magnitude)
+    unit = unit.replace(" ", "").replace("**", "^")
+    factor = _FACTORS.get(kind, unit)
+    if factor is None:
+        ureg = registry()
+        try:
+            q = ureg.Quantity(1.0, ureg.parse_units(unit))
+        except Exception:  # pint raises several unrelated types for unknown names
+            raise InputError(f"{key}: unknown unit {m['unit']!r} in {value!r} {example}") from None
+        if q.dimensionality != ureg.Quantity(1, SI_UNITS[kind]).dimensionality:
+            raise InputError(f"{key}: {value!r} is not a {kind} (its dimension is {q.dimensionality})")
+        factor = _FACTORS.put(kind, unit, float(q.to(SI_UNITS[kind]).magnitude))
+    si = number * factor
     if not math.isfinite(si):
         raise InputError(f"{key}: {value!r} is not a finite {kind}")
     return si
@@ -209,7 +281,9 @@ def display(system: str, kind: str) -> DisplayUnit:
     if system not in DISPLAY_SYSTEMS:
         raise InputError(f"units: unknown display system {system!r} (choose from {', '.join(DISPLAY_SYSTEMS)})")
     unit = DISPLAY_SYSTEMS[system][kind]
-    ureg = registry()
-    si = "dimensionless" if kind == "strain" else SI_UNITS[kind]
-    factor = float(ureg.Quantity(1.0, si).to(unit).magnitude)
+    factor = _FACTORS.get(f"display {kind}", unit)
+    if factor is None:
+        ureg = registry()
+        si = "dimensionless" if kind == "strain" else SI_UNITS[kind]
+        factor = _FACTORS.put(f"display {kind}", unit, float(ureg.Quantity(1.0, si).to(unit).magnitude))
     return DisplayUnit(factor, _LABELS.get(unit, unit))

@@ -6,8 +6,9 @@ An adapter (see :class:`CaseAdapter`) tells the sweep
 - ``problem(data, base)``: the case parsed and checked (raises InputError);
 - ``structure(data)``: a text equal for two cases exactly when they share the
   expensive part (mesh, factorisation, impulse responses): runs are grouped by it;
-- ``prepare(data, base, runs)``: that expensive part, built once per group and
-  sent to the workers (so it must pickle);
+- ``prepare(data, base, runs, outputs)``: that expensive part, built once per
+  group and sent to the workers (so it must pickle); ``outputs`` (the spec's)
+  may let it leave out what no output needs;
 - ``run(prepared, data, base, outputs)``: one run → a nested dict of outputs
   (the ``summary.json`` keys of the case's command, plus sweep extras), which
   may skip work none of the dotted ``outputs`` asked for;
@@ -15,7 +16,7 @@ An adapter (see :class:`CaseAdapter`) tells the sweep
 - ``expand(data, key)``: make ``key`` settable (e.g. a catalogue name turned
   into its inline table before one of its properties is drawn).
 
-Plate and impact cases register theirs here by adding to :data:`ADAPTERS`.
+Impact cases register theirs here by adding to :data:`ADAPTERS`.
 """
 
 from __future__ import annotations
@@ -33,7 +34,7 @@ from ..input.sweep_spec import get_dotted, set_dotted
 from ..input.toml import naming
 from ..output.files import strain_peaks
 
-__all__ = ["CaseAdapter", "BeamCase", "BarCase", "ADAPTERS", "adapter_for", "flatten"]
+__all__ = ["CaseAdapter", "BeamCase", "BarCase", "PlateCase", "ADAPTERS", "adapter_for", "flatten"]
 
 
 class CaseAdapter(Protocol):
@@ -42,7 +43,7 @@ class CaseAdapter(Protocol):
     def detect(self, data: dict) -> bool: ...
     def problem(self, data: dict, base: Path): ...
     def structure(self, data: dict) -> str: ...
-    def prepare(self, data: dict, base: Path, runs: int): ...
+    def prepare(self, data: dict, base: Path, runs: int, outputs: tuple[str, ...] = ()): ...
     def run(self, prepared, data: dict, base: Path, outputs: tuple[str, ...]) -> dict: ...
     def output_keys(self, problem) -> tuple[str, ...]: ...
     def expand(self, data: dict, key: str) -> None: ...
@@ -91,7 +92,7 @@ class BeamCase:
     def structure(self, data):
         return _without(data, self.LOAD_KEYS)
 
-    def prepare(self, data, base, runs):
+    def prepare(self, data, base, runs, outputs=()):
         from ..workflows.beam_impact import BeamModel
 
         model = BeamModel(self.problem(data, base))
@@ -160,18 +161,7 @@ class BeamCase:
         return tuple(keys)
 
     def expand(self, data, key):
-        from ..models.laminate import PLIES
-
-        if key.startswith("beam.laminate.ply.") and isinstance(get_dotted(data, "beam.laminate.ply"), str):
-            name = get_dotted(data, "beam.laminate.ply")
-            if name not in PLIES:
-                return
-            p = PLIES[name]
-            inline = {"name": p.name, "source": p.source, "nu12": p.nu12, "nu13": p.nu13, "nu23": p.nu23}
-            inline.update({k: f"{getattr(p, k)!r} Pa" for k in ("E1", "E2", "E3", "G12", "G13", "G23")})
-            inline["density"] = f"{p.density!r} kg/m^3"
-            inline["thickness"] = f"{p.thickness!r} m"
-            set_dotted(data, "beam.laminate.ply", inline)
+        _expand_ply(data, key, "beam.laminate.ply")
 
 
 class BarCase:
@@ -190,7 +180,7 @@ class BarCase:
     def structure(self, data):
         return json.dumps(data, sort_keys=True, default=str)
 
-    def prepare(self, data, base, runs):
+    def prepare(self, data, base, runs, outputs=()):
         return None
 
     def run(self, prepared, data, base, outputs=()):
@@ -210,7 +200,154 @@ class BarCase:
         pass
 
 
-ADAPTERS: dict[str, CaseAdapter] = {"beam": BeamCase(), "bar": BarCase()}
+DAMAGE_PREFIX = "_damage"  # names of the pseudo-gauges the plate adapter adds
+DAMAGE_DIRECTIONS = ("x", "y", 45.0)  # three normal strains give the in-plane strain tensor
+
+
+def _damage_points(problem) -> dict[str, tuple[float, float]]:
+    """Where a plate's damage indices are read: under the impact point and at each gauge's centre."""
+    points = {"at_load": tuple(problem.load.position)}
+    points.update({f"at_{g.name}": tuple(g.position) for g in problem.gauges})
+    return points
+
+
+def _wants_damage(outputs) -> bool:
+    return not outputs or any(o.startswith("damage.") for o in outputs)
+
+
+def _screenable(stack) -> bool:
+    from ..models.failure import STRENGTHS
+
+    return stack is not None and hasattr(stack, "angles") and stack.ply.name in STRENGTHS
+
+
+class PlateCase:
+    """``softimpact plate`` cases. Runs differing only in the force history share one PlateModel
+    and its impulse responses (reciprocity: one adjoint run per output, then one FFT product a run).
+
+    For the damage indices the model carries pseudo-gauges: point strains (length 0) in x, y and
+    45° on both faces under the impact point and at each gauge's centre (:func:`_damage_points`),
+    six engine outputs per point; the indices are those of
+    :func:`softimpact.workflows.damage.plate_damage` at each point, and their maximum over the points.
+    """
+
+    name = "plate"
+    LOAD_KEYS = ("load.history", "load.table", "title", "units")  # what does not change the structure
+
+    def detect(self, data):
+        return "plate" in data
+
+    def problem(self, data, base):
+        from ..input.plate_case import plate_problem
+
+        return plate_problem(data, base)
+
+    def structure(self, data):
+        return _without(data, self.LOAD_KEYS)
+
+    def prepare(self, data, base, runs, outputs=()):
+        from ..workflows.plate_impact import PlateGauge, PlateModel
+
+        problem = self.problem(data, base)
+        if _wants_damage(outputs) and _screenable(problem.plate.stack):
+            extra = tuple(
+                PlateGauge(f"{DAMAGE_PREFIX}.{name}.{face}.{d}", xy, face, d, 0.0)
+                for name, xy in _damage_points(problem).items()
+                for face in ("top", "bottom")
+                for d in DAMAGE_DIRECTIONS
+            )
+            problem = dataclasses.replace(problem, gauges=problem.gauges + extra)
+        model = PlateModel(problem)
+        if runs > 1:
+            engine = model.engine()
+            model.nodal_loads(model.force_samples())  # the patch tabulates its distributions once, on the mesh
+            # Only the kernels, the patch's tables and the problem travel to the workers: the mesh,
+            # the matrices and the factorisation (which does not pickle) stay behind (15 MB → under 1 MB).
+            model.stepper = engine.stepper = None
+            model.fe = model.patch.fe = None
+            model.O = engine.O = None
+        return model
+
+    def run(self, prepared, data, base, outputs=()):
+        from ..input.beam_case import read_history
+        from ..input.toml import Table
+        from ..models.failure import STRENGTHS
+        from ..workflows.damage import plate_damage, strain_tensor
+
+        model = prepared
+        if model.stepper is not None:  # a group of one run: stepping beats building the kernels
+            problem = model.problem
+            result = model.direct(energy=False, snapshots=())
+        else:
+            # Only the force history differs within a group: parse it alone, on the group's problem.
+            pulse = read_history(Table(data["load"], "load"), "history", base)
+            with naming({"time_step": "solver.time_step", "history": "load.history"}):
+                problem = dataclasses.replace(model.problem, load=dataclasses.replace(model.problem.load, history=pulse))
+            result = model.respond(pulse)
+        t, F = result.time, result.force
+        w = result.deflection[0]
+        k = int(np.argmax(np.abs(w)))
+        out = {
+            "peak_force_N": float(F.max()),
+            "impulse_N_s": float(np.trapezoid(F, t)),
+            "peak_deflection_at_load_m": float(w[k]),
+            "time_of_peak_deflection_s": float(t[k]),
+            "gauges": {},
+        }
+        strains = dict(zip((g.name for g in problem.gauges), result.strain))
+        for g in problem.gauges:
+            if g.name.startswith(DAMAGE_PREFIX + "."):
+                continue
+            eps = strains[g.name]
+            j = int(np.argmax(np.abs(eps)))
+            out["gauges"][g.name] = strain_peaks(t, eps)
+            out[f"strain_{g.name}"] = {"peak": float(eps[j]), "peak_abs": float(abs(eps[j]))}
+        stack = problem.plate.stack
+        if _wants_damage(outputs) and _screenable(stack) and any(n.startswith(DAMAGE_PREFIX + ".") for n in strains):
+            points = [p for p in _damage_points(problem) if f"{DAMAGE_PREFIX}.{p}.top.x" in strains]
+            faces = {
+                face: np.array([strain_tensor(*(strains[f"{DAMAGE_PREFIX}.{p}.{face}.{d}"] for d in DAMAGE_DIRECTIONS)) for p in points])
+                for face in ("top", "bottom")
+            }
+            dmg = plate_damage(stack, STRENGTHS[stack.ply.name], faces["top"], faces["bottom"], F)
+            out["damage"] = dmg.peaks()
+            out["damage"]["threshold_force_N"] = dmg.threshold_force
+            for i, p in enumerate(points):
+                out["damage"][p] = {c: float(v[i].max()) for c, v in dmg.ply.items()}
+        return out
+
+    def output_keys(self, problem):
+        from ..models.failure import CRITERIA
+
+        keys = ["peak_force_N", "impulse_N_s", "peak_deflection_at_load_m", "time_of_peak_deflection_s"]
+        for g in problem.gauges:
+            keys += [f"gauges.{g.name}.{f}" for f in _GAUGE_FIELDS] + [f"strain_{g.name}.peak", f"strain_{g.name}.peak_abs"]
+        if _screenable(problem.plate.stack):
+            keys += [f"damage.{c}" for c in CRITERIA] + ["damage.delamination", "damage.threshold_force_N"]
+            keys += [f"damage.{p}.{c}" for p in _damage_points(problem) for c in CRITERIA]
+        return tuple(keys)
+
+    def expand(self, data, key):
+        _expand_ply(data, key, "plate.laminate.ply")
+
+
+def _expand_ply(data: dict, key: str, where: str) -> None:
+    """A catalogue ply name at ``where`` turned into its inline table, before one of its properties is set."""
+    from ..models.laminate import PLIES
+
+    if key.startswith(where + ".") and isinstance(get_dotted(data, where), str):
+        name = get_dotted(data, where)
+        if name not in PLIES:
+            return
+        p = PLIES[name]
+        inline = {"name": p.name, "source": p.source, "nu12": p.nu12, "nu13": p.nu13, "nu23": p.nu23}
+        inline.update({k: f"{getattr(p, k)!r} Pa" for k in ("E1", "E2", "E3", "G12", "G13", "G23")})
+        inline["density"] = f"{p.density!r} kg/m^3"
+        inline["thickness"] = f"{p.thickness!r} m"
+        set_dotted(data, where, inline)
+
+
+ADAPTERS: dict[str, CaseAdapter] = {"beam": BeamCase(), "bar": BarCase(), "plate": PlateCase()}
 
 
 def adapter_for(data: dict, where: str) -> CaseAdapter:

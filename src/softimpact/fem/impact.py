@@ -160,6 +160,8 @@ class ImpactHistory:
     surface_mismatch: np.ndarray  # structure_work − Σ½(F_k + F_{k+1})·Δw
     newton_iterations: int
     solves: int
+    displacement: np.ndarray | None = None  # (n, n_kept): all DOFs at the steps ``kept`` (snapshots)
+    kept: np.ndarray | None = None  # step indices of the columns of ``displacement``
 
 
 def integrate_impact(
@@ -173,6 +175,7 @@ def integrate_impact(
     energy: bool = True,
     stepper: NewmarkStepper | None = None,
     stop_after: float | None = None,
+    snapshots=(),
 ) -> ImpactHistory:
     """March the impactor and the structure together (module docstring).
 
@@ -181,6 +184,8 @@ def integrate_impact(
     ``stepper``: a NewmarkStepper already factored for (M, K, C, dt) to reuse.
     ``stop_after``: stop this long [s] after the impactor has left for good
     (separated and moving away faster than the target point), else run ``steps``.
+    ``snapshots``: step indices at which to keep the displacement of all DOFs
+    (for figures of the deflected shape); those past an early stop are dropped.
     """
     if not (math.isfinite(mass) and mass > 0):
         raise InputError(f"impactor.mass must be positive, got {mass!r}")
@@ -210,6 +215,11 @@ def integrate_impact(
     M, K = st.M, st.K
 
     N = int(steps)
+    keep = np.unique(np.asarray(snapshots, int))
+    if keep.size and (keep.min() < 0 or keep.max() > N):
+        raise InputError(f"snapshots: step indices must lie in 0 … {N}, got {snapshots!r}")
+    slot = {int(k): i for i, k in enumerate(keep)}
+    saved = np.zeros((n, keep.size))
     t = np.arange(N + 1) * dt
     F = np.zeros(N + 1)
     al = np.zeros(N + 1)
@@ -278,6 +288,8 @@ def integrate_impact(
         else:
             cen[k + 1] = branch.energy(a_new)
         u, v, acc, xa, s_prev = u1, v1, acc1, xa1, fs
+        if k + 1 in slot:
+            saved[:, slot[k + 1]] = u1
         if stop_after is not None:
             away = f == 0.0 and a_new < 0.0 and xv[k + 1] < float(c @ v1)
             if away and left_at is None:
@@ -306,6 +318,8 @@ def integrate_impact(
         surface_mismatch=mism[sl],
         newton_iterations=iterations,
         solves=st.nsolve,
+        displacement=saved[:, keep <= last] if keep.size else None,
+        kept=keep[keep <= last] if keep.size else None,
     )
 
 

@@ -1,15 +1,16 @@
 """Impact case files (``softimpact impact``): TOML → :class:`ImpactProblem`.
 
-``[target]`` (``case``: a beam case, file or built-in name; its ``[load]``
+``[target]`` (``case``: a beam or plate case, file or built-in name; its ``[load]``
 position is the impact point, its force history is ignored), ``[impactor]``
 (``material``, ``diameter``, ``velocity`` toward the target, optional ``mass``),
 ``[contact]`` (``law`` = hertz | hertz-unloading | hunt-crossley | identified,
 with the law's own keys), ``[solver]`` and optional ``[[gauges]]`` (default: the
-target case's). See README.md and ``data/cases/paper-long-beam-impact.toml``.
+target case's, beam or plate gauges as the target). See README.md,
+``data/cases/paper-long-beam-impact.toml`` and ``data/cases/plate-ss-8in-impact.toml``.
 
 Contact keys: those of :mod:`softimpact.input.contact_law`, and for the Hertz
 laws ``target_modulus`` (default: a laminate's through-thickness modulus E3 of
-its ply, Sun's form; an isotropic beam: Hertz with its material).
+its ply, Sun's form, for a beam or a plate; an isotropic beam: Hertz with its material).
 """
 
 from __future__ import annotations
@@ -23,8 +24,10 @@ from ..models.contact_laws import HertzLaw
 from ..models.materials import Material, sphere_mass
 from ..workflows.beam_impact import BeamLoad, BeamProblem
 from ..workflows.coupled import Impactor
+from ..workflows.plate_impact import PlateLoad, PlateProblem
 from .beam_case import beam_problem, read_beam_gauges
 from .contact_law import CONTACT_LAWS, read_contact_law
+from .plate_case import plate_problem, read_plate_gauges
 from .toml import Table, load_toml, locate, naming, read_material, read_solver, read_units
 
 __all__ = ["CONTACT_LAWS", "ImpactProblem", "impact_problem", "load_impact_case"]
@@ -32,10 +35,10 @@ __all__ = ["CONTACT_LAWS", "ImpactProblem", "impact_problem", "load_impact_case"
 
 @dataclass(frozen=True)
 class ImpactProblem:
-    """A coupled impact case, resolved (SI): the target beam (its solver and gauges those of the
-    impact run, its force history dropped), the impactor, its material and the contact law."""
+    """A coupled impact case, resolved (SI): the target beam or plate (its solver and gauges those
+    of the impact run, its force history dropped), the impactor, its material and the contact law."""
 
-    target: BeamProblem
+    target: BeamProblem | PlateProblem
     target_case: str
     impactor: Impactor
     impactor_material: Material
@@ -49,22 +52,44 @@ class ImpactProblem:
         return self.target.solver
 
     @property
-    def position(self) -> float:
+    def position(self) -> float | tuple[float, float]:
+        """The impact point: x [m] along a beam, (x, y) [m] on a plate."""
         return self.target.load.position
 
+    @property
+    def on_plate(self) -> bool:
+        return isinstance(self.target, PlateProblem)
 
-def _target(tbl: Table, base: Path) -> tuple[BeamProblem, Path]:
+
+def _target(tbl: Table, base: Path) -> tuple[BeamProblem | PlateProblem, Path]:
+    """The target case: a plate case (it has a [plate] table) or a beam case."""
     case = tbl.string("case")
     path = base / case if (base / case).is_file() else locate(case)
     try:
-        problem = beam_problem(load_toml(path), path.parent)
+        data = load_toml(path)
+        problem = plate_problem(data, path.parent) if "plate" in data else beam_problem(data, path.parent)
     except InputError as exc:
         raise InputError(f"{tbl.key('case')} ({path}): {exc}") from None
     return problem, path
 
 
-def _hertz(c: Table, target: BeamProblem, radius: float, sphere: Material) -> HertzLaw:
-    beam = target.beam
+def _mirrors_through_impact(target: PlateProblem, where: str) -> None:
+    """A plate's symmetry edge mirrors the impactor too: it must pass through the impact point
+    (a half or quarter model of one impact), else the model would be struck twice."""
+    spec = target.plate
+    x, y = target.load.position
+    dist = {"x0": abs(x), "x1": abs(spec.length_x - x), "y0": abs(y), "y1": abs(spec.length_y - y)}
+    tol = 1e-9 * max(spec.length_x, spec.length_y)
+    for edge, kind in zip(dist, spec.supports):
+        if kind == "symmetry" and dist[edge] > tol:
+            raise InputError(
+                f"{where}: plate.support.{edge} is a symmetry edge that does not pass through the impact point "
+                f"(load.position): it would mirror the impactor; put the impact point on it or model the whole plate"
+            )
+
+
+def _hertz(c: Table, target: BeamProblem | PlateProblem, radius: float, sphere: Material) -> HertzLaw:
+    beam = target.plate if isinstance(target, PlateProblem) else target.beam
     if "target_modulus" in c or beam.stack is not None:
         default = beam.stack.ply.E3 if beam.stack is not None else None
         with naming({"transverse modulus E2": c.key("target_modulus")}):
@@ -79,6 +104,8 @@ def impact_problem(data: dict, base: Path = Path(".")) -> tuple[ImpactProblem, t
     system = read_units(top)
     t = top.table("target")
     target, target_path = _target(t, base)
+    if isinstance(target, PlateProblem):
+        _mirrors_through_impact(target, f"{t.key('case')} ({target_path})")
     t.done()
     i = top.table("impactor")
     material = read_material(i)
@@ -92,9 +119,14 @@ def impact_problem(data: dict, base: Path = Path(".")) -> tuple[ImpactProblem, t
     law, law_path = read_contact_law(c, name, lambda: _hertz(c, target, diameter / 2, material), impactor.mass, diameter, velocity, base)
     c.done()
     solver = read_solver(top.table("solver"))
-    gauges = read_beam_gauges(top) if "gauges" in top else target.gauges
+    plate = isinstance(target, PlateProblem)
+    gauges = (read_plate_gauges(top) if plate else read_beam_gauges(top)) if "gauges" in top else target.gauges
     top.done()
-    load = BeamLoad(target.load.position, target.load.contact_radius, None)  # the force comes from the contact
+    # the force comes from the contact
+    if plate:
+        load = PlateLoad(target.load.position, target.load.contact_radius, None, grow=True)
+    else:
+        load = BeamLoad(target.load.position, target.load.contact_radius, None)
     with naming({"gauges": "gauges", "time_step": "solver.time_step", "position": f"target.case ({target_path}): load.position"}):
         resolved = replace(target, load=load, solver=solver, gauges=gauges)
     files = (target_path,) if law_path is None else (target_path, law_path)

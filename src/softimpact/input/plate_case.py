@@ -19,7 +19,7 @@ from ..workflows.plate_impact import DEFAULT_GAUGE_LENGTH, PlateGauge, PlateLoad
 from .beam_case import read_load_history, read_ply
 from .toml import Table, load_toml, locate, naming, read_solver, read_units
 
-__all__ = ["PLATE_SUPPORTS", "PLATE_MODELS", "plate_problem", "load_plate_case"]
+__all__ = ["PLATE_SUPPORTS", "PLATE_MODELS", "plate_problem", "read_plate_gauges", "load_plate_case"]
 
 PLATE_SUPPORTS = ("clamped", "simply-supported", "free", "symmetry")  # symmetry: a mirror plane (quarter models)
 PLATE_MODELS = ("fsdt", "solid")
@@ -51,6 +51,32 @@ def _supports(tbl: Table) -> tuple[str, str, str, str]:
     if clamped == 0 and hinged < 2:
         raise InputError(f"{tbl.key('support')}: {dict(zip(EDGES, out))} leaves the plate a mechanism (it needs a clamped edge or two simply supported edges)")
     return out
+
+
+def read_plate_gauges(top: Table) -> tuple[PlateGauge, ...]:
+    """The ``[[gauges]]`` of a plate case (or of an impact case on a plate): name, position [x, y],
+    surface, direction ("x", "y" or degrees from x) and length."""
+    gauges = []
+    for g in top.tables("gauges", optional=True):
+        direction = g.raw("direction", "x")
+        if isinstance(direction, bool) or not isinstance(direction, (str, int, float)):
+            raise InputError(f"{g.key('direction')}: expected 'x', 'y' or an angle in degrees from x, got {direction!r}")
+        if isinstance(direction, str) and direction not in ("x", "y"):
+            raise InputError(f"{g.key('direction')}: {direction!r} is not 'x', 'y' or an angle in degrees from x")
+        with naming({None: g.path}):
+            gauges.append(
+                PlateGauge(
+                    g.string("name"),
+                    _point(g, "position"),
+                    g.string("surface", "bottom", choices=("top", "bottom")),
+                    direction if isinstance(direction, str) else float(direction),
+                    g.quantity("length", "length", default=DEFAULT_GAUGE_LENGTH),
+                )
+            )
+        g.done()
+    if len({g.name for g in gauges}) != len(gauges):
+        raise InputError("gauges: names must be unique")
+    return tuple(gauges)
 
 
 def plate_problem(data: dict, base: Path = Path("."), history: int | None = None, default_element: str = DEFAULT_ELEMENT) -> PlateProblem:
@@ -87,29 +113,10 @@ def plate_problem(data: dict, base: Path = Path("."), history: int | None = None
     pulse, radius = read_load_history(ld, base, history, radius)
     ld.done()
     solver = read_solver(top.table("solver"))
-    gauges = []
-    for g in top.tables("gauges", optional=True):
-        direction = g.raw("direction", "x")
-        if isinstance(direction, bool) or not isinstance(direction, (str, int, float)):
-            raise InputError(f"{g.key('direction')}: expected 'x', 'y' or an angle in degrees from x, got {direction!r}")
-        if isinstance(direction, str) and direction not in ("x", "y"):
-            raise InputError(f"{g.key('direction')}: {direction!r} is not 'x', 'y' or an angle in degrees from x")
-        with naming({None: g.path}):
-            gauges.append(
-                PlateGauge(
-                    g.string("name"),
-                    _point(g, "position"),
-                    g.string("surface", "bottom", choices=("top", "bottom")),
-                    direction if isinstance(direction, str) else float(direction),
-                    g.quantity("length", "length", default=DEFAULT_GAUGE_LENGTH),
-                )
-            )
-        g.done()
-    if len({g.name for g in gauges}) != len(gauges):
-        raise InputError("gauges: names must be unique")
+    gauges = read_plate_gauges(top)
     top.done()
     with naming({None: "case"}):
-        return PlateProblem(spec, PlateLoad(position, radius, pulse, grow), solver, tuple(gauges), title=title, units=system)
+        return PlateProblem(spec, PlateLoad(position, radius, pulse, grow), solver, gauges, title=title, units=system)
 
 
 def load_plate_case(case: str, history: int | None = None, default_element: str = DEFAULT_ELEMENT) -> tuple[PlateProblem, Path]:

@@ -63,7 +63,8 @@ def energy_balance(energy: dict) -> float:
 
 
 def csv_text(columns: dict[str, np.ndarray]) -> str:
-    """CSV text of equal-length columns, full precision (repr of float64)."""
+    """CSV text of equal-length columns, full precision (repr of float64); text cells holding a
+    comma, quote or line break are quoted (RFC 4180), so the file reads back column for column."""
     names = list(columns)
     data = [np.asarray(columns[n]) for n in names]
     lengths = {len(d) for d in data}
@@ -71,7 +72,7 @@ def csv_text(columns: dict[str, np.ndarray]) -> str:
         raise ValueError(f"columns of unequal length: {dict(zip(names, map(len, data)))}")
     cells = [_column(d) for d in data]
     buf = io.StringIO()
-    buf.write(",".join(names) + "\n")
+    buf.write(",".join(map(_quoted, names)) + "\n")
     for row in zip(*cells):
         buf.write(",".join(row) + "\n")
     return buf.getvalue()
@@ -84,9 +85,14 @@ def _column(d: np.ndarray) -> list[str]:
     return [_cell(v) for v in d]
 
 
+def _quoted(text: str) -> str:
+    text = str(text)
+    return '"' + text.replace('"', '""') + '"' if any(c in text for c in ',"\n\r') else text
+
+
 def _cell(v) -> str:
     if isinstance(v, (str, np.str_)):
-        return str(v)
+        return _quoted(v)
     f = float(v)
     return "" if math.isnan(f) else repr(f)
 

@@ -9,7 +9,15 @@ import numpy as np
 from ..units import display
 from .files import csv_text, figure_bytes, json_text, strain_peaks
 
-__all__ = ["impact_summary", "impact_columns", "impact_files", "impact_figures"]
+__all__ = ["impact_summary", "impact_columns", "impact_files", "impact_figures", "snapshot_steps", "SNAPSHOTS"]
+
+SNAPSHOTS = 6  # instants of a plate's deflected-shape figure
+
+
+def snapshot_steps(steps: int) -> np.ndarray:
+    """Step indices of a plate's deflected-shape figure: SNAPSHOTS instants doubling up to the end
+    of the run (…, T/4, T/2, T), so the early, local wave and the later whole-plate response both show."""
+    return np.unique(np.maximum(np.round(steps / 2.0 ** np.arange(SNAPSHOTS - 1, -1, -1)).astype(int), 1))
 
 
 def _contact(c) -> dict:
@@ -23,16 +31,42 @@ def _contact(c) -> dict:
     }
 
 
-def impact_summary(problem, result) -> dict:
-    """The scalars of a coupled run (first contact), every contact, gauge peaks and the resolved case; SI."""
+def _plate_target(problem, model, result) -> dict:
+    """What a plate user reads besides the impact's scalars: the model, and the mid-surface
+    deflection under the impact point (along the impact direction, down +)."""
+    p = problem.target
+    w = result.target_displacement
+    k = int(np.argmax(np.abs(w)))
+    return {
+        "model": "fsdt (MITC4)",
+        "dofs": model.fe.n,
+        "elements": list(p.plate.elements),
+        "supports": dict(zip(("x0", "x1", "y0", "y1"), p.plate.supports)),
+        "impact_point_m": list(p.load.position),
+        "peak_deflection_at_impact_m": float(w[k]),
+        "time_of_peak_deflection_s": float(result.time[k]),
+        "deflection_note": "mid-surface deflection under the impact point, positive along the impact direction (into the plate)",
+    }
+
+
+def impact_summary(problem, result, model=None) -> dict:
+    """The scalars of a coupled run (first contact), every contact, gauge peaks and the resolved case; SI.
+    On a plate (``model`` a PlateModel) also ``target``: the plate model and its deflection under the impact."""
+    plate = getattr(problem, "on_plate", False)
     gauges = {}
-    for name, eps in zip(result.gauge_names, result.gauge_strain):
+    for j, (name, eps) in enumerate(zip(result.gauge_names, result.gauge_strain)):
         gauges[name] = {**strain_peaks(result.time, eps), "peak_abs_strain": float(np.max(np.abs(eps)))}
+        if plate:
+            g = problem.target.gauges[j]
+            gauges[name].update(position_m=list(g.position), surface=g.surface, direction=g.direction, length_m=g.length)
     first = result.contacts[0]
     sel = result.time <= (first.end if math.isfinite(first.end) else result.time[-1])
     E = result.energies
     KE0 = result.impactor.kinetic_energy
     balance = E.total - KE0 - E.surface_mismatch
+    # after the first contact: KE0 = rebound KE + structure energy + contact work, short by the mismatch
+    k_sep = int(np.searchsorted(result.time, first.end)) if math.isfinite(first.end) else None
+    after = float(E.surface_mismatch[k_sep] / KE0) if k_sep is not None and k_sep < result.time.size else None
     return {
         "title": problem.title,
         "contact_law": problem.law_name,
@@ -52,8 +86,13 @@ def impact_summary(problem, result) -> dict:
         "impactor_kinetic_energy_J": KE0,
         "energy_balance_relative": float(np.max(np.abs(balance)) / KE0) if np.all(np.isfinite(balance)) else None,
         "surface_mismatch_relative_max": float(np.max(np.abs(E.surface_mismatch)) / KE0),
+        "energy_error_after_first_contact_relative": after,
+        "energy_note": "energy_balance_relative: KE0 = impactor KE + structure energy + contact work + surface mismatch, to round-off; "
+        "the mismatch (work of the force on the loaded nodes minus on the mid-surface point of the approach) is the formulation's "
+        "energy error: its largest value over the run, and its value at the end of the first contact",
         "newton_iterations": result.newton_iterations,
         "gauges": gauges,
+        **({"target": _plate_target(problem, model, result)} if plate and model is not None else {}),
         "case_SI": problem,
     }
 
@@ -143,9 +182,30 @@ def impact_figures(problem, result, prefix: str = "") -> dict[str, bytes]:
     return out
 
 
-def impact_files(problem, result, figures: bool = True, prefix: str = "") -> dict[str, bytes | str]:
-    """history.csv, summary.json and (optionally) the figures."""
-    files = {prefix + "history.csv": csv_text(impact_columns(result)), prefix + "summary.json": json_text(impact_summary(problem, result))}
+def plate_impact_figures(problem, model, result, prefix: str = "") -> dict[str, bytes]:
+    """plate-mesh.png (the impact point, the widest contact disc reached, the gauges) and
+    deflection.png (the mid-surface at the kept instants)."""
+    from types import SimpleNamespace
+
+    from . import plate_plots
+
+    p = problem.target
+    r_max = float(np.max(result.contact_radius))
+    shown = SimpleNamespace(fe=model.fe, problem=p)
+    lu = display(problem.units, "length")
+    label = f"widest contact disc (r = {r_max * lu.factor:.3g} {lu.label})"
+    out = {prefix + "plate-mesh.png": figure_bytes(plate_plots.plate_mesh(shown, problem.units, patch=(r_max, label)))}
+    if result.displacement is not None and result.displacement.shape[1]:
+        out[prefix + "deflection.png"] = figure_bytes(plate_plots.plate_deflection(model, result, problem.units))
+    return out
+
+
+def impact_files(problem, result, figures: bool = True, prefix: str = "", model=None) -> dict[str, bytes | str]:
+    """history.csv, summary.json and (optionally) the figures; on a plate (``model`` its PlateModel)
+    also the plate's mesh and deflected shapes."""
+    files = {prefix + "history.csv": csv_text(impact_columns(result)), prefix + "summary.json": json_text(impact_summary(problem, result, model))}
     if figures:
         files.update(impact_figures(problem, result, prefix))
+        if getattr(problem, "on_plate", False) and model is not None:
+            files.update(plate_impact_figures(problem, model, result, prefix))
     return files

@@ -30,9 +30,10 @@ def _gauge_angle(direction) -> float:
     return 0.0 if direction == "x" else 90.0 if direction == "y" else float(direction)
 
 
-def plate_mesh(model, system: str):
+def plate_mesh(model, system: str, patch: tuple[float, str] | None = None):
     """The plate's mesh (every line up to 64 per direction, else every k-th), its supports, the
-    contact patch and the gauges (a bar along each gauge's direction, drawn at least 3 % of the plate)."""
+    contact patch and the gauges (a bar along each gauge's direction, drawn at least 3 % of the plate).
+    ``patch``: (radius [m], label) of the disc drawn at the load point (default: the load's r0)."""
     from matplotlib.collections import LineCollection
     from matplotlib.patches import Circle
 
@@ -55,7 +56,8 @@ def plate_mesh(model, system: str):
         shown.add(kind)
         ax.annotate(edge, ((x0 + x1) / 2, (y0 + y1) / 2), fontsize="x-small", color="0.3", ha="center", va="center", xytext=(0, 0), textcoords="offset points")
     cx, cy = (c * lu.factor for c in p.load.position)
-    ax.add_patch(Circle((cx, cy), p.load.contact_radius * lu.factor, color="C3", alpha=0.5, label="contact patch (r0)"))
+    radius, label = patch or (p.load.contact_radius, "contact patch (r0)")
+    ax.add_patch(Circle((cx, cy), radius * lu.factor, color="C3", alpha=0.5, label=label))
     ax.plot([cx], [cy], "+", color="C3", ms=8)
     draw = 0.03 * max(Lx, Ly)
     for i, g in enumerate(p.gauges):

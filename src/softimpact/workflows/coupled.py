@@ -121,6 +121,8 @@ class CoupledResult:
     final_velocity: float  # impactor velocity at the end of the run
     newton_iterations: int
     solves: int
+    displacement: np.ndarray | None = None  # (n_dofs, n_kept) snapshots of the structure, if asked for
+    kept: np.ndarray | None = None  # their step indices
 
     @property
     def total_impulse(self) -> float:
@@ -180,12 +182,14 @@ def simulate_coupled(
     energy: bool = True,
     stepper: NewmarkStepper | None = None,
     stop_after: float | None = None,
+    snapshots=(),
 ) -> CoupledResult:
     """Coupled impact of ``impactor`` on ``structure`` with contact ``law`` (module docstring).
 
     ``solver``: time step and duration (and Newmark β, γ); ``stepper``: a stepper
     already factored for this structure and step, to reuse; ``stop_after``: end
-    the run this long [s] after the impactor has left for good.
+    the run this long [s] after the impactor has left for good; ``snapshots``: step
+    indices at which to keep the structure's displacement (all DOFs).
     """
     h: ImpactHistory = integrate_impact(
         structure,
@@ -198,6 +202,7 @@ def simulate_coupled(
         energy=energy,
         stepper=stepper,
         stop_after=stop_after,
+        snapshots=snapshots,
     )
     t, F, al = h.time, h.contact_force, h.approach
     contacts = contact_intervals(t, F, al)
@@ -237,4 +242,6 @@ def simulate_coupled(
         final_velocity=float(h.impactor_velocity[-1]),
         newton_iterations=h.newton_iterations,
         solves=h.solves,
+        displacement=h.displacement,
+        kept=h.kept,
     )

@@ -8,6 +8,12 @@ the two faces, the plane model's own assumption away from the load), with
 Each ply's stresses at its faces then give the indices of
 :mod:`softimpact.models.failure`; a section's index is the worst ply's (found at
 the extreme faces of each fibre angle, :func:`extreme_faces`).
+
+On a plate (:func:`plate_damage`) a point's in-plane strain tensor (ε_x, ε_y,
+γ_xy) on each face comes from three direction strains (x, y and 45°:
+γ_xy = 2ε_45 − ε_x − ε_y); the two faces give the mid-plane strains and
+curvatures, and the indices are taken at both faces of every ply
+(:func:`ply_faces`).
 """
 
 from __future__ import annotations
@@ -21,7 +27,7 @@ from ..errors import InputError
 from ..models.failure import CRITERIA, PlyStrength, davies_zhang_force, failure_indices, ply_stresses
 from ..models.laminate import abd, engineering_constants
 
-__all__ = ["DamageResult", "section_strains", "extreme_faces", "beam_damage"]
+__all__ = ["DamageResult", "section_strains", "extreme_faces", "ply_faces", "strain_tensor", "beam_damage", "plate_damage", "delamination_force"]
 
 
 @dataclass(frozen=True)
@@ -89,6 +95,46 @@ def beam_damage(stack, strength: PlyStrength, plane: str, face: np.ndarray, othe
         idx = failure_indices(stack.ply, strength, strain, stress)
         for c in CRITERIA:
             ply[c][g] = idx[c].max(axis=0)
+    pc = delamination_force(stack, strength.GIIc)
+    return DamageResult(ply, np.asarray(force, float) / pc, pc)
+
+
+def ply_faces(stack) -> tuple[np.ndarray, tuple]:
+    """Heights [m] and angles of both faces of every ply (top ply first).
+
+    With in-plane shear the Hashin modes jump where σ1 or σ2 changes sign, so the
+    extreme faces of one angle (:func:`extreme_faces`) need not hold their largest
+    value; every ply's own faces are the points where its strains are extreme.
+    """
+    t, h = stack.ply.thickness, stack.thickness
+    tops = h / 2 - t * np.arange(len(stack.angles))
+    z = np.ravel(np.column_stack((tops, tops - t)))
+    return z, tuple(a for a in stack.angles for _ in (0, 1))
+
+
+def strain_tensor(ex, ey, e45) -> np.ndarray:
+    """In-plane strains (ε_x, ε_y, γ_xy), shape (3, ...), from the normal strains in x, y and at 45°
+    (ε_θ = ε_x cos²θ + ε_y sin²θ + γ_xy sinθ cosθ)."""
+    ex, ey, e45 = (np.asarray(e, float) for e in (ex, ey, e45))
+    return np.stack((ex, ey, 2 * e45 - ex - ey))
+
+
+def plate_damage(stack, strength: PlyStrength, top: np.ndarray, bottom: np.ndarray, force: np.ndarray) -> DamageResult:
+    """Indices at points of a plate: ``top``/``bottom`` (n_points, 3, n_t) the in-plane strains
+    (ε_x, ε_y, γ_xy) on the top (z = +h/2) and bottom face, ``force`` (n_t,) [N]. FSDT
+    kinematics: ε(z) = ε0 + z·κ with ε0 the faces' mean and κ their difference over h."""
+    if not hasattr(stack, "angles"):
+        raise InputError("damage screening needs a layup (ply stacking), not ply fractions", "stack")
+    top, bottom = np.asarray(top, float), np.asarray(bottom, float)
+    z, angles = ply_faces(stack)
+    ply = {c: np.zeros((top.shape[0], top.shape[-1])) for c in CRITERIA}
+    for p in range(top.shape[0]):
+        e0 = 0.5 * (top[p] + bottom[p])
+        k = (top[p] - bottom[p]) / stack.thickness
+        strain, stress = ply_stresses(stack.ply, angles, e0, k, z)
+        idx = failure_indices(stack.ply, strength, strain, stress)
+        for c in CRITERIA:
+            ply[c][p] = idx[c].max(axis=0)
     pc = delamination_force(stack, strength.GIIc)
     return DamageResult(ply, np.asarray(force, float) / pc, pc)
 
