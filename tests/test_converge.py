@@ -122,7 +122,7 @@ def test_cli_plate_errors_fall_with_refinement(tmp_path):
     """`converge` on a plate case (12 × 12, ×2, ×4): the deflection history's error against the
     extrapolation falls at every level, and the summary lists the plate's element counts."""
     case = tmp_path / "plate.toml"
-    text = locate("plate-ss-8in").read_text().replace("elements = [48, 48]", "elements = [12, 12]")
+    text = locate("plate-ss-8in").read_text().replace("elements = [48, 48]", 'elements = [12, 12]\nelement = "mitc4"')
     case.write_text(text.replace('duration = "1000 us"', 'duration = "300 us"'))
     out = tmp_path / "out"
     result = CliRunner().invoke(main, ["converge", str(case), "--out", str(out), "--no-figures"])

@@ -24,10 +24,11 @@ __all__ = ["PLATE_SUPPORTS", "PLATE_MODELS", "plate_problem", "read_plate_gauges
 PLATE_SUPPORTS = ("clamped", "simply-supported", "free", "symmetry")  # symmetry: a mirror plane (quarter models)
 PLATE_MODELS = ("fsdt", "solid")
 MIN_ELEMENTS = 2  # per direction: one element cannot place a load or gauge inside the plate
-# The element when a case names none. ``softimpact plate`` asks for MITC9 (O(h⁴) flexural
-# dispersion: 1.8 % on the issue's plate at 48², where MITC4 needs ~360²); a plate read as the
-# target of ``impact``, by ``sweep`` or ``converge`` keeps MITC4, the element their meshes and
-# documented numbers were chosen with. A case that names ``element`` means it everywhere.
+# The element when a case names none. ``softimpact plate`` (and ``converge``, which studies the
+# model ``plate`` runs) asks for MITC9 (O(h⁴) flexural dispersion: 1.8 % on the issue's plate at
+# 48², where MITC4 needs ~360²); a plate read as the target of ``impact`` or by ``sweep`` keeps
+# MITC4, the element their meshes and documented numbers were chosen with. A case that names
+# ``element`` means it everywhere.
 DEFAULT_ELEMENT = "mitc4"
 PLATE_COMMAND_ELEMENT = "mitc9"
 
