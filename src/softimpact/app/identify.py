@@ -40,8 +40,7 @@ def identify_series(series, reduced, refined: bool = True, progress: Progress = 
     law, approaches = fit_law(tests, rod)
     if refined:
         progress(1, 3, "refining on coupled bar runs")
-        # the closure's own 400 steps per pulse: at 100 (4× faster) T moves by up to 0.5 % and the
-        # refinement lands elsewhere (3/8-in T +6 % instead of +4.4 %, measured)
+        # one coupled bar run per diameter per evaluation, 200 steps per pulse (refine's docstring)
         law = refine(law, tests, rod)
     progress(2, 3, "closure")
     cl = closure(law, tests, rod)
