@@ -126,4 +126,5 @@ def test_identify_command_on_the_rubber_series(tmp_path):
         # the error columns are simulated/measured − 1, checked against the columns themselves
         assert float(row["error_impulse"]) == pytest.approx(float(row["simulated_impulse_N_s"]) / float(row["measured_impulse_N_s"]) - 1)
         assert err < 0.05
+        assert abs(float(row["error_time_of_peak"])) < 0.05  # the pulse's skew too (eq-15 fits)
     assert (out / "approach-1_2in-1000.csv").exists()

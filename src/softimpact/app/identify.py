@@ -58,7 +58,8 @@ def identify(series_name: str, figures: bool = True, progress: Progress = no_pro
     worst = int(np.argmax(err.max(axis=1)))
     line = (
         f"{pars} (d_ref {law.d_ref * 1e3:.3g} mm)\n"
-        f"closure over {len(tests)} tests: max |error| F0 {err[:, 0].max():.1%}, T {err[:, 1].max():.1%}, I {err[:, 2].max():.1%} "
+        f"closure over {len(tests)} tests: max |error| F0 {err[:, 0].max():.1%}, T {err[:, 1].max():.1%}, I {err[:, 2].max():.1%}, "
+        f"t_F0 {np.abs(cl.peak_time_errors).max():.1%} "
         f"(worst {cl.names[worst]}); law.json"
     )
     inputs = (series.path, *(t.record for t in series.tests))

@@ -12,7 +12,8 @@ __all__ = ["closure_columns", "identify_files", "closure_figure", "force_approac
 
 
 def closure_columns(tests, closure) -> dict:
-    """One row per test: diameter, velocity, measured and simulated F0, T, I and their relative errors."""
+    """One row per test: diameter, velocity, measured and simulated F0, T, I and their relative errors; then
+    the same for t_F0 (of the eq-15 fits)."""
     m, s, e = closure.measured, closure.simulated, closure.errors
     cols = {
         "test": np.array(closure.names),
@@ -23,6 +24,10 @@ def closure_columns(tests, closure) -> dict:
         cols[f"measured_{key}_{unit}"] = m[:, j]
         cols[f"simulated_{key}_{unit}"] = s[:, j]
         cols[f"error_{key}"] = e[:, j]
+    if closure.peak_times is not None:
+        cols["measured_time_of_peak_s"] = closure.peak_times[:, 0]
+        cols["simulated_time_of_peak_s"] = closure.peak_times[:, 1]
+        cols["error_time_of_peak"] = closure.peak_time_errors
     return cols
 
 

@@ -4,8 +4,8 @@ Layout (SI): ``family`` (``"soft-projectile"``), ``form`` (the law in words),
 ``units``, ``d_ref_m``, ``parameters`` (``k_ref``, ``p``, ``c_ref``, ``q_k``,
 ``q_c``, ``q_p``, ``kappa_ref``, ``theta_ref``, ``q_kappa``, ``q_theta``, each with
 ``value`` and ``ci95_half_width``), ``fit`` (``cost`` and ``rms_over_F0`` per test), and,
-when the closure was run, ``closure`` per test (measured and simulated F0, T, I and their
-relative errors).
+when the closure was run, ``closure`` per test (measured and simulated F0, T, I, t_F0 and
+their relative errors).
 
 Older files (the memoryless law, before the Maxwell arm; or before ``q_p``) lack the later
 parameters: they read as 0, i.e. no arm and no size power, the law they were written for.
@@ -56,6 +56,11 @@ def law_summary(law: IdentifiedLaw, test_names, closure=None, series: str = "") 
             }
             for name, m, s, e in zip(closure.names, closure.measured, closure.simulated, closure.errors)
         }
+        if closure.peak_times is not None:
+            for name, (m, s), e in zip(closure.names, closure.peak_times, closure.peak_time_errors):
+                c = out["closure"][name]
+                c["measured"]["time_of_peak_s"], c["simulated"]["time_of_peak_s"] = float(m), float(s)
+                c["relative_error"]["time_of_peak"] = float(e)
     return out
 
 

@@ -146,10 +146,16 @@ class Closure:
     simulated: np.ndarray  # (n_tests, 3)
     time: tuple[np.ndarray, ...]
     force: tuple[np.ndarray, ...]  # simulated histories
+    peak_times: np.ndarray | None = None  # (n_tests, 2): measured, simulated t_F0 of the eq-15 fits [s]
 
     @property
     def errors(self) -> np.ndarray:
         return self.simulated / self.measured - 1.0
+
+    @property
+    def peak_time_errors(self) -> np.ndarray:
+        """Relative error of the simulated t_F0, (n_tests,)."""
+        return self.peak_times[:, 1] / self.peak_times[:, 0] - 1.0
 
 
 def _end_response(rod: Rod, dt: float, force: np.ndarray):
@@ -345,17 +351,19 @@ def _simulate(law: IdentifiedLaw, tst: BarTest, structure: ContactStructure, ste
 
 
 def closure(law: IdentifiedLaw, tests, rod: Rod, steps_per_pulse: int = STEPS_PER_PULSE) -> Closure:
-    """Simulate each test with the identified law on the rod; compare F0, T, I (module docstring, step 3)."""
+    """Simulate each test with the identified law on the rod; compare F0, T, I and t_F0 (module docstring, step 3)."""
     structure = _rod_structure(rod)
     names, meas, sim, ts, fs = [], [], [], [], []
     for tst in tests:
-        fig, h = _simulate(law, tst, structure, steps_per_pulse)
+        _, h = _simulate(law, tst, structure, steps_per_pulse)
         names.append(tst.name)
-        meas.append(pulse_figures(np.asarray(tst.time, float), np.asarray(tst.force, float)))
-        sim.append(fig)
+        meas.append(pulse_shape(np.asarray(tst.time, float), np.asarray(tst.force, float)))
+        sim.append(pulse_shape(h.time, h.contact_force))
         ts.append(h.time)
         fs.append(h.contact_force)
-    return Closure(tuple(names), np.array(meas), np.array(sim), tuple(ts), tuple(fs))
+    meas, sim = np.array(meas), np.array(sim)
+    three = [0, 2, 3]  # F0, T, I of (F0, t_F0, T, I)
+    return Closure(tuple(names), meas[:, three], sim[:, three], tuple(ts), tuple(fs), np.column_stack((meas[:, 1], sim[:, 1])))
 
 
 def _scaled_shape(shape, test: BarTest) -> np.ndarray:
