@@ -15,14 +15,15 @@ m, diameter d and velocity V; and the bar as a :class:`~softimpact.fem.bar.Rod`
    (:class:`~softimpact.models.contact_laws.ViscoelasticSoftLaw`):
    F = (mV²/d)·[k·(α/d)^n·(1 + c·α̇/V) + σ], σ̇ = κ·d(α⁺/d)/dt − σ·V/(θ·d),
    k = k_ref·(d/d_ref)^{q_k}, c = c_ref·(d/d_ref)^{q_c}, optionally n = p·(d/d_ref)^{q_p}
-   (else n = p; with one diameter the q's are 0); κ, θ the same at every size
+   (else n = p; with one diameter the q's are 0), κ = κ_ref·(d/d_ref)^{q_κ},
+   θ = θ_ref·(d/d_ref)^{q_θ}, and c = 0 beside the arm (:func:`_free`)
    (``memory=False``: the memoryless family, κ = 0). σ along each test follows from
    the reconstructed α history (:func:`arm_stress`, the solver's own exact step).
    Nonlinear least squares of F(α, α̇, σ) against the measured F over each test's main
    pulse (until F falls to 15 % of F0 after the peak), residuals scaled by each test's
    F0 so every test weighs the same. 95 % intervals from the Jacobian at the optimum,
    ±1.96·sqrt(diag(s²(JᵀJ)⁻¹)). Then :func:`refine` adjusts the parameters on the
-   coupled bar simulations themselves (F0, T, I of every test).
+   coupled bar simulations themselves (F0, t_F0, T, I of every test).
 3. Closure. The identified law in a coupled impactor–bar simulation
    (:func:`softimpact.fem.impact.integrate_impact` on the same rod) gives a force
    history per test; F0 (peak), T (duration of the eq-15 fit of the main pulse, as
@@ -69,7 +70,7 @@ N_PARAMETERS = len(PARAMETERS)
 LOWER = np.array([1e-6, 0.2, 0.0, -5.0, -5.0, -5.0, 0.0, 5e-3, -5.0, -5.0])
 UPPER = np.array([1e6, 6.0, 50.0, 5.0, 5.0, 5.0, 1e3, 50.0, 5.0, 5.0])
 ARM_START = (2.0, 0.3)  # κ, θ where the fit starts: an arm as stiff as the loading curve, relaxing within a pulse
-CLOSURE_SCALE = 0.05  # the closure target per test; scales the refinement's r·|r| residuals
+CLOSURE_SCALE = 0.05  # the closure target per test; scales the refinement's r·(|r|/s)³ residuals
 REFINE_NORM = 8  # the refinement's second stage minimises Σ r^8, close to the worst test's error
 REFINE_STEPS_PER_PULSE = 200  # refinement runs: F0, T, I within 1e-4 of the closure's 400 steps (measured)
 Z95 = 1.959963984540054  # two-sided 95 % normal quantile (hundreds of samples: t ≈ z)
@@ -332,12 +333,12 @@ def _rod_structure(rod: Rod) -> ContactStructure:
     )
 
 
-def _simulate(law: IdentifiedLaw, tst: BarTest, structure: ContactStructure, steps_per_pulse: int):
-    """((F0, T, I), history) of one test simulated with ``law`` on the rod, steps of T_measured/steps_per_pulse."""
+def _simulate(law: IdentifiedLaw, tst: BarTest, structure: ContactStructure, steps_per_pulse: int, duration: float):
+    """The coupled history of one test simulated with ``law`` on the rod, steps of duration/steps_per_pulse
+    (``duration``: the test's measured T)."""
     t = np.asarray(tst.time, float)
-    fig = pulse_figures(t, np.asarray(tst.force, float))
-    dt = fig[1] / steps_per_pulse
-    h = integrate_impact(
+    dt = duration / steps_per_pulse
+    return integrate_impact(
         structure,
         law.law(tst.mass, tst.diameter, tst.velocity),
         tst.mass,
@@ -345,9 +346,8 @@ def _simulate(law: IdentifiedLaw, tst: BarTest, structure: ContactStructure, ste
         dt,
         int(math.ceil(t[-1] / dt)),
         energy=False,
-        stop_after=0.5 * fig[1],
+        stop_after=0.5 * duration,
     )
-    return pulse_figures(h.time, h.contact_force), h
 
 
 def closure(law: IdentifiedLaw, tests, rod: Rod, steps_per_pulse: int = STEPS_PER_PULSE) -> Closure:
@@ -355,9 +355,10 @@ def closure(law: IdentifiedLaw, tests, rod: Rod, steps_per_pulse: int = STEPS_PE
     structure = _rod_structure(rod)
     names, meas, sim, ts, fs = [], [], [], [], []
     for tst in tests:
-        _, h = _simulate(law, tst, structure, steps_per_pulse)
+        measured = pulse_shape(np.asarray(tst.time, float), np.asarray(tst.force, float))
+        h = _simulate(law, tst, structure, steps_per_pulse, measured[2])
         names.append(tst.name)
-        meas.append(pulse_shape(np.asarray(tst.time, float), np.asarray(tst.force, float)))
+        meas.append(measured)
         sim.append(pulse_shape(h.time, h.contact_force))
         ts.append(h.time)
         fs.append(h.contact_force)
@@ -422,7 +423,8 @@ def refine(
     start = _full(law.values)
     reps = representatives(tests)
     structure = _rod_structure(rod)
-    measured = np.array([_scaled_shape(pulse_shape(t.time, t.force), t) for t in tests])
+    shapes = [pulse_shape(t.time, t.force) for t in tests]
+    measured = np.array([_scaled_shape(sh, t) for sh, t in zip(shapes, tests)])
     group = np.array([list(reps).index(t.diameter) for t in tests])
 
     def with_values(z):
@@ -432,7 +434,7 @@ def refine(
 
     def errors(z):
         trial = with_values(z)
-        runs = [(tests[i], _simulate(trial, tests[i], structure, steps_per_pulse)[1]) for i in reps.values()]
+        runs = [(tests[i], _simulate(trial, tests[i], structure, steps_per_pulse, shapes[i][2])) for i in reps.values()]
         sim = np.array([_scaled_shape(pulse_shape(h.time, h.contact_force), t) for t, h in runs])
         return (sim[group] / measured - 1.0).ravel()
 
