@@ -11,13 +11,15 @@ from click.testing import CliRunner
 from softimpact.cli import main
 from softimpact.fem.bar import Rod
 from softimpact.input.series import load_series
-from softimpact.models.contact_laws import SoftProjectileLaw
+from softimpact.models.contact_laws import SoftProjectileLaw, ViscoelasticSoftLaw
 from softimpact.output.law_json import law_json, read_law
 from softimpact.workflows.identification import BarTest, IdentifiedLaw, closure, identify
 from softimpact.workflows.identification import _rod_structure as rod_structure
 
 INCH = 0.0254
 TRUE = {"k_ref": 3.0, "p": 0.9, "c_ref": 2.0, "q_k": -0.5, "q_c": 1.5}  # a law chosen here
+# with a Maxwell arm (and no rate term: the identification keeps c = 0 beside the arm)
+TRUE_ARM = {"k_ref": 2.0, "p": 1.1, "c_ref": 0.0, "q_k": -0.5, "q_c": 0.0, "q_p": 0.0, "kappa_ref": 6.0, "theta_ref": 0.25, "q_kappa": 0.8, "q_theta": -0.3}
 D_REF = 0.5 * INCH
 
 
@@ -26,33 +28,38 @@ def rod() -> Rod:
     return load_series("paper-rubber-series").bar.rod()
 
 
-def _synthetic_test(rod, name, mass, d, V):
+def _synthetic_test(rod, name, mass, d, V, true):
     """A bar test made by the coupled impactor-rod integration with the chosen law (noise-free)."""
     from softimpact.fem.impact import integrate_impact
 
-    law = SoftProjectileLaw.scaled(mass, d, V, TRUE["k_ref"], TRUE["p"], TRUE["c_ref"], D_REF, TRUE["q_k"], TRUE["q_c"])
+    chosen = IdentifiedLaw(tuple(true), np.array(list(true.values())), np.zeros(len(true)), D_REF, np.zeros(1), 0.0)
     T = 1.0 * d / V  # Table I: T ≈ α2·d/V with α2 ≈ 1
-    h = integrate_impact(rod_structure(rod), law, mass, V, T / 400, 1200, energy=False, stop_after=0.3 * T)
+    h = integrate_impact(rod_structure(rod), chosen.law(mass, d, V), mass, V, T / 400, 1200, energy=False, stop_after=0.3 * T)
     return BarTest(name, h.time, h.contact_force, mass, d, V)
+
+
+CASES = [
+    ("a", 1.1e-3, 0.5 * INCH, 1000 * INCH),
+    ("b", 1.1e-3, 0.5 * INCH, 3000 * INCH),
+    ("c", 0.46e-3, 0.375 * INCH, 2000 * INCH),
+    ("d", 0.46e-3, 0.375 * INCH, 4500 * INCH),
+]
 
 
 @pytest.fixture(scope="module")
 def synthetic(rod):
-    cases = [
-        ("a", 1.1e-3, 0.5 * INCH, 1000 * INCH),
-        ("b", 1.1e-3, 0.5 * INCH, 3000 * INCH),
-        ("c", 0.46e-3, 0.375 * INCH, 2000 * INCH),
-        ("d", 0.46e-3, 0.375 * INCH, 4500 * INCH),
-    ]
-    return [_synthetic_test(rod, *c) for c in cases]
+    return [_synthetic_test(rod, *c, TRUE) for c in CASES]
 
 
-def test_identify_recovers_a_known_law(rod, synthetic):
-    """Force histories made with a chosen law on the same rod give back its five parameters (to 0.5 %),
-    through the reconstructed approach (impactor by momentum, bar end by the rod FE)."""
-    law, _ = identify(synthetic, rod, d_ref=D_REF)
+@pytest.mark.parametrize("true", [TRUE, TRUE_ARM], ids=["memoryless", "maxwell-arm"])
+def test_identify_recovers_a_known_law(rod, true):
+    """Force histories made with a chosen law on the same rod give back its parameters (to 0.5 %),
+    through the reconstructed approach (impactor by momentum, bar end by the rod FE); the memoryless
+    family when asked for it, the Maxwell arm's κ and θ with it."""
+    tests = [_synthetic_test(rod, *c, true) for c in CASES]
+    law, _ = identify(tests, rod, d_ref=D_REF, memory="kappa_ref" in true)
     got = dict(zip(law.names, law.values))
-    for k, v in TRUE.items():
+    for k, v in true.items():
         assert got[k] == pytest.approx(v, rel=5e-3, abs=5e-3)
     assert np.all(law.rms_per_test < 1e-3)
 
@@ -73,18 +80,42 @@ def test_law_json_round_trip(tmp_path):
     back = read_law(tmp_path / "law.json")
     assert np.allclose(back.values[:5], law.values) and back.values[5] == 0.0 and back.d_ref == D_REF
     a, b = law.law(0.46e-3, 0.375 * INCH, 50.0), back.law(0.46e-3, 0.375 * INCH, 50.0)
+    assert isinstance(b, SoftProjectileLaw)  # a file without the arm is the memoryless law it was written for
     assert a.force(1e-3, 10.0) == pytest.approx(b.force(1e-3, 10.0), rel=1e-15)
+
+
+def test_law_json_with_the_arm_round_trip(tmp_path):
+    """A law with its Maxwell arm written and read back is the same viscoelastic law (κ, θ scaled by size)."""
+    vals = np.array(list(TRUE_ARM.values()))
+    law = IdentifiedLaw(tuple(TRUE_ARM), vals, np.full(vals.size, 0.1), D_REF, np.array([0.01]), 1.0)
+    (tmp_path / "law.json").write_text(law_json(law, ["t1"]))
+    back = read_law(tmp_path / "law.json")
+    assert np.allclose(back.values, vals, rtol=1e-15)
+    got = back.law(0.46e-3, 0.375 * INCH, 50.0)
+    assert isinstance(got, ViscoelasticSoftLaw)
+    assert got.kappa == pytest.approx(6.0 * 0.75**0.8, rel=1e-14) and got.theta == pytest.approx(0.25 * 0.75**-0.3, rel=1e-14)
+
+
+def test_law_json_with_an_arm_but_no_relaxation_time_is_refused(tmp_path):
+    """kappa_ref > 0 with theta_ref = 0 is not a law: one-line InputError naming the file."""
+    from softimpact.errors import InputError
+
+    law = IdentifiedLaw(tuple(TRUE_ARM)[:8], np.array([2.0, 1.1, 0.5, 0, 0, 0, 6.0, 0.0]), np.zeros(8), D_REF, np.zeros(1), 0.0)
+    (tmp_path / "law.json").write_text(law_json(law, ["t1"]))
+    with pytest.raises(InputError, match="theta_ref > 0"):
+        read_law(tmp_path / "law.json")
 
 
 @pytest.mark.slow
 def test_identify_command_on_the_rubber_series(tmp_path):
-    """`softimpact identify paper-rubber-series`: law.json with intervals and fit quality per test, and a
-    closure whose 1/2-in tests reproduce F0, T and I within 5 %; the 3/8-in tests reach 7 % only
-    (target 5 %: measured T +4 to +5 %, I −3 to −6.5 %; the law family cannot carry the series' slow tail)."""
+    """`softimpact identify paper-rubber-series`: law.json with intervals and fit quality per test, a law
+    with its Maxwell arm, and a closure whose coupled bar runs reproduce every test's F0, T and I within
+    5 % (issue 10; the memoryless law reached 7 % on the 3/8-in tests)."""
     out = tmp_path / "out"
     r = CliRunner().invoke(main, ["identify", "paper-rubber-series", "--out", str(out), "--no-figures"])
     assert r.exit_code == 0, r.output
     law = json.loads((out / "law.json").read_text())
+    assert law["parameters"]["kappa_ref"]["value"] > 0 and law["parameters"]["theta_ref"]["value"] > 0
     assert set(law["parameters"]) >= set(TRUE) and all(math.isfinite(v["ci95_half_width"]) for v in law["parameters"].values())
     assert len(law["fit"]["rms_over_F0"]) == 13
     with open(out / "closure.csv") as fh:
@@ -94,5 +125,6 @@ def test_identify_command_on_the_rubber_series(tmp_path):
         err = max(abs(float(row[f"error_{k}"])) for k in ("peak_force", "duration", "impulse"))
         # the error columns are simulated/measured − 1, checked against the columns themselves
         assert float(row["error_impulse"]) == pytest.approx(float(row["simulated_impulse_N_s"]) / float(row["measured_impulse_N_s"]) - 1)
-        assert err < (0.05 if float(row["diameter_m"]) > 0.011 else 0.07)
+        assert err < 0.05
+        assert abs(float(row["error_time_of_peak"])) < 0.05  # the pulse's skew too (eq-15 fits)
     assert (out / "approach-1_2in-1000.csv").exists()

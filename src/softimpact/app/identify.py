@@ -40,8 +40,7 @@ def identify_series(series, reduced, refined: bool = True, progress: Progress = 
     law, approaches = fit_law(tests, rod)
     if refined:
         progress(1, 3, "refining on coupled bar runs")
-        # the closure's own 400 steps per pulse: at 100 (4× faster) T moves by up to 0.5 % and the
-        # refinement lands elsewhere (3/8-in T +6 % instead of +4.4 %, measured)
+        # one coupled bar run per diameter per evaluation, 200 steps per pulse (refine's docstring)
         law = refine(law, tests, rod)
     progress(2, 3, "closure")
     cl = closure(law, tests, rod)
@@ -59,7 +58,8 @@ def identify(series_name: str, figures: bool = True, progress: Progress = no_pro
     worst = int(np.argmax(err.max(axis=1)))
     line = (
         f"{pars} (d_ref {law.d_ref * 1e3:.3g} mm)\n"
-        f"closure over {len(tests)} tests: max |error| F0 {err[:, 0].max():.1%}, T {err[:, 1].max():.1%}, I {err[:, 2].max():.1%} "
+        f"closure over {len(tests)} tests: max |error| F0 {err[:, 0].max():.1%}, T {err[:, 1].max():.1%}, I {err[:, 2].max():.1%}, "
+        f"t_F0 {np.abs(cl.peak_time_errors).max():.1%} "
         f"(worst {cl.names[worst]}); law.json"
     )
     inputs = (series.path, *(t.record for t in series.tests))

@@ -511,6 +511,8 @@ PAPER_PROJECTILES = {"rubber-3/8in": "0.375 in", "rubber-1/2in": "0.5 in"}  # pr
 
 PAPER_PLATE = "plate-ss-8in"
 PAPER_PLATE_ELEMENTS = 32  # per side of the quarter: 1/8-in elements (discretisation error in paper_plate_case)
+PAPER_PLATE_MESHES = (16, 32, 64)  # the report's plate thresholds: on the finest, with the error over the three
+PAPER_DRAWS = 16  # α draws (Latin hypercube) per ball for the report's thresholds
 PAPER_PLATE_DURATION = "400 us"  # the index peaks under the load by 250 us at 1000 in/s, by 80 us at 3000 in/s
 PAPER_DAMAGE = ["damage.max_strain", "damage.tsai_wu", "damage.hashin", "damage.delamination"]
 
@@ -544,30 +546,63 @@ def paper_plate_case(elements: int = PAPER_PLATE_ELEMENTS, duration: str = PAPER
     return data
 
 
-def paper_plate_thresholds(draws: int = 4, levels: int = 10, elements: int = PAPER_PLATE_ELEMENTS) -> list[dict]:
+def paper_plate_thresholds(draws: int = PAPER_DRAWS, levels: int = 10, meshes: tuple[int, ...] = PAPER_PLATE_MESHES) -> list[dict]:
     """Threshold velocities of :func:`paper_plate_case` for both balls, as :func:`paper_thresholds`
-    does for the beams (one plate model and one set of impulse responses for both)."""
+    does for the beams (one plate model and one set of impulse responses for both), with
+    their discretisation error.
+
+    The thresholds are computed on each of ``meshes`` (elements a side of the quarter,
+    coarse → fine, ratio 2) and reported on the finest, with Richardson's observed order
+    and GCI over the last three (:func:`softimpact.workflows.convergence.richardson`,
+    safety factor 1.25; an oscillating sequence gets half its range, a diverging one the
+    whole of its last change): ``discretisation_error_m_s`` is that GCI in m/s, and the
+    5–95 % band of the α draws is widened by it on both sides, so the band covers the
+    mesh's error too.
+    """
     import dataclasses
 
     from ..input.sweep_spec import Scaling, read_sweep_spec, scaling_covariance
+    from ..workflows.convergence import richardson
 
     fit = _paper_fit()
-    case = paper_plate_case(elements)
-    rows = []
-    prepared = None
-    for proj, group in PAPER_PROJECTILES.items():
-        spec = read_sweep_spec(_paper_spec(PAPER_PLATE, proj, draws, levels), Path("."))
-        mean, cov = scaling_covariance(fit, group)
-        scaling = Scaling("load.history", mean, cov, f"paper-rubber-series:{group}")
-        spec = dataclasses.replace(spec, case_data=case, parameters=spec.parameters + (scaling,))
-        plan = plan_sweep(spec)
-        base = str(spec.case_path.parent)
-        if prepared is None:
-            prepared = prepare_group(plan.kind, [plan.chunks[0].items[0][1]], base, 2 * len(plan.runs), spec.outputs)
-        done = {r["run"]: r for c in plan.chunks for r in run_chunk(plan.kind, prepared, c.items, base, spec.outputs)}
-        for t in thresholds(plan, _table(plan, done)):
-            rows.append({**t, "levels": f"8-in plate, {proj}"})
-    return rows
+    per_mesh = []
+    for elements in meshes:
+        case = paper_plate_case(elements)
+        rows, prepared = [], None
+        for proj, group in PAPER_PROJECTILES.items():
+            spec = read_sweep_spec(_paper_spec(PAPER_PLATE, proj, draws, levels), Path("."))
+            mean, cov = scaling_covariance(fit, group)
+            scaling = Scaling("load.history", mean, cov, f"paper-rubber-series:{group}")
+            spec = dataclasses.replace(spec, case_data=case, parameters=spec.parameters + (scaling,))
+            plan = plan_sweep(spec)
+            base = str(spec.case_path.parent)
+            if prepared is None:
+                prepared = prepare_group(plan.kind, [plan.chunks[0].items[0][1]], base, 2 * len(plan.runs), spec.outputs)
+            done = {r["run"]: r for c in plan.chunks for r in run_chunk(plan.kind, prepared, c.items, base, spec.outputs)}
+            for t in thresholds(plan, _table(plan, done)):
+                rows.append({**t, "levels": f"8-in plate, {proj}"})
+        per_mesh.append(rows)
+    out = []
+    for i, row in enumerate(per_mesh[-1]):
+        values = np.array([rows[i]["threshold_velocity_median_m_s"] for rows in per_mesh], dtype=float)
+        error, order = math.nan, math.nan
+        if np.all(np.isfinite(values[-min(3, len(values)) :])) and len(values) >= 3:
+            conv = richardson(values[-3:], 2.0, formal_order=2.0, name=f"{row['levels']} {row['index']}")
+            order = conv.order
+            gci = conv.gci_fine if math.isfinite(conv.gci_fine) else abs(values[-1] - values[-2]) / abs(values[-1])
+            error = gci * abs(values[-1])
+        widen = error if math.isfinite(error) else 0.0
+        out.append(
+            row
+            | {
+                "threshold_velocity_p05_m_s": row["threshold_velocity_p05_m_s"] - widen,
+                "threshold_velocity_p95_m_s": row["threshold_velocity_p95_m_s"] + widen,
+                "discretisation_error_m_s": error,
+                "observed_order": order,
+                "elements": meshes[-1],
+            }
+        )
+    return out
 
 
 @functools.lru_cache(maxsize=1)
@@ -596,7 +631,7 @@ def _paper_spec(case: str, projectile: str, draws: int, levels: int) -> dict:
     }
 
 
-def paper_thresholds(draws: int = 4, levels: int = 10, system: str = "in-lbf-s") -> list[dict]:
+def paper_thresholds(draws: int = PAPER_DRAWS, levels: int = 10, system: str = "in-lbf-s") -> list[dict]:
     """Threshold velocities of the paper's beams for both balls: the α's drawn from the
     covariance of the built-in rubber series' fit, velocity 1000–8000 in/s (a plain loop)."""
     import dataclasses
@@ -643,7 +678,7 @@ def threshold_section(figures: bool, files: dict, prefix: str = "thresholds/"):
             "plate-thresholds",
             plate,
             "8 x 8 in simply supported [90/0]5s plate, struck at the centre: velocity at which a damage index first reaches 1",
-            "The plate's threshold velocity by criterion and ball: median and 5-95 % band over the α draws",
+            "The plate's threshold velocity by criterion and ball: median and 5-95 % band over the α draws, widened by the mesh's discretisation error",
         ),
     ):
         keys = list(th[0])
@@ -659,6 +694,15 @@ def threshold_section(figures: bool, files: dict, prefix: str = "thresholds/"):
         part = "" if t["draws_reaching_1"] == t["draws"] else f" ({t['draws_reaching_1']}/{t['draws']} draws)"
         return f"{m:.0f} [{lo:.0f}-{hi:.0f}]{part}"
 
+    plate_h = f"{PAPER_PLATE_MESHES[-1]} × {PAPER_PLATE_MESHES[-1]}"
+    first_ply = [t for t in plate if t["index"] != "delamination" and math.isfinite(t["discretisation_error_m_s"])]
+    plate_err = (
+        "first-ply thresholds ± "
+        + ", ".join(f"{t['discretisation_error_m_s'] / t['threshold_velocity_median_m_s']:.1%} ({t['index']}, {t['levels'].split(', ')[1]})" for t in first_ply)
+        + f", observed orders {min(t['observed_order'] for t in first_ply):.2g}-{max(t['observed_order'] for t in first_ply):.2g}"
+        if first_ply
+        else "not estimable (a threshold above the range on a mesh)"
+    )
     th = beams + plate
     labels = list(dict.fromkeys(t["levels"] for t in th))
     indices = list(dict.fromkeys(t["index"] for t in th))
@@ -668,17 +712,19 @@ def threshold_section(figures: bool, files: dict, prefix: str = "thresholds/"):
         [
             "Velocity at which each damage index first reaches 1 (first-ply failure by maximum strain, Tsai-Wu and Hashin; "
             "Davies-Zhang delamination force against the peak force), for the two rubber balls under the empirical "
-            "law, with α1-α4 drawn (Latin hypercube, 4 draws) from the covariance of the built-in rubber series' fit; velocity "
+            f"law, with α1-α4 drawn (Latin hypercube, {PAPER_DRAWS} draws) from the covariance of the built-in rubber series' fit; velocity "
             "levels 1000-8000 in/s (the law is fitted on 1000-5000 in/s: above, an extrapolation). Strengths: T300/5208 values "
             "of Tsai & Hahn standing in for T300/934 (docs/modelling-notes.md). Beams: first-ply failure at the gauge sections.",
             "Plate: the built-in 8 × 8 in simply supported [90/0]5s T300/934 plate (plate-ss-8in) struck at its centre, the "
-            "ball's contact disc (0.25 in, growing with the force by eq 10) as on the beams; FSDT (MITC4) on the quarter "
-            f"with symmetry edges, {PAPER_PLATE_ELEMENTS} × {PAPER_PLATE_ELEMENTS} elements (1/8 in), 1 µs, through the response "
-            "engine. First-ply failure under the impact point, where it peaks: ply stresses at both faces of every ply from the "
-            "top- and bottom-face strains in x, y and 45°. Discretisation error, measured against quarter meshes of 16 to 64 "
-            "elements a side (order ≈ 2 from 32 on): this mesh's first-ply threshold velocities are 5-6 % high (the strain "
-            "under the load and so the indices are about 9 % low); halving the step changes none by 1 in/s; the delamination threshold depends "
-            "on the force alone and has no mesh error.",
+            "ball's contact disc (0.25 in, growing with the force by eq 10) as on the beams; FSDT on the quarter with symmetry "
+            f"edges, 1 µs, through the response engine, on {', '.join(f'{n} × {n}' for n in PAPER_PLATE_MESHES)} elements; "
+            f"the thresholds are those of the finest ({plate_h}), and their band is widened on both sides by the "
+            "discretisation error estimated from the three meshes (Richardson's observed order, GCI with safety factor 1.25): "
+            f"{plate_err}. First-ply failure under the impact point, where it peaks: ply stresses at both faces of every ply "
+            "from the top- and bottom-face strains in x, y and 45°. Halving the step changes no threshold by 1 in/s; the "
+            "delamination threshold depends on the force alone and has no mesh error. The beams' rows are on the paper's "
+            "meshes, whose gauge strains are 1-3 % from converged (section 'Discretisation error'); their bands are the α "
+            "draws' only.",
         ],
         [(f"Threshold velocity [{vu.label}]: median [5-95 %]", ["structure, ball"] + indices, rows)],
         figs,

@@ -194,6 +194,8 @@ def integrate_impact(
     if not (isinstance(steps, (int, np.integer)) and steps >= 1):
         raise InputError(f"steps must be a positive integer, got {steps!r}")
     dt = float(time_step)
+    if hasattr(law, "for_time_step"):  # a law whose memory evolves in time needs the step
+        law = law.for_time_step(dt)
     st = stepper or NewmarkStepper(structure.M, structure.K, dt, C=structure.C, params=newmark)
     if not math.isclose(st.dt, dt, rel_tol=1e-12):
         raise InputError(f"stepper time step {st.dt!r} differs from time_step {dt!r}")

@@ -12,7 +12,8 @@ __all__ = ["closure_columns", "identify_files", "closure_figure", "force_approac
 
 
 def closure_columns(tests, closure) -> dict:
-    """One row per test: diameter, velocity, measured and simulated F0, T, I and their relative errors."""
+    """One row per test: diameter, velocity, measured and simulated F0, T, I and their relative errors; then
+    the same for t_F0 (of the eq-15 fits)."""
     m, s, e = closure.measured, closure.simulated, closure.errors
     cols = {
         "test": np.array(closure.names),
@@ -23,6 +24,10 @@ def closure_columns(tests, closure) -> dict:
         cols[f"measured_{key}_{unit}"] = m[:, j]
         cols[f"simulated_{key}_{unit}"] = s[:, j]
         cols[f"error_{key}"] = e[:, j]
+    if closure.peak_times is not None:
+        cols["measured_time_of_peak_s"] = closure.peak_times[:, 0]
+        cols["simulated_time_of_peak_s"] = closure.peak_times[:, 1]
+        cols["error_time_of_peak"] = closure.peak_time_errors
     return cols
 
 
@@ -47,7 +52,9 @@ def closure_figure(tests, closure, system: str, title: str = "Closure: measured 
 
 
 def force_approach_figure(tests, law, approaches, system: str):
-    """Measured F against the reconstructed approach α/d (main pulses), and the fitted law on the same α, α̇."""
+    """Measured F against the reconstructed approach α/d (main pulses), and the fitted law on the same α, α̇
+    (and, for a law with memory, the same α history)."""
+    from ..workflows.identification import fitted_force
     from .plots import _figure
 
     fu = display(system, "force")
@@ -56,9 +63,7 @@ def force_approach_figure(tests, law, approaches, system: str):
         c = f"C{i % 10}"
         m = a.main_pulse
         ax.plot(a.approach[m] / t.diameter, a.force[m] * fu.factor, color=c, lw=1.0, label=t.name)
-        lw = law.law(t.mass, t.diameter, t.velocity)
-        model = [lw.force(x, r) for x, r in zip(a.approach[m], a.rate[m])]
-        ax.plot(a.approach[m] / t.diameter, np.array(model) * fu.factor, color=c, lw=1.0, ls="--")
+        ax.plot(a.approach[m] / t.diameter, fitted_force(law, a, t) * fu.factor, color=c, lw=1.0, ls="--")
     ax.set_xlabel("approach α / d (impactor minus bar end, from the measured force)")
     ax.set_ylabel(f"contact force [{fu.label}]")
     ax.set_title("Force against approach: measured (solid), identified law (dashed)", fontsize=10)

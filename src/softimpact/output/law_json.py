@@ -2,9 +2,13 @@
 
 Layout (SI): ``family`` (``"soft-projectile"``), ``form`` (the law in words),
 ``units``, ``d_ref_m``, ``parameters`` (``k_ref``, ``p``, ``c_ref``, ``q_k``,
-``q_c``, ``q_p``, each with ``value`` and ``ci95_half_width``), ``fit`` (``cost`` and
-``rms_over_F0`` per test), and, when the closure was run, ``closure`` per test
-(measured and simulated F0, T, I and their relative errors).
+``q_c``, ``q_p``, ``kappa_ref``, ``theta_ref``, ``q_kappa``, ``q_theta``, each with
+``value`` and ``ci95_half_width``), ``fit`` (``cost`` and ``rms_over_F0`` per test), and,
+when the closure was run, ``closure`` per test (measured and simulated F0, T, I, t_F0 and
+their relative errors).
+
+Older files (the memoryless law, before the Maxwell arm; or before ``q_p``) lack the later
+parameters: they read as 0, i.e. no arm and no size power, the law they were written for.
 """
 
 from __future__ import annotations
@@ -23,9 +27,12 @@ __all__ = ["FAMILY", "law_summary", "law_json", "read_law"]
 
 FAMILY = "soft-projectile"
 FORM = (
-    "F = (m*V^2/d)*k*(alpha/d)^n*(1 + c*alpha_dot/V) >= 0, k = k_ref*(d/d_ref)^q_k, c = c_ref*(d/d_ref)^q_c, "
-    "n = p*(d/d_ref)^q_p; contact radius a = sqrt(d*alpha)"
+    "F = (m*V^2/d)*[k*(alpha/d)^n*(1 + c*alpha_dot/V) + sigma] >= 0, k = k_ref*(d/d_ref)^q_k, c = c_ref*(d/d_ref)^q_c, "
+    "n = p*(d/d_ref)^q_p; Maxwell arm d(sigma)/dt = kappa*d(max(alpha,0)/d)/dt - sigma*V/(theta*d), "
+    "kappa = kappa_ref*(d/d_ref)^q_kappa, theta = theta_ref*(d/d_ref)^q_theta (kappa_ref = 0: no arm); "
+    "contact radius a = sqrt(d*alpha)"
 )
+LATER = ("q_p", "kappa_ref", "theta_ref", "q_kappa", "q_theta")  # parameters older law.json files lack (read as 0)
 
 
 def law_summary(law: IdentifiedLaw, test_names, closure=None, series: str = "") -> dict:
@@ -49,6 +56,11 @@ def law_summary(law: IdentifiedLaw, test_names, closure=None, series: str = "") 
             }
             for name, m, s, e in zip(closure.names, closure.measured, closure.simulated, closure.errors)
         }
+        if closure.peak_times is not None:
+            for name, (m, s), e in zip(closure.names, closure.peak_times, closure.peak_time_errors):
+                c = out["closure"][name]
+                c["measured"]["time_of_peak_s"], c["simulated"]["time_of_peak_s"] = float(m), float(s)
+                c["relative_error"]["time_of_peak"] = float(e)
     return out
 
 
@@ -70,15 +82,17 @@ def read_law(path, argument: str = "contact.law_file") -> IdentifiedLaw:
         if data["family"] != FAMILY:
             raise InputError(f"{argument}: {path} holds a {data['family']!r} law; only {FAMILY!r} laws are known")
         pars = data["parameters"]
-        # q_p (the exponent's size scaling) came last: a law without it has q_p = 0
-        values = np.array([float(pars[n]["value"]) if n in pars or n != "q_p" else 0.0 for n in names])
+        values = np.array([float(pars[n]["value"]) if n in pars or n not in LATER else 0.0 for n in names])
         half = np.array([float(pars[n].get("ci95_half_width", math.nan)) if n in pars else 0.0 for n in names])
         d_ref = float(data["d_ref_m"])
         fit = data.get("fit", {})
         rms = np.array([float(v) for v in fit.get("rms_over_F0", {}).values()])
         cost = float(fit.get("cost", math.nan))
     except (KeyError, TypeError, ValueError, AttributeError):
-        raise InputError(f"{argument}: {path} is not a law.json (needs family, d_ref_m and parameters {', '.join(names)})") from None
-    if not (np.all(np.isfinite(values)) and values[0] > 0 and values[1] > 0 and values[2] >= 0 and math.isfinite(d_ref) and d_ref > 0):
-        raise InputError(f"{argument}: {path} has parameters out of range (k_ref > 0, p > 0, c_ref >= 0, d_ref_m > 0)")
+        raise InputError(
+            f"{argument}: {path} is not a law.json (needs family, d_ref_m and parameters {', '.join(n for n in names if n not in LATER)})"
+        ) from None
+    arm_ok = values[6] == 0.0 or (values[6] > 0.0 and values[7] > 0.0)
+    if not (np.all(np.isfinite(values)) and values[0] > 0 and values[1] > 0 and values[2] >= 0 and arm_ok and math.isfinite(d_ref) and d_ref > 0):
+        raise InputError(f"{argument}: {path} has parameters out of range (k_ref > 0, p > 0, c_ref >= 0, kappa_ref >= 0 with theta_ref > 0, d_ref_m > 0)")
     return IdentifiedLaw(names, values, half, d_ref, rms, cost)
