@@ -104,9 +104,9 @@ def _load_beam(case, history):
 
 
 def _load_plate(case, history):
-    from ..input.plate_case import PLATE_COMMAND_ELEMENT, load_plate_case
+    from ..input.plate_case import load_plate_case
 
-    return load_plate_case(case, history, default_element=PLATE_COMMAND_ELEMENT)  # the model `softimpact plate` runs
+    return load_plate_case(case, history)
 
 
 def _check_bar(problem):

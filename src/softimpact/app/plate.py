@@ -7,7 +7,7 @@ import time
 
 import numpy as np
 
-from ..input.plate_case import PLATE_COMMAND_ELEMENT, load_plate_case
+from ..input.plate_case import load_plate_case
 from ..output.plate import plate_files, snapshot_steps
 from ..units import display
 from ..workflows.plate_impact import PlateModel
@@ -18,7 +18,7 @@ __all__ = ["plate"]
 
 def plate(case: str, history: int | None = None, figures: bool = True, progress: Progress = no_progress) -> Outcome:
     """Run a plate case (file or built-in name), optionally with row ``history`` of its [[load.table]]."""
-    problem, path = load_plate_case(case, history, default_element=PLATE_COMMAND_ELEMENT)
+    problem, path = load_plate_case(case, history)
     t0 = time.perf_counter()
     model = PlateModel(problem)
     steps = problem.solver.steps

@@ -532,13 +532,19 @@ def paper_plate_case(elements: int = PAPER_PLATE_ELEMENTS, duration: str = PAPER
     32, 48 and 64 elements, extrapolating to ≈ 1.20; the index grows about like V^1.6). Halving the
     1 µs step moves no threshold by 1 in/s. The delamination threshold depends on the
     force alone: no mesh error.
+
+    The element is MITC4, named in the case: its thresholds converge monotonically (the three
+    meshes give a Richardson estimate). MITC9, the default element, converges faster in
+    the gauge strains of the Navier check but not in the point strain at the corner node
+    under the load that the damage indices use: its quarters of 8, 16 and 32 elements give
+    5287, 5091 and 5169 in/s (oscillating, ≈ 2 % below MITC4's extrapolation).
     """
     from ..input.toml import load_toml, locate
 
     data = load_toml(locate(PAPER_PLATE))
     half_x, half_y = (f"{units.parse(data['plate'][k], 'length', k) / 2 / INCH!r} in" for k in ("length", "width"))
     data["title"] = "Quarter of " + data.get("title", PAPER_PLATE)
-    data["plate"].update(length=half_x, width=half_y, elements=[elements, elements])
+    data["plate"].update(length=half_x, width=half_y, elements=[elements, elements], element="mitc4")
     data["plate"]["support"] = dict(data["plate"]["support"], x1="symmetry", y1="symmetry")
     data["load"].update(position=[half_x, half_y], contact_radius="0.25 in", grow=True)
     data["solver"]["duration"] = duration

@@ -24,13 +24,10 @@ __all__ = ["PLATE_SUPPORTS", "PLATE_MODELS", "plate_problem", "read_plate_gauges
 PLATE_SUPPORTS = ("clamped", "simply-supported", "free", "symmetry")  # symmetry: a mirror plane (quarter models)
 PLATE_MODELS = ("fsdt", "solid")
 MIN_ELEMENTS = 2  # per direction: one element cannot place a load or gauge inside the plate
-# The element when a case names none. ``softimpact plate`` (and ``converge``, which studies the
-# model ``plate`` runs) asks for MITC9 (O(h⁴) flexural dispersion: 1.8 % on the issue's plate at
-# 48², where MITC4 needs ~360²); a plate read as the target of ``impact`` or by ``sweep`` keeps
-# MITC4, the element their meshes and documented numbers were chosen with. A case that names
-# ``element`` means it everywhere.
-DEFAULT_ELEMENT = "mitc4"
-PLATE_COMMAND_ELEMENT = "mitc9"
+# The element when a case names none, in every command that reads a plate case (plate,
+# converge, impact, sweep): MITC9, whose flexural dispersion error is O(h⁴) (1.8 % on the
+# issue's plate at 48², where MITC4 needs ~360²). ``element = "mitc4"`` asks for MITC4.
+DEFAULT_ELEMENT = "mitc9"
 
 
 def _point(tbl: Table, name: str) -> tuple[float, float]:
@@ -80,9 +77,8 @@ def read_plate_gauges(top: Table) -> tuple[PlateGauge, ...]:
     return tuple(gauges)
 
 
-def plate_problem(data: dict, base: Path = Path("."), history: int | None = None, default_element: str = DEFAULT_ELEMENT) -> PlateProblem:
-    """A plate case (parsed TOML) as a PlateProblem; ``history`` picks a row of [[load.table]] (1-based);
-    ``default_element``: the element if ``[plate]`` names none."""
+def plate_problem(data: dict, base: Path = Path("."), history: int | None = None) -> PlateProblem:
+    """A plate case (parsed TOML) as a PlateProblem; ``history`` picks a row of [[load.table]] (1-based)."""
     top = Table(data)
     title = top.string("title", "")
     system = read_units(top)
@@ -90,7 +86,7 @@ def plate_problem(data: dict, base: Path = Path("."), history: int | None = None
     model = p.string("model", PLATE_MODELS[0], choices=PLATE_MODELS)
     if model == "solid":
         raise InputError(f"{p.key('model')}: the layered solid model is not implemented yet (use 'fsdt')")
-    element = p.string("element", default_element, choices=ELEMENTS)
+    element = p.string("element", DEFAULT_ELEMENT, choices=ELEMENTS)
     elements = p.raw("elements", [48, 48])
     if not (isinstance(elements, list) and len(elements) == 2 and all(isinstance(e, int) and not isinstance(e, bool) for e in elements)):
         raise InputError(f"{p.key('elements')}: expected [along x, along y] (two integers), got {elements!r}")
@@ -120,6 +116,6 @@ def plate_problem(data: dict, base: Path = Path("."), history: int | None = None
         return PlateProblem(spec, PlateLoad(position, radius, pulse, grow), solver, gauges, title=title, units=system)
 
 
-def load_plate_case(case: str, history: int | None = None, default_element: str = DEFAULT_ELEMENT) -> tuple[PlateProblem, Path]:
+def load_plate_case(case: str, history: int | None = None) -> tuple[PlateProblem, Path]:
     path = locate(case)
-    return plate_problem(load_toml(path), path.parent, history, default_element), path
+    return plate_problem(load_toml(path), path.parent, history), path
