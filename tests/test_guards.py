@@ -93,12 +93,13 @@ def test_calibrate_with_an_unknown_projectile_is_one_line(tmp_path):
     [
         ("bar", "elements = 39", "elements = 100000", "memory"),
         ("beam", "elements = [200, 6]", "elements = [20000, 100]", "memory"),
+        ("plate", "elements = [48, 48]", "elements = [600, 600]", "memory"),
     ],
-    ids=["1e5 bar elements", "20000 x 100 beam"],
+    ids=["1e5 bar elements", "20000 x 100 beam", "600 x 600 MITC9 plate"],
 )
 def test_problems_too_big_for_the_machine_are_refused_with_the_estimate(tmp_path, command, old, new, key):
     """A problem whose memory estimate exceeds the machine: exit 2 at once, the estimate and the way past the guard in one line."""
-    text = {"bar": CALIBRATION, "beam": LONG_BEAM}[command]
+    text = {"bar": CALIBRATION, "beam": LONG_BEAM, "plate": locate("plate-ss-8in").read_text()}[command]
     case = tmp_path / "c.toml"
     case.write_text(text.replace(old, new))
     out = tmp_path / "out"
@@ -135,7 +136,7 @@ def test_resource_guard_estimate_scales_with_the_problem(monkeypatch):
 )
 def test_discretisations_too_coarse_are_refused_with_the_minimum(tmp_path, command, old, new, key, minimum):
     """Too coarse to mean anything ('contact nan us', zero strains): exit 2 naming the key and the minimum."""
-    text = {"bar": CALIBRATION, "beam": LONG_BEAM}[command]
+    text = {"bar": CALIBRATION, "beam": LONG_BEAM, "plate": locate("plate-ss-8in").read_text()}[command]
     assert old in text
     case = tmp_path / "c.toml"
     case.write_text(text.replace(old, new))

@@ -15,7 +15,7 @@ from .. import units
 from ..errors import InputError
 from ..fem.plate import EDGES, ELEMENTS
 from ..models.laminate import Stack, parse_layup
-from ..workflows.plate_impact import DEFAULT_GAUGE_LENGTH, PlateGauge, PlateLoad, PlateProblem, PlateSpec
+from ..workflows.plate_impact import DEFAULT_GAUGE_LENGTH, PlateGauge, PlateLoad, PlateProblem, PlateSpec, check_problem
 from .beam_case import read_load_history, read_ply
 from .toml import Table, load_toml, locate, naming, read_solver, read_units
 
@@ -113,7 +113,9 @@ def plate_problem(data: dict, base: Path = Path("."), history: int | None = None
     gauges = read_plate_gauges(top)
     top.done()
     with naming({None: "case"}):
-        return PlateProblem(spec, PlateLoad(position, radius, pulse, grow), solver, gauges, title=title, units=system)
+        problem = PlateProblem(spec, PlateLoad(position, radius, pulse, grow), solver, gauges, title=title, units=system)
+    check_problem(problem)
+    return problem
 
 
 def load_plate_case(case: str, history: int | None = None) -> tuple[PlateProblem, Path]:
