@@ -28,6 +28,7 @@ units = "in-lbf-s"
 length = "4 in"
 width = "4 in"
 elements = [32, 32]
+element = "mitc4"                # the report's element (MITC9 is the default)
 support = { x0 = "simply-supported", x1 = "symmetry", y0 = "simply-supported", y1 = "symmetry" }
 [plate.laminate]
 ply = "T300/934"
