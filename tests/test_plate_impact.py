@@ -265,6 +265,7 @@ def test_command_writes_the_impact_contract_for_a_plate(tmp_path):
     assert s["energy_balance_relative"] < 1e-9 and abs(s["energy_error_after_first_contact_relative"]) < 5e-3
     assert set(s["gauges"]) == {"g1", "g2"} and s["gauges"]["g2"]["direction"] == "y"
     assert s["target"]["elements"] == [16, 16] and s["target"]["peak_deflection_at_impact_m"] > 0
+    assert s["target"]["model"] == "fsdt (MITC9)"  # the default element, named
     steel = lookup("steel")
     E_star = 1 / ((1 - steel.poisson_ratio**2) / steel.youngs_modulus + 1 / 7.9e9)  # Sun's form, E3 of T300/934
     assert s["case_SI"]["law"]["K"] == pytest.approx(4 / 3 * math.sqrt(0.25 * INCH) * E_star, rel=1e-12)

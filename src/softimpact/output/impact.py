@@ -38,7 +38,7 @@ def _plate_target(problem, model, result) -> dict:
     w = result.target_displacement
     k = int(np.argmax(np.abs(w)))
     return {
-        "model": "fsdt (MITC4)",
+        "model": f"fsdt ({p.plate.element.upper()})",
         "dofs": model.fe.n,
         "elements": list(p.plate.elements),
         "supports": dict(zip(("x0", "x1", "y0", "y1"), p.plate.supports)),
