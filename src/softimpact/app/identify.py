@@ -54,7 +54,9 @@ def identify(series_name: str, figures: bool = True, progress: Progress = no_pro
     tests, law, approaches, cl = identify_series(series, reduced, True, progress)
     files = identify_files(series, tests, law, approaches, cl, figures)
     err = np.abs(cl.errors)
-    pars = "  ".join(f"{n} {v:.4g}±{h:.2g}" for n, v, h in zip(law.names, law.values, law.half_widths))
+    fitted = [(n, v, h) for n, v, h in zip(law.names, law.values, law.half_widths) if h > 0]
+    held = [f"{n} {v:g}" for n, v, h in zip(law.names, law.values, law.half_widths) if not h > 0]
+    pars = "  ".join(f"{n} {v:.4g}±{h:.2g}" for n, v, h in fitted) + (f"  (held: {', '.join(held)})" if held else "")
     worst = int(np.argmax(err.max(axis=1)))
     line = (
         f"{pars} (d_ref {law.d_ref * 1e3:.3g} mm)\n"
