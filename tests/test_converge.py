@@ -98,6 +98,16 @@ def test_cli_refuses_a_study_too_big_for_the_machine(tmp_path):
     assert not out.exists()
 
 
+def test_cli_refuses_a_plate_study_too_big_for_the_machine(tmp_path):
+    """The built-in 48 × 48 MITC9 plate at three levels of ratio 4 (192 × 192 over 4000 steps, then
+    768 × 768 over 16 000): refused before the first level runs, as `softimpact plate` refuses those
+    meshes, with the estimate and the way past the guard; exit 2."""
+    out = tmp_path / "out"
+    result = CliRunner().invoke(main, ["converge", "plate-ss-8in", "--levels", "3", "--ratio", "4", "--out", str(out)])
+    assert result.exit_code == 2 and "MITC9 plate" in result.output and "--ignore-limits" in result.output
+    assert not out.exists()
+
+
 def test_cli_refuses_series_and_bar_history(tmp_path):
     """A series is not a case; a bar case has no --history: one line, exit 2."""
     r1 = CliRunner().invoke(main, ["converge", "paper-rubber-series", "--out", str(tmp_path / "a")])

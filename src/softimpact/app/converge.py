@@ -121,10 +121,16 @@ def _check_beam(problem):
     check_problem(problem)
 
 
+def _check_plate(problem):
+    from ..workflows.plate_impact import check_problem
+
+    check_problem(problem)
+
+
 STUDIES = {
     "bar": Study(_load_bar, refine_bar, bar_outputs, _check_bar),
     "beam": Study(_load_beam, refine_beam, beam_outputs, _check_beam),
-    "plate": Study(_load_plate, refine_plate, plate_outputs),
+    "plate": Study(_load_plate, refine_plate, plate_outputs, _check_plate),
 }
 
 
