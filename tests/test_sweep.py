@@ -136,6 +136,8 @@ def test_failing_runs_are_recorded(tmp_path):
     assert bad and summary["failed"] == len(bad) and summary["succeeded"] == 40 - len(bad)
     assert all("velocity" in t["error"][i] and "\n" not in t["error"][i] for i in bad)
     assert all(math.isnan(t["peak_force_N"][i]) for i in bad)
+    assert f"warning: {len(bad)} of 40 runs failed" in result.output  # the statistics are over the rest
+    assert json.loads((out / "manifest.json").read_text())["warnings"]
 
 
 def _spec_object(tmp_path, spec):

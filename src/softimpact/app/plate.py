@@ -29,7 +29,21 @@ def plate(case: str, history: int | None = None, figures: bool = True, progress:
     peaks = "".join(f", {g.name} {eps[np.argmax(np.abs(eps))] * su.factor:.0f} {su.label}" for g, eps in zip(problem.gauges, result.strain))
     w = result.deflection[0]
     line = f"{model.fe.n} DOF, {steps} steps ({time.perf_counter() - t0:.1f} s); peak deflection {w[np.argmax(np.abs(w))] * lu.factor:.3g} {lu.label}{peaks}"
-    return Outcome(files, line, (path,))
+    return Outcome(files, line, (path,), _mirrored_loads(problem))
+
+
+def _mirrored_loads(problem) -> tuple[str, ...]:
+    """A warning per symmetry edge that misses the load point: the model is then the plate with
+    the load mirrored about that edge (a second load), which a half or quarter model of one
+    central load never means."""
+    spec, (x, y) = problem.plate, problem.load.position
+    tol = 1e-9 * max(spec.length_x, spec.length_y)
+    distance = {"x0": abs(x), "x1": abs(spec.length_x - x), "y0": abs(y), "y1": abs(spec.length_y - y)}
+    return tuple(
+        f'plate.support.{edge} = "symmetry" does not pass through the load point: the model carries the load mirrored about it too'
+        for edge, kind in zip(("x0", "x1", "y0", "y1"), spec.supports)
+        if kind == "symmetry" and distance[edge] > tol
+    )
 
 
 BEAM_CASES = ("paper-long-beam", "paper-short-beam")

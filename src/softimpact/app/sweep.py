@@ -502,7 +502,14 @@ def sweep(spec: str, out_dir: str, workers: int | None = None, scheduler: str | 
         f"{summary['runs']} runs in {summary['groups']} structure group(s): {summary['succeeded']} done, {summary['failed']} failed, "
         f"{summary['from_checkpoints']} from checkpoints ({dt:.1f} s, {summary['computed_now'] / dt:.0f} runs/s)"
     )
-    return Outcome(files, line, (s.path, s.case_path))
+    warnings = []
+    if summary["failed"]:
+        first = summary["failures"][0]
+        warnings.append(
+            f"{summary['failed']} of {summary['runs']} runs failed (run {first['run']}: {first['reason']}; all in summary.json): "
+            f"the statistics, correlations and thresholds are over the {summary['succeeded']} that ran, which may bias them"
+        )
+    return Outcome(files, line, (s.path, s.case_path), tuple(warnings))
 
 
 PAPER_BEAMS = ("paper-long-beam", "paper-short-beam")

@@ -35,8 +35,9 @@ FORM = (
 LATER = ("q_p", "kappa_ref", "theta_ref", "q_kappa", "q_theta")  # parameters older law.json files lack (read as 0)
 
 
-def law_summary(law: IdentifiedLaw, test_names, closure=None, series: str = "") -> dict:
-    """The content of law.json (module docstring)."""
+def law_summary(law: IdentifiedLaw, test_names, closure=None, series: str = "", tests=()) -> dict:
+    """The content of law.json (module docstring); ``tests`` (the BarTests fitted) give the
+    velocities and diameters the law was identified on (``identified_on``)."""
     out = {
         "family": FAMILY,
         "form": FORM,
@@ -46,6 +47,9 @@ def law_summary(law: IdentifiedLaw, test_names, closure=None, series: str = "") 
         "parameters": {n: {"value": float(v), "ci95_half_width": float(h)} for n, v, h in zip(law.names, law.values, law.half_widths)},
         "fit": {"cost": law.cost, "rms_over_F0": dict(zip(test_names, map(float, law.rms_per_test)))},
     }
+    if tests:
+        v, d = [float(t.velocity) for t in tests], [float(t.diameter) for t in tests]
+        out["identified_on"] = {"velocity_m_s": [min(v), max(v)], "diameter_m": [min(d), max(d)]}
     if closure is not None:
         keys = ("peak_force_N", "duration_s", "impulse_N_s")
         out["closure"] = {
@@ -64,9 +68,19 @@ def law_summary(law: IdentifiedLaw, test_names, closure=None, series: str = "") 
     return out
 
 
-def law_json(law: IdentifiedLaw, test_names, closure=None, series: str = "") -> str:
+def law_json(law: IdentifiedLaw, test_names, closure=None, series: str = "", tests=()) -> str:
     """The text of law.json."""
-    return json_text(law_summary(law, test_names, closure, series))
+    return json_text(law_summary(law, test_names, closure, series, tests))
+
+
+def identified_range(path) -> dict | None:
+    """The ``identified_on`` ranges of a law.json (velocity_m_s, diameter_m: [min, max]), or None
+    for a file written before they were recorded."""
+    try:
+        data = json.loads(Path(path).read_text(encoding="utf-8")).get("identified_on")
+    except (OSError, ValueError, AttributeError):
+        return None
+    return data if isinstance(data, dict) else None
 
 
 def read_law(path, argument: str = "contact.law_file") -> IdentifiedLaw:
