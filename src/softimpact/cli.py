@@ -105,7 +105,7 @@ def _out_option(command: str):
     return click.option(
         "--out",
         "out",
-        type=click.Path(file_okay=False),
+        type=click.Path(),  # checked by output.files.check_writable: one line, exit 2
         default=f"softimpact-{command}",
         show_default=True,
         help="Folder for the outputs (created if needed; nothing is written elsewhere).",
