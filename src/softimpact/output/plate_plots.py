@@ -108,6 +108,10 @@ def plate_deflection(model, result, system: str):
         ax.set_aspect("equal")
         ax.set_title(f"t = {result.time[result.kept[k]] * tu.factor:.0f} {tu.label}", fontsize="medium")
         ax.tick_params(labelsize="x-small")
+        if k % cols == 0:
+            ax.set_ylabel(f"y [{lu.label}]", fontsize="small")
+        if k >= n - cols:
+            ax.set_xlabel(f"x (0° fibres) [{lu.label}]", fontsize="small")
     fig.colorbar(im, ax=axes, shrink=0.8, label=f"deflection w [{lu.label}] (up +)")
     fig.suptitle("Deflected shape: flexural waves spreading from the impact")
     return fig
