@@ -42,7 +42,7 @@ def bar_outputs(problem, stride: int, progress: Callable[[int], None] | None = N
         "contact_force_history_N": r.contact_force[::stride],
     }
     for g, eps in zip(problem.gauges, r.gauge_strain):
-        out[f"strain_{g.name}_peak"] = float(eps[np.argmax(np.abs(eps))])
+        out[f"strain_{g.name}_peak_magnitude"] = float(np.max(np.abs(eps)))  # unsigned: the signed extreme jumps when two peaks of opposite sign are close
         out[f"strain_{g.name}_history"] = eps[::stride]
     return out, {"elements": [problem.bar.elements], "time_step_s": problem.solver.time_step, "dofs": problem.bar.elements + 1}
 
@@ -55,7 +55,7 @@ def beam_outputs(problem, stride: int, progress: Callable[[int], None] | None = 
     r = model.direct(progress=progress, energy=False, displacement=False)
     out = {"peak_deflection_under_load_m": float(r.deflection[np.argmax(np.abs(r.deflection))])}
     for g, eps in zip(problem.gauges, r.strain):
-        out[f"strain_{g.name}_peak"] = float(eps[np.argmax(np.abs(eps))])
+        out[f"strain_{g.name}_peak_magnitude"] = float(np.max(np.abs(eps)))  # unsigned: the signed extreme jumps when two peaks of opposite sign are close
         out[f"strain_{g.name}_first_lobe_peak"] = first_lobe_peak(r.time, eps)
         out[f"strain_{g.name}_first_zero_crossing_s"] = first_zero_crossing(r.time, eps)
         out[f"strain_{g.name}_history"] = eps[::stride]
@@ -71,7 +71,7 @@ def plate_outputs(problem, stride: int, progress: Callable[[int], None] | None =
     w = r.deflection[0]
     out = {"peak_deflection_under_load_m": float(w[np.argmax(np.abs(w))]), "deflection_under_load_history_m": w[::stride]}
     for g, eps in zip(problem.gauges, r.strain):
-        out[f"strain_{g.name}_peak"] = float(eps[np.argmax(np.abs(eps))])
+        out[f"strain_{g.name}_peak_magnitude"] = float(np.max(np.abs(eps)))  # unsigned: the signed extreme jumps when two peaks of opposite sign are close
         out[f"strain_{g.name}_history"] = eps[::stride]
     return out, {"elements": list(problem.plate.elements), "time_step_s": problem.solver.time_step, "dofs": int(model.fe.n)}
 
