@@ -154,14 +154,12 @@ def test_warnings_for_an_unfinished_contact_and_an_extrapolated_law(tmp_path):
     """law.json records the velocities and diameters it was identified on; an impactor well outside
     them runs with a warning that the force is an extrapolation (inside: none); a run that ends before
     the first contact does gets a warning that its duration and rebound are unknown (they are null)."""
-    from types import SimpleNamespace
-
     from softimpact.output.law_json import law_json
     from softimpact.workflows.identification import IdentifiedLaw
 
-    law = IdentifiedLaw(("k_ref", "p", "c_ref", "q_k", "q_c"), np.array([2.0, 1.2, 0.5, 0.0, 0.0]), np.zeros(5), 0.5 * INCH, np.zeros(2), 0.0)
-    tests = [SimpleNamespace(velocity=1000 * INCH, diameter=0.375 * INCH), SimpleNamespace(velocity=5000 * INCH, diameter=0.5 * INCH)]
-    (tmp_path / "law.json").write_text(law_json(law, ["t1", "t2"], tests=tests))
+    ranges = {"velocity_m_s": [1000 * INCH, 5000 * INCH], "diameter_m": [0.375 * INCH, 0.5 * INCH]}
+    law = IdentifiedLaw(("k_ref", "p", "c_ref", "q_k", "q_c"), np.array([2.0, 1.2, 0.5, 0.0, 0.0]), np.zeros(5), 0.5 * INCH, np.zeros(2), 0.0, ranges)
+    (tmp_path / "law.json").write_text(law_json(law, ["t1", "t2"]))
     assert json.loads((tmp_path / "law.json").read_text())["identified_on"]["velocity_m_s"] == pytest.approx([1000 * INCH, 5000 * INCH])
     identified = 'law = "identified"\nlaw_file = "law.json"'
     inside = _run("impact", _case(tmp_path, "a.toml", velocity="1166 in/s", law=identified, duration="20 us"), "--out", tmp_path / "a", "--no-figures")

@@ -14,7 +14,7 @@ from pathlib import Path
 
 from ..errors import InputError
 from ..models.contact_laws import HertzLaw, HuntCrossleyLaw, YangSunLaw
-from ..output.law_json import identified_range, read_law
+from ..output.law_json import read_law
 from .toml import Table
 
 __all__ = ["CONTACT_LAWS", "CRITICAL_INDENTATION", "HUNT_CROSSLEY_FORMS", "read_contact_law"]
@@ -30,9 +30,9 @@ def read_contact_law(c: Table, name: str, hertz: Callable[[], HertzLaw], mass: f
     if name == "identified":
         file = c.string("law_file")
         path = Path(file) if Path(file).is_absolute() else base / file
-        law = read_law(path, c.key("law_file")).law(mass, diameter, velocity)
-        _warn_outside(identified_range(path), velocity, diameter, path)
-        return law, path
+        identified = read_law(path, c.key("law_file"))
+        _warn_outside(identified.identified_on, velocity, diameter, path)
+        return identified.law(mass, diameter, velocity), path
     h = hertz()
     if name == "hertz":
         return h, None
@@ -52,10 +52,11 @@ def _warn_outside(ranges: dict | None, velocity: float, diameter: float, path: P
 
     from ..errors import SoftimpactWarning
 
-    for name, value, unit in (("velocity_m_s", velocity, "m/s"), ("diameter_m", diameter, "m")):
-        lo, hi = (ranges or {}).get(name, (None, None)) or (None, None)
-        if lo is not None and hi is not None and not 0.9 * lo <= value <= 1.1 * hi:
-            what = name.split("_")[0]
+    if ranges is None:  # a law.json written before the ranges were recorded
+        return
+    for what, key, value, unit in (("velocity", "velocity_m_s", velocity, "m/s"), ("diameter", "diameter_m", diameter, "m")):
+        lo, hi = ranges[key]
+        if not 0.9 * lo <= value <= 1.1 * hi:
             warnings.warn(
                 f"the impactor's {what} {value:.4g} {unit} lies outside the {lo:.4g}-{hi:.4g} {unit} the law of {path.name} was "
                 "identified on: its force is an extrapolation",

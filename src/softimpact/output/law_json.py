@@ -35,9 +35,8 @@ FORM = (
 LATER = ("q_p", "kappa_ref", "theta_ref", "q_kappa", "q_theta")  # parameters older law.json files lack (read as 0)
 
 
-def law_summary(law: IdentifiedLaw, test_names, closure=None, series: str = "", tests=()) -> dict:
-    """The content of law.json (module docstring); ``tests`` (the BarTests fitted) give the
-    velocities and diameters the law was identified on (``identified_on``)."""
+def law_summary(law: IdentifiedLaw, test_names, closure=None, series: str = "") -> dict:
+    """The content of law.json (module docstring)."""
     out = {
         "family": FAMILY,
         "form": FORM,
@@ -47,9 +46,8 @@ def law_summary(law: IdentifiedLaw, test_names, closure=None, series: str = "", 
         "parameters": {n: {"value": float(v), "ci95_half_width": float(h)} for n, v, h in zip(law.names, law.values, law.half_widths)},
         "fit": {"cost": law.cost, "rms_over_F0": dict(zip(test_names, map(float, law.rms_per_test)))},
     }
-    if tests:
-        v, d = [float(t.velocity) for t in tests], [float(t.diameter) for t in tests]
-        out["identified_on"] = {"velocity_m_s": [min(v), max(v)], "diameter_m": [min(d), max(d)]}
+    if law.identified_on is not None:
+        out["identified_on"] = law.identified_on
     if closure is not None:
         keys = ("peak_force_N", "duration_s", "impulse_N_s")
         out["closure"] = {
@@ -68,19 +66,9 @@ def law_summary(law: IdentifiedLaw, test_names, closure=None, series: str = "", 
     return out
 
 
-def law_json(law: IdentifiedLaw, test_names, closure=None, series: str = "", tests=()) -> str:
+def law_json(law: IdentifiedLaw, test_names, closure=None, series: str = "") -> str:
     """The text of law.json."""
-    return json_text(law_summary(law, test_names, closure, series, tests))
-
-
-def identified_range(path) -> dict | None:
-    """The ``identified_on`` ranges of a law.json (velocity_m_s, diameter_m: [min, max]), or None
-    for a file written before they were recorded."""
-    try:
-        data = json.loads(Path(path).read_text(encoding="utf-8")).get("identified_on")
-    except (OSError, ValueError, AttributeError):
-        return None
-    return data if isinstance(data, dict) else None
+    return json_text(law_summary(law, test_names, closure, series))
 
 
 def read_law(path, argument: str = "contact.law_file") -> IdentifiedLaw:
@@ -102,6 +90,9 @@ def read_law(path, argument: str = "contact.law_file") -> IdentifiedLaw:
         fit = data.get("fit", {})
         rms = np.array([float(v) for v in fit.get("rms_over_F0", {}).values()])
         cost = float(fit.get("cost", math.nan))
+        ranges = data.get("identified_on")  # absent from files written before it was recorded
+        if ranges is not None:
+            ranges = {k: [float(x) for x in ranges[k]] for k in ("velocity_m_s", "diameter_m")}
     except (KeyError, TypeError, ValueError, AttributeError):
         raise InputError(
             f"{argument}: {path} is not a law.json (needs family, d_ref_m and parameters {', '.join(n for n in names if n not in LATER)})"
@@ -109,4 +100,4 @@ def read_law(path, argument: str = "contact.law_file") -> IdentifiedLaw:
     arm_ok = values[6] == 0.0 or (values[6] > 0.0 and values[7] > 0.0)
     if not (np.all(np.isfinite(values)) and values[0] > 0 and values[1] > 0 and values[2] >= 0 and arm_ok and math.isfinite(d_ref) and d_ref > 0):
         raise InputError(f"{argument}: {path} has parameters out of range (k_ref > 0, p > 0, c_ref >= 0, kappa_ref >= 0 with theta_ref > 0, d_ref_m > 0)")
-    return IdentifiedLaw(names, values, half, d_ref, rms, cost)
+    return IdentifiedLaw(names, values, half, d_ref, rms, cost, ranges)

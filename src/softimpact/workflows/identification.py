@@ -115,7 +115,9 @@ class Approach:
 
 @dataclass(frozen=True)
 class IdentifiedLaw:
-    """Parameters (k_ref, p, c_ref, q_k, q_c) at d_ref, their 95 % half-widths, and fit quality."""
+    """Parameters (k_ref, p, c_ref, q_k, q_c) at d_ref, their 95 % half-widths, and fit quality;
+    ``identified_on``: the velocities and diameters of the tests it was fitted to
+    (``{"velocity_m_s": [min, max], "diameter_m": [min, max]}``; None when not known)."""
 
     names: tuple[str, ...]
     values: np.ndarray
@@ -123,6 +125,7 @@ class IdentifiedLaw:
     d_ref: float
     rms_per_test: np.ndarray  # rms(F_model − F)/F0 over each main pulse
     cost: float
+    identified_on: dict | None = None
 
     def law(self, mass: float, diameter: float, velocity: float) -> SoftProjectileLaw | ViscoelasticSoftLaw:
         """The law of one impactor: memoryless when kappa_ref = 0, else with its Maxwell arm."""
@@ -282,7 +285,9 @@ def identify(tests, rod: Rod, d_ref: float | None = None, size_exponent: bool = 
     values = full(sol.x)
     fits = _model_force(values, d_ref, approaches, tests)
     rms = np.array([math.sqrt(np.mean((f - m) ** 2)) / F0 for f, m, F0 in zip(fits, meas, F0s)])
-    law = IdentifiedLaw(PARAMETERS, values, half, d_ref, rms, float(sol.cost))
+    v, d = [float(t.velocity) for t in tests], [float(t.diameter) for t in tests]
+    ranges = {"velocity_m_s": [min(v), max(v)], "diameter_m": [min(d), max(d)]}
+    law = IdentifiedLaw(PARAMETERS, values, half, d_ref, rms, float(sol.cost), ranges)
     return law, approaches
 
 
@@ -430,7 +435,7 @@ def refine(
     def with_values(z):
         v = start.copy()
         v[free] = z
-        return IdentifiedLaw(PARAMETERS, v, law.half_widths, law.d_ref, law.rms_per_test, law.cost)
+        return IdentifiedLaw(PARAMETERS, v, law.half_widths, law.d_ref, law.rms_per_test, law.cost, law.identified_on)
 
     def errors(z):
         trial = with_values(z)
@@ -463,4 +468,4 @@ def refine(
     half = np.zeros(N_PARAMETERS)
     half[free] = Z95 * np.sqrt(np.maximum(np.diag(cov), 0.0))
     out = with_values(sol.x)
-    return IdentifiedLaw(PARAMETERS, out.values, half, law.d_ref, law.rms_per_test, 0.5 * float(r @ r))
+    return IdentifiedLaw(PARAMETERS, out.values, half, law.d_ref, law.rms_per_test, 0.5 * float(r @ r), law.identified_on)
