@@ -126,23 +126,20 @@ def impact(case: str, figures: bool = True, progress: Progress = no_progress) ->
     fu, tu, su = (display(problem.units, k) for k in ("force", "time", "strain"))
     peaks = ", ".join(f"{n} {eps[np.argmax(np.abs(eps))] * su.factor:.0f} {su.label}" for n, eps in zip(result.gauge_names, result.gauge_strain))
     T = "not separated" if not np.isfinite(result.contact_duration) else f"T {result.contact_duration * tu.factor:.1f} {tu.label}"
-    if not np.isfinite(result.contact_duration):
-        import warnings
-
-        from ..errors import SoftimpactWarning
-
-        warnings.warn(
+    unfinished = (
+        ()
+        if np.isfinite(result.contact_duration)
+        else (
             f"the first contact has not ended by the end of the run ({problem.solver.duration * tu.factor:.4g} {tu.label}): "
             "its duration and the rebound velocity are unknown (null in summary.json) and its peak may be later; lengthen solver.duration",
-            SoftimpactWarning,
-            stacklevel=2,
         )
+    )
     dofs = model.fe.n if problem.on_plate else model.plane.n
     line = (
         f"{problem.law_name}: F0 {result.peak_force * fu.factor:.1f} {fu.label} at {result.time_of_peak * tu.factor:.1f} {tu.label}, {T}, "
         f"{len(result.contacts)} contact(s); peak strains {peaks} ({dofs} DOF, {steps} steps, {time.perf_counter() - t0:.1f} s)"
     )
-    return Outcome(files, line, inputs)
+    return Outcome(files, line, inputs, unfinished)
 
 
 # --- the paper's question: Tables II and III predicted from the bar tests ----------------------
