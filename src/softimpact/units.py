@@ -113,12 +113,13 @@ class _FactorCache:
                 pass
         return self._factors
 
-    def get(self, kind: str, unit: str) -> float | None:
-        return self._load().get(f"{kind}|{unit}")
-
-    def put(self, kind: str, unit: str, factor: float) -> float:
+    def factor(self, kind: str, unit: str, compute) -> float:
+        """The cached factor of ``unit`` for ``kind``, or ``compute()`` (pint's; it may raise) remembered."""
         factors = self._load()
-        factors[f"{kind}|{unit}"] = factor
+        key = f"{kind}|{unit}"
+        if key in factors:
+            return factors[key]
+        factor = factors[key] = compute()
         if self.path is not None:
             tmp = None
             try:  # atomically: a concurrent reader sees the old file or the new one
@@ -189,8 +190,8 @@ def parse(value, kind: str, key: str) -> float:
     if not _UNIT.match(unit.replace(" ", "")):
         raise InputError(f"{key}: cannot read the unit {unit!r} of {value!r} (unit names joined by * and /, powers as ^2) {example}")
     unit = unit.replace(" ", "").replace("**", "^")
-    factor = _FACTORS.get(kind, unit)
-    if factor is None:
+
+    def to_si() -> float:
         ureg = registry()
         try:
             q = ureg.Quantity(1.0, ureg.parse_units(unit))
@@ -198,8 +199,9 @@ def parse(value, kind: str, key: str) -> float:
             raise InputError(f"{key}: unknown unit {m['unit']!r} in {value!r} {example}") from None
         if q.dimensionality != ureg.Quantity(1, SI_UNITS[kind]).dimensionality:
             raise InputError(f"{key}: {value!r} is not a {kind} (its dimension is {q.dimensionality})")
-        factor = _FACTORS.put(kind, unit, float(q.to(SI_UNITS[kind]).magnitude))
-    si = number * factor
+        return float(q.to(SI_UNITS[kind]).magnitude)
+
+    si = number * _FACTORS.factor(kind, unit, to_si)
     if not math.isfinite(si):
         raise InputError(f"{key}: {value!r} is not a finite {kind}")
     return si
@@ -281,9 +283,6 @@ def display(system: str, kind: str) -> DisplayUnit:
     if system not in DISPLAY_SYSTEMS:
         raise InputError(f"units: unknown display system {system!r} (choose from {', '.join(DISPLAY_SYSTEMS)})")
     unit = DISPLAY_SYSTEMS[system][kind]
-    factor = _FACTORS.get(f"display {kind}", unit)
-    if factor is None:
-        ureg = registry()
-        si = "dimensionless" if kind == "strain" else SI_UNITS[kind]
-        factor = _FACTORS.put(f"display {kind}", unit, float(ureg.Quantity(1.0, si).to(unit).magnitude))
+    si = "dimensionless" if kind == "strain" else SI_UNITS[kind]
+    factor = _FACTORS.factor(f"display {kind}", unit, lambda: float(registry().Quantity(1.0, si).to(unit).magnitude))
     return DisplayUnit(factor, _LABELS.get(unit, unit))
