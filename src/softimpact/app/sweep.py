@@ -572,34 +572,14 @@ def paper_plate_thresholds(draws: int = PAPER_DRAWS, levels: int = 10, meshes: t
     5–95 % band of the α draws is widened by it on both sides, so the band covers the
     mesh's error too.
     """
-    import dataclasses
-
-    from ..input.sweep_spec import Scaling, read_sweep_spec, scaling_covariance
     from ..workflows.convergence import richardson
 
-    fit = _paper_fit()
-    per_mesh = []
-    for elements in meshes:
-        case = paper_plate_case(elements)
-        rows, prepared = [], None
-        for proj, group in PAPER_PROJECTILES.items():
-            spec = read_sweep_spec(_paper_spec(PAPER_PLATE, proj, draws, levels), Path("."))
-            mean, cov = scaling_covariance(fit, group)
-            scaling = Scaling("load.history", mean, cov, f"paper-rubber-series:{group}")
-            spec = dataclasses.replace(spec, case_data=case, parameters=spec.parameters + (scaling,))
-            plan = plan_sweep(spec)
-            base = str(spec.case_path.parent)
-            if prepared is None:
-                prepared = prepare_group(plan.kind, [plan.chunks[0].items[0][1]], base, 2 * len(plan.runs), spec.outputs)
-            done = {r["run"]: r for c in plan.chunks for r in run_chunk(plan.kind, prepared, c.items, base, spec.outputs)}
-            for t in thresholds(plan, _table(plan, done)):
-                rows.append({**t, "levels": f"8-in plate, {proj}"})
-        per_mesh.append(rows)
+    per_mesh = [_ball_thresholds(PAPER_PLATE, "8-in plate", draws, levels, paper_plate_case(elements)) for elements in meshes]
     out = []
     for i, row in enumerate(per_mesh[-1]):
         values = np.array([rows[i]["threshold_velocity_median_m_s"] for rows in per_mesh], dtype=float)
         error, order = math.nan, math.nan
-        if np.all(np.isfinite(values[-min(3, len(values)) :])) and len(values) >= 3:
+        if len(values) >= 3 and np.all(np.isfinite(values[-3:])):
             conv = richardson(values[-3:], 2.0, formal_order=2.0, name=f"{row['levels']} {row['index']}")
             order = conv.order
             gci = conv.gci_fine if math.isfinite(conv.gci_fine) else abs(values[-1] - values[-2]) / abs(values[-1])
@@ -644,28 +624,33 @@ def _paper_spec(case: str, projectile: str, draws: int, levels: int) -> dict:
     }
 
 
-def paper_thresholds(draws: int = PAPER_DRAWS, levels: int = 10, system: str = "in-lbf-s") -> list[dict]:
+def paper_thresholds(draws: int = PAPER_DRAWS, levels: int = 10) -> list[dict]:
     """Threshold velocities of the paper's beams for both balls: the α's drawn from the
     covariance of the built-in rubber series' fit, velocity 1000–8000 in/s (a plain loop)."""
+    return [row for beam in PAPER_BEAMS for row in _ball_thresholds(beam, f"{beam.removeprefix('paper-').removesuffix('-beam')} beam", draws, levels)]
+
+
+def _ball_thresholds(case: str, label: str, draws: int, levels: int, case_data: dict | None = None) -> list[dict]:
+    """Threshold velocities of one structure (built-in ``case``, or ``case_data`` in its place) for
+    each of the paper's balls, the α's drawn from the covariance of the built-in rubber series'
+    fit; one model and one set of impulse responses serve both balls. Rows labelled "label, ball"."""
     import dataclasses
 
     from ..input.sweep_spec import Scaling, read_sweep_spec, scaling_covariance
 
     fit = _paper_fit()
-    rows = []
-    for beam in PAPER_BEAMS:
-        prepared = None  # one model and one set of impulse responses per beam, for both balls
-        for proj, group in PAPER_PROJECTILES.items():
-            spec = read_sweep_spec(_paper_spec(beam, proj, draws, levels), Path("."))
-            mean, cov = scaling_covariance(fit, group)
-            spec = dataclasses.replace(spec, parameters=spec.parameters + (Scaling("load.history", mean, cov, f"paper-rubber-series:{group}"),))
-            plan = plan_sweep(spec)
-            base = str(spec.case_path.parent)
-            if prepared is None:
-                prepared = prepare_group(plan.kind, [plan.chunks[0].items[0][1]], base, len(plan.runs), spec.outputs)
-            done = {r["run"]: r for c in plan.chunks for r in run_chunk(plan.kind, prepared, c.items, base, spec.outputs)}
-            for t in thresholds(plan, _table(plan, done)):
-                rows.append({**t, "levels": f"{beam.removeprefix('paper-').removesuffix('-beam')} beam, {proj}"})
+    rows, prepared = [], None
+    for proj, group in PAPER_PROJECTILES.items():
+        spec = read_sweep_spec(_paper_spec(case, proj, draws, levels), Path("."))
+        mean, cov = scaling_covariance(fit, group)
+        parameters = spec.parameters + (Scaling("load.history", mean, cov, f"paper-rubber-series:{group}"),)
+        spec = dataclasses.replace(spec, parameters=parameters, case_data=spec.case_data if case_data is None else case_data)
+        plan = plan_sweep(spec)
+        base = str(spec.case_path.parent)
+        if prepared is None:
+            prepared = prepare_group(plan.kind, [plan.chunks[0].items[0][1]], base, len(PAPER_PROJECTILES) * len(plan.runs), spec.outputs)
+        done = {r["run"]: r for c in plan.chunks for r in run_chunk(plan.kind, prepared, c.items, base, spec.outputs)}
+        rows += [{**t, "levels": f"{label}, {proj}"} for t in thresholds(plan, _table(plan, done))]
     return rows
 
 
