@@ -33,16 +33,10 @@ def plate(case: str, history: int | None = None, figures: bool = True, progress:
 
 
 def _mirrored_loads(problem) -> tuple[str, ...]:
-    """A warning per symmetry edge that misses the load point: the model is then the plate with
-    the load mirrored about that edge (a second load), which a half or quarter model of one
-    central load never means."""
-    spec, (x, y) = problem.plate, problem.load.position
-    tol = 1e-9 * max(spec.length_x, spec.length_y)
-    distance = {"x0": abs(x), "x1": abs(spec.length_x - x), "y0": abs(y), "y1": abs(spec.length_y - y)}
+    """A warning per symmetry edge that misses the load point (:meth:`PlateProblem.mirrored_edges`)."""
     return tuple(
         f'plate.support.{edge} = "symmetry" does not pass through the load point: the model carries the load mirrored about it too'
-        for edge, kind in zip(("x0", "x1", "y0", "y1"), spec.supports)
-        if kind == "symmetry" and distance[edge] > tol
+        for edge in problem.mirrored_edges()
     )
 
 

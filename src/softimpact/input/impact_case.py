@@ -76,16 +76,12 @@ def _target(tbl: Table, base: Path) -> tuple[BeamProblem | PlateProblem, Path]:
 def _mirrors_through_impact(target: PlateProblem, where: str) -> None:
     """A plate's symmetry edge mirrors the impactor too: it must pass through the impact point
     (a half or quarter model of one impact), else the model would be struck twice."""
-    spec = target.plate
-    x, y = target.load.position
-    dist = {"x0": abs(x), "x1": abs(spec.length_x - x), "y0": abs(y), "y1": abs(spec.length_y - y)}
-    tol = 1e-9 * max(spec.length_x, spec.length_y)
-    for edge, kind in zip(dist, spec.supports):
-        if kind == "symmetry" and dist[edge] > tol:
-            raise InputError(
-                f"{where}: plate.support.{edge} is a symmetry edge that does not pass through the impact point "
-                f"(load.position): it would mirror the impactor; put the impact point on it or model the whole plate"
-            )
+    mirrored = target.mirrored_edges()
+    if mirrored:
+        raise InputError(
+            f"{where}: plate.support.{mirrored[0]} is a symmetry edge that does not pass through the impact point "
+            f"(load.position): it would mirror the impactor; put the impact point on it or model the whole plate"
+        )
 
 
 def _hertz(c: Table, target: BeamProblem | PlateProblem, radius: float, sphere: Material) -> HertzLaw:

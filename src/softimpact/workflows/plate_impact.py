@@ -165,6 +165,15 @@ class PlateProblem:
                 f"{rise * 1e6:.3g} us (need at most time_of_peak/{MIN_STEPS_PER_RISE})"
             )
 
+    def mirrored_edges(self) -> tuple[str, ...]:
+        """The symmetry edges (of x0, x1, y0, y1) that miss the load point: about each, the model
+        carries the load mirrored too (a second load), which a half or quarter model of one
+        central load never means."""
+        spec, (x, y) = self.plate, self.load.position
+        distance = {"x0": abs(x), "x1": abs(spec.length_x - x), "y0": abs(y), "y1": abs(spec.length_y - y)}
+        tol = 1e-9 * max(spec.length_x, spec.length_y)
+        return tuple(edge for edge, kind in zip(distance, spec.supports) if kind == "symmetry" and distance[edge] > tol)
+
 
 @dataclass(frozen=True)
 class PlateResult:
