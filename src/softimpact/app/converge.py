@@ -134,13 +134,25 @@ STUDIES = {
 }
 
 
-def study_case(study: Study, problem, levels: int, ratio: int, progress: Progress = no_progress) -> tuple[ConvergenceStudy, list[dict]]:
-    """Run ``levels`` refinements of ``problem`` (factors 1, r, r², …) and analyse them."""
+def study_case(study: Study, problem, levels: int, ratio: int, progress: Progress = no_progress, case_level: int = 0) -> tuple[ConvergenceStudy, list[dict]]:
+    """Run ``levels`` refinements of ``problem`` (factors 1, r, r², …) and analyse them.
+
+    ``case_level``: the index of the user's own discretisation among the levels; the levels
+    below it are coarsenings the study chose (the paper report's ½), so the warnings of their
+    checks (a mesh below the advised resolution) are not the user's and are not shown.
+    """
+    import warnings
+
+    from ..errors import SoftimpactWarning
+
     factors = [ratio**k for k in range(levels)]
     problems = [study.refine(problem, f) for f in factors]
     if study.check is not None:  # the finest level decides whether the study fits the machine
-        for p in problems:
-            study.check(p)
+        for k, p in enumerate(problems):
+            with warnings.catch_warnings():
+                if k < case_level:
+                    warnings.simplefilter("ignore", SoftimpactWarning)
+                study.check(p)
     work = [p.solver.steps for p in problems]
     total = sum(work)
     sizes = []
