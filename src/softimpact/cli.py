@@ -45,11 +45,26 @@ def _one_line(text: str) -> str:
     return " ".join(str(text).split())
 
 
-def _check_out(out) -> None:
-    """Refuse, before any computing, an ``--out`` that cannot be written."""
-    from .output.files import check_writable
+FORCE_ENV = "SOFTIMPACT_FORCE"  # set to 1 to let outputs replace files no earlier softimpact run wrote
 
-    check_writable(out)
+
+def _forced() -> bool:
+    """``softimpact --force`` (kept in the root context, not in the environment: one invocation only) or SOFTIMPACT_FORCE=1."""
+    ctx = click.get_current_context(silent=True)
+    if ctx is not None and ctx.find_root().params.get("force"):
+        return True
+    return os.environ.get(FORCE_ENV, "").strip() not in ("", "0")
+
+
+def _claim_out(out, kwargs: dict):
+    """Hold ``--out`` for the run, checked before any computing (output.files.claim_output):
+    the files named by the command's arguments are its inputs, never counted as the user's outputs."""
+    from pathlib import Path
+
+    from .output.files import claim_output
+
+    named = [v for v in kwargs.values() if isinstance(v, str) and v and Path(v).is_file()]
+    return claim_output(out, force=_forced(), inputs=named)
 
 
 def _guarded(fn):
@@ -77,9 +92,10 @@ def _guarded(fn):
             with warnings.catch_warnings():
                 warnings.simplefilter("always", SoftimpactWarning)
                 warnings.showwarning = show
-                if "out" in kwargs:
-                    _check_out(kwargs["out"])
-                return fn(*args, **kwargs)
+                if "out" not in kwargs:
+                    return fn(*args, **kwargs)
+                with _claim_out(kwargs["out"], kwargs):
+                    return fn(*args, **kwargs)
         except InputError as exc:
             click.echo(f"softimpact: error: {_one_line(exc)}", err=True)
             sys.exit(EXIT_INPUT)
@@ -156,7 +172,7 @@ def _finish(outcome, out: str, accept_poor: bool = False) -> None:
         "warnings": [*map(_one_line, outcome.warnings), *(ctx.meta.get("softimpact.warnings", []) if ctx is not None else [])],
         "gates": [g.as_dict() for g in gates],
     }
-    written = write_outputs(out, outcome.files, inputs=outcome.inputs, manifest=manifest)
+    written = write_outputs(out, outcome.files, inputs=outcome.inputs, manifest=manifest, force=_forced())
     bad = failed(gates)
     if bad and not accept_poor:
         raise CheckFailed(bad)
@@ -184,7 +200,10 @@ _accept_poor_option = click.option(
 @click.version_option(__version__, prog_name="softimpact")
 @click.option("--ignore-limits", is_flag=True, default=False, help="Run problems the memory/time guard would refuse (or set SOFTIMPACT_IGNORE_LIMITS=1).")
 @click.option("--debug", is_flag=True, default=False, help="Show the traceback of an internal error (or set SOFTIMPACT_DEBUG=1).")
-def main(ignore_limits, debug):
+@click.option(
+    "--force", is_flag=True, default=False, help="Let outputs replace files in --out that no earlier softimpact run wrote (or set SOFTIMPACT_FORCE=1)."
+)
+def main(ignore_limits, debug, force):
     """Soft-projectile impact: bar and laminate FE, force reduction, scaling laws, calibration.
 
     CASE and SERIES are files or built-in names (see `softimpact cases`).

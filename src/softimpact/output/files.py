@@ -25,6 +25,8 @@ import signal
 import tempfile
 import threading
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import asdict, is_dataclass
 from pathlib import Path
 
@@ -33,11 +35,29 @@ import numpy as np
 from .. import __version__
 from ..errors import InputError
 
-__all__ = ["csv_text", "json_text", "jsonable", "figure_bytes", "write_outputs", "check_writable", "sha256", "MANIFEST", "STAGING_PREFIX"]
+__all__ = [
+    "csv_text",
+    "json_text",
+    "jsonable",
+    "figure_bytes",
+    "write_outputs",
+    "check_writable",
+    "claim_output",
+    "foreign_files",
+    "sha256",
+    "MANIFEST",
+    "STAGING_PREFIX",
+    "LOCK",
+]
 
 MANIFEST = "manifest.json"
 STAGING_PREFIX = ".softimpact-"  # staging folders: .softimpact-<pid>-<random>
 STALE_AGE = 3600.0  # s: a staging folder without a readable pid this old is a leftover
+LOCK = ".softimpact.lock"  # held in DIR while a run computes and writes: a second run into DIR exits 2 at once
+# What a softimpact run may write: a file in DIR with one of these suffixes that no previous manifest lists
+# unchanged is the user's, and stops a run before any computing (``force`` to proceed).
+STATE_FOLDERS = ("checkpoints",)  # a resumable run's own state (sweep checkpoints): read and rewritten by the next run, never the user's
+OUTPUT_SUFFIXES = (".csv", ".json", ".png", ".svg", ".pdf", ".html", ".parquet", ".xdmf", ".h5", ".vtu")
 
 
 def strain_peaks(time: np.ndarray, eps: np.ndarray, window_end: bool = False) -> dict:
@@ -152,16 +172,23 @@ def _file_sha256(path: Path) -> str | None:
 
 
 def check_writable(out_dir) -> None:
-    """Refuse an output folder that cannot be created or written (before any computing).
+    """Refuse, before any computing, an output folder that cannot be created or written.
 
-    Nothing is left behind: an empty folder is made and removed in the folder
-    itself, or in its nearest existing parent.
+    ``--out`` must be a non-empty path; a symlink that points nowhere is refused (it would
+    be created through, somewhere the user did not name). Nothing is left behind: an empty
+    folder is made and removed in the folder itself, or in its nearest existing parent.
     """
+    if out_dir is None or not str(out_dir).strip():
+        raise InputError("--out: give a folder (an empty path would write into the working folder)")
     out = Path(out_dir)
+    if out.is_symlink() and not out.exists():
+        raise InputError(f"--out: {out} is a symlink to {os.readlink(out)}, which does not exist")
     if out.exists() and not out.is_dir():
         raise InputError(f"--out: {out} exists and is not a folder")
     probe = out
     while not probe.exists():
+        if probe.is_symlink():
+            raise InputError(f"--out: cannot create {out}: {probe} is a symlink to {os.readlink(probe)}, which does not exist")
         if probe.parent == probe:
             break
         probe = probe.parent
@@ -171,6 +198,95 @@ def check_writable(out_dir) -> None:
         os.rmdir(tempfile.mkdtemp(prefix=f"{STAGING_PREFIX}{os.getpid()}-probe-", dir=probe))
     except OSError as exc:
         raise InputError(f"--out: cannot write into {out} ({exc.strerror or exc} at {probe})") from None
+
+
+def foreign_files(out_dir, inputs=(), names=None) -> list[Path]:
+    """Files in ``out_dir`` a run could replace that are not a previous run's.
+
+    ``names``: the run's exact output names (relative): those present that the previous manifest
+    does not list, or that changed since it wrote them (checked when writing). None: before
+    computing, when the names are not known yet, every file with an output suffix
+    (:data:`OUTPUT_SUFFIXES`) that no previous manifest lists (an edited output is caught when
+    writing, and only if this run writes it). ``inputs`` are never counted (write_outputs refuses
+    to write over them anyway)."""
+    out = Path(out_dir)
+    if not out.is_dir():
+        return []
+    previous = _previous_files(out)
+    protected = {Path(p).resolve() for p in inputs}
+    if names is None:
+        candidates = [
+            p
+            for p in out.rglob("*")
+            if p.suffix.lower() in OUTPUT_SUFFIXES
+            and not any(part.startswith(STAGING_PREFIX) for part in p.relative_to(out).parts)
+            and p.relative_to(out).parts[0] not in STATE_FOLDERS
+        ]
+    else:
+        candidates = [out / n for n in names]
+    found = []
+    for path in candidates:
+        if not (path.is_file() or path.is_symlink()) or path.resolve() in protected:
+            continue
+        name = path.relative_to(out).as_posix()
+        if name == MANIFEST:
+            continue
+        if path.is_symlink() or name not in previous or (names is not None and previous[name] != _file_sha256(path)):
+            found.append(path)
+    return sorted(found)
+
+
+def _foreign_error(out: Path, found: list[Path]) -> InputError:
+    names = ", ".join(p.relative_to(out).as_posix() for p in found[:3]) + (f" and {len(found) - 3} more" if len(found) > 3 else "")
+    return InputError(
+        f"--out: {out} holds {names}, which no earlier softimpact run wrote there (or which changed since): "
+        "a run would overwrite it; choose a fresh folder, or `softimpact --force ...` to replace it"
+    )
+
+
+@contextmanager
+def claim_output(out_dir, *, force: bool = False, inputs=()) -> Iterator[Path]:
+    """Hold ``out_dir`` for one run, checked before any computing (exit 2 on any problem).
+
+    The folder must be writable (:func:`check_writable`); it is created if needed and locked
+    (:data:`LOCK`, a :class:`filelock.FileLock`): a second run into it fails at once instead of
+    both reporting success. Unless ``force``, a file of the user's that the run could replace
+    (:func:`foreign_files`) stops it. On leaving, the lock is released and its file removed, and a
+    folder this call created and nothing was written into is removed again.
+    """
+    from filelock import FileLock, Timeout
+
+    check_writable(out_dir)
+    out = Path(out_dir)
+    created = not out.exists()
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InputError(f"--out: cannot create {out} ({exc.strerror or exc})") from None
+    lock = FileLock(str(out / LOCK), timeout=0)
+    try:
+        lock.acquire()
+    except Timeout:
+        raise InputError(f"--out: another softimpact run is writing into {out} (it holds {out / LOCK}); wait for it or choose another folder") from None
+    except OSError as exc:
+        raise InputError(f"--out: cannot lock {out} ({exc.strerror or exc})") from None
+    try:
+        if not force:
+            found = foreign_files(out, inputs)
+            if found:
+                raise _foreign_error(out, found)
+        yield out
+    finally:
+        lock.release()
+        try:
+            (out / LOCK).unlink()
+        except OSError:
+            pass
+        if created:
+            try:
+                out.rmdir()  # only if empty: the run wrote nothing
+            except OSError:
+                pass
 
 
 def _pid_alive(pid: int) -> bool:
@@ -248,7 +364,7 @@ class _RemoveOnTerm:
         return False
 
 
-def write_outputs(out_dir, files: dict[str, bytes | str], inputs=(), manifest: dict | None = None) -> list[Path]:
+def write_outputs(out_dir, files: dict[str, bytes | str], inputs=(), manifest: dict | None = None, force: bool = False) -> list[Path]:
     """Write ``files`` (relative name → content) into ``out_dir`` atomically.
 
     All files are staged in a hidden folder inside ``out_dir`` and moved into
@@ -256,6 +372,8 @@ def write_outputs(out_dir, files: dict[str, bytes | str], inputs=(), manifest: d
     With ``manifest`` (a dict: status, command, …) ``manifest.json`` is added
     with the files' and inputs' SHA-256 and the version, and the previous run's
     files this run does not rewrite are removed (see the module docstring).
+    A file with an output's name that no previous manifest lists unchanged is the user's: it is
+    never replaced (InputError naming it, nothing written) unless ``force``.
     Returns the paths written (the manifest not included).
     """
     out = Path(out_dir)
@@ -266,6 +384,10 @@ def write_outputs(out_dir, files: dict[str, bytes | str], inputs=(), manifest: d
         if target.resolve() in protected:
             raise InputError(f"--out: writing {name} would overwrite the input {target}")
     check_writable(out)
+    if not force:
+        found = foreign_files(out, inputs, names)
+        if found:
+            raise _foreign_error(out, found)
     try:
         out.mkdir(parents=True, exist_ok=True)
         _remove_stale_staging(out)
