@@ -55,6 +55,27 @@ class PlateSection:
         scale_i = rtol * self.I0 * self.thickness
         return bool(np.abs(self.B).max() <= scale_b and abs(self.I1) <= scale_i)
 
+    def mirror_coupling(self, rtol: float = 1e-9) -> dict[str, float]:
+        """The section terms that a mirror plane x = const or y = const cannot carry, relative to their scale.
+
+        Reflecting the plate about such a plane maps every ply angle θ to −θ, which changes the
+        sign of the shear-extension and bending–twisting terms A16, A26, B16, B26, D16, D26 and of
+        the transverse-shear coupling S12. A symmetry edge (a half or quarter model) is exact only
+        when they vanish (an orthotropic laminate about the mirror: e.g. cross-ply, or ±θ pairs
+        in a balanced symmetric stack still leave D16, D26 ≠ 0). Returns {name: |term| / scale}
+        for the terms above ``rtol`` of their matrix's diagonal scale (B's: max|A|·thickness)."""
+        a, d, s = np.abs(self.A).max(), np.abs(self.D).max(), np.abs(self.S).max()
+        terms = {
+            "A16": (self.A[0, 2], a),
+            "A26": (self.A[1, 2], a),
+            "B16": (self.B[0, 2], a * self.thickness),
+            "B26": (self.B[1, 2], a * self.thickness),
+            "D16": (self.D[0, 2], d),
+            "D26": (self.D[1, 2], d),
+            "S12": (self.S[0, 1], s),
+        }
+        return {name: abs(v) / scale for name, (v, scale) in terms.items() if scale > 0 and abs(v) > rtol * scale}
+
     def stiffness(self) -> np.ndarray:
         """The 6×6 [[A, B], [B, D]]."""
         return np.block([[self.A, self.B], [self.B, self.D]])

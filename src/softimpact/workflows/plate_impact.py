@@ -74,6 +74,15 @@ class PlateSpec:
             raise InputError(f"stack must be a Stack (ply and angles), got {type(self.stack).__name__}")
         if not (len(self.damping) == 2 and all(math.isfinite(d) and d >= 0 for d in self.damping)):
             raise InputError(f"damping must be two non-negative numbers (alpha, beta), got {self.damping!r}")
+        mirrors = [edge for edge, kind in zip(EDGES, self.supports) if kind == "symmetry"]
+        coupling = self.section().mirror_coupling() if mirrors else {}
+        if coupling:
+            terms = ", ".join(f"{name} ({ratio:.2g} of its scale)" for name, ratio in coupling.items())
+            raise InputError(
+                f"supports: symmetry edge(s) {', '.join(mirrors)} need a laminate orthotropic about the mirror plane, "
+                f"but this stack has {terms}: a half or quarter model would be wrong; model the whole plate",
+                "supports",
+            )
 
     def section(self) -> PlateSection:
         return plate_section(self.stack, self.shear_correction)
