@@ -57,8 +57,8 @@ import numpy as np
 from ..errors import InputError
 from ..models.dispersion import RoundBar, disperse, radial_band_edge, rayleigh_speed_ratio
 from ..models.noise import white_noise_sigma
-from ..models.pulse_fit import fit_tail_aware
-from ..models.pulses import SkewedPulse, fit_skewed
+from ..models.pulse_fit import fit_main_pulse
+from ..models.pulses import SkewedPulse
 from ..models.specimens import BarSpec
 
 __all__ = ["Record", "ReductionSettings", "Reduction", "reduce_record", "wave_separation", "dispersive_wave_separation", "two_gauge_separation"]
@@ -360,19 +360,13 @@ def reduce_record(
         after = np.flatnonzero((np.arange(Fs.size) > k_pk) & (Fs < settings.fit_cutoff * F0_guess))
         if after.size == 0:
             _fail(name, "the record ends before the force falls to 15 % of its peak: the main pulse is truncated")
-        t_cut = float(tt[after[0]])
-        T_guess = t_pk_guess + (t_cut - t_pk_guess) / (2 / math.pi * math.acos(settings.fit_cutoff))
-        fit, t0, rms = fit_skewed(tt, F, F0_guess, max(t_pk_guess, dt), T_guess, t_cut)
-        # The main pulse, wherever its tail starts: the knee located by a composite fit
-        # (models/pulse_fit), the whole record's fit kept beside it. The fixed 15 % cutoff
-        # above seeds it and stands when the tail-aware fit cannot be made.
-        aware = None
+        # The main pulse, wherever its tail starts (models/pulse_fit.fit_main_pulse, as identify):
+        # a fit down to the fixed cutoff seeds a tail-aware fit; the whole record's fit kept beside it.
         try:
-            aware = fit_tail_aware(tt[tt >= t0 - 2 * dt], F[tt >= t0 - 2 * dt])
-        except InputError:
-            pass
-        if aware is not None and aware.main.pulse.peak_force > 0 and abs(aware.main.start - t0) < 0.5 * fit.duration:
-            fit, t0, rms = aware.main.as_tuple()
+            main = fit_main_pulse(tt, F, cutoff=settings.fit_cutoff)
+        except InputError as exc:
+            _fail(name, str(exc).removeprefix("pulse fit: "))
+        (fit, t0, rms), aware = main.fit.as_tuple(), main.aware
         # F0: the maximum of a cubic fitted to the crown, where the eq-15 fit is within
         # 10 % of its peak: it averages the noise over the whole crown (< 0.3 % model
         # error on eq-15 shapes) and follows the data where they depart from eq 15.
