@@ -6,10 +6,10 @@ import math
 
 import numpy as np
 
+from ..formats.scaling_json import scaling_json
 from ..units import display
 from .files import csv_text, figure_bytes
 from .report import Section, stem
-from .scaling_json import scaling_json
 
 __all__ = ["reduction_files", "scaling_files", "scaling_section", "TABLE_I"]
 
