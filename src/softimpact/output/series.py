@@ -45,7 +45,7 @@ def reduction_files(series, reduced, figures: bool = True, prefix: str = "") -> 
     }
     reduction_cols = list(cols)[4:]
     corrected = getattr(series, "dispersion", "none") != "none"
-    record_cols = {  # the record's own metadata (input/lab_records.py), as read
+    record_cols = {  # the record's own metadata (input/records/), as read
         "record_format": "source_format",
         "record_channel": "channel",
         "record_unit": "unit",

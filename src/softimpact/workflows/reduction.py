@@ -132,7 +132,7 @@ def _validate(record: Record) -> tuple[np.ndarray, np.ndarray, float]:
     d = np.diff(t)
     if np.any(d <= 0):
         k = int(np.argmax(d <= 0))
-        _fail(name, f"time is not strictly increasing at row {k + 2} ({t[k]!r} then {t[k + 1]!r})")
+        _fail(name, f"time is not strictly increasing at row {k + 2} ({float(t[k]):.9g} s then {float(t[k + 1]):.9g} s)")
     dt = float(np.median(d))
     if np.max(np.abs(d - dt)) > 0.01 * dt:  # hand-digitised records: put them on a uniform grid
         grid = np.arange(t[0], t[-1] + 0.5 * dt, dt)
@@ -141,6 +141,8 @@ def _validate(record: Record) -> tuple[np.ndarray, np.ndarray, float]:
 
 
 def _check_clipping(name, y):
+    if np.ptp(y) == 0:  # no excursion at all: nothing was recorded, not a saturated recorder
+        _fail(name, f"flat signal: all {y.size} samples equal {float(y[0]):.6g} (an empty record: gauge not connected or channel not recorded?)")
     for extreme in (y.max(), y.min()):
         at = np.isclose(y, extreme, rtol=0, atol=1e-9 * max(np.ptp(y), 1e-300))
         runs = np.diff(np.flatnonzero(np.diff(np.concatenate(([0], at.astype(int), [0])))))[::2]
