@@ -2,9 +2,7 @@
 
 softimpact's own CSV (:mod:`.softimpact_csv`: ``time_s``/``strain`` columns, measured ``strain_<gauge>``)
 is read by :func:`read_record`, :func:`read_strains` and :func:`read_columns`. Laboratory gauge records
-from data-acquisition and oscilloscope files are read by :func:`read_lab_record`:
-
-:func:`read_lab_record` returns one channel as a :class:`LabRecord` (time [s],
+from data-acquisition and oscilloscope files: :func:`read_lab_record` returns one channel as a :class:`LabRecord` (time [s],
 signal, unit, metadata); :func:`list_channels` names what a file holds. The
 format is chosen by extension and confirmed by the file's first bytes:
 
@@ -18,9 +16,9 @@ format                    read with             time base
                                                 and t0 attributes (or scalar datasets)
 .csv .txt .tsv .dat       csv (stdlib)          a time column, else a sample interval among
                                                 the metadata lines
-.csv Tektronix TDS1000/   csv (stdlib)          the time column, checked against the header's
-TDS2000 (18 header items                        Sample Interval; Trigger Point and Vertical
-in columns 1-3 beside                           Units from the header
+.csv Tektronix TDS1000/   csv (stdlib)          the first time stamp + k·Sample Interval (header),
+TDS2000 (18 header items                        checked against the time column; Trigger
+in columns 1-3 beside                           Point and Vertical Units from the header
 the data in columns 4-5)
 .isf .wfm (Tektronix),    RigolWFM (optional:   the scope's own header (XINCR, XZERO, …)
 .trc (LeCroy)             pip install RigolWFM)
