@@ -481,6 +481,46 @@ def test_isf_round_trip_with_rigolwfm(tmp_path):
     assert rec.metadata["source_format"] == "scope"
 
 
+def write_trc(path):
+    """A LeCroy .trc per the LECROY_2_3 template: a 346-byte WAVEDESC (little endian, 16-bit words), then the int16 samples."""
+    import struct
+
+    gain, offset = np.float32(2.0 / 32768), np.float32(0.0)  # volts = VERTICAL_GAIN·adc − VERTICAL_OFFSET
+    adc = np.round(VOLTS / gain).astype("<i2")
+    desc = bytearray(346)
+
+    def put(at, fmt, value):
+        struct.pack_into("<" + fmt, desc, at, value)
+
+    desc[0:16], desc[16:32] = b"WAVEDESC".ljust(16, b"\0"), b"LECROY_2_3".ljust(16, b"\0")
+    put(32, "h", 1)  # COMM_TYPE: word
+    put(34, "h", 1)  # COMM_ORDER: LOFIRST
+    put(36, "i", 346)  # WAVE_DESCRIPTOR length
+    put(60, "i", adc.nbytes)  # WAVE_ARRAY_1 length
+    desc[76:92] = b"LECROYWR64Xi".ljust(16, b"\0")  # INSTRUMENT_NAME
+    for at, value in ((116, N), (120, N), (124, 0), (128, N - 1), (136, 1), (148, 1)):  # counts, first/last valid point, sparsing, sweeps
+        put(at, "i", value)
+    put(156, "f", gain)
+    put(160, "f", offset)
+    put(172, "h", 16)  # NOMINAL_BITS
+    put(174, "h", 1)  # NOM_SUBARRAY_COUNT
+    put(176, "f", DT)  # HORIZ_INTERVAL (float32)
+    put(180, "d", T0)  # HORIZ_OFFSET
+    desc[196:244], desc[244:292] = b"V".ljust(48, b"\0"), b"S".ljust(48, b"\0")  # VERTUNIT, HORUNIT
+    put(328, "f", 1.0)  # PROBE_ATT
+    path.write_bytes(bytes(desc) + adc.tobytes())
+    return path, adc * gain - offset, T0 + float(np.float32(DT)) * np.arange(N)
+
+
+def test_lecroy_trc_round_trip_with_rigolwfm(tmp_path):
+    """A hand-written LeCroy .trc (LECROY_2_3) reads back through RigolWFM: t = HORIZ_OFFSET + i·HORIZ_INTERVAL, volts = gain·adc − offset."""
+    path, volts, time = write_trc(tmp_path / "C1shot00001.trc")
+    rec = read_lab_record(path)
+    np.testing.assert_allclose(rec.signal, volts, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(rec.time, time, rtol=0, atol=1e-15)
+    assert rec.unit == "V" and rec.metadata["source_format"] == "scope" and rec.metadata["pretrigger_samples"] == 200
+
+
 def test_scope_format_without_rigolwfm_says_what_to_install(tmp_path, monkeypatch):
     """With RigolWFM not importable, a .trc file gives a one-line InputError naming the package."""
     monkeypatch.setitem(sys.modules, "RigolWFM", None)
