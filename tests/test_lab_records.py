@@ -17,7 +17,7 @@ except ImportError:
     TdmsWriter = None
 
 from softimpact.errors import InputError
-from softimpact.input.lab_records import LabRecord, list_channels, read_lab_record
+from softimpact.input.records import LabRecord, list_channels, read_lab_record
 
 needs_h5py = pytest.mark.skipif(h5py is None, reason="h5py not installed")
 needs_nptdms = pytest.mark.skipif(TdmsWriter is None, reason="npTDMS not installed")
@@ -184,6 +184,95 @@ def test_tektronix_style_csv(tmp_path):
     check(rec)
     assert rec.metadata["header"]["Model"] == "MSO54"
     assert rec.metadata["date"] == "2024-05-01"
+
+
+def tds_csv(header_items, times, values, time_fmt="{:.12f}", value_fmt="{:.5f}"):
+    """Tektronix TDS1000/TDS2000 layout: 18 header items in columns 1-3 beside the samples in columns 4-5, a trailing comma."""
+    lines = []
+    for k, (t, v) in enumerate(zip(times, values)):
+        name, value = header_items[k] if k < len(header_items) else ("", "")
+        lines.append(f"{name},{value},,{time_fmt.format(t)},{value_fmt.format(v)},\r\n")
+    return "".join(lines)
+
+
+TDS_HEADER = [
+    ("Record Length", f"{N:.6e}"),
+    ("Sample Interval", f"{DT:.6e}"),
+    ("Trigger Point", f"{200:.12e}"),
+    ("", ""),
+    ("", ""),
+    ("", ""),
+    ("Source", "CH1"),
+    ("Vertical Units", "V"),
+    ("Vertical Scale", "2.000000e-01"),
+    ("Vertical Offset", "0.000000e+00"),
+    ("Horizontal Units", "s"),
+    ("Horizontal Scale", "5.000000e-06"),
+    ("Pt Fmt", "Y"),
+    ("Yzero", "0.000000e+00"),
+    ("Probe Atten", "1.000000e+00"),
+    ("Model Number", "TDS2024B"),
+    ("Serial Number", "C012345"),
+    ("Firmware Version", "FV:v22.11"),
+]
+
+
+def test_tektronix_tds_side_by_side_csv(tmp_path):
+    """TDS1000/2000 CSV (header items beside the data): time from Sample Interval, volts as written, Trigger Point and units from the header."""
+    written = np.round(VOLTS, 5)  # the 5 decimals the file holds
+    path = write_csv(tmp_path / "F0001CH1.CSV", tds_csv(TDS_HEADER, TIME, written))
+    assert list_channels(path) == ["CH1"]
+    rec = read_lab_record(path)
+    np.testing.assert_allclose(rec.time, TIME, rtol=0, atol=1e-15)
+    np.testing.assert_allclose(rec.signal, written, rtol=0, atol=1e-12)
+    assert rec.unit == "V" and rec.metadata["unit_stated"]
+    assert rec.metadata["sample_rate"] == pytest.approx(1 / DT, rel=1e-9)
+    assert rec.metadata["pretrigger_samples"] == 200 and rec.metadata["trigger"] == "200"
+    assert rec.metadata["source_format"] == "tektronix-csv" and rec.metadata["channel"] == "CH1"
+    assert rec.metadata["header"]["Model Number"] == "TDS2024B" and rec.metadata["header"]["Probe Atten"] == "1.000000e+00"
+
+
+def test_tektronix_tds_csv_in_millivolts_and_microseconds(tmp_path):
+    """Vertical Units mV and Horizontal Units us are converted: volts and seconds come out."""
+    items = [(k, {"Vertical Units": "mV", "Horizontal Units": "us", "Sample Interval": f"{DT * 1e6:.6e}"}.get(k, v)) for k, v in TDS_HEADER]
+    path = write_csv(tmp_path / "tds-mv.csv", tds_csv(items, TIME * 1e6, VOLTS * 1e3, time_fmt="{:.6f}", value_fmt="{:.4f}"))
+    rec = read_lab_record(path)
+    assert rec.unit == "V"
+    np.testing.assert_allclose(rec.time, TIME, rtol=0, atol=1e-15)
+    np.testing.assert_allclose(rec.signal, VOLTS, rtol=0, atol=0.51e-7)  # 4 decimals of mV
+
+
+def test_tektronix_tds_csv_cut_short(tmp_path):
+    """A TDS CSV with fewer samples than its Record Length says so (truncated file)."""
+    path = write_csv(tmp_path / "cut.csv", tds_csv(TDS_HEADER, TIME[:600], VOLTS[:600]))
+    one_line_error(path, match="Record Length")
+
+
+def test_tektronix_tds_csv_time_column_against_sample_interval(tmp_path):
+    """A time column that disagrees with the header's Sample Interval is refused, naming both in plain numbers."""
+    path = write_csv(tmp_path / "bad-dt.csv", tds_csv(TDS_HEADER, T0 + 2 * DT * np.arange(N), VOLTS))
+    message = one_line_error(path, match="Sample Interval")
+    assert "np.float64" not in message
+
+
+def test_repeated_time_stamps_are_named_in_plain_numbers(tmp_path):
+    """Two equal time stamps: the message gives the sample and the times as plain numbers (no numpy repr)."""
+    rows = [["Time (s)", "CH1 (V)"]] + data_rows()
+    rows[301][0] = rows[300][0]
+    message = one_line_error(write_csv(tmp_path / "dup.csv", csv_rows(rows)), match="repeated or unordered time stamps")
+    assert "np.float64" not in message and f"{TIME[299]:.9g} s then {TIME[299]:.9g} s" in message
+
+
+def test_registry_names_a_reader_for_every_format(tmp_path):
+    """Each format of the registry has its reader (channels and read), and detection picks the TDS layout apart from other text."""
+    from softimpact.input.records import FORMATS, READERS
+    from softimpact.input.records.registry import detect
+
+    assert set(FORMATS) == {"tdms", "mat", "hdf5", "tektronix-csv", "text", "scope"}
+    assert all(callable(READERS[f].read) and callable(READERS[f].channels) for f in FORMATS)
+    tds = write_csv(tmp_path / "tds.csv", tds_csv(TDS_HEADER, TIME, VOLTS))
+    plain = write_csv(tmp_path / "plain.csv", csv_rows([["Time (s)", "CH1 (V)"]] + data_rows()))
+    assert detect(tds) == "tektronix-csv" and detect(plain) == "text"
 
 
 def test_lecroy_style_csv(tmp_path):
@@ -383,14 +472,53 @@ def write_isf(path):
 
 
 def test_isf_round_trip_with_rigolwfm(tmp_path):
-    """A hand-written Tektronix .isf reads back (time base from XINCR/XZERO) when RigolWFM is installed."""
-    pytest.importorskip("RigolWFM")
+    """A hand-written Tektronix .isf reads back through RigolWFM (a test extra): time base from XINCR/XZERO, volts from YMULT."""
     path, volts = write_isf(tmp_path / "tek0001.isf")
     names = list_channels(path)
     rec = read_lab_record(path, names[0])
     np.testing.assert_allclose(rec.signal, volts, atol=1e-6)
     np.testing.assert_allclose(rec.time, TIME, atol=1e-12)
     assert rec.metadata["source_format"] == "scope"
+
+
+def write_trc(path):
+    """A LeCroy .trc per the LECROY_2_3 template: a 346-byte WAVEDESC (little endian, 16-bit words), then the int16 samples."""
+    import struct
+
+    gain, offset = np.float32(2.0 / 32768), np.float32(0.0)  # volts = VERTICAL_GAIN·adc − VERTICAL_OFFSET
+    adc = np.round(VOLTS / gain).astype("<i2")
+    desc = bytearray(346)
+
+    def put(at, fmt, value):
+        struct.pack_into("<" + fmt, desc, at, value)
+
+    desc[0:16], desc[16:32] = b"WAVEDESC".ljust(16, b"\0"), b"LECROY_2_3".ljust(16, b"\0")
+    put(32, "h", 1)  # COMM_TYPE: word
+    put(34, "h", 1)  # COMM_ORDER: LOFIRST
+    put(36, "i", 346)  # WAVE_DESCRIPTOR length
+    put(60, "i", adc.nbytes)  # WAVE_ARRAY_1 length
+    desc[76:92] = b"LECROYWR64Xi".ljust(16, b"\0")  # INSTRUMENT_NAME
+    for at, value in ((116, N), (120, N), (124, 0), (128, N - 1), (136, 1), (148, 1)):  # counts, first/last valid point, sparsing, sweeps
+        put(at, "i", value)
+    put(156, "f", gain)
+    put(160, "f", offset)
+    put(172, "h", 16)  # NOMINAL_BITS
+    put(174, "h", 1)  # NOM_SUBARRAY_COUNT
+    put(176, "f", DT)  # HORIZ_INTERVAL (float32)
+    put(180, "d", T0)  # HORIZ_OFFSET
+    desc[196:244], desc[244:292] = b"V".ljust(48, b"\0"), b"S".ljust(48, b"\0")  # VERTUNIT, HORUNIT
+    put(328, "f", 1.0)  # PROBE_ATT
+    path.write_bytes(bytes(desc) + adc.tobytes())
+    return path, adc * gain - offset, T0 + float(np.float32(DT)) * np.arange(N)
+
+
+def test_lecroy_trc_round_trip_with_rigolwfm(tmp_path):
+    """A hand-written LeCroy .trc (LECROY_2_3) reads back through RigolWFM: t = HORIZ_OFFSET + i·HORIZ_INTERVAL, volts = gain·adc − offset."""
+    path, volts, time = write_trc(tmp_path / "C1shot00001.trc")
+    rec = read_lab_record(path)
+    np.testing.assert_allclose(rec.signal, volts, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(rec.time, time, rtol=0, atol=1e-15)
+    assert rec.unit == "V" and rec.metadata["source_format"] == "scope" and rec.metadata["pretrigger_samples"] == 200
 
 
 def test_scope_format_without_rigolwfm_says_what_to_install(tmp_path, monkeypatch):

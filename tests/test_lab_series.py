@@ -128,6 +128,19 @@ def write_vendor_csv(path, volts=VOLTS, bad_row=None):
     return path
 
 
+def write_tds_csv(path, volts=VOLTS):
+    """A Tektronix TDS1000/2000 CSV: 18 header items in columns 1-3 beside time and volts in columns 4-5 (as the scope prints them)."""
+    items = [("Record Length", f"{T_REC.size:.6e}"), ("Sample Interval", f"{DT:.6e}"), ("Trigger Point", f"{200:.12e}"), ("", ""), ("", ""), ("", "")]
+    items += [("Source", "CH1"), ("Vertical Units", "V"), ("Vertical Scale", "5.000000e-02"), ("Vertical Offset", "0.000000e+00")]
+    items += [("Horizontal Units", "s"), ("Horizontal Scale", "1.000000e-04"), ("Pt Fmt", "Y"), ("Yzero", "0.000000e+00")]
+    items += [("Probe Atten", "1.000000e+00"), ("Model Number", "TDS2012C"), ("Serial Number", "C000001"), ("Firmware Version", "FV:v24.26")]
+    with open(path, "w", newline="") as fh:
+        for k, (t, v) in enumerate(zip(T_REC, volts)):
+            name, value = items[k] if k < len(items) else ("", "")
+            fh.write(f"{name},{value},,{t:.12f},{float(v)!r},\r\n")
+    return path
+
+
 def series_file(tmp_path, tests, bridge=True, bar_extra=""):
     """A series TOML: ``tests`` is a list of (name, record TOML value[, extra lines])."""
     text = BAR_TOML.format(extra=bar_extra) + (BRIDGE_TOML if bridge else "")
@@ -198,6 +211,29 @@ def test_digitiser_files_in_volts_reduce_to_the_strain_csv_forces(tmp_path):
     summary = json.loads((out / "summary.json").read_text())
     assert summary["records"]["tdms"]["header"]["unit_string"] == "V"
     assert summary["records"]["tdms"]["bridge"] == "quarter"
+
+
+def test_tektronix_tds_csv_reduces_to_the_strain_csv_force(tmp_path):
+    """A TDS1000/2000 CSV (header beside the data) in volts through a quarter bridge gives the strain CSV's force history."""
+    write_strain_csv(tmp_path / "strain.csv")
+    write_tds_csv(tmp_path / "F0000CH1.CSV")
+    series = series_file(tmp_path, [("strain", '"strain.csv"'), ("tds", '"F0000CH1.CSV"')])
+    out = tmp_path / "out"
+    result = run(["reduce", str(series), "--out", str(out), "--no-figures"])
+    assert result.exit_code == 0, result.output
+    (t_ref, f_ref), (t, f) = history(out, "strain"), history(out, "tds")
+    assert t.size == t_ref.size and np.max(np.abs(f - f_ref)) < 1e-6 * f_ref.max()  # the volts are written to repr's 17 digits
+    row = read_tests_csv(out)["F0000CH1.CSV"]
+    assert row["record_format"] == "tektronix-csv" and row["record_channel"] == "CH1" and row["trigger"] == "200"
+
+
+def test_a_record_of_zeros_is_a_flat_signal_not_clipped(tmp_path):
+    """A record of all zeros (channel not connected) stops reduce with exit 2 saying it is flat, not that it is clipped."""
+    write_strain_csv(tmp_path / "zeros.csv", strain=np.zeros_like(T_REC))
+    series = series_file(tmp_path, [("zeros", '"zeros.csv"')], bridge=False)
+    result = run(["reduce", str(series), "--out", str(tmp_path / "out"), "--no-figures"])
+    assert result.exit_code == 2
+    assert "flat signal" in result.output and "clipped" not in result.output, result.output
 
 
 def test_quarter_bridge_nonlinearity_matters_at_large_strain(tmp_path):

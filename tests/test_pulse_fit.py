@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from conftest import INCH
 
-from softimpact.models.pulse_fit import fit_pulse, fit_tail_aware
+from softimpact.models.pulse_fit import fit_main_pulse, fit_pulse, fit_tail_aware
 from softimpact.models.pulses import SkewedPulse
 
 DT = 0.5e-6  # s, sampling interval of the synthetic records
@@ -66,7 +66,7 @@ def test_a_fixed_cutoff_window_is_biased_by_a_high_tail():
     """A fit down to 15 % of F0 (reduction's fixed cutoff) still takes in a tail that starts at 30 %; the tail-aware one does not."""
     t, F, _ = synthetic(TRUE, "second-lobe", 0.3, seed=3)
     t_cut = TRUE.time_of_peak + (TRUE.duration - TRUE.time_of_peak) * 2 / math.pi * math.acos(0.15)
-    fixed = fit_pulse(t, F, t_cut, (1000.0, 25e-6, 100e-6))
+    fixed = fit_pulse(t, F, t_end=t_cut, guess=(1000.0, 25e-6, 100e-6))
     aware = fit_tail_aware(t, F)
     assert abs(fixed.pulse.duration / TRUE.duration - 1) > 0.02
     assert aware.duration == pytest.approx(TRUE.duration, rel=0.02)
@@ -120,3 +120,81 @@ def test_scaling_constants_refit_from_main_pulse_fits():
     assert through_origin(x, T_main) == pytest.approx(ALPHA2, rel=0.02)
     assert through_origin(T_main, tp_main) == pytest.approx(ALPHA3, rel=0.02)
     assert abs(through_origin(x, T_whole) / ALPHA2 - 1) > 0.02
+
+
+ONSET = 7.3e-6  # s: first contact after the record's zero, a fraction of the rise (within ONSET_BOUND·T)
+
+
+def onset_record(seed: int, noise: float = NOISE):
+    """TRUE (eq 15) starting at t = ONSET, sampled every DT over 3 T with white noise ``noise``·F0."""
+    t = np.arange(-20e-6, 3 * TRUE.duration, DT)
+    F = TRUE(t - ONSET) + noise * TRUE.peak_force * np.random.default_rng(seed).standard_normal(t.size)
+    return t, F
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_fit_pulse_recovers_eq15_with_an_onset(seed):
+    """The one eq-15 fit recovers F0 and T within 1 %, t_F0 within 3 % and t0 within 2 % of T (1 % noise, guess off by 20 %)."""
+    t, F = onset_record(seed)
+    fit = fit_pulse(t, F, guess=(1.2 * TRUE.peak_force, 0.8 * TRUE.time_of_peak, 1.2 * TRUE.duration))
+    assert fit.pulse.peak_force == pytest.approx(TRUE.peak_force, rel=0.01)
+    assert fit.pulse.duration == pytest.approx(TRUE.duration, rel=0.01)
+    assert fit.pulse.time_of_peak == pytest.approx(TRUE.time_of_peak, rel=0.03)
+    assert abs(fit.start - ONSET) < 0.02 * TRUE.duration
+    assert fit.rms == pytest.approx(NOISE * TRUE.peak_force, rel=0.1)  # the residual is the noise
+
+
+def test_fit_pulse_without_onset_is_exact_on_a_clean_pulse():
+    """Without an onset, on noise-free eq 15 from t = 0, F0, t_F0 and T come back to 1e-6."""
+    t = np.arange(0.0, 2 * TRUE.duration, DT)
+    fit = fit_pulse(t, TRUE(t), with_onset=False)
+    assert fit.start == 0.0
+    for got, true in zip((fit.pulse.peak_force, fit.pulse.time_of_peak, fit.pulse.duration), (1000.0, 25e-6, 100e-6)):
+        assert got == pytest.approx(true, rel=1e-6)
+
+
+def test_main_pulse_fit_recovers_eq15_with_an_onset():
+    """fit_main_pulse (reduce's and identify's procedure) recovers F0, T within 1 %, t_F0 within 3 %, t0 within 2 % of T."""
+    t, F = onset_record(4)
+    fit = fit_main_pulse(t, F).fit
+    assert fit.pulse.peak_force == pytest.approx(TRUE.peak_force, rel=0.01)
+    assert fit.pulse.duration == pytest.approx(TRUE.duration, rel=0.01)
+    assert fit.pulse.time_of_peak == pytest.approx(TRUE.time_of_peak, rel=0.03)
+    assert abs(fit.start - ONSET) < 0.02 * TRUE.duration
+
+
+def test_reduce_and_identify_report_the_same_duration(monkeypatch):
+    """The force history reduce fits, handed to identify's pulse_shape, gives exactly reduce's T and t_F0 (one eq-15 fit)."""
+    from softimpact.models.materials import lookup
+    from softimpact.models.specimens import BarSpec
+    from softimpact.workflows import reduction
+    from softimpact.workflows.identification import pulse_shape
+    from softimpact.workflows.synthetic import gauge_model, synthetic_record
+
+    bar = BarSpec(lookup("Al 6061-T6"), 36 * INCH, 0.5 * INCH, 96)
+    pulse = SkewedPulse(2900.0, 23e-6, 93e-6)
+    rng = np.random.default_rng(5)
+    t, y = synthetic_record(
+        gauge_model(bar, 18 * INCH, 0.5e-6, 1.0e-3),
+        pulse,
+        pre_trigger=250e-6,
+        length=700e-6,
+        sample_interval=1e-6,
+        noise=0.01,
+        offset=0.0,
+        clock_start=0.0,
+        rng=rng,
+    )
+    seen = []
+    real = reduction.fit_main_pulse
+
+    def spy(tt, F, **kw):
+        seen.append((tt.copy(), F.copy()))
+        return real(tt, F, **kw)
+
+    monkeypatch.setattr(reduction, "fit_main_pulse", spy)
+    red = reduction.reduce_record(reduction.Record("r", t, y), bar, 18 * INCH)
+    tt, F = seen[-1]  # the force history behind the reported parameters
+    _, t_peak, T, _ = pulse_shape(tt, F)
+    assert T == red.duration and t_peak == red.time_of_peak
+    assert T == pytest.approx(pulse.duration, rel=0.04)  # and it is the pulse's T

@@ -13,8 +13,8 @@ from collections.abc import Callable
 from pathlib import Path
 
 from ..errors import InputError
+from ..formats.law_json import read_law
 from ..models.contact_laws import HertzLaw, HuntCrossleyLaw, YangSunLaw
-from ..output.law_json import read_law
 from .toml import Table
 
 __all__ = ["CONTACT_LAWS", "CRITICAL_INDENTATION", "HUNT_CROSSLEY_FORMS", "read_contact_law"]

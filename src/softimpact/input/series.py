@@ -4,7 +4,7 @@ A bar series names the bar (``dispersion = "none" | "pochhammer-chree"`` among
 its keys), its gauge (and bridge, for voltage records) and one ``[[test]]`` per
 shot: the record, velocity, diameter and mass. A record is a path, or a table
 ``{ file = "shot12.tdms", channel = "gauge A" }`` (channel by name or index)
-for any file :mod:`softimpact.input.lab_records` reads. With a second gauge
+for any file :func:`softimpact.input.records.read_lab_record` reads. With a second gauge
 (``[gauge] second_position``) each test names its ``second_record`` too. A calibration series
 names a beam case and one ``[[test]]`` per measured strain file. Paths inside
 are relative to the series file.
@@ -172,7 +172,7 @@ def _native_csv(path: Path) -> bool:
 
 
 def read_test_record(test: SeriesTest, second: bool = False) -> TestRecord:
-    """The test's record (or its second gauge's): a softimpact CSV (input/records.py) or a lab file (input/lab_records.py).
+    """The test's record (or its second gauge's): a softimpact CSV or a lab file (input/records/).
 
     Raises InputError naming the file when it cannot be read, has no such
     channel or no time base, or holds a unit other than volts or strain.
@@ -188,7 +188,7 @@ def read_test_record(test: SeriesTest, second: bool = False) -> TestRecord:
             meta["time_start"] = float(t[0])
             meta["pretrigger_samples"] = int(np.count_nonzero(t < 0))
         return TestRecord(t, y, kind, meta)
-    from .lab_records import read_lab_record
+    from .records import read_lab_record
 
     rec = read_lab_record(path, channel)
     if unit is None:

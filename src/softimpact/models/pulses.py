@@ -1,5 +1,6 @@
 """Force pulses F(t) [N], t [s] from first contact. Each has ``__call__(t)``,
 ``impulse`` [N·s] and ``duration`` [s] (the time after which F = 0).
+The eq-15 fit to a record is :func:`softimpact.models.pulse_fit.fit_pulse`.
 """
 
 from __future__ import annotations
@@ -11,7 +12,7 @@ import numpy as np
 
 from ..errors import InputError
 
-__all__ = ["SkewedPulse", "TailedPulse", "TabulatedPulse", "fit_skewed"]
+__all__ = ["SkewedPulse", "TailedPulse", "TabulatedPulse"]
 
 
 @dataclass(frozen=True)
@@ -131,32 +132,3 @@ class TabulatedPulse:
     @property
     def duration(self) -> float:
         return float(self.time[-1])
-
-
-def fit_skewed(t, F, F0, tF0, T, t_end):
-    """Least-squares fit of eq (15), shifted by a start time t0, to (t, F) for t ≤ t_end.
-
-    Returns (pulse, t0, rms). Parameters are scaled to order one for the solver.
-    """
-    from scipy.optimize import least_squares
-
-    sel = t <= t_end
-    ts, Fs = t[sel], F[sel]
-
-    def residual(p):
-        t0, f0, tp, dur = p[0] * T, p[1] * F0, p[2] * T, p[3] * T
-        x = ts - t0
-        rise = f0 * np.sin(np.pi * x / (2 * tp))
-        fall = f0 * np.cos(np.pi * (x - tp) / (2 * (dur - tp)))
-        m = np.where(x <= 0, 0.0, np.where(x < tp, rise, np.where(x < dur, fall, 0.0)))
-        return (m - Fs) / F0
-
-    p0 = np.array([0.0, 1.0, tF0 / T, 1.0])
-    lo = np.array([-0.5, 0.5, 1e-3, 0.2])
-    hi = np.array([0.5, 2.0, 0.95, 5.0])
-    sol = least_squares(residual, p0, bounds=(lo, hi), x_scale=np.array([0.05, 1.0, 0.1, 1.0]))
-    t0, f0, tp, dur = sol.x[0] * T, sol.x[1] * F0, sol.x[2] * T, sol.x[3] * T
-    if not tp < dur:
-        tp = 0.5 * dur
-    rms = float(F0 * np.sqrt(np.mean(sol.fun**2)))
-    return SkewedPulse(f0, tp, dur), t0, rms

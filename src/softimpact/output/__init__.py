@@ -1,3 +1,3 @@
 """Files out: the output contract of each command (:mod:`.bar`, :mod:`.beam`,
-:mod:`.series`, :mod:`.calibration`, :mod:`.scaling_json`), atomic writing
+:mod:`.series`, :mod:`.calibration`), atomic writing
 (:mod:`.files`), figures (:mod:`.plots`) and the HTML report (:mod:`.report`)."""

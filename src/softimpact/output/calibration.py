@@ -7,11 +7,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..formats.scaling_json import scaling_json
 from ..gates import quality
 from ..units import display
 from .files import csv_text, figure_bytes, json_text
 from .report import Section, stem
-from .scaling_json import scaling_json
 
 __all__ = ["SeriesComparison", "calibration_entry", "calibration_files", "tables_rows", "series_calibration_files", "calibration_section"]
 

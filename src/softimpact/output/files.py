@@ -27,13 +27,12 @@ import threading
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
-from dataclasses import asdict, is_dataclass
 from pathlib import Path
 
 import numpy as np
 
-from .. import __version__
 from ..errors import InputError
+from ..formats._json import json_text, jsonable  # noqa: F401  (re-exported: the writers of output/ use them from here)
 
 __all__ = [
     "csv_text",
@@ -115,34 +114,6 @@ def _cell(v) -> str:
         return _quoted(v)
     f = float(v)
     return "" if math.isnan(f) else repr(f)
-
-
-def jsonable(obj):
-    """Dataclasses, numpy scalars and arrays, NaN → JSON-ready values (NaN → null)."""
-    if is_dataclass(obj) and not isinstance(obj, type):
-        return jsonable(asdict(obj))
-    if isinstance(obj, dict):
-        return {str(k): jsonable(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [jsonable(v) for v in obj]
-    if isinstance(obj, np.ndarray):
-        return jsonable(obj.tolist())
-    if isinstance(obj, (np.floating, float)):
-        f = float(obj)
-        return f if math.isfinite(f) else None
-    if isinstance(obj, (np.integer,)):
-        return int(obj)
-    if isinstance(obj, (np.bool_,)):
-        return bool(obj)
-    return obj
-
-
-def json_text(obj) -> str:
-    """Indented JSON with ``softimpact_version`` added to a top-level dict."""
-    data = jsonable(obj)
-    if isinstance(data, dict):
-        data = {**data, "softimpact_version": __version__}
-    return json.dumps(data, indent=2, allow_nan=False) + "\n"
 
 
 def figure_bytes(fig, fmt: str = "png") -> bytes:

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..formats.law_json import law_json
 from ..units import display
 from .files import csv_text, figure_bytes
-from .law_json import law_json
 
 __all__ = ["closure_columns", "identify_files", "closure_figure", "force_approach_figure"]
 

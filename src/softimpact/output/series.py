@@ -6,10 +6,10 @@ import math
 
 import numpy as np
 
+from ..formats.scaling_json import scaling_json
 from ..units import display
 from .files import csv_text, figure_bytes
 from .report import Section, stem
-from .scaling_json import scaling_json
 
 __all__ = ["reduction_files", "scaling_files", "scaling_section", "TABLE_I"]
 
@@ -45,7 +45,7 @@ def reduction_files(series, reduced, figures: bool = True, prefix: str = "") -> 
     }
     reduction_cols = list(cols)[4:]
     corrected = getattr(series, "dispersion", "none") != "none"
-    record_cols = {  # the record's own metadata (input/lab_records.py), as read
+    record_cols = {  # the record's own metadata (input/records/), as read
         "record_format": "source_format",
         "record_channel": "channel",
         "record_unit": "unit",

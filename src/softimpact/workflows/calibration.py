@@ -41,7 +41,8 @@ import numpy as np
 from ..errors import InputError
 from ..models.features import first_lobe_peak, first_zero_crossing
 from ..models.noise import white_noise_sigma
-from ..models.pulses import SkewedPulse, TabulatedPulse, fit_skewed
+from ..models.pulse_fit import fit_pulse as fit_eq15
+from ..models.pulses import SkewedPulse, TabulatedPulse
 
 __all__ = ["Measured", "Prepared", "Calibration", "ModelCheck", "prepare", "calibrate", "calibrate_checked", "METHODS"]
 
@@ -496,7 +497,7 @@ def _deconvolve(model, prep, start, r0, knots: int = 160, rule: str = "discrepan
     k = int(np.argmax(F))
     fit_pulse = None
     try:
-        fit_pulse, _, _ = fit_skewed(tm, F, F[k], max(tm[k], tm[1]), start.duration, tm[-1])
+        fit_pulse = fit_eq15(tm, F, guess=(F[k], max(tm[k], tm[1]), start.duration)).pulse
     except Exception:  # a degenerate deconvolution has no eq-15 shape; the history stands alone
         fit_pulse = None
     return Calibration(

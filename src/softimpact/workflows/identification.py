@@ -43,6 +43,7 @@ from ..fem.bar import Rod, assemble_rod
 from ..fem.impact import ContactStructure, integrate_impact
 from ..fem.newmark import NewmarkStepper
 from ..models.contact_laws import SoftProjectileLaw, ViscoelasticSoftLaw
+from ..models.pulse_fit import fit_main_pulse
 
 __all__ = [
     "BarTest",
@@ -292,34 +293,19 @@ def identify(tests, rod: Rod, d_ref: float | None = None, size_exponent: bool = 
 
 
 def pulse_figures(t: np.ndarray, F: np.ndarray) -> tuple[float, float, float]:
-    """(F0, T, I): peak, duration of the eq-15 fit to the main pulse (until F falls to 15 % of F0
-    after the peak), impulse of the whole history (trapezoid)."""
+    """(F0, T, I): peak, duration of the eq-15 fit to the main pulse (as in the reduction), impulse of
+    the whole history (trapezoid)."""
     F0, _, T, I = pulse_shape(t, F)
     return F0, T, I
 
 
 def pulse_shape(t: np.ndarray, F: np.ndarray) -> tuple[float, float, float, float]:
-    """(F0, t_F0, T, I) as :func:`pulse_figures`, with the time of peak t_F0 of the same eq-15 fit
-    (the fit's, not the noisy sample's arg max)."""
-    from scipy.optimize import least_squares
-
-    k_pk = int(np.argmax(F))
-    F0, tF0 = float(F[k_pk]), float(t[k_pk])
-    below = np.flatnonzero((np.arange(F.size) > k_pk) & (F < MAIN_PULSE_CUTOFF * F0))
-    end = int(below[0]) if below.size else F.size - 1
-    ts, Fs = t[: end + 1], F[: end + 1]
-    T_guess = max(t[end] * 1.1, 2 * tF0)
-
-    def residual(p):
-        f0, tp, dur = p[0] * F0, p[1] * T_guess, p[2] * T_guess
-        rise = f0 * np.sin(np.pi * ts / (2 * tp))
-        fall = f0 * np.cos(np.pi * (ts - tp) / (2 * (dur - tp)))
-        m = np.where(ts < tp, rise, np.where(ts < dur, fall, 0.0))
-        return (m - Fs) / F0
-
-    sol = least_squares(residual, [1.0, max(tF0 / T_guess, 1e-3), 1.0], bounds=([0.5, 1e-3, 0.2], [2.0, 0.95, 5.0]))
+    """(F0, t_F0, T, I) as :func:`pulse_figures`: F0 the largest sample; t_F0 and T of the reduction's
+    own main-pulse fit (:func:`~softimpact.models.pulse_fit.fit_main_pulse`, cutoff MAIN_PULSE_CUTOFF),
+    so a pulse has the same T here as in ``reduce``."""
+    fit = fit_main_pulse(t, F, cutoff=MAIN_PULSE_CUTOFF).fit.pulse
     I = float(np.sum(0.5 * (F[1:] + F[:-1])) * (t[1] - t[0]))
-    return F0, float(sol.x[1] * T_guess), float(sol.x[2] * T_guess), I
+    return float(np.max(F)), fit.time_of_peak, fit.duration, I
 
 
 def _rod_structure(rod: Rod) -> ContactStructure:

@@ -57,8 +57,8 @@ import numpy as np
 from ..errors import InputError
 from ..models.dispersion import RoundBar, disperse, radial_band_edge, rayleigh_speed_ratio
 from ..models.noise import white_noise_sigma
-from ..models.pulse_fit import fit_tail_aware
-from ..models.pulses import SkewedPulse, fit_skewed
+from ..models.pulse_fit import fit_main_pulse
+from ..models.pulses import SkewedPulse
 from ..models.specimens import BarSpec
 
 __all__ = ["Record", "ReductionSettings", "Reduction", "reduce_record", "wave_separation", "dispersive_wave_separation", "two_gauge_separation"]
@@ -132,7 +132,7 @@ def _validate(record: Record) -> tuple[np.ndarray, np.ndarray, float]:
     d = np.diff(t)
     if np.any(d <= 0):
         k = int(np.argmax(d <= 0))
-        _fail(name, f"time is not strictly increasing at row {k + 2} ({t[k]!r} then {t[k + 1]!r})")
+        _fail(name, f"time is not strictly increasing at row {k + 2} ({float(t[k]):.9g} s then {float(t[k + 1]):.9g} s)")
     dt = float(np.median(d))
     if np.max(np.abs(d - dt)) > 0.01 * dt:  # hand-digitised records: put them on a uniform grid
         grid = np.arange(t[0], t[-1] + 0.5 * dt, dt)
@@ -141,6 +141,8 @@ def _validate(record: Record) -> tuple[np.ndarray, np.ndarray, float]:
 
 
 def _check_clipping(name, y):
+    if np.ptp(y) == 0:  # no excursion at all: nothing was recorded, not a saturated recorder
+        _fail(name, f"flat signal: all {y.size} samples equal {float(y[0]):.6g} (an empty record: gauge not connected or channel not recorded?)")
     for extreme in (y.max(), y.min()):
         at = np.isclose(y, extreme, rtol=0, atol=1e-9 * max(np.ptp(y), 1e-300))
         runs = np.diff(np.flatnonzero(np.diff(np.concatenate(([0], at.astype(int), [0])))))[::2]
@@ -360,19 +362,13 @@ def reduce_record(
         after = np.flatnonzero((np.arange(Fs.size) > k_pk) & (Fs < settings.fit_cutoff * F0_guess))
         if after.size == 0:
             _fail(name, "the record ends before the force falls to 15 % of its peak: the main pulse is truncated")
-        t_cut = float(tt[after[0]])
-        T_guess = t_pk_guess + (t_cut - t_pk_guess) / (2 / math.pi * math.acos(settings.fit_cutoff))
-        fit, t0, rms = fit_skewed(tt, F, F0_guess, max(t_pk_guess, dt), T_guess, t_cut)
-        # The main pulse, wherever its tail starts: the knee located by a composite fit
-        # (models/pulse_fit), the whole record's fit kept beside it. The fixed 15 % cutoff
-        # above seeds it and stands when the tail-aware fit cannot be made.
-        aware = None
+        # The main pulse, wherever its tail starts (models/pulse_fit.fit_main_pulse, as identify):
+        # a fit down to the fixed cutoff seeds a tail-aware fit; the whole record's fit kept beside it.
         try:
-            aware = fit_tail_aware(tt[tt >= t0 - 2 * dt], F[tt >= t0 - 2 * dt])
-        except InputError:
-            pass
-        if aware is not None and aware.main.pulse.peak_force > 0 and abs(aware.main.start - t0) < 0.5 * fit.duration:
-            fit, t0, rms = aware.main.as_tuple()
+            main = fit_main_pulse(tt, F, cutoff=settings.fit_cutoff)
+        except InputError as exc:
+            _fail(name, str(exc).removeprefix("pulse fit: "))
+        (fit, t0, rms), aware = main.fit.as_tuple(), main.aware
         # F0: the maximum of a cubic fitted to the crown, where the eq-15 fit is within
         # 10 % of its peak: it averages the noise over the whole crown (< 0.3 % model
         # error on eq-15 shapes) and follows the data where they depart from eq 15.

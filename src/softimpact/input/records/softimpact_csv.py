@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import InputError, SoftimpactWarning
+from ...errors import InputError, SoftimpactWarning
 
 __all__ = ["TIME_COLUMNS", "SIGNAL_COLUMNS", "read_columns", "read_record", "read_strains"]
 
