@@ -10,6 +10,7 @@ from ...fem.newmark import SolverSpec
 from ...input.beam_case import load_beam_case
 from ...input.impact_case import ImpactProblem
 from ...input.series import load_calibration_series, load_series
+from ...input.series_records import read_series_records
 from ...models.empirical import PROJECTILES
 from ...models.materials import lookup
 from ...models.pulses import SkewedPulse
@@ -20,12 +21,11 @@ from ...output.report import Section
 from ...units import INCH, display
 from ...workflows.beam_impact import BeamLoad, BeamModel
 from ...workflows.coupled import Impactor
-from ...workflows.identification import closure, pulse_figures, refine
+from ...workflows.identification import bar_tests, closure, pulse_figures, refine
 from ...workflows.identification import identify as fit_law
+from ...workflows.series import reduce_series
 from ..calibrate import start_pulse
-from ..identify import bar_tests
 from ..impact import run_impact
-from ..series import reduce_series
 
 __all__ = ["question_section"]
 
@@ -42,7 +42,7 @@ def question_section(figures: bool, files: dict, prefix: str = "question/") -> S
     system = "in-lbf-s"
     fu, tu, lu, su = (display(system, k) for k in ("force", "time", "length", "strain"))
     series = load_series("paper-rubber-series")
-    tests = bar_tests(reduce_series(series))
+    tests = bar_tests(reduce_series(series, *read_series_records(series)))
     rod = series.bar.rod()
     law, approaches = fit_law(tests, rod)
     law = refine(law, tests, rod, QUESTION_REFINE, steps_per_pulse=QUESTION_STEPS_PER_PULSE)
