@@ -3,41 +3,27 @@
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import numpy as np
 
 from .. import units
 from ..errors import InputError
-from ..models.empirical import PRESETS, PROJECTILES, HertzModel, ScalingLaw, WilbeckModel
+from ..input.scaling_constants import scaling_law
+from ..models.empirical import PROJECTILES, HertzModel, WilbeckModel
 from ..models.materials import lookup
 from ..output.files import csv_text, figure_bytes, json_text
-from ..output.scaling_json import read_scaling_law
-from . import Outcome
+from . import Outcome, Progress, no_progress
 
-__all__ = ["MODELS", "predict", "scaling_law"]
+__all__ = ["MODELS", "predict"]
 
 MODELS = ("empirical", "hertz", "wilbeck")  # eqs (4)-(7) with (15); elastic impact, eqs (1)-(3); steady flow ρV²A
 
 
-def scaling_law(constants: str | None, group: str, projectile) -> ScalingLaw:
-    """The α's: a preset name, a scaling.json from `softimpact fit`, or the projectile's preset."""
-    if constants is None:
-        if projectile is None:
-            raise InputError("--constants: needed with --mass/--diameter (a preset or a scaling.json)")
-        return PRESETS[projectile.law]
-    if constants in PRESETS:
-        return PRESETS[constants]
-    path = Path(constants)
-    if not path.is_file():
-        raise InputError(f"--constants: {constants!r} is neither a preset ({', '.join(PRESETS)}) nor a file")
-    return read_scaling_law(path, group)
-
-
 def predict(
-    projectile: str | None,
-    mass: str | None,
-    diameter: str | None,
+    *,
+    projectile: str | None = None,
+    mass: str | None = None,
+    diameter: str | None = None,
     velocity: str,
     model: str = "empirical",
     constants: str | None = None,
@@ -49,6 +35,7 @@ def predict(
     system: str = "in-lbf-s",
     figures: bool = True,
     beam_case: str | None = None,
+    progress: Progress = no_progress,
 ) -> Outcome:
     """Force history of a projectile at a velocity; quantities are strings with units, as typed."""
     if model not in MODELS:

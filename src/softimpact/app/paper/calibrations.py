@@ -2,19 +2,25 @@
 
 from __future__ import annotations
 
+import numpy as np
+
 from ...input.beam_case import load_beam_case
 from ...input.records import read_strains
-from ...input.series import load_calibration_series
+from ...input.scaling_constants import start_pulse
+from ...input.series import CalibrationSeries, load_calibration_series
+from ...models.empirical import PRESETS, PROJECTILES
 from ...models.pulses import SkewedPulse
 from ...output import plots
-from ...output.calibration import calibration_section, series_calibration_files, tables_rows
+from ...output.calibration import SeriesComparison, calibration_section, series_calibration_files, tables_rows
 from ...output.files import figure_bytes
 from ...output.report import Section
+from ...studies.calibration import CalibratedTest, calibrate_tests, calibration_model, scaling_points, series_fits
+from ...workflows.beam_impact import BeamModel
 from ...workflows.calibration import Measured, calibrate
-from ..calibrate import calibrate_tests, calibration_model, comparison, series_fits, start_pulse
+from ...workflows.scaling import fit_groups
 from .notes import SYSTEM
 
-__all__ = ["calibration_sections"]
+__all__ = ["calibration_sections", "comparison"]
 
 
 def calibration_sections(figures: bool, files: dict) -> list[Section]:
@@ -59,3 +65,27 @@ def calibration_sections(figures: bool, files: dict) -> list[Section]:
             )
         )
     return sections
+
+
+def comparison(model: BeamModel, series: CalibrationSeries, items: list[CalibratedTest], fits) -> SeriesComparison:
+    """The bar law's histories, the strains under the paper's histories and both scaling fits."""
+    P = PROJECTILES[series.projectile]
+    law = PRESETS[P.law]
+    ref = {round(r[0], 6): r for r in series.reference}
+    bar_models, strains = [], []
+    for item in items:
+        V = item.test.velocity
+        bar_models.append(law.parameters(P.mass, P.diameter, V))
+        r = ref.get(round(V, 6))
+        if r is None:
+            strains.append(None)
+        else:
+            res = model.respond(SkewedPulse(r[1], r[2], r[3]), r[4])
+            strains.append(tuple(float(np.max(np.abs(s))) for s in res.strain))
+    groups = {}
+    if len(series.reference) >= 2:
+        paper_rows = [(str(i), r[0], r[1], r[2], r[3]) for i, r in enumerate(series.reference)]
+        groups["paper's table"] = next(iter(fit_groups(scaling_points(paper_rows, series.projectile)).values()))
+    if fits is not None:
+        groups["calibrated"] = next(iter(fits.values()))
+    return SeriesComparison(tuple(bar_models), tuple(strains), groups, law)

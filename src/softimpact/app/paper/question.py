@@ -9,6 +9,7 @@ import numpy as np
 from ...fem.newmark import SolverSpec
 from ...input.beam_case import load_beam_case
 from ...input.impact_case import ImpactProblem
+from ...input.scaling_constants import start_pulse
 from ...input.series import load_calibration_series, load_series
 from ...input.series_records import read_series_records
 from ...models.empirical import PROJECTILES
@@ -24,7 +25,6 @@ from ...workflows.coupled import Impactor
 from ...workflows.identification import bar_tests, closure, pulse_figures, refine
 from ...workflows.identification import identify as fit_law
 from ...workflows.series import reduce_series
-from ..calibrate import start_pulse
 from ..impact import run_impact
 
 __all__ = ["question_section"]
