@@ -307,7 +307,7 @@ def test_unexpected_exception_is_one_line_and_exit_70(tmp_path, monkeypatch):
     """A bug deep inside: 'internal error' in one line, exit 70; with SOFTIMPACT_DEBUG=1 the exception propagates."""
     import softimpact.app.bar
 
-    def broken(case, figures=True):
+    def broken(**options):
         raise ZeroDivisionError("float division by zero")
 
     monkeypatch.setattr(softimpact.app.bar, "bar", broken)

@@ -15,7 +15,7 @@ from . import Outcome, Progress, no_progress
 __all__ = ["plate"]
 
 
-def plate(case: str, history: int | None = None, figures: bool = True, progress: Progress = no_progress) -> Outcome:
+def plate(*, case: str, history: int | None = None, figures: bool = True, progress: Progress = no_progress) -> Outcome:
     """Run a plate case (file or built-in name), optionally with row ``history`` of its [[load.table]]."""
     problem, path = load_plate_case(case, history)
     t0 = time.perf_counter()
