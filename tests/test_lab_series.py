@@ -202,8 +202,8 @@ def test_digitiser_files_in_volts_reduce_to_the_strain_csv_forces(tmp_path):
 
 def test_quarter_bridge_nonlinearity_matters_at_large_strain(tmp_path):
     """At 5000 µε the linearised bridge would be 0.5 % off: the series' bridge reads the exact strain back."""
-    from softimpact.input.series_records import read_records
     from softimpact.input.series import load_series
+    from softimpact.input.series_records import read_records
 
     strain = -5e-3 * pulse(T_REC - 100e-6) / 1000.0
     write_vendor_csv(tmp_path / "big.csv", volts=bridge_volts(strain))
@@ -225,8 +225,8 @@ def test_quarter_bridge_nonlinearity_matters_at_large_strain(tmp_path):
 )
 def test_half_and_full_bridges_from_the_series(tmp_path, bridge, volts_per_strain):
     """The series' bridge keys select the configuration and the sign (the full and half formulas are linear)."""
-    from softimpact.input.series_records import read_records
     from softimpact.input.series import load_series
+    from softimpact.input.series_records import read_records
 
     write_vendor_csv(tmp_path / "v.csv", volts=volts_per_strain(STRAIN))
     text = BAR_TOML.format(extra="") + f'gauge_factor = {GF}\nexcitation = "{VEX} V"\ngain = {GAIN}\n{bridge}\n'
@@ -238,8 +238,8 @@ def test_half_and_full_bridges_from_the_series(tmp_path, bridge, volts_per_strai
 
 def test_shunt_calibration_corrects_the_gain(tmp_path):
     """A chain whose true gain is 3 % above nominal reads true strain once the measured shunt step is given."""
-    from softimpact.input.series_records import read_records
     from softimpact.input.series import load_series
+    from softimpact.input.series_records import read_records
 
     true_gain, rg, rs = GAIN * 1.03, 350.0, 100e3
     volts = bridge_volts(STRAIN) * 1.03
