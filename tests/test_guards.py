@@ -422,7 +422,7 @@ def test_reduction_gates_flag_a_misfit_and_a_degenerate_pulse():
     """reduce's gates: a pulse fitted within 5 % of F0 passes; a 30 % misfit or tF0 = T fails, naming the test."""
     from types import SimpleNamespace
 
-    from softimpact.workflows.series import ReducedTest, reduction_gates
+    from softimpact.studies.series import ReducedTest, reduction_gates
 
     def reduced(name, rms, tF0, T):
         test = SimpleNamespace(name=name)

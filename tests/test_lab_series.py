@@ -524,7 +524,7 @@ def test_end_cap_reflections_are_not_double_hits():
     """The built-in FE records (end-capped bar, long pulses) condition without a double-hit flag: the cap's delay is predicted."""
     from softimpact.input.series import load_series
     from softimpact.input.series_records import read_series_records
-    from softimpact.workflows.series import reduce_series
+    from softimpact.studies.series import reduce_series
 
     series = load_series("paper-rubber-series")
     reduced = reduce_series(series, *read_series_records(series))

@@ -210,19 +210,22 @@ def _accept_poor_option() -> click.Option:
     )
 
 
-def _command(name: str, short_help: str, *, history: str | None = None, figures: bool = True, accept_poor: bool = False):
+def _command(name: str, short_help: str, *, history: str | None = None, figures: bool = True, accept_poor: bool | str = False):
     """Register ``softimpact NAME``: the function's own arguments and options (its click
     decorators), then the shared ones in this order: ``--history`` (with that help text, when
     given), ``--out`` (default ``softimpact-NAME``), ``--figures/--no-figures`` and
-    ``--accept-poor`` (when asked for); the function runs under :func:`_guarded`."""
+    ``--accept-poor`` (when asked for; ``accept_poor="before-out"`` lists it before ``--out``,
+    where calibrate has always had it); the function runs under :func:`_guarded`."""
 
     def decorate(fn):
         command = main.command(name, short_help=short_help)(_guarded(fn))
         shared = [_history_option(history)] if history is not None else []
+        if accept_poor == "before-out":
+            shared.append(_accept_poor_option())
         shared.append(_out_option(name))
         if figures:
             shared.append(_figures_option())
-        if accept_poor:
+        if accept_poor is True:
             shared.append(_accept_poor_option())
         command.params.extend(shared)
         return command
@@ -394,7 +397,7 @@ def predict_cmd(projectile, mass, diameter, velocity, model, constants, group, t
     )
 
 
-@_command("calibrate", "Force history that makes computed strains match measured ones.", accept_poor=True)
+@_command("calibrate", "Force history that makes computed strains match measured ones.", accept_poor="before-out")
 @click.argument("case")
 @click.option("--measured", type=click.Path(dir_okay=False), help="CSV of measured strains: time_s and strain_<gauge> columns.")
 @click.option("--velocity", help='Impact velocity, e.g. "1166 in/s" (sets the bar-model start).')
@@ -418,7 +421,7 @@ def predict_cmd(projectile, mass, diameter, velocity, model, constants, group, t
     help="Seconds that refining the model may cost: the mesh is refined until its discretisation error moves no "
     "parameter by more than half a noise standard error, or this budget is spent.",
 )
-def calibrate_cmd(case, measured, velocity, method, contact_radius, contact_time, fit_radius, projectile, constants, budget, out, figures, accept_poor):
+def calibrate_cmd(case, measured, velocity, method, contact_radius, contact_time, fit_radius, projectile, constants, budget, accept_poor, out, figures):
     """Force history that makes computed gauge strains match measured ones.
 
     CASE is a beam case (with --measured and --velocity) or a calibration series

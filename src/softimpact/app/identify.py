@@ -7,8 +7,8 @@ import numpy as np
 from ..input.series import load_series
 from ..input.series_records import read_series_records
 from ..output.identify import identify_files
+from ..studies.series import failed_reductions, reduce_series
 from ..workflows.identification import identify_series
-from ..workflows.series import failed_reductions, reduce_series
 from . import Outcome, Progress, no_progress
 
 __all__ = ["identify"]

@@ -4,7 +4,7 @@ Every record of the series is read first: a file that cannot be read (missing,
 truncated, no such channel, no time base, text among the numbers, a unit
 other than volts or strain) is bad input — one line, exit 2, nothing written.
 Records in volts go through the series' bridge. Each record is then
-conditioned and reduced (:mod:`softimpact.workflows.series`). A *flagged* test
+conditioned and reduced (:mod:`softimpact.studies.series`). A *flagged* test
 (clipped, double hit, or no pulse found) is still reduced, its reason written
 in ``tests.csv``, but ``fit`` leaves it out with a warning unless its
 ``[[test]]`` says ``accept_flagged = true``. A record that cannot be reduced is
@@ -19,8 +19,8 @@ from ..input.series_records import read_series_records
 from ..output.files import json_text
 from ..output.scaling_json import scaling_summary
 from ..output.series import reduction_files, scaling_files
+from ..studies.series import failed_reductions, fit_series, reduce_series, reduction_gates
 from ..workflows.scaling import fit_gates
-from ..workflows.series import failed_reductions, fit_series, reduce_series, reduction_gates
 from . import Outcome, Progress, no_progress
 
 __all__ = ["reduce", "fit"]

@@ -604,7 +604,7 @@ def _paper_fit() -> dict:
     from ..input.series import load_series
     from ..input.series_records import read_series_records
     from ..output.scaling_json import scaling_summary
-    from ..workflows.series import fit_series, reduce_series
+    from ..studies.series import fit_series, reduce_series
 
     series = load_series("paper-rubber-series")
     return scaling_summary(fit_series(reduce_series(series, *read_series_records(series))))

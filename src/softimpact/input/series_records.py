@@ -1,5 +1,5 @@
 """The records of a bar test series, read and turned into strain: what ``reduce``, ``fit`` and
-``identify`` read before :mod:`softimpact.workflows.series` reduces them.
+``identify`` read before :mod:`softimpact.studies.series` reduces them.
 
 A file that cannot be read (missing, truncated, no such channel, no time base, text among
 the numbers, a unit other than volts or strain) is bad input: InputError naming it.
@@ -34,5 +34,5 @@ def read_records(series: Series, second: bool = False) -> list[TestRecord]:
 
 def read_series_records(series: Series) -> tuple[list[TestRecord], list[TestRecord] | None]:
     """(the first gauge's records, the second gauge's or None): the arguments of
-    :func:`softimpact.workflows.series.reduce_series` after the series."""
+    :func:`softimpact.studies.series.reduce_series` after the series."""
     return read_records(series), (read_records(series, second=True) if series.second_position is not None else None)

@@ -477,7 +477,7 @@ __all__ += ["bar_tests", "identify_series"]
 
 
 def bar_tests(reduced) -> list[BarTest]:
-    """The reduced tests of a series (:class:`softimpact.workflows.series.ReducedTest`, read
+    """The reduced tests of a series (:class:`softimpact.studies.series.ReducedTest`, read
     duck-typed) as BarTests: force [N] from first contact up to where the record holds it
     (``valid_until``), resampled evenly at the reduction's own (median) step; tests that
     could not be reduced are skipped (InputError when fewer than two remain)."""

@@ -19,12 +19,12 @@ from ...output.files import figure_bytes
 from ...output.identify import identify_files
 from ...output.plots import _figure
 from ...output.report import Section
+from ...studies.series import reduce_series
 from ...units import INCH, display
 from ...workflows.beam_impact import BeamLoad, BeamModel
 from ...workflows.coupled import Impactor
 from ...workflows.identification import bar_tests, closure, pulse_figures, refine
 from ...workflows.identification import identify as fit_law
-from ...workflows.series import reduce_series
 from ..impact import run_impact
 
 __all__ = ["question_section"]

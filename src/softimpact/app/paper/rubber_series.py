@@ -6,7 +6,7 @@ from ...input.series import load_series
 from ...input.series_records import read_series_records
 from ...output.report import Section
 from ...output.series import reduction_files, scaling_files, scaling_section
-from ...workflows.series import fit_series, reduce_series
+from ...studies.series import fit_series, reduce_series
 from .comparison import comparison_section
 
 __all__ = ["rubber_series_sections"]

@@ -1,4 +1,4 @@
-"""workflows/series.py (reduce a bar series, fit α1–α4) and the identification tests made from it,
+"""studies/series.py (reduce a bar series, fit α1–α4) and the identification tests made from it,
 at the workflow level: against the pulse that made a record, the paper's Table I, and closed forms."""
 
 from pathlib import Path
@@ -12,8 +12,8 @@ from softimpact.gates import MAX_SKEW, pulse_skew
 from softimpact.models.materials import lookup
 from softimpact.models.pulses import SkewedPulse
 from softimpact.models.specimens import BarSpec
+from softimpact.studies.series import ReducedTest, failed_reductions, fit_series, reduce_series
 from softimpact.workflows.identification import bar_tests
-from softimpact.workflows.series import ReducedTest, failed_reductions, fit_series, reduce_series
 
 INCH = 0.0254  # m, by definition
 GRAM = 1e-3  # kg

@@ -1,6 +1,9 @@
 """A bar test series: every record conditioned and reduced to a force history, then the
 scaling constants α1–α4 of eqs (4)–(7) fitted to the unflagged tests (paper Figs 7–15, Table I).
 
+A study (one level above the workflows): it composes :mod:`softimpact.workflows.conditioning`,
+:mod:`softimpact.workflows.reduction` and :mod:`softimpact.workflows.scaling`.
+
 The records arrive read (strain against time, one per test, SI; the input layer reads
 the files and applies the bridge): this module conditions each (baseline, first arrival,
 clipping, double hits: :mod:`softimpact.workflows.conditioning`) and reduces it
@@ -22,9 +25,9 @@ from dataclasses import dataclass, field
 
 from ..errors import InputError
 from ..gates import Gate, at_most, pulse_skew
-from .conditioning import Conditioned, condition_record
-from .reduction import Record, Reduction, reduce_record
-from .scaling import ScalingFit, TestPoint, fit_groups
+from ..workflows.conditioning import Conditioned, condition_record
+from ..workflows.reduction import Record, Reduction, reduce_record
+from ..workflows.scaling import ScalingFit, TestPoint, fit_groups
 
 __all__ = ["ReducedTest", "MAX_PULSE_MISFIT", "REJECTING_FLAGS", "condition", "reduce_series", "failed_reductions", "fit_series", "reduction_gates"]
 
