@@ -81,3 +81,19 @@ def test_start_pulse_refuses_a_velocity_outside_the_constants():
 
     with pytest.raises(InputError, match="outside the range of the bar model .*1000-5000 in/s"):
         start_pulse("rubber-1/2in", None, 6000 * INCH)
+
+
+def test_model_ladder_levels_refine_the_papers_mesh():
+    """The ladder's level 0 is the paper's calibration model (200 × 6 elements at 1 µs, docs/modelling-notes.md); level k
+    multiplies both element counts by 2^k and divides the step by 2^k, level -1 coarsens; the budget picks a level from 0 to 3."""
+    from softimpact.input.beam_case import load_beam_case
+    from softimpact.studies.calibration import ModelLadder
+
+    problem, _ = load_beam_case("paper-long-beam")
+    ladder = ModelLadder(problem, [0.25 * INCH, 0.35 * INCH])
+    assert ladder.describe(0) == {"level": 0, "factor": 1, "elements": [200, 6], "time_step_s": pytest.approx(1e-6)}
+    assert ladder.describe(1) == {"level": 1, "factor": 2, "elements": [400, 12], "time_step_s": pytest.approx(0.5e-6)}
+    assert ladder.describe(-1)["elements"] == [100, 3]
+    assert ladder.reach == pytest.approx(0.35 * INCH)
+    assert ladder.affordable(0.0) == 0 and ladder.affordable(1e12) == 3
+    assert ladder.finest() is ladder(1)
