@@ -7,7 +7,7 @@ for the real structure, the limit of refinement), then given independent noise
 realisation is calibrated with the default settings (the model checked and
 refined within the default budget; standard errors of noise and discretisation
 together, widened where the parameters' own convergence over three levels shows
-more: app/calibrate.calibrate_tests' path). Printed per parameter: the fraction of realisations whose 95 %
+more: studies/calibration.calibrate_tests' path). Printed per parameter: the fraction of realisations whose 95 %
 interval (±1.96 SE) holds the true value, the RMS of error/SE, and the mean and
 largest relative error.
 
@@ -20,9 +20,10 @@ from dataclasses import replace
 
 import numpy as np
 
-from softimpact.app.calibrate import DEFAULT_BUDGET, ModelLadder, start_pulse, with_parameter_convergence
 from softimpact.input.beam_case import load_beam_case
+from softimpact.input.scaling_constants import start_pulse
 from softimpact.models.pulses import SkewedPulse
+from softimpact.studies.calibration import DEFAULT_BUDGET, ModelLadder, with_parameter_convergence
 from softimpact.workflows.beam_impact import BeamModel
 from softimpact.workflows.calibration import Measured, calibrate_checked
 from softimpact.workflows.refinement import refine_beam

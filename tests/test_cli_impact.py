@@ -250,7 +250,7 @@ def test_question_section_tables():
     """The report's predicted Tables II and III: the paper's rows as printed in the paper, the carried-over
     bar law at eq (4) with Table I's α1 = 4.25 (1/2-in ball, 1.1 g), and the coupled prediction's
     errors written against the paper's values."""
-    from softimpact.app.impact import question_section
+    from softimpact.app.paper.question import question_section
 
     files = {}
     sec = question_section(False, files)

@@ -307,7 +307,7 @@ def test_unexpected_exception_is_one_line_and_exit_70(tmp_path, monkeypatch):
     """A bug deep inside: 'internal error' in one line, exit 70; with SOFTIMPACT_DEBUG=1 the exception propagates."""
     import softimpact.app.bar
 
-    def broken(case, figures=True):
+    def broken(**options):
         raise ZeroDivisionError("float division by zero")
 
     monkeypatch.setattr(softimpact.app.bar, "bar", broken)
@@ -422,7 +422,7 @@ def test_reduction_gates_flag_a_misfit_and_a_degenerate_pulse():
     """reduce's gates: a pulse fitted within 5 % of F0 passes; a 30 % misfit or tF0 = T fails, naming the test."""
     from types import SimpleNamespace
 
-    from softimpact.app.series import ReducedTest, reduction_gates
+    from softimpact.studies.series import ReducedTest, reduction_gates
 
     def reduced(name, rms, tF0, T):
         test = SimpleNamespace(name=name)

@@ -238,8 +238,8 @@ def test_a_record_of_zeros_is_a_flat_signal_not_clipped(tmp_path):
 
 def test_quarter_bridge_nonlinearity_matters_at_large_strain(tmp_path):
     """At 5000 µε the linearised bridge would be 0.5 % off: the series' bridge reads the exact strain back."""
-    from softimpact.app.series import read_records
     from softimpact.input.series import load_series
+    from softimpact.input.series_records import read_records
 
     strain = -5e-3 * pulse(T_REC - 100e-6) / 1000.0
     write_vendor_csv(tmp_path / "big.csv", volts=bridge_volts(strain))
@@ -261,8 +261,8 @@ def test_quarter_bridge_nonlinearity_matters_at_large_strain(tmp_path):
 )
 def test_half_and_full_bridges_from_the_series(tmp_path, bridge, volts_per_strain):
     """The series' bridge keys select the configuration and the sign (the full and half formulas are linear)."""
-    from softimpact.app.series import read_records
     from softimpact.input.series import load_series
+    from softimpact.input.series_records import read_records
 
     write_vendor_csv(tmp_path / "v.csv", volts=volts_per_strain(STRAIN))
     text = BAR_TOML.format(extra="") + f'gauge_factor = {GF}\nexcitation = "{VEX} V"\ngain = {GAIN}\n{bridge}\n'
@@ -274,8 +274,8 @@ def test_half_and_full_bridges_from_the_series(tmp_path, bridge, volts_per_strai
 
 def test_shunt_calibration_corrects_the_gain(tmp_path):
     """A chain whose true gain is 3 % above nominal reads true strain once the measured shunt step is given."""
-    from softimpact.app.series import read_records
     from softimpact.input.series import load_series
+    from softimpact.input.series_records import read_records
 
     true_gain, rg, rs = GAIN * 1.03, 350.0, 100e3
     volts = bridge_volts(STRAIN) * 1.03
@@ -558,8 +558,10 @@ def test_disperse_is_propagate_without_the_bulk_delay_and_undoes_itself():
 
 def test_end_cap_reflections_are_not_double_hits():
     """The built-in FE records (end-capped bar, long pulses) condition without a double-hit flag: the cap's delay is predicted."""
-    from softimpact.app.series import reduce_series
     from softimpact.input.series import load_series
+    from softimpact.input.series_records import read_series_records
+    from softimpact.studies.series import reduce_series
 
-    reduced = reduce_series(load_series("paper-rubber-series"))
+    series = load_series("paper-rubber-series")
+    reduced = reduce_series(series, *read_series_records(series))
     assert all(not r.conditioning.double_hit and not r.rejected for r in reduced)

@@ -28,6 +28,36 @@ def test_every_figure_is_in_the_report(report, fig):
     assert fig in report[1]
 
 
+# The paper's Table I (α1, α2, α3, α4; α3 of the 1/2-in ball lost) and Tables II and III (V [in/s], F0 [lbf], tF0 [µs], T [µs]).
+TABLE_I = {"0.375 in": (4.00, 1.03, 0.25, 0.74), "0.5 in": (4.25, 0.93, None, 0.66)}
+TABLE_II = [(1166, 44, 30, 355), (1932, 90, 21, 250), (3058, 215, 13, 158), (4026, 325, 10, 120)]
+TABLE_III = [(1166, 42, 35, 415), (1981, 84, 20, 310), (2994, 170, 13, 205), (4049, 245, 10, 155)]
+LBF = 4.4482216152605  # N
+
+
+@pytest.mark.parametrize(("group", "constant"), [(g, i) for g in TABLE_I for i in range(4) if TABLE_I[g][i] is not None])
+def test_table_I_in_the_report_is_the_papers(report, group, constant):
+    """The report's fitted Table I (the synthetic series made from Table I, 1 % noise) is the paper's: α1, α2, α4 within 3 %, α3 within 10 %."""
+    html = report[1]
+    table = html[html.index("<caption>Table I: scaling constants") :]
+    table = table[: table.index("</table>")]
+    fitted = {(g, a): float(v) for g, a, v in re.findall(r"<tr><td>([^<]+)</td><td>alpha(\d)</td><td>([0-9.]+)</td>", table)}
+    assert fitted[(group, str(constant + 1))] == pytest.approx(TABLE_I[group][constant], rel=0.10 if constant == 2 else 0.03)
+
+
+@pytest.mark.parametrize(("beam", "table"), [("long", TABLE_II), ("short", TABLE_III)])
+def test_calibrated_histories_are_tables_II_and_III(report, beam, table):
+    """The calibrations of the report (synthetic strains made from Tables II/III, 1.5 % noise) give back the paper's F0 within 5 % and T within 5 %."""
+    import csv
+
+    rows = list(csv.DictReader((report[0] / f"calibration-{beam}" / "tables.csv").read_text().splitlines()))
+    assert len(rows) == len(table)
+    for row, (V, F0, _, T) in zip(rows, table):
+        assert float(row["velocity_m_s"]) == pytest.approx(V * 0.0254, rel=1e-3)
+        assert float(row["peak_force_N"]) / LBF == pytest.approx(F0, rel=0.05)
+        assert float(row["duration_s"]) * 1e6 == pytest.approx(T, rel=0.05)
+
+
 def test_every_image_is_embedded_and_written(report):
     """Every <img> of the report is an embedded PNG (the page opens on its own when mailed), also written beside it."""
     out, html = report

@@ -136,7 +136,7 @@ def test_beam_as_plate_section_layered_beam_agrees_with_the_plate():
     beam with the real stacking (layered 2-D elasticity, an independent model) and the FSDT strip
     agree on the peak gauge strains within 7 % (measured ≤ 6.1 %) and within 1 % for history 1,
     while the smeared beam, 15 % too stiff in bending, is off by more than 7 % somewhere."""
-    from softimpact.app.plate import beam_as_plate_section
+    from softimpact.app.paper.beam_as_plate import beam_as_plate_section
 
     section = beam_as_plate_section(False, {})
     rows = section.tables[0][2]

@@ -117,20 +117,6 @@ def _guarded(fn):
     return wrapper
 
 
-def _out_option(command: str):
-    return click.option(
-        "--out",
-        "out",
-        type=click.Path(),  # checked by output.files.check_writable: one line, exit 2
-        default=f"softimpact-{command}",
-        show_default=True,
-        help="Folder for the outputs (created if needed; nothing is written elsewhere).",
-    )
-
-
-_figures_option = click.option("--figures/--no-figures", default=True, show_default=True, help="Draw the PNG figures (the numbers are written either way).")
-
-
 class _Progress:
     """A click progress bar driven by the app's ``progress(done, total, label)`` callback."""
 
@@ -191,11 +177,6 @@ def _run(command, out: str, accept_poor: bool = False, **kwargs) -> None:
     _finish(outcome, out, accept_poor)
 
 
-_accept_poor_option = click.option(
-    "--accept-poor", is_flag=True, default=False, help="Exit 0 even when the answer fails its quality checks (marked accepted-poor in the outputs)."
-)
-
-
 @click.group(context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 100})
 @click.version_option(__version__, prog_name="softimpact")
 @click.option("--ignore-limits", is_flag=True, default=False, help="Run problems the memory/time guard would refuse (or set SOFTIMPACT_IGNORE_LIMITS=1).")
@@ -219,6 +200,58 @@ def main(ignore_limits, debug, force):
         os.environ[DEBUG_ENV] = "1"
 
 
+# --- the shared options and the command factory ----------------------------------------------------
+
+HISTORY_HELP = "Row N of the case's [[load.table]]."
+
+
+def _out_option(command: str) -> click.Option:
+    return click.Option(
+        ["--out", "out"],
+        type=click.Path(),  # checked by output.files.check_writable: one line, exit 2
+        default=f"softimpact-{command}",
+        show_default=True,
+        help="Folder for the outputs (created if needed; nothing is written elsewhere).",
+    )
+
+
+def _figures_option() -> click.Option:
+    return click.Option(["--figures/--no-figures"], default=True, show_default=True, help="Draw the PNG figures (the numbers are written either way).")
+
+
+def _history_option(help: str) -> click.Option:
+    return click.Option(["--history"], type=int, default=None, help=help)
+
+
+def _accept_poor_option() -> click.Option:
+    return click.Option(
+        ["--accept-poor"], is_flag=True, default=False, help="Exit 0 even when the answer fails its quality checks (marked accepted-poor in the outputs)."
+    )
+
+
+def _command(name: str, short_help: str, *, history: str | None = None, figures: bool = True, accept_poor: bool | str = False):
+    """Register ``softimpact NAME``: the function's own arguments and options (its click
+    decorators), then the shared ones in this order: ``--history`` (with that help text, when
+    given), ``--out`` (default ``softimpact-NAME``), ``--figures/--no-figures`` and
+    ``--accept-poor`` (when asked for; ``accept_poor="before-out"`` lists it before ``--out``,
+    where calibrate has always had it); the function runs under :func:`_guarded`."""
+
+    def decorate(fn):
+        command = main.command(name, short_help=short_help)(_guarded(fn))
+        shared = [_history_option(history)] if history is not None else []
+        if accept_poor == "before-out":
+            shared.append(_accept_poor_option())
+        shared.append(_out_option(name))
+        if figures:
+            shared.append(_figures_option())
+        if accept_poor is True:
+            shared.append(_accept_poor_option())
+        command.params.extend(shared)
+        return command
+
+    return decorate
+
+
 @main.command("cases", short_help="List the built-in cases and series.")
 @_guarded
 def cases_cmd():
@@ -230,11 +263,8 @@ def cases_cmd():
         click.echo(f"{name:24s} {title}")
 
 
-@main.command("bar", short_help="Sphere on the instrumented bar (Figs 4-6).")
+@_command("bar", "Sphere on the instrumented bar (Figs 4-6).")
 @click.argument("case")
-@_out_option("bar")
-@_figures_option
-@_guarded
 def bar_cmd(case, out, figures):
     """Longitudinal impact of a sphere on an instrumented bar (CASE: file or built-in name).
 
@@ -243,15 +273,11 @@ def bar_cmd(case, out, figures):
     """
     from .app.bar import bar
 
-    _finish(bar(case, figures), out)
+    _run(bar, out, case=case, figures=figures)
 
 
-@main.command("beam", short_help="Transverse impact of a laminated beam (Figs 16-22).")
+@_command("beam", "Transverse impact of a laminated beam (Figs 16-22).", history="Row N of the case's [[load.table]] (Tables II/III for the built-ins).")
 @click.argument("case")
-@click.option("--history", type=int, default=None, help="Row N of the case's [[load.table]] (Tables II/III for the built-ins).")
-@_out_option("beam")
-@_figures_option
-@_guarded
 def beam_cmd(case, history, out, figures):
     """Transverse impact of a laminated beam (CASE: file or built-in name).
 
@@ -263,14 +289,10 @@ def beam_cmd(case, history, out, figures):
     _run(beam, out, case=case, history=history, figures=figures)
 
 
-@main.command("converge", short_help="Discretisation error of a case by systematic refinement.")
+@_command("converge", "Discretisation error of a case by systematic refinement.", history="Beam cases: row N of the case's [[load.table]].")
 @click.argument("case")
 @click.option("--levels", type=int, default=3, show_default=True, help="Number of discretisations: the case's own, then refined by --ratio each (2 to 5).")
 @click.option("--ratio", type=int, default=2, show_default=True, help="Refinement ratio between levels (elements × ratio, time step / ratio).")
-@click.option("--history", type=int, default=None, help="Beam cases: row N of the case's [[load.table]].")
-@_out_option("converge")
-@_figures_option
-@_guarded
 def converge_cmd(case, levels, ratio, history, out, figures):
     """Run a bar, beam or plate CASE on refined meshes and time steps; estimate the observed
     order and the discretisation error of each output by Richardson extrapolation.
@@ -288,13 +310,10 @@ def converge_cmd(case, levels, ratio, history, out, figures):
     _run(converge, out, case=case, levels=levels, ratio=ratio, history=history, figures=figures)
 
 
-@main.command("sweep", short_help="Grids and Monte Carlo of a case, local or on Dask.")
+@_command("sweep", "Grids and Monte Carlo of a case, local or on Dask.")
 @click.argument("spec")
 @click.option("--workers", type=int, default=None, help="Local Dask worker processes (default: the machine's cores; 0: a plain loop, no Dask).")
 @click.option("--scheduler", default=None, help="Address of a running Dask scheduler (tcp://host:8786) to run on instead.")
-@_out_option("sweep")
-@_figures_option
-@_guarded
 def sweep_cmd(spec, workers, scheduler, out, figures):
     """Runs of a case varied as the SPEC file says (grid, Monte Carlo, Latin hypercube).
 
@@ -308,12 +327,8 @@ def sweep_cmd(spec, workers, scheduler, out, figures):
     _run(sweep, out, spec=spec, out_dir=out, workers=workers, scheduler=scheduler, figures=figures)
 
 
-@main.command("plate", short_help="Transverse impact of a laminated plate (FSDT).")
+@_command("plate", "Transverse impact of a laminated plate (FSDT).", history=HISTORY_HELP)
 @click.argument("case")
-@click.option("--history", type=int, default=None, help="Row N of the case's [[load.table]].")
-@_out_option("plate")
-@_figures_option
-@_guarded
 def plate_cmd(case, history, out, figures):
     """Transverse impact of a laminated plate, FSDT MITC9 (or MITC4) elements (CASE: file or built-in name).
 
@@ -325,12 +340,8 @@ def plate_cmd(case, history, out, figures):
     _run(plate, out, case=case, history=history, figures=figures)
 
 
-@main.command("reduce", short_help="Bar strain records -> force histories (Fig 7).")
+@_command("reduce", "Bar strain records -> force histories (Fig 7).", accept_poor=True)
 @click.argument("series")
-@_out_option("reduce")
-@_figures_option
-@_accept_poor_option
-@_guarded
 def reduce_cmd(series, out, figures, accept_poor):
     """Bar strain records of a SERIES file → force histories and pulse parameters.
 
@@ -342,12 +353,8 @@ def reduce_cmd(series, out, figures, accept_poor):
     _run(reduce, out, accept_poor, series_name=series, figures=figures)
 
 
-@main.command("fit", short_help="Reduce a series, then fit alpha1-alpha4 (Table I).")
+@_command("fit", "Reduce a series, then fit alpha1-alpha4 (Table I).", accept_poor=True)
 @click.argument("series")
-@_out_option("fit")
-@_figures_option
-@_accept_poor_option
-@_guarded
 def fit_cmd(series, out, figures, accept_poor):
     """Reduce a SERIES, then fit the scaling constants α1–α4 of eqs (4)–(7).
 
@@ -359,7 +366,7 @@ def fit_cmd(series, out, figures, accept_poor):
     _run(fit, out, accept_poor, series_name=series, figures=figures)
 
 
-@main.command("predict", short_help="Force history from a model, optionally driving a bar or beam.")
+@_command("predict", "Force history from a model, optionally driving a bar or beam.")
 @click.option("--projectile", help="A named projectile (rubber-1/2in, rubber-3/8in), or give --mass and --diameter.")
 @click.option("--mass", help='Projectile mass, e.g. "1.1 g".')
 @click.option("--diameter", help='Projectile diameter, e.g. "0.5 in".')
@@ -381,9 +388,6 @@ def fit_cmd(series, out, figures, accept_poor):
 @click.option(
     "--units", "system", type=click.Choice(["in-lbf-s", "SI"]), default="in-lbf-s", show_default=True, help="Display units of the line printed and the figure."
 )
-@_out_option("predict")
-@_figures_option
-@_guarded
 def predict_cmd(projectile, mass, diameter, velocity, model, constants, group, tail, material, target, bar_case, beam_case, system, out, figures):
     """Force history of a projectile at a velocity, from the empirical model or a classical one.
 
@@ -392,10 +396,27 @@ def predict_cmd(projectile, mass, diameter, velocity, model, constants, group, t
     """
     from .app.predict import predict
 
-    _finish(predict(projectile, mass, diameter, velocity, model, constants, group, tail, material, target, bar_case, system, figures, beam_case), out)
+    _run(
+        predict,
+        out,
+        projectile=projectile,
+        mass=mass,
+        diameter=diameter,
+        velocity=velocity,
+        model=model,
+        constants=constants,
+        group=group,
+        tail=tail,
+        material=material,
+        target=target,
+        bar_case=bar_case,
+        beam_case=beam_case,
+        system=system,
+        figures=figures,
+    )
 
 
-@main.command("calibrate", short_help="Force history that makes computed strains match measured ones.")
+@_command("calibrate", "Force history that makes computed strains match measured ones.", accept_poor="before-out")
 @click.argument("case")
 @click.option("--measured", type=click.Path(dir_okay=False), help="CSV of measured strains: time_s and strain_<gauge> columns.")
 @click.option("--velocity", help='Impact velocity, e.g. "1166 in/s" (sets the bar-model start).')
@@ -419,10 +440,6 @@ def predict_cmd(projectile, mass, diameter, velocity, model, constants, group, t
     help="Seconds that refining the model may cost: the mesh is refined until its discretisation error moves no "
     "parameter by more than half a noise standard error, or this budget is spent.",
 )
-@_accept_poor_option
-@_out_option("calibrate")
-@_figures_option
-@_guarded
 def calibrate_cmd(case, measured, velocity, method, contact_radius, contact_time, fit_radius, projectile, constants, budget, accept_poor, out, figures):
     """Force history that makes computed gauge strains match measured ones.
 
@@ -453,11 +470,8 @@ def calibrate_cmd(case, measured, velocity, method, contact_radius, contact_time
     )
 
 
-@main.command("impact", short_help="Coupled impact of a rigid impactor on a beam or plate through a contact law.")
+@_command("impact", "Coupled impact of a rigid impactor on a beam or plate through a contact law.")
 @click.argument("case")
-@_out_option("impact")
-@_figures_option
-@_guarded
 def impact_cmd(case, out, figures):
     """Coupled impact of a rigid impactor on a beam or plate (CASE: file or built-in name), the
     contact force found each step from a contact law (hertz, hertz-unloading, hunt-crossley, identified).
@@ -470,11 +484,8 @@ def impact_cmd(case, out, figures):
     _run(impact, out, case=case, figures=figures)
 
 
-@main.command("identify", short_help="A soft projectile's contact law from bar tests (law.json).")
+@_command("identify", "A soft projectile's contact law from bar tests (law.json).")
 @click.argument("series")
-@_out_option("identify")
-@_figures_option
-@_guarded
 def identify_cmd(series, out, figures):
     """Identify one contact law of a SERIES of bar tests (file or built-in name): reduce the
     records, reconstruct force against approach, fit, then check by coupled bar simulations.
@@ -487,10 +498,7 @@ def identify_cmd(series, out, figures):
     _run(identify, out, series_name=series, figures=figures)
 
 
-@main.command("paper", short_help="The whole paper, end to end, into report.html.")
-@_out_option("paper")
-@_figures_option
-@_guarded
+@_command("paper", "The whole paper, end to end, into report.html.")
 def paper_cmd(out, figures):
     """The whole paper, end to end, on the built-in cases, into DIR/report.html.
 

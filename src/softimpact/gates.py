@@ -29,7 +29,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-__all__ = ["Gate", "at_most", "at_least", "passed_if", "failed", "status", "quality"]
+__all__ = ["Gate", "at_most", "at_least", "passed_if", "failed", "status", "quality", "MAX_SKEW", "pulse_skew"]
+
+MAX_SKEW = 0.95  # tF0/T of an eq-15 pulse at or above: degenerate (the peak at the very end, tF0 ≈ T)
 
 
 @dataclass(frozen=True)
@@ -62,6 +64,13 @@ def at_least(name: str, value: float, limit: float, reason: str) -> Gate:
 def passed_if(name: str, ok: bool, reason: str) -> Gate:
     """A yes/no gate (an optimiser's success flag): value 1 if ``ok`` else 0, limit 1."""
     return Gate(name, bool(ok), 1.0 if ok else 0.0, 1.0, reason)
+
+
+def pulse_skew(name: str, time_of_peak: float, duration: float) -> Gate:
+    """The gate ``pulse-skew[name]``: an eq-15 pulse whose skewness tF0/T reaches MAX_SKEW is
+    degenerate (reduce, fit and calibrate all hold their pulses to it); NaN (fails) for T ≤ 0."""
+    skew = time_of_peak / duration if duration > 0 else float("nan")
+    return at_most(f"pulse-skew[{name}]", skew, MAX_SKEW, f"{name}: degenerate pulse, tF0/T = {{value:.2f}} (limit {{limit:.2f}})")
 
 
 def failed(gates) -> tuple[Gate, ...]:

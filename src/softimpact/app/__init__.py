@@ -5,6 +5,12 @@ and turns results into the file contract (:mod:`softimpact.output`); the
 command line (:mod:`softimpact.cli`) only parses arguments, writes the
 outcome's files and prints its line. Long runs report progress through a
 callback ``progress(done, total, label)``; nothing here prints or writes.
+
+Each command is a function of keyword-only options (``predict(*, projectile=...,
+velocity=..., ...)``) that parses, calls a workflow (or a study of several,
+:mod:`softimpact.studies`), hands the result to output and returns an
+:class:`Outcome`. No app module imports another, except the report's package
+:mod:`softimpact.app.paper` (one module per section), which reuses them.
 """
 
 from __future__ import annotations

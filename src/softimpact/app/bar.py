@@ -10,7 +10,7 @@ from ..input.bar_case import load_bar_case
 from ..output.bar import bar_files
 from ..units import display
 from ..workflows.bar_impact import force_from_gauge, simulate_impact, without_end_cap
-from . import Outcome
+from . import Outcome, Progress, no_progress
 
 __all__ = ["bar", "run_bar"]
 
@@ -36,7 +36,7 @@ def gauge_lag(result, inferred) -> tuple[float, float] | None:
     return float(f[k] / result.peak_force), float(t[k] - result.time_of_peak)
 
 
-def bar(case: str, figures: bool = True) -> Outcome:
+def bar(*, case: str, figures: bool = True, progress: Progress = no_progress) -> Outcome:
     """Run a bar case (file or built-in name)."""
     problem, path = load_bar_case(case)
     t0 = time.perf_counter()

@@ -15,7 +15,7 @@ from . import Outcome, Progress, no_progress
 __all__ = ["beam"]
 
 
-def beam(case: str, history: int | None = None, figures: bool = True, progress: Progress = no_progress) -> Outcome:
+def beam(*, case: str, history: int | None = None, figures: bool = True, progress: Progress = no_progress) -> Outcome:
     """Run a beam case (file or built-in name), optionally with row ``history`` of its [[load.table]]."""
     problem, path = load_beam_case(case, history)
     t0 = time.perf_counter()

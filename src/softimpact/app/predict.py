@@ -3,41 +3,27 @@
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import numpy as np
 
 from .. import units
 from ..errors import InputError
-from ..models.empirical import PRESETS, PROJECTILES, HertzModel, ScalingLaw, WilbeckModel
+from ..input.scaling_constants import scaling_law
+from ..models.empirical import PROJECTILES, HertzModel, WilbeckModel
 from ..models.materials import lookup
-from ..output.files import csv_text, figure_bytes, json_text
-from ..output.scaling_json import read_scaling_law
-from . import Outcome
+from ..output.predict import predict_files
+from . import Outcome, Progress, no_progress
 
-__all__ = ["MODELS", "predict", "scaling_law"]
+__all__ = ["MODELS", "predict"]
 
 MODELS = ("empirical", "hertz", "wilbeck")  # eqs (4)-(7) with (15); elastic impact, eqs (1)-(3); steady flow ρV²A
 
 
-def scaling_law(constants: str | None, group: str, projectile) -> ScalingLaw:
-    """The α's: a preset name, a scaling.json from `softimpact fit`, or the projectile's preset."""
-    if constants is None:
-        if projectile is None:
-            raise InputError("--constants: needed with --mass/--diameter (a preset or a scaling.json)")
-        return PRESETS[projectile.law]
-    if constants in PRESETS:
-        return PRESETS[constants]
-    path = Path(constants)
-    if not path.is_file():
-        raise InputError(f"--constants: {constants!r} is neither a preset ({', '.join(PRESETS)}) nor a file")
-    return read_scaling_law(path, group)
-
-
 def predict(
-    projectile: str | None,
-    mass: str | None,
-    diameter: str | None,
+    *,
+    projectile: str | None = None,
+    mass: str | None = None,
+    diameter: str | None = None,
     velocity: str,
     model: str = "empirical",
     constants: str | None = None,
@@ -49,6 +35,7 @@ def predict(
     system: str = "in-lbf-s",
     figures: bool = True,
     beam_case: str | None = None,
+    progress: Progress = no_progress,
 ) -> Outcome:
     """Force history of a projectile at a velocity; quantities are strings with units, as typed."""
     if model not in MODELS:
@@ -90,25 +77,7 @@ def predict(
     chosen = models[model]
     pulse = chosen.pulse(m, d, V, tail=tail) if model == "empirical" else chosen.pulse(m, d, V)
     params = chosen.parameters(m, d, V)
-    end = 1.5 * pulse.duration
-    t = np.linspace(0.0, end, 1501)
-    F = pulse(t)
-    cols = {"time_s": t, "force_N": F}
-    summary = {
-        "model": model,
-        "projectile": {"name": proj.name if proj else "", "mass_kg": m, "diameter_m": d, "velocity_m_s": V},
-        "peak_force_N": params.peak_force,
-        "time_of_peak_s": params.time_of_peak,
-        "duration_s": params.duration,
-        "impulse_N_s": params.impulse,
-        "impulse_of_history_N_s": float(np.trapezoid(F, t)),
-        "constants": None
-        if law is None
-        else {"alpha1": law.alpha1, "alpha2": law.alpha2, "alpha3": law.alpha3, "alpha4": law.alpha4, "name": law.name, "source": law.source},
-        "notes": notes,
-    }
-    files = {}
-    inputs = []
+    inputs, driven, gauge_peak = [], None, ""
     if bar_case is not None:
         from ..input.bar_case import load_bar_case
         from ..workflows.bar_impact import simulate_force
@@ -116,11 +85,7 @@ def predict(
         problem, path = load_bar_case(bar_case)
         inputs.append(path)
         res = simulate_force(problem.bar, problem.solver, problem.gauges, pulse)
-        cols = {"time_s": res.time, "force_N": res.force}
-        for g, eps in zip(problem.gauges, res.gauge_strain):
-            cols[f"strain_{g.name}"] = eps
-            k = int(np.argmin(eps))
-            summary.setdefault("gauges", {})[g.name] = {"peak_compressive_strain": float(eps[k]), "time_s": float(res.time[k])}
+        driven, gauge_peak = (res.time, res.force, problem.gauges, res.gauge_strain), "compressive"
     if beam_case is not None:
         from dataclasses import replace
 
@@ -131,23 +96,26 @@ def predict(
         inputs.append(path)
         problem = replace(problem, load=BeamLoad(problem.load.position, problem.load.contact_radius, pulse))
         res = BeamModel(problem).direct(energy=False)
-        cols = {"time_s": res.time, "force_N": res.force}
-        for g, eps in zip(problem.gauges, res.strain):
-            cols[f"strain_{g.name}"] = eps
-            k = int(np.argmax(np.abs(eps)))
-            summary.setdefault("gauges", {})[g.name] = {"peak_strain": float(eps[k]), "time_s": float(res.time[k])}
-    files["history.csv"] = csv_text(cols)
-    files["summary.json"] = json_text(summary)
+        driven, gauge_peak = (res.time, res.force, problem.gauges, res.strain), "absolute"
+    curves = []
     if figures:
-        from ..output import plots
-
-        curves = []
         for name, mod in models.items():
             pl = mod.pulse(m, d, V, tail=tail) if name == "empirical" else mod.pulse(m, d, V)
             tt = np.linspace(0, 1.5 * max(pl.duration, pulse.duration), 1501)
             curves.append((f"{name}{' (chosen)' if name == model else ''}", tt, pl(tt)))
-        vu = units.display(system, "velocity")
-        files["force-history.png"] = figure_bytes(plots.predicted_forces(curves, system, f"Predicted force, V = {V * vu.factor:.4g} {vu.label}"))
+    files = predict_files(
+        model=model,
+        projectile={"name": proj.name if proj else "", "mass_kg": m, "diameter_m": d, "velocity_m_s": V},
+        params=params,
+        pulse=pulse,
+        law=law,
+        notes=notes,
+        curves=curves,
+        driven=driven,
+        gauge_peak=gauge_peak,
+        system=system,
+        figures=figures,
+    )
     fu, tu, iu = units.display(system, "force"), units.display(system, "time"), units.display(system, "impulse")
     line = (
         f"{model}: F0 {params.peak_force * fu.factor:.4g} {fu.label} at {params.time_of_peak * tu.factor:.4g} {tu.label}, "

@@ -602,10 +602,12 @@ def paper_plate_thresholds(draws: int = PAPER_DRAWS, levels: int = 10, meshes: t
 def _paper_fit() -> dict:
     """The scaling.json contents of the built-in rubber series' fit (computed once per process; not to be changed)."""
     from ..input.series import load_series
+    from ..input.series_records import read_series_records
     from ..output.scaling_json import scaling_summary
-    from .series import fit_series, reduce_series
+    from ..studies.series import fit_series, reduce_series
 
-    return scaling_summary(fit_series(reduce_series(load_series("paper-rubber-series"))))
+    series = load_series("paper-rubber-series")
+    return scaling_summary(fit_series(reduce_series(series, *read_series_records(series))))
 
 
 def _paper_spec(case: str, projectile: str, draws: int, levels: int) -> dict:

@@ -455,3 +455,48 @@ def refine(
     half[free] = Z95 * np.sqrt(np.maximum(np.diag(cov), 0.0))
     out = with_values(sol.x)
     return IdentifiedLaw(PARAMETERS, out.values, half, law.d_ref, law.rms_per_test, 0.5 * float(r @ r), law.identified_on)
+
+
+# --- a reduced bar series as identification tests (reduce → identify → refine → closure) ------------
+
+__all__ += ["bar_tests", "identify_series"]
+
+
+def bar_tests(reduced) -> list[BarTest]:
+    """The reduced tests of a series (:class:`softimpact.studies.series.ReducedTest`, read
+    duck-typed) as BarTests: force [N] from first contact up to where the record holds it
+    (``valid_until``), resampled evenly at the reduction's own (median) step; tests that
+    could not be reduced are skipped (InputError when fewer than two remain)."""
+    out = []
+    for r in reduced:
+        if r.reduction is None:
+            continue
+        red = r.reduction
+        dt = float(np.median(np.diff(red.time)))
+        t = np.arange(0.0, min(red.valid_until, red.time[-1]) + 0.5 * dt, dt)
+        t = t[t <= red.time[-1]]
+        out.append(BarTest(r.test.name, t, np.interp(t, red.time, red.force), r.test.mass, r.test.diameter, r.test.velocity))
+    if len(out) < 2:
+        raise InputError("identify: need at least two reduced tests")
+    return out
+
+
+def _silent(done: int, total: int, label: str) -> None:
+    """The default progress callback: silent."""
+
+
+def identify_series(rod: Rod, reduced, refined: bool = True, progress=_silent):
+    """Fit the law on the reconstructed F(α, α̇) of the reduced tests on the bar ``rod``, refine it
+    on the coupled bar simulations (:func:`refine`; one run per diameter per evaluation, 200 steps
+    per pulse), run the :func:`closure` on every test. ``progress(done, total, label)``.
+    Returns (tests, law, approaches, closure)."""
+    tests = bar_tests(reduced)
+    progress(0, 3, "fitting F(alpha)")
+    law, approaches = identify(tests, rod)
+    if refined:
+        progress(1, 3, "refining on coupled bar runs")
+        law = refine(law, tests, rod)
+    progress(2, 3, "closure")
+    cl = closure(law, tests, rod)
+    progress(3, 3, "closure")
+    return tests, law, approaches, cl

@@ -1,0 +1,91 @@
+"""The report's section on the calibrations of Tables II and III and the long-against-short comparison (paper Figs 23-25)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ...input.beam_case import load_beam_case
+from ...input.records import read_strains
+from ...input.scaling_constants import start_pulse
+from ...input.series import CalibrationSeries, load_calibration_series
+from ...models.empirical import PRESETS, PROJECTILES
+from ...models.pulses import SkewedPulse
+from ...output import plots
+from ...output.calibration import SeriesComparison, calibration_section, series_calibration_files, tables_rows
+from ...output.files import figure_bytes
+from ...output.report import Section
+from ...studies.calibration import CalibratedTest, calibrate_tests, calibration_model, scaling_points, series_fits
+from ...workflows.beam_impact import BeamModel
+from ...workflows.calibration import Measured, calibrate
+from ...workflows.scaling import fit_groups
+from .notes import SYSTEM
+
+__all__ = ["calibration_sections", "comparison"]
+
+
+def calibration_sections(figures: bool, files: dict) -> list[Section]:
+    """Each beam's calibration series (least squares, and the paper's procedure on the long beam's history 1),
+    then the calibrated scaling beside the paper's tables."""
+    sections = []
+    groups = {}
+    for beam in ("long", "short"):
+        series = load_calibration_series(f"paper-{beam}-calibration")
+        problem, _ = load_beam_case(series.case)
+        models = calibration_model(problem, [t.contact_radius or problem.load.contact_radius for t in series.tests], False)
+        items = calibrate_tests(models, series.tests, series.projectile, series.constants, "least-squares")
+        truths = [SkewedPulse(r[1], r[2], r[3]) for r in series.reference] if len(series.reference) == len(items) else None
+        prefix = f"calibration-{beam}/"
+        fits = series_fits(series, items)
+        files.update(series_calibration_files(models, series, items, fits, figures, prefix, truths))
+        paper_method = None
+        if beam == "long":
+            # The paper's procedure on history 1, from the bar model with the Table's tF0/T (see NOTES).
+            test = series.tests[0]
+            bar = start_pulse(series.projectile, series.constants, test.velocity)
+            ref = series.reference[0]
+            start = SkewedPulse(bar.peak_force, ref[2] / ref[3] * bar.duration, bar.duration)
+            t, strains = read_strains(test.measured)
+            paper_method = calibrate(models(0), Measured(test.measured.name, t, strains), start, "paper", radius=test.contact_radius)
+        compared = comparison(models.finest(), series, items, fits)
+        sections.append(calibration_section(models, series, items, compared, prefix, figures, paper_method))
+        groups[f"{beam} beam, calibrated"] = [r[:4] for r in tables_rows(items)]
+        groups[f"{beam} beam, Table {'II' if beam == 'long' else 'III'} (paper)"] = [r[:4] for r in series.reference]
+    if figures:
+        files["calibration-fig23-25.png"] = figure_bytes(plots.beam_force_scaling(groups, SYSTEM))
+        sections.append(
+            Section(
+                "Long against short beam (Figs 23-25)",
+                [
+                    "The shorter beam takes a lower, longer force at a given velocity (the paper's finding: flexural waves "
+                    "reflected from the boundaries shape the force history). Filled: calibrated here; open: the paper's tables; "
+                    "lines: fits through the origin of eqs (4)-(6)."
+                ],
+                [],
+                [("calibration-fig23-25.png", "Figs 23-25: F0 against V², 1/T against V and tF0/T against V, long and short beams")],
+            )
+        )
+    return sections
+
+
+def comparison(model: BeamModel, series: CalibrationSeries, items: list[CalibratedTest], fits) -> SeriesComparison:
+    """The bar law's histories, the strains under the paper's histories and both scaling fits."""
+    P = PROJECTILES[series.projectile]
+    law = PRESETS[P.law]
+    ref = {round(r[0], 6): r for r in series.reference}
+    bar_models, strains = [], []
+    for item in items:
+        V = item.test.velocity
+        bar_models.append(law.parameters(P.mass, P.diameter, V))
+        r = ref.get(round(V, 6))
+        if r is None:
+            strains.append(None)
+        else:
+            res = model.respond(SkewedPulse(r[1], r[2], r[3]), r[4])
+            strains.append(tuple(float(np.max(np.abs(s))) for s in res.strain))
+    groups = {}
+    if len(series.reference) >= 2:
+        paper_rows = [(str(i), r[0], r[1], r[2], r[3]) for i, r in enumerate(series.reference)]
+        groups["paper's table"] = next(iter(fit_groups(scaling_points(paper_rows, series.projectile)).values()))
+    if fits is not None:
+        groups["calibrated"] = next(iter(fits.values()))
+    return SeriesComparison(tuple(bar_models), tuple(strains), groups, law)

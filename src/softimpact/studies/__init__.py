@@ -1,0 +1,8 @@
+"""Studies: steps of the chain that compose several workflows (one level above :mod:`softimpact.workflows`,
+whose modules import no other workflow; beside :mod:`softimpact.input` and :mod:`softimpact.output`).
+
+- :mod:`softimpact.studies.series`: a bar test series conditioned, reduced and fitted (α1–α4)
+  (conditioning + reduction + scaling).
+- :mod:`softimpact.studies.calibration`: the calibration of a beam's force history on a ladder
+  of refined models (beam_impact + refinement + calibration + convergence + scaling).
+"""
