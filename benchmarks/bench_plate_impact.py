@@ -22,11 +22,10 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from timing import USER_ENV, best, process  # noqa: E402
 
-from softimpact.app.impact import impact_model, plate_reach  # noqa: E402
-from softimpact.app.plate import plate_structure  # noqa: E402
+from softimpact.fem.contact import plate_structure  # noqa: E402
 from softimpact.fem.newmark import SolverSpec  # noqa: E402
 from softimpact.input.impact_case import load_impact_case  # noqa: E402
-from softimpact.workflows.coupled import simulate_coupled  # noqa: E402
+from softimpact.workflows.coupled import impact_model, plate_reach, simulate_coupled  # noqa: E402
 
 STEPS = 1200
 

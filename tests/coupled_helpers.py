@@ -1,4 +1,4 @@
-"""Test-side helpers: the paper's long beam model and its ContactStructure (fem.plane_contact)."""
+"""Test-side helpers: the paper's long beam model and its ContactStructure (fem.contact)."""
 
 import math
 from dataclasses import replace
@@ -6,7 +6,7 @@ from dataclasses import replace
 import numpy as np
 import scipy.sparse.linalg as spl
 
-from softimpact.app.impact import beam_contact_structure as beam_structure  # noqa: F401 (re-exported for the tests)
+from softimpact.fem.contact import beam_contact_structure as beam_structure  # noqa: F401 (re-exported for the tests)
 from softimpact.fem.newmark import SolverSpec
 from softimpact.input.beam_case import load_beam_case
 from softimpact.workflows.beam_impact import BeamModel

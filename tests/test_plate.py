@@ -366,7 +366,7 @@ def test_coupled_hertz_impact_on_a_stiff_heavy_plate_tends_to_the_rigid_wall(sca
     MITC9 too, whose consistent shares of a small disc are negative at corner nodes."""
     from scipy.special import beta as beta_fn
 
-    from softimpact.app.plate import plate_structure
+    from softimpact.fem.contact import plate_structure
     from softimpact.models.contact_laws import HertzLaw
     from softimpact.models.materials import Material
     from softimpact.workflows.coupled import Impactor, simulate_coupled

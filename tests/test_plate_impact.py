@@ -16,13 +16,12 @@ from scipy.integrate import solve_ivp
 sys.path.insert(0, str(Path(__file__).parent))
 from plate_navier import cosine_patch_coefficients, modes  # noqa: E402
 
-from softimpact.app.impact import run_impact  # noqa: E402
 from softimpact.cli import main  # noqa: E402
 from softimpact.fem.newmark import SolverSpec  # noqa: E402
 from softimpact.input.impact_case import load_impact_case  # noqa: E402
 from softimpact.models.contact_laws import HertzLaw  # noqa: E402
 from softimpact.models.materials import lookup  # noqa: E402
-from softimpact.workflows.coupled import Impactor  # noqa: E402
+from softimpact.workflows.coupled import Impactor, run_impact  # noqa: E402
 from softimpact.workflows.plate_impact import PlateGauge  # noqa: E402
 
 INCH = 0.0254

@@ -15,15 +15,14 @@ its ply, Sun's form, for a beam or a plate; an isotropic beam: Hertz with its ma
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from pathlib import Path
 
 from ..errors import InputError
-from ..fem.newmark import SolverSpec
 from ..models.contact_laws import HertzLaw
 from ..models.materials import Material, sphere_mass
 from ..workflows.beam_impact import BeamLoad, BeamProblem
-from ..workflows.coupled import Impactor
+from ..workflows.coupled import Impactor, ImpactProblem
 from ..workflows.plate_impact import PlateLoad, PlateProblem
 from .beam_case import beam_problem, read_beam_gauges
 from .contact_law import CONTACT_LAWS, read_contact_law
@@ -31,34 +30,6 @@ from .plate_case import plate_problem, read_plate_gauges
 from .toml import Table, load_toml, locate, naming, read_material, read_solver, read_units
 
 __all__ = ["CONTACT_LAWS", "ImpactProblem", "impact_problem", "load_impact_case"]
-
-
-@dataclass(frozen=True)
-class ImpactProblem:
-    """A coupled impact case, resolved (SI): the target beam or plate (its solver and gauges those
-    of the impact run, its force history dropped), the impactor, its material and the contact law."""
-
-    target: BeamProblem | PlateProblem
-    target_case: str
-    impactor: Impactor
-    impactor_material: Material
-    law_name: str
-    law: object
-    title: str = ""
-    units: str = "in-lbf-s"
-
-    @property
-    def solver(self) -> SolverSpec:
-        return self.target.solver
-
-    @property
-    def position(self) -> float | tuple[float, float]:
-        """The impact point: x [m] along a beam, (x, y) [m] on a plate."""
-        return self.target.load.position
-
-    @property
-    def on_plate(self) -> bool:
-        return isinstance(self.target, PlateProblem)
 
 
 def _target(tbl: Table, base: Path) -> tuple[BeamProblem | PlateProblem, Path]:
