@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from softimpact.app.converge import STUDIES, study_case
+from softimpact.cases import KINDS
+from softimpact.workflows.convergence import study_case
 from softimpact.cli import main
 from softimpact.fem.newmark import SolverSpec
 from softimpact.input.bar_case import load_bar_case
@@ -36,7 +37,7 @@ def test_bar_estimate_bounds_the_true_error():
     is near the formal 2, and the error estimated for the case's own level agrees (within a factor 1.5)
     with its error against an independent run 16 times finer."""
     problem = _bar_short()
-    result, sizes = study_case(STUDIES["bar"], problem, 3, 2)
+    result, sizes = study_case(KINDS["bar"], problem, 3, 2)
     fine = simulate_impact(refine_bar(problem, 16))
     assert [s["factor"] for s in sizes] == [1, 2, 4]
     for name in ("peak_force_N", "contact_force_history_N"):
@@ -138,7 +139,7 @@ def test_cli_plate_errors_fall_with_refinement(tmp_path):
     result = CliRunner().invoke(main, ["converge", str(case), "--out", str(out), "--no-figures"])
     assert result.exit_code == 0, result.output
     rows = {r["output"]: r for r in csv.DictReader((out / "convergence.csv").open())}
-    e = [float(rows["deflection_under_load_history_m"][f"relative_error_level_{k}"]) for k in (1, 2, 3)]
+    e = [float(rows["deflection_at_load_history_m"][f"relative_error_level_{k}"]) for k in (1, 2, 3)]
     assert e[0] > e[1] > e[2]
     summary = json.loads((out / "summary.json").read_text())
     assert [lv["elements"] for lv in summary["levels"]] == [[12, 12], [24, 24], [48, 48]]

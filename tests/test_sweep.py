@@ -194,9 +194,9 @@ def test_grid_with_levels_crossed_and_common_draws(tmp_path):
     assert len(runs) == 3 * 2 * 5
     e1 = np.array([r.row["beam.laminate.ply.E1"] for r in runs]).reshape(6, 5)
     assert np.all(e1 == e1[0])
-    from softimpact.app.sweep_cases import BeamCase
+    from softimpact.cases import BeamKind
 
-    case = s.case_for(runs[0], BeamCase().expand)
+    case = s.case_for(runs[0], BeamKind().expand)
     assert case["beam"]["laminate"]["ply"]["E1"] == f"{float(e1[0, 0])!r} Pa"
     assert case["beam"]["laminate"]["ply"]["E2"] == f"{7.9e9!r} Pa"  # the catalogue ply, expanded
 
@@ -284,7 +284,7 @@ def test_same_results_in_a_loop_on_a_local_cluster_and_on_a_separate_scheduler(t
 
 def test_statistics_and_rank_correlation():
     """Percentiles of 0..100 are the values themselves; a monotone output ranks its driver first (ρ = 1)."""
-    from softimpact.app.sweep import sensitivity, statistics
+    from softimpact.workflows.sweep_stats import sensitivity, statistics
 
     s = statistics(np.arange(101.0))
     assert (s["median"], s["p05"], s["p95"], s["interval95"]) == (50.0, 5.0, 95.0, [2.5, 97.5])
