@@ -43,13 +43,13 @@ KINDS: dict[str, CaseKind] = {"impact": ImpactKind(), "beam": BeamKind(), "plate
 
 def kind_of(data: dict, where: str = "case") -> CaseKind:
     """The kind of a parsed case (the table only that kind has); InputError naming ``where`` otherwise."""
+    if "test" in data or "tests" in data:
+        raise InputError(f"{where}: a series (its [[test]] tables are reduced by `softimpact reduce`/`fit`), not a case")
+    if "sweep" in data:
+        raise InputError(f"{where}: a sweep spec (run it with `softimpact sweep`), not a case")
     for kind in KINDS.values():
         if kind.detect(data):
             return kind
-    if "sweep" in data:
-        raise InputError(f"{where}: a sweep spec (run it with `softimpact sweep`), not a case")
-    if "tests" in data:
-        raise InputError(f"{where}: a series (its [[tests]] are reduced by `softimpact reduce`/`fit`), not a case")
     tables = ", ".join(f"[{k.table}]" for k in KINDS.values())
     raise InputError(f"{where}: not a case: none of the tables {tables} is present")
 

@@ -15,10 +15,10 @@ class BarKind:
     """Bar cases: nothing is shared between sweep runs (each run steps the contact anew)."""
 
     name = "bar"
-    table = "bar"
+    table = "projectile"  # a bar series has a [bar] too, but no [projectile]
 
     def detect(self, data):
-        return "bar" in data or "projectile" in data
+        return "projectile" in data
 
     def load(self, case, history=None):
         from ..input.bar_case import load_bar_case
@@ -67,10 +67,11 @@ class BarKind:
     def prepare(self, data, base, runs, outputs=()):
         return None
 
-    def run(self, prepared, data, base, outputs=()):
+    def run(self, prepared, data, base, outputs=(), problem=None):
+        """One run of the case ``data`` (or of ``problem``, already read)."""
         from ..workflows.bar_impact import simulate_impact
 
-        return self.summary(None, simulate_impact(self.problem(data, Path(base))))
+        return self.summary(None, simulate_impact(problem or self.problem(data, Path(base))))
 
     def summary(self, problem, result, model=None):
         """The scalars of ``softimpact bar``'s summary.json (:func:`softimpact.output.bar.bar_summary`)."""

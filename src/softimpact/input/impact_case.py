@@ -38,6 +38,10 @@ def _target(tbl: Table, base: Path) -> tuple[BeamProblem | PlateProblem, Path]:
     path = base / case if (base / case).is_file() else locate(case)
     try:
         data = load_toml(path)
+        if "projectile" in data:  # a bar case: cases.impact.bar_target runs it for sweep and converge
+            raise InputError(
+                "a bar case: `softimpact impact` strikes beams and plates (run a bar with `softimpact bar`; sweep and converge take this impact case)"
+            )
         problem = plate_problem(data, path.parent) if "plate" in data else beam_problem(data, path.parent)
     except InputError as exc:
         raise InputError(f"{tbl.key('case')} ({path}): {exc}") from None
