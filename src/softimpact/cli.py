@@ -204,11 +204,10 @@ def main(ignore_limits, debug):
 @_guarded
 def cases_cmd():
     """List the built-in cases and series, usable by name wherever a CASE or SERIES is asked for."""
-    from .input.toml import builtin_cases, load_toml
+    from .cases import builtin_listing
 
-    for name, path in builtin_cases().items():
-        title = load_toml(path).get("title", "")
-        click.echo(f"{name:24s} {title}")
+    for name, kind, title in builtin_listing():
+        click.echo(f"{name:24s} {kind:7s} {title}")
 
 
 @main.command("bar", short_help="Sphere on the instrumented bar (Figs 4-6).")

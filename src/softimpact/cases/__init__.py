@@ -35,7 +35,7 @@ from .beam import BeamKind
 from .impact import ImpactKind
 from .plate import PlateKind
 
-__all__ = ["CaseKind", "KINDS", "kind_of", "case_kind", "flatten", "BarKind", "BeamKind", "PlateKind", "ImpactKind"]
+__all__ = ["CaseKind", "KINDS", "kind_of", "case_kind", "builtin_listing", "flatten", "BarKind", "BeamKind", "PlateKind", "ImpactKind"]
 
 # Order matters only for files holding several tables: an impact case names its target in [target].
 KINDS: dict[str, CaseKind] = {"impact": ImpactKind(), "beam": BeamKind(), "plate": PlateKind(), "bar": BarKind()}
@@ -60,3 +60,19 @@ def case_kind(case: str) -> tuple[CaseKind, Path]:
 
     path = locate(case)
     return kind_of(load_toml(path), str(path)), path
+
+
+def builtin_listing() -> list[tuple[str, str, str]]:
+    """The built-in cases and series (``softimpact cases``): (name, kind, title); the kind of a
+    series is "series", of a file no kind detects "?"."""
+    from ..input.toml import builtin_cases, load_toml
+
+    rows = []
+    for name, path in builtin_cases().items():
+        data = load_toml(path)
+        try:
+            kind = kind_of(data).name
+        except InputError:
+            kind = "series" if ("test" in data or "tests" in data) else "?"
+        rows.append((name, kind, str(data.get("title", ""))))
+    return rows

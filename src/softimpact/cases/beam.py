@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError
-from ._common import LOAD_KEYS, expand_ply, gauge_keys, gauge_outputs, magnitude_and_history, without
+from ._common import LOAD_KEYS, expand_ply, gauge_keys, gauge_outputs, without
 
 __all__ = ["BeamKind"]
 
@@ -58,12 +58,11 @@ class BeamKind:
         model = BeamModel(problem)
         r = model.direct(progress=progress, energy=False, displacement=False)
         out = {"peak_deflection_under_load_m": float(r.deflection[np.argmax(np.abs(r.deflection))])}
-        names = [g.name for g in problem.gauges]
-        for name, eps in zip(names, r.strain):
-            out[f"strain_{name}_peak_magnitude"] = float(np.max(np.abs(eps)))
-            out[f"strain_{name}_first_lobe_peak"] = first_lobe_peak(r.time, eps)
-            out[f"strain_{name}_first_zero_crossing_s"] = first_zero_crossing(r.time, eps)
-        magnitude_and_history(out, names, r.strain, stride)
+        for g, eps in zip(problem.gauges, r.strain):
+            out[f"strain_{g.name}_peak_magnitude"] = float(np.max(np.abs(eps)))  # unsigned: see magnitude_and_history
+            out[f"strain_{g.name}_first_lobe_peak"] = first_lobe_peak(r.time, eps)
+            out[f"strain_{g.name}_first_zero_crossing_s"] = first_zero_crossing(r.time, eps)
+            out[f"strain_{g.name}_history"] = eps[::stride]
         return out, {"elements": [problem.beam.nx, problem.beam.nz], "time_step_s": problem.solver.time_step, "dofs": int(model.plane.n)}
 
     def structure_key(self, data):
