@@ -462,8 +462,9 @@ def test_a_full_disk_while_checkpointing_is_exit_2_and_leaves_nothing_a_resume_w
     result, out = _sweep(tmp_path, spec, "--workers", "0")
     monkeypatch.undo()
     assert result.exit_code in (2, 3), result.output
-    line = result.output.strip()
-    assert len(line.splitlines()) == 1 and "No space left on device" in line and str(out / "checkpoints") in line
+    errors = [line for line in result.output.splitlines() if "error" in line]  # after the progress display
+    assert len(errors) == 1 and errors[0].startswith("softimpact: error:"), result.output
+    assert "No space left on device" in errors[0] and str(out / "checkpoints") in errors[0]
     left = [p for p in (out / "checkpoints").rglob("*") if p.is_file()]
     assert left == [], left
     again, _ = _sweep(tmp_path, spec, "--workers", "0")
