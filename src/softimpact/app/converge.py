@@ -39,9 +39,9 @@ def bar_outputs(problem, stride: int, progress: Callable[[int], None] | None = N
         "time_of_peak_s": r.time_of_peak,
         "contact_duration_s": r.contact_duration,
         "impulse_N_s": r.impulse,
-        "contact_force_history_N": r.contact_force[::stride],
+        "contact_force_history_N": r.force[::stride],
     }
-    for g, eps in zip(problem.gauges, r.gauge_strain):
+    for g, eps in zip(problem.gauges, r.strain):
         out[f"strain_{g.name}_peak_magnitude"] = float(np.max(np.abs(eps)))  # unsigned: the signed extreme jumps when two peaks of opposite sign are close
         out[f"strain_{g.name}_history"] = eps[::stride]
     return out, {"elements": [problem.bar.elements], "time_step_s": problem.solver.time_step, "dofs": problem.bar.elements + 1}
