@@ -142,3 +142,33 @@ def test_free_end_reflection_is_opposite_and_equal(pulse_on_bar):
     kc, kt = np.argmin(eps), np.argmax(eps)
     assert abs(r.time[kt] - (tau / 2 + 1.5 * bar.length / c)) < 1e-6
     assert eps[kt] == pytest.approx(-eps[kc], rel=0.01)
+
+
+def test_hertz_bar_through_the_coupled_stepper_is_johnsons_rigid_wall(plain_problem):
+    """A bar 10⁴× stiffer and denser, through the one coupled stepper: Johnson's (Contact Mechanics, §11.4)
+    rigid-wall closed form, α_max = (15mV²/(16E*√R))^(2/5) with 1/E* = Σ(1 − ν²)/E from the two materials,
+    duration 2.94·α_max/V, to 0.3 %; and the momentum balance ∫F dt = m(V − V_rebound) to 1e-9, with an
+    elastic rebound V_rebound ≈ −V."""
+    from scipy.special import beta
+
+    mat = plain_problem.bar.material
+    rigid = Material("rigid", mat.youngs_modulus * 1e4, mat.poisson_ratio, mat.density * 1e4)
+    problem = replace(plain_problem, bar=replace(plain_problem.bar, material=rigid, length=2 * plain_problem.bar.length), solver=SolverSpec(0.1e-6, 120e-6))
+    r = simulate_impact(problem)
+    ball = problem.projectile
+    E_star = 1 / ((1 - ball.material.poisson_ratio**2) / ball.material.youngs_modulus + (1 - rigid.poisson_ratio**2) / rigid.youngs_modulus)
+    m, V, R = ball.mass, ball.velocity, ball.diameter / 2
+    alpha_max = (15 * m * V**2 / (16 * E_star * math.sqrt(R))) ** 0.4
+    assert r.contact_duration == pytest.approx(0.8 * beta(0.4, 0.5) * alpha_max / V, rel=3e-3)  # 0.8·B(2/5, 1/2) = 2.9433
+    assert np.max(r.approach) == pytest.approx(alpha_max, rel=3e-3)
+    assert r.total_impulse == pytest.approx(m * (V - r.rebound_velocity), rel=1e-9)
+    assert r.rebound_velocity == pytest.approx(-V, rel=5e-3)
+
+
+@pytest.mark.parametrize("velocity", [-1.6, 0.0])
+def test_a_projectile_not_moving_toward_the_bar_is_refused(plain_problem, velocity):
+    """A negative or zero impact velocity is an InputError naming the velocity (it once ran and returned peak 0)."""
+    from softimpact.errors import InputError
+
+    with pytest.raises(InputError, match="velocity must be positive"):
+        simulate_impact(replace(plain_problem, projectile=replace(plain_problem.projectile, velocity=velocity)))

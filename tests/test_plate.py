@@ -37,7 +37,7 @@ NAVIER_GAUGES = [(5 * INCH, 4 * INCH, "x", 0.031 * INCH), (4 * INCH, 6 * INCH, "
 
 def _problem(n, pulse=PAPER_PULSE, radius=0.25 * INCH, duration=1000e-6, grow=False, stack=STACK, supports=("simply-supported",) * 4):
     return PlateProblem(
-        PlateSpec(A, A, (n, n), stack, supports),
+        PlateSpec(A, A, (n, n), stack, supports, element="mitc4"),
         PlateLoad((A / 2, A / 2), radius, pulse, grow=grow),
         SolverSpec(1e-6, duration),
         GAUGES,
@@ -345,7 +345,7 @@ def test_quarter_model_with_symmetry_edges_is_the_full_plate():
     F/4) gives the full plate's gauge strains and centre deflection to round-off (10 × 10 vs 20 × 20)."""
     full = PlateModel(_problem(20, duration=150e-6)).direct(energy=False)
     problem = PlateProblem(
-        PlateSpec(A / 2, A / 2, (10, 10), STACK, ("symmetry", "simply-supported", "symmetry", "simply-supported")),
+        PlateSpec(A / 2, A / 2, (10, 10), STACK, ("symmetry", "simply-supported", "symmetry", "simply-supported"), element="mitc4"),
         PlateLoad((0.0, 0.0), 0.25 * INCH, PAPER_PULSE, grow=False),
         SolverSpec(1e-6, 150e-6),
         (PlateGauge("x1", (1 * INCH, 0.0), "bottom", "x", 0.031 * INCH), PlateGauge("y2", (0.0, 2 * INCH), "bottom", "y", 0.031 * INCH)),

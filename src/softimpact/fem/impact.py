@@ -336,8 +336,8 @@ def integrate_impact(
     )
 
 
-def _solve_contact(law, patch: ContactPatch, cG, hm, kappa, q, target, guess, step: int, dt: float):
-    """Root of R(α) = α − α̃ + F(α, κα + q)·h(a(α)) in (0, α̃] (module docstring), at ``step``.
+def _solve_contact(law, patch: ContactPatch, cG, hm, kappa, q, target, guess, index: int, dt: float):
+    """Root of R(α) = α − α̃ + F(α, κα + q)·h(a(α)) in (0, α̃] (module docstring), at step ``index``.
 
     Starts from ``guess`` (the linear extrapolation of α) when it lies in the bracket, else α̃.
     Returns (α, F, shares s(a), iterations); :class:`SolverFailed` (time, step, residual and
@@ -375,7 +375,7 @@ def _solve_contact(law, patch: ContactPatch, cG, hm, kappa, q, target, guess, st
         a = a_next
     else:
         raise SolverFailed(
-            f"the contact Newton iteration did not converge at t = {step * dt:.6g} s (step {step}) in {NEWTON_MAXITER} iterations: "
+            f"the contact Newton iteration did not converge at t = {index * dt:.6g} s (step {index}) in {NEWTON_MAXITER} iterations: "
             f"residual {R:.3g} m, approach bracket [{lo:.6g}, {hi:.6g}] m"
         )
     rate = kappa * a + q

@@ -30,7 +30,7 @@ from threadpoolctl import threadpool_limits
 
 from ..errors import InputError
 from .energies import Energies
-from .newmark import NewmarkStepper, SolverSpec
+from .newmark import NewmarkStepper, SolverSpec, spd_factor
 from .response import ImpulseResponse
 
 __all__ = ["LinearModel", "PointLoad", "MIN_STEPS_PER_RISE"]
@@ -175,6 +175,34 @@ class LinearModel:
                     progress(k)
         energies = Energies(sampled, kinetic, strain, work[sampled]) if energy else None
         return y.T, energies, saved
+
+    def respond(self, history=None, radius: float | None = None) -> np.ndarray:
+        """Outputs (n_out, n_steps + 1) of a force history (default: the problem's) through the engine."""
+        return self.respond_outputs(self.force_samples(history), radius)
+
+    def direct(self, history=None, energy: bool = True, snapshots=()):
+        """(outputs (n_out, n_steps + 1), :class:`Energies` or None, displacement at ``snapshots``) of a
+        force history (default: the problem's) by direct stepping (:meth:`march`)."""
+        return self.march(self.force_samples(history), None, energy, None, snapshots)
+
+    def frequencies(self, count: int = 5) -> np.ndarray:
+        """The ``count`` lowest natural frequencies [Hz] of the undamped structure (shift-invert Lanczos)."""
+        import scipy.sparse.linalg as spl
+
+        if not (isinstance(count, int) and 1 <= count < self.size - 1):
+            raise InputError(f"count must be an integer from 1 to {self.size - 2}, got {count!r}")
+        K, M = self.K, self.M
+        try:  # a supported structure: K is positive definite, and our factor is the fast K⁻¹
+            with threadpool_limits(1, user_api="blas"):
+                factor = spd_factor(K)
+            op = spl.LinearOperator(K.shape, matvec=factor.solve, dtype=float)
+        except np.linalg.LinAlgError:  # rigid modes: let ARPACK factor K − 0·M its own way
+            op = None
+        # tol 1e-10 (relative, on the shift-inverted values): the frequencies to ~1e-13 and, on the
+        # 48 × 48 MITC9 plate, 21 solves instead of ARPACK's default (machine precision) 32.
+        ncv = min(max(2 * count + 1, 20), self.size - 1)
+        vals = spl.eigsh(K, k=count, M=M, sigma=0.0, which="LM", OPinv=op, ncv=ncv, tol=1e-10, return_eigenvectors=False)
+        return np.sqrt(np.abs(np.sort(vals))) / (2 * np.pi)
 
     def contact_structure(self, point, reach: float):
         """The structure struck at ``point`` as the coupled stepper sees it
