@@ -45,7 +45,7 @@ def test_bar_estimate_bounds_the_true_error():
         assert o.status == "asymptotic" and 1.6 < o.order < 2.4, (name, o.order)
     true_peak = abs(result["peak_force_N"].values[0] - fine.peak_force) / fine.peak_force
     assert result["peak_force_N"].errors[0] == pytest.approx(true_peak, rel=0.5)
-    ref = fine.contact_force[::16]
+    ref = fine.force[::16]
     coarse = result["contact_force_history_N"].values[0]
     true_hist = np.sqrt(np.mean((coarse - ref) ** 2)) / np.sqrt(np.mean(ref**2))
     assert result["contact_force_history_N"].errors[0] == pytest.approx(true_hist, rel=0.5)

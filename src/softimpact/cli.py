@@ -34,7 +34,7 @@ import warnings
 import click
 
 from . import __version__
-from .errors import EXIT_CHECK, EXIT_INPUT, EXIT_INTERNAL, CheckFailed, InputError, SoftimpactWarning
+from .errors import EXIT_CHECK, EXIT_INPUT, EXIT_INTERNAL, CheckFailed, InputError, SoftimpactWarning, SolverFailed
 
 __all__ = ["main"]
 
@@ -83,6 +83,9 @@ def _guarded(fn):
         except InputError as exc:
             click.echo(f"softimpact: error: {_one_line(exc)}", err=True)
             sys.exit(EXIT_INPUT)
+        except SolverFailed as exc:
+            click.echo(f"softimpact: solver failed: {_one_line(exc)}", err=True)
+            sys.exit(EXIT_CHECK)
         except CheckFailed as exc:
             click.echo(f"softimpact: check failed: {_one_line(exc)} (diagnostics written, marked failed; --accept-poor to accept)", err=True)
             sys.exit(EXIT_CHECK)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import InputError
+from ..fem.bar import Rod
 from ..output.identify import identify_files
 from ..workflows.identification import BarTest, closure, refine
 from ..workflows.identification import identify as fit_law
@@ -35,7 +36,7 @@ def identify_series(series, reduced, refined: bool = True, progress: Progress = 
     """Fit the law on the reconstructed F(α, α̇), refine it on the coupled bar simulations, run the
     closure. Returns (tests, law, approaches, closure)."""
     tests = bar_tests(reduced)
-    rod = series.bar.rod()
+    rod = Rod.of(series.bar)
     progress(0, 3, "fitting F(alpha)")
     law, approaches = fit_law(tests, rod)
     if refined:

@@ -16,6 +16,7 @@ from ..workflows.coupled import ImpactProblem, impact_model, run_impact
 
 if TYPE_CHECKING:
     from ..output.report import Section
+from ..fem.bar import Rod
 from . import Outcome, Progress, no_progress
 
 __all__ = ["impact", "question_section"]
@@ -33,7 +34,7 @@ def impact(case: str, figures: bool = True, progress: Progress = no_progress) ->
     progress(steps, steps, "stepping")
     files = impact_files(problem, result, figures, model=model)
     fu, tu, su = (display(problem.units, k) for k in ("force", "time", "strain"))
-    peaks = ", ".join(f"{n} {eps[np.argmax(np.abs(eps))] * su.factor:.0f} {su.label}" for n, eps in zip(result.gauge_names, result.gauge_strain))
+    peaks = ", ".join(f"{n} {eps[np.argmax(np.abs(eps))] * su.factor:.0f} {su.label}" for n, eps in zip(result.strain_names, result.strain))
     T = "not separated" if not np.isfinite(result.contact_duration) else f"T {result.contact_duration * tu.factor:.1f} {tu.label}"
     unfinished = (
         ()
@@ -43,7 +44,7 @@ def impact(case: str, figures: bool = True, progress: Progress = no_progress) ->
             "its duration and the rebound velocity are unknown (null in summary.json) and its peak may be later; lengthen solver.duration",
         )
     )
-    dofs = model.fe.n if problem.on_plate else model.plane.n
+    dofs = model.size
     line = (
         f"{problem.law_name}: F0 {result.peak_force * fu.factor:.1f} {fu.label} at {result.time_of_peak * tu.factor:.1f} {tu.label}, {T}, "
         f"{len(result.contacts)} contact(s); peak strains {peaks} ({dofs} DOF, {steps} steps, {time.perf_counter() - t0:.1f} s)"
@@ -84,7 +85,7 @@ def question_section(figures: bool, files: dict, prefix: str = "question/") -> S
     fu, tu, lu, su = (display(system, k) for k in ("force", "time", "length", "strain"))
     series = load_series("paper-rubber-series")
     tests = bar_tests(reduce_series(series))
-    rod = series.bar.rod()
+    rod = Rod.of(series.bar)
     law, approaches = fit_law(tests, rod)
     law = refine(law, tests, rod, QUESTION_REFINE, steps_per_pulse=QUESTION_STEPS_PER_PULSE)
     cl = closure(law, tests, rod, QUESTION_STEPS_PER_PULSE)
@@ -112,7 +113,7 @@ def question_section(figures: bool, files: dict, prefix: str = "question/") -> S
             ip = ImpactProblem(target, cs.case, Impactor(P.mass, P.diameter, V), lookup(P.material), "identified", law.law(P.mass, P.diameter, V), "", system)
             # the strain figure shows row 1 over the whole window; the others need the pulse only
             _, res = run_impact(ip, model, energy=False, stop_after=None if not curves else QUESTION_AFTER)
-            F0c, Tc, _ = pulse_figures(res.time, res.contact_force)
+            F0c, Tc, _ = pulse_figures(res.time, res.force)
             bar = start_pulse(cs.projectile, cs.constants, V)
             r_max = float(np.max(res.contact_radius[res.time <= Tc]))
             rows.append(
@@ -136,7 +137,7 @@ def question_section(figures: bool, files: dict, prefix: str = "question/") -> S
         header += [f"T paper [{tu.label}]", "T coupled", "T bar law", f"r0 paper [{lu.label}]", "max contact radius, coupled"]
         tables.append((f"Table {table} ({beam} beam): paper, coupled prediction (identified law), carried-over bar law (Table I)", header, rows))
         V, res, paper_pulse, bar = curves[0]
-        strains = [("coupled, identified law", res.time, res.gauge_strain)]
+        strains = [("coupled, identified law", res.time, res.strain)]
         for label, pulse in (("Table " + table + " history", paper_pulse), ("bar law carried over", bar)):
             r = model.direct(history=pulse, energy=False)
             strains.append((label, r.time, r.strain))
@@ -198,7 +199,7 @@ def _question_forces(curves, system, title):
     for i, (V, res, paper_pulse, bar) in enumerate(curves):
         c = f"C{i}"
         t = res.time
-        ax.plot(t * tu.factor, res.contact_force * fu.factor, color=c, label=f"{V / INCH_S:.0f} in/s")
+        ax.plot(t * tu.factor, res.force * fu.factor, color=c, label=f"{V / INCH_S:.0f} in/s")
         ax.plot(t * tu.factor, paper_pulse(t) * fu.factor, color=c, ls="--", lw=1)
         ax.plot(t * tu.factor, bar(t) * fu.factor, color=c, ls=":", lw=1)
     ax.set_xlabel(f"time since first contact [{tu.label}]")

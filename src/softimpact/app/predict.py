@@ -117,7 +117,7 @@ def predict(
         inputs.append(path)
         res = simulate_force(problem.bar, problem.solver, problem.gauges, pulse)
         cols = {"time_s": res.time, "force_N": res.force}
-        for g, eps in zip(problem.gauges, res.gauge_strain):
+        for g, eps in zip(problem.gauges, res.strain):
             cols[f"strain_{g.name}"] = eps
             k = int(np.argmin(eps))
             summary.setdefault("gauges", {})[g.name] = {"peak_compressive_strain": float(eps[k]), "time_s": float(res.time[k])}

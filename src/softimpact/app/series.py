@@ -17,6 +17,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from ..errors import InputError
+from ..fem.bar import Rod
 from ..gates import Gate, at_most, quality
 from ..input.series import Series, SeriesTest, TestRecord, load_series, read_test_record
 from ..output.files import json_text
@@ -83,7 +84,7 @@ def read_records(series: Series, second: bool = False) -> list[TestRecord]:
 
 def _condition(series: Series, rec: TestRecord) -> tuple[Conditioned | None, tuple[str, ...]]:
     """Conditioning of a strain record and the reasons (if any) it must not be fitted."""
-    rod = series.bar.rod()
+    rod = Rod.of(series.bar)
     cap = 0.0 if series.bar.end_cap is None else series.bar.end_cap.mass
     try:
         c = condition_record(rec.time, rec.signal, series.gauge_position, series.bar.length, rod.wave_speed, end_delay=2 * cap / rod.impedance)

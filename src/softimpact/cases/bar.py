@@ -46,7 +46,7 @@ class BarKind:
     def study(self, problem, stride, progress=None):
         """Pulse scalars, the force history and gauge peaks and histories of a run; its size (the
         Hermite rod's DOFs: an axial displacement and a strain per node)."""
-        from ..fem.bar import assemble_rod
+        from ..fem.bar import Rod, assemble_rod
         from ..workflows.bar_impact import simulate_impact
 
         r = simulate_impact(problem)
@@ -54,11 +54,11 @@ class BarKind:
             "peak_force_N": r.peak_force,
             "time_of_peak_s": r.time_of_peak,
             "contact_duration_s": r.contact_duration,
-            "impulse_N_s": r.impulse,
-            "contact_force_history_N": r.contact_force[::stride],
+            "impulse_N_s": r.total_impulse,  # ∫F dt over the run, as the bar's summary.json
+            "contact_force_history_N": r.force[::stride],
         }
-        magnitude_and_history(out, [g.name for g in problem.gauges], r.gauge_strain, stride)
-        dofs = int(assemble_rod(problem.bar.rod()).n)
+        magnitude_and_history(out, [g.name for g in problem.gauges], r.strain, stride)
+        dofs = int(assemble_rod(Rod.of(problem.bar)).n)
         return out, {"elements": [problem.bar.elements], "time_step_s": problem.solver.time_step, "dofs": dofs}
 
     def structure_key(self, data):

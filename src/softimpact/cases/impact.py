@@ -143,9 +143,9 @@ class ImpactKind:
             "time_of_peak_s": r.time_of_peak,
             "contact_duration_s": r.contact_duration,
             "impulse_N_s": r.impulse,
-            "contact_force_history_N": r.contact_force[::stride],
+            "contact_force_history_N": r.force[::stride],
         }
-        magnitude_and_history(out, r.gauge_names, r.gauge_strain, stride)
+        magnitude_and_history(out, r.strain_names, r.strain, stride)
         t = problem.target
         elements = list(t.plate.elements) if problem.on_plate else [t.beam.nx, t.beam.nz]
         dofs = model.fe.n if problem.on_plate else model.plane.n
