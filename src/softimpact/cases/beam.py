@@ -57,7 +57,9 @@ class BeamKind:
 
         model = BeamModel(problem)
         r = model.direct(progress=progress, energy=False, displacement=False)
-        out = {"peak_deflection_under_load_m": float(r.deflection[np.argmax(np.abs(r.deflection))])}
+        from ..output.beam import beam_scalars
+
+        out = {"peak_deflection_under_load_m": beam_scalars(r)["peak_deflection_under_load_m"]}
         for g, eps in zip(problem.gauges, r.strain):
             out[f"strain_{g.name}_peak_magnitude"] = float(np.max(np.abs(eps)))  # unsigned: see magnitude_and_history
             out[f"strain_{g.name}_first_lobe_peak"] = first_lobe_peak(r.time, eps)
@@ -103,15 +105,11 @@ class BeamKind:
         return out
 
     def summary(self, problem, result, model=None):
-        """Peak force, impulse, deflection under the load and gauge peaks, as ``softimpact beam``'s summary.json names them."""
-        t, F = result.time, result.force
-        out = {
-            "peak_force_N": float(F.max()),
-            "impulse_N_s": float(np.trapezoid(F, t)),
-            "peak_deflection_under_load_m": float(result.deflection[np.argmax(np.abs(result.deflection))]),
-        }
-        out.update(gauge_outputs(t, [g.name for g in problem.gauges], result.strain))
-        return out
+        """Peak force, impulse, deflection under the load (:func:`softimpact.output.beam.beam_scalars`, as
+        ``softimpact beam``'s summary.json) and gauge peaks."""
+        from ..output.beam import beam_scalars
+
+        return {**beam_scalars(result), **gauge_outputs(result.time, [g.name for g in problem.gauges], result.strain)}
 
     def damage(self, problem, result) -> dict:
         """Peak damage indices at the gauge sections and the delamination threshold force."""

@@ -75,8 +75,9 @@ class PlateKind:
 
         model = PlateModel(problem)
         r = model.direct(progress=progress, energy=False, snapshots=[])
-        w = r.deflection[0]
-        out = {"peak_deflection_at_load_m": float(w[np.argmax(np.abs(w))]), "deflection_at_load_history_m": w[::stride]}
+        from ..output.plate import plate_scalars
+
+        out = {"peak_deflection_at_load_m": plate_scalars(r)["peak_deflection_at_load_m"], "deflection_at_load_history_m": r.deflection[0][::stride]}
         magnitude_and_history(out, [g.name for g in problem.gauges], r.strain, stride)
         return out, {"elements": list(problem.plate.elements), "time_step_s": problem.solver.time_step, "dofs": int(model.fe.n)}
 
@@ -121,20 +122,12 @@ class PlateKind:
         return out
 
     def summary(self, problem, result, model=None):
-        """Peak force, impulse, deflection under the load and its time, gauge peaks, as ``softimpact plate``'s
-        summary.json names them (the damage pseudo-gauges left out)."""
-        t, F = result.time, result.force
-        w = result.deflection[0]
-        k = int(np.argmax(np.abs(w)))
-        out = {
-            "peak_force_N": float(F.max()),
-            "impulse_N_s": float(np.trapezoid(F, t)),
-            "peak_deflection_at_load_m": float(w[k]),
-            "time_of_peak_deflection_s": float(t[k]),
-        }
+        """Peak force, impulse, deflection under the load and its time (:func:`softimpact.output.plate.plate_scalars`,
+        as ``softimpact plate``'s summary.json) and gauge peaks (the damage pseudo-gauges left out)."""
+        from ..output.plate import plate_scalars
+
         real = [(g.name, eps) for g, eps in zip(problem.gauges, result.strain) if not g.name.startswith(DAMAGE_PREFIX + ".")]
-        out.update(gauge_outputs(t, [n for n, _ in real], [e for _, e in real]))
-        return out
+        return {**plate_scalars(result), **gauge_outputs(result.time, [n for n, _ in real], [e for _, e in real])}
 
     def _damage(self, problem, strains: dict, force: np.ndarray) -> dict:
         from ..models.failure import STRENGTHS
