@@ -38,7 +38,7 @@ def bar_outputs(problem, stride: int, progress: Callable[[int], None] | None = N
         "peak_force_N": r.peak_force,
         "time_of_peak_s": r.time_of_peak,
         "contact_duration_s": r.contact_duration,
-        "impulse_N_s": r.impulse,
+        "impulse_N_s": r.total_impulse,
         "contact_force_history_N": r.force[::stride],
     }
     for g, eps in zip(problem.gauges, r.strain):
