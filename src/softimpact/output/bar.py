@@ -38,7 +38,23 @@ def bar_summary(result) -> dict:
         "energy_drift_relative": float((e.max() - e.min()) / e[0]),
         "newton_iterations": result.newton_iterations,
         "gauges": gauges,
-        "case_SI": p,
+        "case_SI": _case(p),
+    }
+
+
+def _case(p) -> dict:
+    """The resolved case as summary.json has always written it: ``contact`` the law's name and ``law``
+    the law object (null for the bar's own Hertz law), though the problem holds one ``law``."""
+    return {
+        "bar": p.bar,
+        "projectile": p.projectile,
+        "solver": p.solver,
+        "gauges": p.gauges,
+        "contact": p.law_name,
+        "title": p.title,
+        "units": p.units,
+        "snapshots": p.snapshots,
+        "law": None if isinstance(p.law, str) else p.law,
     }
 
 

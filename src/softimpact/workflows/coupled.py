@@ -22,7 +22,6 @@ re-contact); the scalars of the result are those of the FIRST contact.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING
 
 from ..errors import InputError
 from ..fem.impact import ContactInterval, CoupledResult, contact_intervals, simulate_coupled
@@ -30,10 +29,6 @@ from ..fem.newmark import SolverSpec
 from ..models.materials import Material
 from ..models.protocols import StructureModel
 from ..models.specimens import Impactor
-
-if TYPE_CHECKING:
-    from .beam_impact import BeamProblem
-    from .plate_impact import PlateProblem
 
 __all__ = [
     "Impactor",
@@ -52,7 +47,7 @@ class ImpactProblem:
     """A coupled impact case, resolved (SI): the target beam or plate (its solver and gauges those
     of the impact run, its force history dropped), the impactor, its material and the contact law."""
 
-    target: BeamProblem | PlateProblem
+    target: object  # a BeamProblem or PlateProblem: anything with load, solver, gauges and model(patch_radius)
     target_case: str
     impactor: Impactor
     impactor_material: Material
