@@ -65,7 +65,7 @@ class BeamKind:
             out[f"strain_{g.name}_first_lobe_peak"] = first_lobe_peak(r.time, eps)
             out[f"strain_{g.name}_first_zero_crossing_s"] = first_zero_crossing(r.time, eps)
             out[f"strain_{g.name}_history"] = eps[::stride]
-        return out, {"elements": [problem.beam.nx, problem.beam.nz], "time_step_s": problem.solver.time_step, "dofs": int(model.plane.n)}
+        return out, {"elements": [problem.beam.nx, problem.beam.nz], "time_step_s": problem.solver.time_step, "dofs": int(model.size)}
 
     def structure_key(self, data):
         return without(data, LOAD_KEYS)

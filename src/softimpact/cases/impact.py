@@ -148,8 +148,7 @@ class ImpactKind:
         magnitude_and_history(out, r.strain_names, r.strain, stride)
         t = problem.target
         elements = list(t.plate.elements) if problem.on_plate else [t.beam.nx, t.beam.nz]
-        dofs = model.fe.n if problem.on_plate else model.plane.n
-        return out, {"elements": elements, "time_step_s": problem.solver.time_step, "dofs": int(dofs)}
+        return out, {"elements": elements, "time_step_s": problem.solver.time_step, "dofs": int(model.size)}
 
     def structure_key(self, data):
         return without(data, NOT_STRUCTURE)
