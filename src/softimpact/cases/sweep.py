@@ -69,6 +69,8 @@ class Chunk:
 
 @dataclass(frozen=True)
 class SweepPlan:
+    """The runs of ``spec`` (a case of kind ``kind``), in ``groups`` structure groups cut into ``chunks``."""
+
     spec: SweepSpec
     kind: str
     runs: tuple
