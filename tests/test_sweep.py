@@ -414,9 +414,19 @@ def test_distributions(tmp_path, law, check):
 # table, applied second, would replace every velocity level with its own 1166 in/s.
 SWAPPED = GRID + '[[sweep.parameter]]\nkey = "load.history"\nvalue = { shape = "empirical", projectile = "rubber-1/2in", velocity = "1166 in/s" }\n'
 TWICE = GRID + '[[sweep.parameter]]\nkey = "load.history.velocity"\nvalues = ["2000 in/s", "4000 in/s"]\n'
+LEVELS_AND_DRAWS = GRID.replace('method = "grid"', 'method = "monte-carlo"\nruns = 4') + (
+    '[[sweep.parameter]]\nkey = "load.history.velocity"\ndistribution = { uniform = ["1000 in/s", "5000 in/s"] }\n'
+)
 
 
-@pytest.mark.parametrize("spec, first, second", [(SWAPPED, "load.history.velocity", "load.history"), (TWICE, "load.history.velocity", "load.history.velocity")])
+@pytest.mark.parametrize(
+    "spec, first, second",
+    [
+        (SWAPPED, "load.history.velocity", "load.history"),
+        (TWICE, "load.history.velocity", "load.history.velocity"),
+        (LEVELS_AND_DRAWS, "load.history.velocity", "load.history.velocity"),
+    ],
+)
 def test_parameters_touching_one_key_are_refused_naming_both(tmp_path, spec, first, second):
     """Issue 23: a key set by two parameters, or a table listed after a key inside it, is exit 2 with one
     line naming both parameters and keys, before anything is written."""
