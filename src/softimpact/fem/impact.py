@@ -40,6 +40,14 @@ contact work is Σ½(F_k + F_{k+1})·Δα. These close except for the difference
 between the work of F on the loaded (top) surface nodes and on the mid-surface,
 Σ½(F_k + F_{k+1})·(s̄·Δu_patch − Δw): the structure's own through-thickness
 squeeze under the patch, reported as ``surface_mismatch``.
+
+The one coupled stepper of softimpact: bar, beam and plate all run through
+:func:`simulate_coupled`, which returns one :class:`CoupledResult`. One separation
+rule (:func:`contact_intervals`: a contact ends where α crosses zero within the
+step, else where F reaches zero, for laws clipped at F = 0), one peak refinement
+(:func:`refine_peak`, the parabola through three samples). A Newton iteration that
+does not converge is a :class:`softimpact.errors.SolverFailed` (time, step,
+residual, bracket).
 """
 
 from __future__ import annotations

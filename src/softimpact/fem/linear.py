@@ -62,7 +62,6 @@ class LinearModel:
     problem = None
 
     def __init__(self, M, K, C, solver: SolverSpec, load_dofs, load_sign: float, O, patch, load_radius: float | None = None, stepper=None):
-        self.M, self.K, self.C = M, K, C
         self.solver = solver
         self.stepper = stepper or NewmarkStepper(M, K, solver.time_step, C=C, params=solver.newmark)
         self.load_dofs = np.asarray(load_dofs, int)
@@ -73,6 +72,21 @@ class LinearModel:
         self.patch = patch
         self.load_radius = load_radius
         self._engine = None
+
+    @property
+    def M(self):
+        """Mass matrix (n, n) (the stepper's; None in a light copy)."""
+        return None if self.stepper is None else self.stepper.M
+
+    @property
+    def K(self):
+        """Stiffness matrix (n, n) (the stepper's; None in a light copy)."""
+        return None if self.stepper is None else self.stepper.K
+
+    @property
+    def C(self):
+        """Damping matrix (n, n) or None (the stepper's)."""
+        return None if self.stepper is None else self.stepper.C
 
     @property
     def size(self) -> int:
@@ -227,6 +241,6 @@ class LinearModel:
         light = copy.copy(self)
         light._engine = copy.copy(engine)
         light._engine.stepper = light._engine.O = None
-        light.stepper = light.M = light.K = light.C = light.O = None
+        light.stepper = light.O = None
         self._drop_mesh(light)
         return light
