@@ -9,7 +9,7 @@ import time
 
 import numpy as np
 
-from softimpact.fem.bar import assemble_rod
+from softimpact.fem.bar import Rod, assemble_rod
 from softimpact.input.bar_case import load_bar_case
 from softimpact.workflows.bar_impact import simulate_impact
 
@@ -27,7 +27,7 @@ def main():
     problem, _ = load_bar_case("paper-calibration")
     simulate_impact(problem)  # warm up imports
     total = best(lambda: simulate_impact(problem))
-    assembly = best(lambda: assemble_rod(problem.bar.rod()))
+    assembly = best(lambda: assemble_rod(Rod.of(problem.bar)))
     print(f"machine: {platform.processor() or platform.machine()}, python {platform.python_version()}")
     print(f"paper calibration case, {problem.solver.steps} steps, 80 DOF")
     print(f"  whole run (assembly + solve + post): best {total[0] * 1e3:.1f} ms, median {total[1] * 1e3:.1f} ms")

@@ -40,7 +40,7 @@ def main():
     imp = Impactor(m, d, V)
     solver = model.problem.solver
     res = simulate_coupled(st, law, imp, solver, energy=False, stepper=model.stepper)
-    F = res.contact_force
+    F = res.force
     # the prescribed run spreads F over the fixed r0 = R patch (eq 10 law), same mesh and steps
     t_pre = best(lambda: model.direct(F, energy=False))
     t_cpl = best(lambda: simulate_coupled(st, law, imp, solver, energy=False, stepper=model.stepper))

@@ -22,11 +22,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from timing import USER_ENV, best, process  # noqa: E402
 
-from softimpact.app.impact import impact_model, plate_reach  # noqa: E402
-from softimpact.app.plate import plate_structure  # noqa: E402
 from softimpact.fem.newmark import SolverSpec  # noqa: E402
 from softimpact.input.impact_case import load_impact_case  # noqa: E402
-from softimpact.workflows.coupled import simulate_coupled  # noqa: E402
+from softimpact.workflows.coupled import impact_model, simulate_coupled  # noqa: E402
 
 STEPS = 1200
 
@@ -38,10 +36,10 @@ def main():
     t0 = time.perf_counter()
     model = impact_model(p)
     build = time.perf_counter() - t0
-    st = plate_structure(model, p.position, plate_reach(model, p.position, p.impactor.diameter))
+    st = model.contact_structure(p.position, model.contact_reach(p.position, p.impactor.diameter))
     run = lambda energy: simulate_coupled(st, p.law, p.impactor, p.solver, energy=energy, stepper=model.stepper)  # noqa: E731
     res = run(False)
-    F = res.contact_force
+    F = res.force
     # the prescribed run: the same force history on the model's own 0.25-in patch (eq 10), same mesh and steps
     t_pre = best(lambda: model.direct(F, energy=False, snapshots=()))
     t_cpl = best(lambda: run(False))

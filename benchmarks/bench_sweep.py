@@ -13,7 +13,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from softimpact.app.sweep import execute, plan_sweep
+from softimpact.cases.sweep import execute, plan_sweep
 from softimpact.input.sweep_spec import load_sweep_spec
 
 VELOCITY = """
@@ -53,7 +53,7 @@ def timed(text: str, workers: int) -> tuple[float, int]:
 
 
 def cluster_start() -> float:
-    from softimpact.app.sweep import _client
+    from softimpact.cases.sweep import _client
 
     t0 = time.perf_counter()
     client, cluster = _client(2, None)

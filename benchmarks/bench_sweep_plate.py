@@ -2,7 +2,7 @@
 PlateModel, its impulse responses built once by reciprocity, one FFT product a run), with the
 damage indices, in a plain loop and on a local Dask cluster of 1 and 2 workers.
 
-The plate is the paper report's (:func:`softimpact.app.sweep.paper_plate_case`): the quarter of
+The plate is the paper report's (:func:`softimpact.app.paper.thresholds.paper_plate_case`): the quarter of
 the built-in 8 × 8 in simply supported [90/0]5s plate, 32 × 32 MITC4 elements, 400 steps of 1 µs,
 struck at the centre by the 1/2-in rubber ball under the empirical law; damage read under the
 impact point (6 pseudo-gauges) and at one gauge 1 in away (6 more).
@@ -18,7 +18,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from softimpact.app.sweep import execute, plan_sweep
+from softimpact.cases.sweep import execute, plan_sweep
 from softimpact.input.sweep_spec import load_sweep_spec
 
 CASE = """
@@ -74,7 +74,7 @@ def engine_build() -> tuple[float, float]:
     """(prepare: model + impulse responses [s], one run on it [s])."""
     import tomllib
 
-    from softimpact.app.sweep_cases import PlateCase
+    from softimpact.cases import PlateKind as PlateCase
 
     data = tomllib.loads(CASE)
     t0 = time.perf_counter()

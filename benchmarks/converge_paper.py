@@ -70,9 +70,9 @@ def bar():
             "time_of_peak_us": r.time_of_peak * 1e6,
             "contact_duration_us": r.contact_duration * 1e6,
             "impulse_N_s": r.impulse,
-            "force_history": r.contact_force[::f],
-            "midpoint_strain_history": r.gauge_strain[0][::f],
-            "midpoint_peak_strain": float(np.max(np.abs(r.gauge_strain[0]))),
+            "force_history": r.force[::f],
+            "midpoint_strain_history": r.strain[0][::f],
+            "midpoint_peak_strain": float(np.max(np.abs(r.strain[0]))),
         }
 
     show("Bar, paper-calibration with end cap (39 elements, dt 0.5 µs, × 2, × 4)", convergence_study(run, (1, 2, 4), 2.0, formal_order=2))

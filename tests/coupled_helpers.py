@@ -1,4 +1,4 @@
-"""Test-side helpers: the paper's long beam model and its ContactStructure (fem.plane_contact)."""
+"""Test-side helpers: the paper's long beam model and its ContactStructure (fem.contact)."""
 
 import math
 from dataclasses import replace
@@ -6,12 +6,16 @@ from dataclasses import replace
 import numpy as np
 import scipy.sparse.linalg as spl
 
-from softimpact.app.impact import beam_contact_structure as beam_structure  # noqa: F401 (re-exported for the tests)
 from softimpact.fem.newmark import SolverSpec
 from softimpact.input.beam_case import load_beam_case
 from softimpact.workflows.beam_impact import BeamModel
 
 INCH = 0.0254
+
+
+def beam_structure(model: BeamModel, position: float, reach: float):
+    """The beam model's ContactStructure, struck at ``position`` [m] within ``reach`` [m] (``model.contact_structure``)."""
+    return model.contact_structure(position, reach)
 
 
 def long_beam_model(time_step=0.5e-6, duration=600e-6, nx=200, nz=6):

@@ -88,3 +88,17 @@ def test_builtin_case_by_name_with_figures(tmp_path):
     for name in ("fig04-gauge-strain.png", "fig05-contact-force.png", "fig06-strain-along-bar.png"):
         assert (out / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert not [p for p in out.iterdir() if p.name.startswith(".")]  # no staging left behind
+
+
+def test_a_contact_iteration_that_does_not_converge_is_a_named_failure(tmp_path, monkeypatch):
+    """A contact Newton iteration cut to one iteration fails to converge: exit 3 and one line saying when (time,
+    step) and how far (residual, bracket), not an internal error (exit 70); nothing written."""
+    import softimpact.fem.impact as impact
+
+    monkeypatch.setattr(impact, "NEWTON_MAXITER", 1)
+    result, out = _run(tmp_path, GOOD, "--no-figures")
+    assert result.exit_code == 3, result.output
+    lines = [ln for ln in result.output.splitlines() if ln.strip()]
+    assert len(lines) == 1 and lines[0].startswith("softimpact: solver failed: the contact Newton iteration did not converge at t = ")
+    assert "(step 1)" in lines[0] and "residual" in lines[0] and "bracket" in lines[0]
+    assert not (out / "summary.json").exists()

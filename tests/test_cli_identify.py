@@ -9,12 +9,12 @@ import pytest
 from click.testing import CliRunner
 
 from softimpact.cli import main
-from softimpact.fem.bar import Rod
+from softimpact.fem.bar import Rod, assemble_rod
+from softimpact.fem.contact import rod_contact_structure
 from softimpact.input.series import load_series
 from softimpact.models.contact_laws import SoftProjectileLaw, ViscoelasticSoftLaw
 from softimpact.output.law_json import law_json, read_law
 from softimpact.workflows.identification import BarTest, IdentifiedLaw, closure, identify
-from softimpact.workflows.identification import _rod_structure as rod_structure
 
 INCH = 0.0254
 TRUE = {"k_ref": 3.0, "p": 0.9, "c_ref": 2.0, "q_k": -0.5, "q_c": 1.5}  # a law chosen here
@@ -25,7 +25,7 @@ D_REF = 0.5 * INCH
 
 @pytest.fixture(scope="module")
 def rod() -> Rod:
-    return load_series("paper-rubber-series").bar.rod()
+    return Rod.of(load_series("paper-rubber-series").bar)
 
 
 def _synthetic_test(rod, name, mass, d, V, true):
@@ -34,8 +34,8 @@ def _synthetic_test(rod, name, mass, d, V, true):
 
     chosen = IdentifiedLaw(tuple(true), np.array(list(true.values())), np.zeros(len(true)), D_REF, np.zeros(1), 0.0)
     T = 1.0 * d / V  # Table I: T ≈ α2·d/V with α2 ≈ 1
-    h = integrate_impact(rod_structure(rod), chosen.law(mass, d, V), mass, V, T / 400, 1200, energy=False, stop_after=0.3 * T)
-    return BarTest(name, h.time, h.contact_force, mass, d, V)
+    h = integrate_impact(rod_contact_structure(assemble_rod(rod)), chosen.law(mass, d, V), mass, V, T / 400, 1200, energy=False, stop_after=0.3 * T)
+    return BarTest(name, h.time, h.force, mass, d, V)
 
 
 CASES = [

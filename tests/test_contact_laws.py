@@ -6,11 +6,8 @@ import pytest
 from scipy.integrate import quad
 from scipy.special import beta as beta_fn
 
-from softimpact.models.contact import Hertz
 from softimpact.models.contact_laws import (
-    ContactLaw,
     HertzLaw,
-    HistoryLaw,
     HuntCrossleyLaw,
     SoftProjectileLaw,
     YangSunLaw,
@@ -19,6 +16,7 @@ from softimpact.models.contact_laws import (
     laminate_modulus,
 )
 from softimpact.models.materials import Material
+from softimpact.models.protocols import ContactLaw, HistoryLaw
 
 STEEL = Material("steel", 207e9, 0.29, 7830.0)
 AL = Material("al", 69e9, 0.33, 2700.0)
@@ -39,11 +37,6 @@ def test_laminate_modulus_by_hand():
     e = 1 / ((1 - 0.29**2) / 207e9 + 1 / 7.9e9)
     assert laminate_modulus(STEEL, 7.9e9) == pytest.approx(e, rel=1e-14)
     assert HERTZ.K == pytest.approx(4 / 3 * math.sqrt(R) * e, rel=1e-14)
-
-
-def test_isotropic_flat_agrees_with_existing_hertz():
-    """HertzLaw.sphere_on_flat gives the same K as the existing models.contact.Hertz (eq 3)."""
-    assert HertzLaw.sphere_on_flat(R, STEEL, AL).K == pytest.approx(Hertz.sphere_on_flat(R, STEEL, AL).K, rel=1e-14)
 
 
 def test_rigid_impact_duration_constant():

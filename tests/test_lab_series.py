@@ -21,6 +21,7 @@ import pytest
 from click.testing import CliRunner
 
 from softimpact.cli import main
+from softimpact.fem.bar import Rod
 from softimpact.models.dispersion import RoundBar, phase_velocity, radial_factors
 from softimpact.models.materials import lookup
 
@@ -458,7 +459,7 @@ def clamped_bar_records():
     from softimpact.models.specimens import BarSpec
 
     bar = BarSpec(AL, L, D, 200)
-    rod = bar.rod()
+    rod = Rod.of(bar)
     model = assemble_rod(rod)
     K = model.K.tolil()
     far = int(model.axial_dofs[-1])

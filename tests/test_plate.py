@@ -37,7 +37,7 @@ NAVIER_GAUGES = [(5 * INCH, 4 * INCH, "x", 0.031 * INCH), (4 * INCH, 6 * INCH, "
 
 def _problem(n, pulse=PAPER_PULSE, radius=0.25 * INCH, duration=1000e-6, grow=False, stack=STACK, supports=("simply-supported",) * 4):
     return PlateProblem(
-        PlateSpec(A, A, (n, n), stack, supports),
+        PlateSpec(A, A, (n, n), stack, supports, element="mitc4"),
         PlateLoad((A / 2, A / 2), radius, pulse, grow=grow),
         SolverSpec(1e-6, duration),
         GAUGES,
@@ -296,7 +296,7 @@ def test_energy_balance_of_direct_stepping():
     """Average acceleration: kinetic + strain energy equals the work of the patch loads to 1e-10."""
     r = PlateModel(_problem(10, duration=300e-6, grow=True)).direct()
     E = r.energy
-    assert np.max(np.abs(E["kinetic"] + E["strain"] - E["work"])) < 1e-10 * np.max(E["work"])
+    assert np.max(np.abs(E.kinetic + E.strain - E.work)) < 1e-10 * np.max(E.work)
 
 
 @pytest.mark.parametrize("grow", [True, False])
@@ -345,7 +345,7 @@ def test_quarter_model_with_symmetry_edges_is_the_full_plate():
     F/4) gives the full plate's gauge strains and centre deflection to round-off (10 × 10 vs 20 × 20)."""
     full = PlateModel(_problem(20, duration=150e-6)).direct(energy=False)
     problem = PlateProblem(
-        PlateSpec(A / 2, A / 2, (10, 10), STACK, ("symmetry", "simply-supported", "symmetry", "simply-supported")),
+        PlateSpec(A / 2, A / 2, (10, 10), STACK, ("symmetry", "simply-supported", "symmetry", "simply-supported"), element="mitc4"),
         PlateLoad((0.0, 0.0), 0.25 * INCH, PAPER_PULSE, grow=False),
         SolverSpec(1e-6, 150e-6),
         (PlateGauge("x1", (1 * INCH, 0.0), "bottom", "x", 0.031 * INCH), PlateGauge("y2", (0.0, 2 * INCH), "bottom", "y", 0.031 * INCH)),
@@ -359,14 +359,13 @@ def test_quarter_model_with_symmetry_edges_is_the_full_plate():
 
 @pytest.mark.parametrize("scale, tol, element", [(1e2, 0.03, "mitc4"), (1e5, 2e-4, "mitc4"), (1e5, 2e-4, "mitc9")])
 def test_coupled_hertz_impact_on_a_stiff_heavy_plate_tends_to_the_rigid_wall(scale, tol, element):
-    """A 1/2-in steel ball at 100 in/s on the SS plate through plate_structure: with moduli and density
+    """A 1/2-in steel ball at 100 in/s on the SS plate through PlateModel.contact_structure: with moduli and density
     scaled by ``scale`` (impedance ∝ scale) the peak force and contact duration tend to Hertz's
     rigid-wall closed form (written here from the energy integral): within 3 % at 1e2, 2e-4 at 1e5
     (measured 1.5 %, 2.3e-5: the error falls like 1/scale; unscaled, the plate halves the peak force); on
     MITC9 too, whose consistent shares of a small disc are negative at corner nodes."""
     from scipy.special import beta as beta_fn
 
-    from softimpact.app.plate import plate_structure
     from softimpact.models.contact_laws import HertzLaw
     from softimpact.models.materials import Material
     from softimpact.workflows.coupled import Impactor, simulate_coupled
@@ -384,7 +383,7 @@ def test_coupled_hertz_impact_on_a_stiff_heavy_plate_tends_to_the_rigid_wall(sca
         PlateSpec(A, A, (n, n), Stack(ply, STACK.angles), element=element), PlateLoad((A / 2, A / 2), 0.1 * INCH, SMOOTH_PULSE), SolverSpec(1e-6, 1e-5)
     )
     model = PlateModel(problem)
-    structure = plate_structure(model, (A / 2, A / 2), 2 * math.sqrt(law.R * a_max))
+    structure = model.contact_structure((A / 2, A / 2), 2 * math.sqrt(law.R * a_max))
     r = simulate_coupled(structure, law, Impactor(m, d, V), solver)
     assert r.peak_force == pytest.approx(F_max, rel=tol)
     assert r.contact_duration == pytest.approx(T, rel=tol)

@@ -48,13 +48,13 @@ def _direct(case_text, velocity, alphas=None):
     import tomllib
     from pathlib import Path
 
-    from softimpact.app.sweep_cases import PlateCase
+    from softimpact.cases import PlateKind
 
     data = tomllib.loads(case_text)
     data["load"]["history"]["velocity"] = f"{velocity!r} m/s"
     if alphas:
         data["load"]["history"].update(alphas)
-    adapter = PlateCase()
+    adapter = PlateKind()
     model = adapter.prepare(data, Path("."), 1)
     assert model.stepper is not None  # a group of one run steps directly: no response engine
     result = model.direct(energy=False, snapshots=())
@@ -245,7 +245,7 @@ def test_first_order_sobol_indices_from_given_runs():
     """Closed forms: Y = X1 + 2·X2 with X uniform independent has S1 = 1/5, S2 = 4/5, and an unused
     X3 has 0; the Ishigami function (a = 7, b = 0.1) has S1 = 0.3139, S2 = 0.4424, S3 = 0.
     A level input (a grid's few values) is binned by its values."""
-    from softimpact.app.sweep import sobol_first_order
+    from softimpact.workflows.sweep_stats import sobol_first_order
 
     rng = np.random.default_rng(2)
     n = 4000
@@ -274,13 +274,13 @@ def test_a_prepared_plate_pickles_small_and_answers_as_direct_stepping():
     import tomllib
     from pathlib import Path
 
-    from softimpact.app.sweep_cases import PlateCase
+    from softimpact.cases import PlateKind
 
     data = tomllib.loads(CASE)
-    shipped = pickle.dumps(PlateCase().prepare(data, Path("."), 2))
+    shipped = pickle.dumps(PlateKind().prepare(data, Path("."), 2))
     assert len(shipped) < 1_000_000
     data["load"]["history"]["velocity"] = "4500 in/s"  # another run of the group
-    got = PlateCase().run(pickle.loads(shipped), data, Path("."))
+    got = PlateKind().run(pickle.loads(shipped), data, Path("."))
     _, ref = _direct(CASE, 4500 * INCH)
     for key in ("peak_force_N", "peak_deflection_at_load_m"):
         assert got[key] == pytest.approx(ref[key], rel=1e-9)

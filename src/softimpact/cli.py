@@ -34,7 +34,7 @@ import warnings
 import click
 
 from . import __version__
-from .errors import EXIT_CHECK, EXIT_INPUT, EXIT_INTERNAL, CheckFailed, InputError, SoftimpactWarning
+from .errors import EXIT_CHECK, EXIT_INPUT, EXIT_INTERNAL, CheckFailed, InputError, SoftimpactWarning, SolverFailed
 
 __all__ = ["main"]
 
@@ -99,6 +99,9 @@ def _guarded(fn):
         except InputError as exc:
             click.echo(f"softimpact: error: {_one_line(exc)}", err=True)
             sys.exit(EXIT_INPUT)
+        except SolverFailed as exc:
+            click.echo(f"softimpact: solver failed: {_one_line(exc)}", err=True)
+            sys.exit(EXIT_CHECK)
         except CheckFailed as exc:
             click.echo(f"softimpact: check failed: {_one_line(exc)} (diagnostics written, marked failed; --accept-poor to accept)", err=True)
             sys.exit(EXIT_CHECK)
@@ -256,11 +259,10 @@ def _command(name: str, short_help: str, *, history: str | None = None, figures:
 @_guarded
 def cases_cmd():
     """List the built-in cases and series, usable by name wherever a CASE or SERIES is asked for."""
-    from .input.toml import builtin_cases, load_toml
+    from .cases import builtin_listing
 
-    for name, path in builtin_cases().items():
-        title = load_toml(path).get("title", "")
-        click.echo(f"{name:24s} {title}")
+    for name, kind, title in builtin_listing():
+        click.echo(f"{name:24s} {kind:7s} {title}")
 
 
 @_command("bar", "Sphere on the instrumented bar (Figs 4-6).")

@@ -9,11 +9,13 @@ command line turns the error into a one-line message and an exit code:
 - :class:`CheckFailed` — the run finished but its answer failed a quality gate
   (:mod:`softimpact.gates`): exit 3, its diagnostics still written and marked
   ``"status": "failed"``.
+- :class:`SolverFailed` — a solver did not converge (a contact Newton iteration): exit 3
+  like a failed check, with a one-line reason (time, step, residual or bracket); nothing written.
 - :class:`SoftimpactWarning` — a usable result that deserves a word (a coarse
   mesh, an ignored column): one ``softimpact: warning:`` line, exit unchanged.
 """
 
-__all__ = ["InputError", "CheckFailed", "SoftimpactWarning", "EXIT_INPUT", "EXIT_CHECK", "EXIT_INTERNAL"]
+__all__ = ["InputError", "CheckFailed", "SolverFailed", "SoftimpactWarning", "EXIT_INPUT", "EXIT_CHECK", "EXIT_INTERNAL"]
 
 EXIT_INPUT = 2  # bad input: a one-line reason, nothing written
 EXIT_CHECK = 3  # ran, but the answer failed its checks (diagnostics written, marked failed)
@@ -44,6 +46,14 @@ class CheckFailed(RuntimeError):
         if message is None:
             message = "; ".join(g.reason for g in self.gates) or "the result failed its checks"
         super().__init__(message)
+
+
+class SolverFailed(CheckFailed):
+    """A solver gave up (exit code 3, as a failed check): the message says where (time, step) and
+    how far it was from converging (residual, bracket), in one line. Nothing is written."""
+
+    def __init__(self, message: str):
+        super().__init__((), message)
 
 
 class SoftimpactWarning(UserWarning):

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..fem.bar import Rod
 from ..input.series import load_series
 from ..input.series_records import read_series_records
 from ..output.identify import identify_files
@@ -19,7 +20,7 @@ def identify(*, series_name: str, figures: bool = True, progress: Progress = no_
     series = load_series(series_name)
     reduced = reduce_series(series, *read_series_records(series), progress=progress)
     warnings = failed_reductions(reduced)
-    tests, law, approaches, cl = identify_series(series.bar.rod(), reduced, True, progress)
+    tests, law, approaches, cl = identify_series(Rod.of(series.bar), reduced, True, progress)
     files = identify_files(series, tests, law, approaches, cl, figures)
     err = np.abs(cl.errors)
     fitted = [(n, v, h) for n, v, h in zip(law.names, law.values, law.half_widths) if h > 0]

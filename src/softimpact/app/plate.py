@@ -37,30 +37,3 @@ def _mirrored_loads(problem) -> tuple[str, ...]:
         f'plate.support.{edge} = "symmetry" does not pass through the load point: the model carries the load mirrored about it too'
         for edge in problem.mirrored_edges()
     )
-
-
-def plate_structure(model: PlateModel, position: tuple[float, float], max_radius: float):
-    """The plate as a :class:`softimpact.fem.impact.ContactStructure` for the coupled solver:
-    struck downward (−z) on its top face at ``position`` (x, y) [m], contact discs up to
-    ``max_radius`` [m] spread by the cosine pressure of eq (11) over the nodes (exact
-    integrals, :class:`softimpact.fem.plate_loads.DiscShares`); the approach is measured
-    on the mid-surface deflection there; the outputs are the model's gauges."""
-    from ..fem.impact import ContactStructure
-    from ..fem.plate_loads import CircularPatch, DiscShares
-
-    fe = model.fe
-    patch = CircularPatch(fe, position, max_radius, grow=True)
-    gauges = model.problem.gauges
-    return ContactStructure(
-        M=fe.M,
-        K=fe.K,
-        surface_x=fe.node_xy()[0, patch.nodes],
-        surface_dofs=patch.dofs,
-        load_sign=-1.0,  # w is up +, the impact pushes down
-        center=float(position[0]),
-        approach_row=-fe.deflection(*position),
-        outputs=model.O[: len(gauges)],
-        output_names=tuple(g.name for g in gauges),
-        C=model.stepper.C,
-        patch=DiscShares(patch),
-    )

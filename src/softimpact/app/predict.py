@@ -85,7 +85,7 @@ def predict(
         problem, path = load_bar_case(bar_case)
         inputs.append(path)
         res = simulate_force(problem.bar, problem.solver, problem.gauges, pulse)
-        driven, gauge_peak = (res.time, res.force, problem.gauges, res.gauge_strain), "compressive"
+        driven, gauge_peak = (res.time, res.force, problem.gauges, res.strain), "compressive"
     if beam_case is not None:
         from dataclasses import replace
 

@@ -22,8 +22,11 @@ import numpy as np
 import scipy.sparse
 
 from ..errors import InputError
+from .contact import rod_contact_structure
+from .linear import LinearModel, PointLoad
+from .newmark import SolverSpec
 
-__all__ = ["Rod", "RodModel", "assemble_rod"]
+__all__ = ["Rod", "RodModel", "BarModel", "assemble_rod", "field_points"]
 
 
 @dataclass(frozen=True)
@@ -39,6 +42,13 @@ class Rod:
     density: float
     elements: int
     end_mass: float = 0.0
+
+    @classmethod
+    def of(cls, spec) -> Rod:
+        """The FE rod of a bar (:class:`softimpact.models.specimens.BarSpec`), the end cap's mass
+        lumped at x = 0."""
+        cap = spec.end_cap
+        return cls(spec.length, spec.area, spec.material.youngs_modulus, spec.material.density, spec.elements, 0.0 if cap is None else cap.mass)
 
     def __post_init__(self):
         for name in ("length", "area", "youngs_modulus", "density"):
@@ -118,3 +128,31 @@ class RodModel:
 def assemble_rod(rod: Rod) -> RodModel:
     """Assemble the rod's mass and stiffness (scikit-fem, Hermite elements)."""
     return RodModel(rod)
+
+
+def field_points(rod: Rod, per_element: int = 4) -> np.ndarray:
+    """Where the strain field along the bar is sampled: ``per_element`` intervals per element [m]."""
+    return np.linspace(0.0, rod.length, rod.elements * per_element + 1)
+
+
+class BarModel(LinearModel):
+    """The rod at one time step (:class:`softimpact.fem.linear.LinearModel`): a compressive force on
+    the struck end (its axial DOF, pushing into the bar), the strains at ``gauges`` [m] and at
+    ``field`` [m] (default :func:`field_points`) as outputs, gauges first."""
+
+    def __init__(self, rod: Rod, solver: SolverSpec, gauges=(), field=None):
+        self.rod = rod
+        self.assembled = model = assemble_rod(rod)
+        self.gauges = np.asarray(gauges, float).reshape(-1)
+        self.field = field_points(rod) if field is None else np.asarray(field, float)
+        O = model.strain_probe(np.r_[self.gauges, self.field]).toarray()
+        super().__init__(model.M, model.K, None, solver, [model.end_dof], 1.0, O, PointLoad())
+
+    def contact_structure(self, point: float = 0.0, reach: float = 0.0):
+        """The rod struck at its end x = 0 (``point`` must be 0; ``reach`` is not used: one node)."""
+        if point != 0.0:
+            raise InputError(f"a bar is struck at its end, x = 0, got {point!r} m", "position")
+        return rod_contact_structure(self.assembled, self.O)
+
+    def _drop_mesh(self, light) -> None:
+        light.assembled = None

@@ -40,6 +40,14 @@ contact work is Σ½(F_k + F_{k+1})·Δα. These close except for the difference
 between the work of F on the loaded (top) surface nodes and on the mid-surface,
 Σ½(F_k + F_{k+1})·(s̄·Δu_patch − Δw): the structure's own through-thickness
 squeeze under the patch, reported as ``surface_mismatch``.
+
+The one coupled stepper of softimpact: bar, beam and plate all run through
+:func:`simulate_coupled`, which returns one :class:`CoupledResult`. One separation
+rule (:func:`contact_intervals`: a contact ends where α crosses zero within the
+step, else where F reaches zero, for laws clipped at F = 0), one peak refinement
+(:func:`refine_peak`, the parabola through three samples). A Newton iteration that
+does not converge is a :class:`softimpact.errors.SolverFailed` (time, step,
+residual, bracket).
 """
 
 from __future__ import annotations
@@ -49,11 +57,25 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InputError
-from ..models.contact_laws import HistoryLaw, branch_of
-from .newmark import NewmarkParameters, NewmarkStepper
+from ..errors import InputError, SolverFailed
+from ..models.contact_laws import branch_of
+from ..models.protocols import HistoryLaw
+from ..models.specimens import Impactor
+from .energies import Energies
+from .newmark import NewmarkParameters, NewmarkStepper, SolverSpec
 
-__all__ = ["ContactStructure", "ContactPatch", "ImpactHistory", "integrate_impact", "NEWTON_TOL"]
+__all__ = [
+    "ContactStructure",
+    "ContactPatch",
+    "ImpactHistory",
+    "integrate_impact",
+    "NEWTON_TOL",
+    "ContactInterval",
+    "CoupledResult",
+    "refine_peak",
+    "contact_intervals",
+    "simulate_coupled",
+]
 
 NEWTON_TOL = 1e-12  # relative tolerance on α (and on R) in the contact iteration
 NEWTON_MAXITER = 60  # Newton with bisection safeguard; typically 3–6 iterations
@@ -144,7 +166,7 @@ class ImpactHistory:
     """Histories at t_k = k·dt (shape (steps + 1,) unless stated); SI; compression +."""
 
     time: np.ndarray
-    contact_force: np.ndarray
+    force: np.ndarray  # contact force [N], compression +
     approach: np.ndarray
     approach_rate: np.ndarray
     contact_radius: np.ndarray
@@ -187,10 +209,7 @@ def integrate_impact(
     ``snapshots``: step indices at which to keep the displacement of all DOFs
     (for figures of the deflected shape); those past an early stop are dropped.
     """
-    if not (math.isfinite(mass) and mass > 0):
-        raise InputError(f"impactor.mass must be positive, got {mass!r}")
-    if not (math.isfinite(velocity) and velocity > 0):
-        raise InputError(f"impactor.velocity must be positive (toward the structure), got {velocity!r}")
+    Impactor(mass, 1.0, velocity)  # validates mass and velocity (> 0, toward the structure): one rule on every path
     if not (isinstance(steps, (int, np.integer)) and steps >= 1):
         raise InputError(f"steps must be a positive integer, got {steps!r}")
     dt = float(time_step)
@@ -260,7 +279,7 @@ def integrate_impact(
         q = r1 * ald[k] + r2 * ala - kappa * al[k]  # α̇_{k+1} = κ·α + q
         if target > 0.0:
             guess = 2.0 * al[k] - al[k - 1] if k >= 1 else target
-            a_new, f, sh, its = _solve_contact(branch, patch, cG, hm, kappa, q, target, guess)
+            a_new, f, sh, its = _solve_contact(branch, patch, cG, hm, kappa, q, target, guess, k + 1, dt)
             iterations += its
             r = branch.radius(a_new)
         else:
@@ -304,7 +323,7 @@ def integrate_impact(
     sl = slice(0, last + 1)
     return ImpactHistory(
         time=t[sl],
-        contact_force=F[sl],
+        force=F[sl],
         approach=al[sl],
         approach_rate=ald[sl],
         contact_radius=rad[sl],
@@ -325,11 +344,12 @@ def integrate_impact(
     )
 
 
-def _solve_contact(law, patch: ContactPatch, cG, hm, kappa, q, target, guess):
-    """Root of R(α) = α − α̃ + F(α, κα + q)·h(a(α)) in (0, α̃] (module docstring).
+def _solve_contact(law, patch: ContactPatch, cG, hm, kappa, q, target, guess, index: int, dt: float):
+    """Root of R(α) = α − α̃ + F(α, κα + q)·h(a(α)) in (0, α̃] (module docstring), at step ``index``.
 
     Starts from ``guess`` (the linear extrapolation of α) when it lies in the bracket, else α̃.
-    Returns (α, F, shares s(a), iterations).
+    Returns (α, F, shares s(a), iterations); :class:`SolverFailed` (time, step, residual and
+    bracket) after :data:`NEWTON_MAXITER` iterations.
     """
     lo, hi = 0.0, target
     a = guess if 0.0 < guess < target else target
@@ -362,8 +382,187 @@ def _solve_contact(law, patch: ContactPatch, cG, hm, kappa, q, target, guess):
                 break
         a = a_next
     else:
-        raise RuntimeError(f"contact iteration did not converge (approach bracket [{lo:.6g}, {hi:.6g}] m)")
+        raise SolverFailed(
+            f"the contact Newton iteration did not converge at t = {index * dt:.6g} s (step {index}) in {NEWTON_MAXITER} iterations: "
+            f"residual {R:.3g} m, approach bracket [{lo:.6g}, {hi:.6g}] m"
+        )
     rate = kappa * a + q
     f = law.force(a, rate)
     s, _ = patch.shares(law.radius(a))
     return a, f, s, its
+
+
+@dataclass(frozen=True)
+class ContactInterval:
+    """One contact: start and end [s] (end nan if still in contact at the end of the run),
+    peak force [N], its time [s], impulse [N·s] over the interval."""
+
+    start: float
+    end: float
+    peak_force: float
+    time_of_peak: float
+    impulse: float
+
+    @property
+    def duration(self) -> float:
+        return self.end - self.start
+
+
+@dataclass(frozen=True)
+class CoupledResult:
+    """Histories (time on the last axis) and first-contact scalars; SI, compression +."""
+
+    impactor: Impactor
+    time: np.ndarray
+    force: np.ndarray  # contact force [N], compression +
+    impactor_velocity: np.ndarray  # positive toward the structure
+    impactor_displacement: np.ndarray
+    approach: np.ndarray
+    approach_rate: np.ndarray
+    contact_radius: np.ndarray
+    deflection: np.ndarray  # (n,) m, mid-surface under the impact point, along the impact direction (into the target +)
+    strain: np.ndarray  # (n_outputs, n): the structure's output rows (gauge strains)
+    strain_names: tuple[str, ...]  # names of the rows of ``strain``
+    energies: Energies
+    contacts: tuple[ContactInterval, ...]
+    peak_force: float  # first contact
+    time_of_peak: float
+    contact_duration: float  # first contact; nan if not separated within the run
+    impulse: float  # first contact, N·s
+    rebound_velocity: float  # after the first contact, + toward the structure (− bounced back); nan if not separated
+    final_velocity: float  # impactor velocity at the end of the run
+    newton_iterations: int
+    solves: int
+    displacement: np.ndarray | None = None  # (n_dofs, n_kept) snapshots of the structure, if asked for
+    kept: np.ndarray | None = None  # their step indices
+
+    @property
+    def total_impulse(self) -> float:
+        """∫F dt over the run (trapezoid, the rule of the integration) [N·s]."""
+        return float(np.sum(0.5 * (self.force[1:] + self.force[:-1])) * (self.time[1] - self.time[0]))
+
+    @property
+    def separated(self) -> bool:
+        """The first contact ended within the run."""
+        return math.isfinite(self.contact_duration)
+
+
+def refine_peak(t: np.ndarray, y: np.ndarray, k: int | None = None) -> tuple[float, float]:
+    """(peak, time) of sampled y(t) at its largest sample (or at index ``k``), refined by the
+    parabola through that sample and its neighbours (offset |s| ≤ ½ sample)."""
+    if k is None:
+        k = int(np.argmax(y))
+    if k == 0 or k == len(y) - 1:
+        return float(y[k]), float(t[k])
+    y0, y1, y2 = y[k - 1], y[k], y[k + 1]
+    den = y0 - 2.0 * y1 + y2
+    if den >= 0:
+        return float(y1), float(t[k])
+    s = 0.5 * (y0 - y2) / den
+    return float(y1 - 0.25 * (y0 - y2) * s), float(t[k] + s * (t[1] - t[0]))
+
+
+def contact_intervals(t: np.ndarray, F: np.ndarray, alpha: np.ndarray) -> tuple[ContactInterval, ...]:
+    """Intervals with F > 0. Ends are interpolated on α's zero crossing when α leaves
+    through zero within the step, else on F's (laws clipped at F = 0, e.g. Hunt–Crossley)."""
+    on = F > 0.0
+    on[0] = True  # first contact at t = 0 by definition
+    dt = t[1] - t[0]
+    starts = [0] + list(np.flatnonzero(~on[:-1] & on[1:]) + 1)
+    ends = list(np.flatnonzero(on[:-1] & ~on[1:]))
+    out = []
+    for k0 in starts:
+        k1 = next((e for e in ends if e >= k0), None)
+        if k0 == 0:
+            t0 = 0.0
+        else:
+            a, b = alpha[k0 - 1], alpha[k0]
+            t0 = t[k0 - 1] + dt * (-a / (b - a)) if a <= 0.0 < b else t[k0 - 1] + 0.5 * dt
+        if k1 is None:
+            t1, seg = math.nan, slice(k0, len(t))
+        else:
+            a, b = alpha[k1], alpha[k1 + 1]
+            if a > 0.0 >= b:
+                t1 = t[k1] + dt * a / (a - b)
+            else:
+                t1 = t[k1] + dt * F[k1] / (F[k1] - F[k1 + 1])
+            seg = slice(max(k0 - 1, 0), k1 + 2)
+        Fs, ts = F[seg], t[seg]
+        pk, tp = refine_peak(ts, Fs)
+        imp = float(np.sum(0.5 * (Fs[1:] + Fs[:-1])) * dt)
+        out.append(ContactInterval(t0, t1, pk, tp, imp))
+    return tuple(out)
+
+
+def simulate_coupled(
+    structure: ContactStructure,
+    law,
+    impactor: Impactor,
+    solver: SolverSpec,
+    energy: bool = True,
+    stepper: NewmarkStepper | None = None,
+    stop_after: float | None = None,
+    snapshots=(),
+) -> CoupledResult:
+    """Coupled impact of ``impactor`` on ``structure`` with contact ``law`` (module docstring).
+
+    ``solver``: time step and duration (and Newmark β, γ); ``stepper``: a stepper
+    already factored for this structure and step, to reuse; ``stop_after``: end
+    the run this long [s] after the impactor has left for good; ``snapshots``: step
+    indices at which to keep the structure's displacement (all DOFs).
+    """
+    h: ImpactHistory = integrate_impact(
+        structure,
+        law,
+        impactor.mass,
+        impactor.velocity,
+        solver.time_step,
+        solver.steps,
+        newmark=solver.newmark,
+        energy=energy,
+        stepper=stepper,
+        stop_after=stop_after,
+        snapshots=snapshots,
+    )
+    t, F, al = h.time, h.force, h.approach
+    contacts = contact_intervals(t, F, al)
+    first = contacts[0]
+    rebound = math.nan
+    if math.isfinite(first.end):
+        k = int(np.searchsorted(t, first.end))  # first sample after separation: F = 0 there
+        rebound = float(h.impactor_velocity[min(k, len(t) - 1)])
+    energies = Energies(
+        step=np.arange(t.size),
+        kinetic=h.structure_kinetic,
+        strain=h.structure_strain,
+        work=h.structure_work,
+        impactor_kinetic=0.5 * impactor.mass * h.impactor_velocity**2,
+        contact_work=h.contact_work,
+        contact_energy=h.contact_energy,
+        surface_mismatch=h.surface_mismatch,
+    )
+    return CoupledResult(
+        impactor=impactor,
+        time=t,
+        force=F,
+        impactor_velocity=h.impactor_velocity,
+        impactor_displacement=h.impactor_displacement,
+        approach=al,
+        approach_rate=h.approach_rate,
+        contact_radius=h.contact_radius,
+        deflection=h.target_displacement,
+        strain=h.outputs,
+        strain_names=tuple(structure.output_names),
+        energies=energies,
+        contacts=contacts,
+        peak_force=first.peak_force,
+        time_of_peak=first.time_of_peak,
+        contact_duration=first.duration,
+        impulse=first.impulse,
+        rebound_velocity=rebound,
+        final_velocity=float(h.impactor_velocity[-1]),
+        newton_iterations=h.newton_iterations,
+        solves=h.solves,
+        displacement=h.displacement,
+        kept=h.kept,
+    )

@@ -12,11 +12,12 @@ from pathlib import Path
 
 from .. import units
 from ..errors import InputError
+from ..fem.bar import Rod
 from ..models.contact_laws import HertzLaw
 from ..models.materials import sphere_mass
 from ..models.specimens import BarSpec, EndCap, Gauge, Projectile
-from ..workflows.bar_impact import CONTACT_LAWS, BarImpactProblem, check_problem
-from .contact_law import read_contact_law
+from ..workflows.bar_impact import BarImpactProblem, check_problem
+from .contact_law import CONTACT_LAWS, read_contact_law
 from .toml import Table, load_toml, locate, naming, read_material, read_solver, read_units
 
 __all__ = ["read_bar", "read_gauges", "bar_problem", "load_bar_case"]
@@ -37,7 +38,7 @@ def read_bar(tbl: Table, default_elements: int = 39) -> BarSpec:
         cap,
     )
     with naming({"elements": tbl.key("elements"), "end_mass": tbl.key("end_cap")}):
-        bar.rod()
+        Rod.of(bar)
     tbl.done()
     return bar
 
@@ -70,16 +71,16 @@ def bar_problem(data: dict, base: Path = Path(".")) -> BarImpactProblem:
     projectile = Projectile(material, diameter, p.quantity("velocity", "velocity"), sphere_mass(material, diameter) if mass is None else mass)
     p.done()
     contact_tbl = top.table("contact", optional=True)
-    law, law_object = CONTACT_LAWS[0], None
+    law = "hertz"
     if contact_tbl is not None:
-        law = contact_tbl.string("law", law, choices=CONTACT_LAWS)
-        if law != "hertz":
+        name = contact_tbl.string("law", law, choices=CONTACT_LAWS)
+        if name != "hertz":
             flat = bar.material if bar.end_cap is None else bar.end_cap.material
 
             def hertz():
                 return HertzLaw.sphere_on_flat(diameter / 2, material, flat)
 
-            law_object, _ = read_contact_law(contact_tbl, law, hertz, projectile.mass, diameter, projectile.velocity, base)
+            law, _ = read_contact_law(contact_tbl, name, hertz, projectile.mass, diameter, projectile.velocity, base)
         contact_tbl.done()
     solver = read_solver(top.table("solver"))
     gauges = read_gauges(top, bar.length)
@@ -95,8 +96,8 @@ def bar_problem(data: dict, base: Path = Path(".")) -> BarImpactProblem:
                 raise InputError(f"output.snapshots[{i}]: {raw[i]!r} is outside the run (0 to {top.raw('solver')['duration']})")
         output.done()
     top.done()
-    with naming({"gauges": "gauges", "contact": "contact.law"}):
-        return BarImpactProblem(bar, projectile, solver, gauges, law, title, system, snapshots, law_object)
+    with naming({"gauges": "gauges", "law": "contact.law"}):
+        return BarImpactProblem(bar, projectile, solver, gauges, law, title, system, snapshots)
 
 
 def load_bar_case(case: str) -> tuple[BarImpactProblem, Path]:

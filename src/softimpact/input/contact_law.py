@@ -14,12 +14,11 @@ from pathlib import Path
 
 from ..errors import InputError
 from ..formats.law_json import read_law
-from ..models.contact_laws import HertzLaw, HuntCrossleyLaw, YangSunLaw
+from ..models.contact_laws import CONTACT_LAWS, HertzLaw, HuntCrossleyLaw, YangSunLaw
 from .toml import Table
 
 __all__ = ["CONTACT_LAWS", "CRITICAL_INDENTATION", "HUNT_CROSSLEY_FORMS", "read_contact_law"]
 
-CONTACT_LAWS = ("hertz", "hertz-unloading", "hunt-crossley", "identified")
 CRITICAL_INDENTATION = 0.08e-3  # m: Yang & Sun (1982), graphite/epoxy struck by a 12.7 mm steel ball
 HUNT_CROSSLEY_FORMS = ("lankarani-nikravesh", "hunt-crossley")
 

@@ -15,15 +15,14 @@ its ply, Sun's form, for a beam or a plate; an isotropic beam: Hertz with its ma
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from pathlib import Path
 
 from ..errors import InputError
-from ..fem.newmark import SolverSpec
 from ..models.contact_laws import HertzLaw
 from ..models.materials import Material, sphere_mass
 from ..workflows.beam_impact import BeamLoad, BeamProblem
-from ..workflows.coupled import Impactor
+from ..workflows.coupled import Impactor, ImpactProblem
 from ..workflows.plate_impact import PlateLoad, PlateProblem
 from .beam_case import beam_problem, read_beam_gauges
 from .contact_law import CONTACT_LAWS, read_contact_law
@@ -33,40 +32,16 @@ from .toml import Table, load_toml, locate, naming, read_material, read_solver, 
 __all__ = ["CONTACT_LAWS", "ImpactProblem", "impact_problem", "load_impact_case"]
 
 
-@dataclass(frozen=True)
-class ImpactProblem:
-    """A coupled impact case, resolved (SI): the target beam or plate (its solver and gauges those
-    of the impact run, its force history dropped), the impactor, its material and the contact law."""
-
-    target: BeamProblem | PlateProblem
-    target_case: str
-    impactor: Impactor
-    impactor_material: Material
-    law_name: str
-    law: object
-    title: str = ""
-    units: str = "in-lbf-s"
-
-    @property
-    def solver(self) -> SolverSpec:
-        return self.target.solver
-
-    @property
-    def position(self) -> float | tuple[float, float]:
-        """The impact point: x [m] along a beam, (x, y) [m] on a plate."""
-        return self.target.load.position
-
-    @property
-    def on_plate(self) -> bool:
-        return isinstance(self.target, PlateProblem)
-
-
 def _target(tbl: Table, base: Path) -> tuple[BeamProblem | PlateProblem, Path]:
     """The target case: a plate case (it has a [plate] table) or a beam case."""
     case = tbl.string("case")
     path = base / case if (base / case).is_file() else locate(case)
     try:
         data = load_toml(path)
+        if "projectile" in data:  # a bar case: cases.impact.bar_target runs it for sweep and converge
+            raise InputError(
+                "a bar case: `softimpact impact` strikes beams and plates (run a bar with `softimpact bar`; sweep and converge take this impact case)"
+            )
         problem = plate_problem(data, path.parent) if "plate" in data else beam_problem(data, path.parent)
     except InputError as exc:
         raise InputError(f"{tbl.key('case')} ({path}): {exc}") from None

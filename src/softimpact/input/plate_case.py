@@ -15,7 +15,8 @@ from .. import units
 from ..errors import InputError
 from ..fem.plate import EDGES, ELEMENTS
 from ..models.laminate import Stack, parse_layup
-from ..workflows.plate_impact import DEFAULT_GAUGE_LENGTH, PlateGauge, PlateLoad, PlateProblem, PlateSpec, check_problem
+from ..models.specimens import GAUGE_LENGTH
+from ..workflows.plate_impact import PlateGauge, PlateLoad, PlateProblem, PlateSpec, check_problem
 from .beam_case import read_load_history, read_ply
 from .toml import Table, load_toml, locate, naming, read_solver, read_units
 
@@ -68,7 +69,7 @@ def read_plate_gauges(top: Table) -> tuple[PlateGauge, ...]:
                     _point(g, "position"),
                     g.string("surface", "bottom", choices=("top", "bottom")),
                     direction if isinstance(direction, str) else float(direction),
-                    g.quantity("length", "length", default=DEFAULT_GAUGE_LENGTH),
+                    g.quantity("length", "length", default=GAUGE_LENGTH),
                 )
             )
         g.done()

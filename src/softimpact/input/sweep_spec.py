@@ -23,7 +23,9 @@ and the parameters to vary, each by the dotted path of a case key::
 other and, in the random methods, with the draws (every level combination gets
 the same ``runs`` draws: common random numbers, so threshold curves are
 smooth). ``distribution`` is ``normal = [mean, sd]``, ``uniform = [lo, hi]`` or
-``lognormal = [median, sigma of ln]``. Quantities keep their units in the spec
+``lognormal = [median, sigma of ln]``. Parameters are applied in the order listed: a whole
+table may be followed by keys inside it, but a key set twice, or a table listed after a
+key inside it (which it would silently replace), is refused. Quantities keep their units in the spec
 and are written back to the case in SI; the run table holds SI numbers.
 """
 
@@ -385,6 +387,31 @@ def _parameter(p: Table, base: Path):
     return out
 
 
+def _sets(p) -> tuple[str, ...]:
+    """The case keys a parameter sets (a scaling.json's: its table's alpha1..4)."""
+    return p.columns if isinstance(p, Scaling) else (p.key,)
+
+
+def _check_overlaps(params) -> None:
+    """A spec means one thing: parameters are applied in the order listed, so a whole table may be
+    followed by keys inside it (they change the table just set), but no key may be set twice and no
+    table may come after a key inside it (it would silently replace that key's values)."""
+    for j, later in enumerate(params):
+        for i, earlier in enumerate(params[:j]):
+            for a in _sets(earlier):
+                for b in _sets(later):
+                    if a == b:
+                        raise InputError(
+                            f"sweep.parameter[{i}] and sweep.parameter[{j}] both set {a!r}: give one parameter per key "
+                            "(levels and a distribution of one key cannot be combined)"
+                        )
+                    if a.startswith(b + "."):
+                        raise InputError(
+                            f"sweep.parameter[{j}] ({b!r}, a whole table) comes after sweep.parameter[{i}] ({a!r}, a key inside it) "
+                            "and would replace it: list the table first, then the keys inside it"
+                        )
+
+
 def load_sweep_spec(spec: str) -> SweepSpec:
     """Read and check a sweep spec file: every error is raised here, before any run."""
     path = Path(spec)
@@ -409,6 +436,7 @@ def read_sweep_spec(data: dict, base: Path, path: Path | None = None, text: byte
     if len(set(outputs)) != len(outputs):
         raise InputError("sweep.outputs: keys must be unique")
     params = tuple(_parameter(p, base) for p in s.tables("parameter"))
+    _check_overlaps(params)
     if method == "grid" and any(isinstance(p, (Drawn, Scaling)) for p in params):
         bad = next(i for i, p in enumerate(params) if isinstance(p, (Drawn, Scaling)))
         raise InputError(f"sweep.parameter[{bad}]: draws need method = 'monte-carlo' or 'latin-hypercube' (method is 'grid')")

@@ -21,7 +21,7 @@ from ..errors import InputError
 from ..fem.newmark import NewmarkParameters, SolverSpec
 from ..models.materials import Material, lookup
 
-__all__ = ["Table", "naming", "builtin_cases", "locate", "load_toml", "case_kind", "read_material", "read_solver", "read_units"]
+__all__ = ["Table", "naming", "builtin_cases", "locate", "load_toml", "read_material", "read_solver", "read_units"]
 
 _MISSING = object()
 
@@ -137,22 +137,6 @@ def load_toml(path: Path) -> dict:
         raise InputError(f"{path}: not valid TOML ({exc})") from None
     except OSError as exc:
         raise InputError(f"{path}: cannot read ({exc.strerror})") from None
-
-
-# What a case is, told by the table that only that kind of case has.
-CASE_KINDS = {"beam": "beam", "plate": "plate", "target": "impact", "sweep": "sweep", "projectile": "bar"}
-
-
-def case_kind(case: str) -> tuple[str, Path]:
-    """The kind of a case file or built-in name (bar, beam, plate, impact, sweep) and its path."""
-    path = locate(case)
-    data = load_toml(path)
-    for table, kind in CASE_KINDS.items():
-        if table in data:
-            return kind, path
-    if "tests" in data:
-        raise InputError(f"{path}: a series (its [[tests]] are reduced by `softimpact reduce`/`fit`), not a case")
-    raise InputError(f"{path}: not a case: none of the tables [{'], ['.join(CASE_KINDS)}] is present")
 
 
 def read_material(tbl: Table, name: str = "material") -> Material:

@@ -82,15 +82,18 @@ Laws
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Protocol, runtime_checkable
+
+import numpy as np
 
 from ..errors import InputError
 from .materials import Material
+from .protocols import ContactLaw, HistoryLaw
 
 __all__ = [
-    "ContactLaw",
-    "HistoryLaw",
+    "CONTACT_LAWS",
+    "HERTZ_DURATION",
     "HertzLaw",
     "YangSunLaw",
     "YangSunState",
@@ -101,34 +104,14 @@ __all__ = [
     "MaxwellState",
     "MaxwellBranch",
     "laminate_modulus",
+    "effective_modulus",
     "branch_of",
+    "resolve_law",
+    "law_name",
 ]
 
-
-@runtime_checkable
-class ContactLaw(Protocol):
-    """A memoryless contact law (module docstring); SI scalars."""
-
-    def force(self, alpha: float, rate: float = 0.0) -> float: ...
-
-    def stiffness(self, alpha: float, rate: float = 0.0) -> float: ...
-
-    def damping(self, alpha: float, rate: float = 0.0) -> float: ...
-
-    def radius(self, alpha: float) -> float: ...
-
-    def energy(self, alpha: float) -> float: ...
-
-
-@runtime_checkable
-class HistoryLaw(Protocol):
-    """A law with memory: explicit frozen state, a memoryless branch per step."""
-
-    def initial_state(self): ...
-
-    def branch(self, state) -> ContactLaw: ...
-
-    def advance(self, state, alpha: float, rate: float): ...
+# Rigid-wall Hertz impact lasts HERTZ_DURATION·α_max/V: (4/5)·B(2/5, 1/2) = 2·∫₀¹(1 − s^(5/2))^(-1/2) ds.
+HERTZ_DURATION = 2.9432752
 
 
 def branch_of(law, state) -> ContactLaw:
@@ -141,6 +124,12 @@ def _positive(name: str, value: float) -> None:
         raise InputError(f"contact: {name} must be positive, got {value!r}")
 
 
+def effective_modulus(a: Material, b: Material) -> float:
+    """E* = k1·k2/(k1 + k2), k = E/(1 − ν²), the modulus factor of eq (2) [Pa]."""
+    k1, k2 = a.plane_modulus, b.plane_modulus
+    return k1 * k2 / (k1 + k2)
+
+
 def laminate_modulus(sphere: Material, transverse_modulus: float) -> float:
     """E* of a sphere on a laminate, 1/E* = (1 − ν_s²)/E_s + 1/E_2 [Pa] (Sun's form)."""
     _positive("transverse modulus E2", transverse_modulus)
@@ -149,7 +138,12 @@ def laminate_modulus(sphere: Material, transverse_modulus: float) -> float:
 
 @dataclass(frozen=True)
 class HertzLaw:
-    """F = K·α^n (n = 3/2), a = sqrt(R·α); K [N/m^n], R the sphere radius [m]."""
+    """F = K·α^n, eq (1), n = 3/2; a = sqrt(R·α); K [N/m^n], R the sphere radius [m].
+
+    Build it from geometry with :meth:`sphere_on_flat` (eq 3), :meth:`sphere_on_sphere`
+    (eq 2) or :meth:`sphere_on_laminate` (Sun's form). ``force``, ``stiffness`` and
+    ``energy`` take a scalar (the stepping loop's fast path) or an array of α.
+    """
 
     K: float
     R: float
@@ -162,8 +156,16 @@ class HertzLaw:
             raise InputError(f"contact: exponent must be >= 1, got {self.exponent!r}")
 
     @classmethod
+    def sphere_on_sphere(cls, r1: float, r2: float, m1: Material, m2: Material) -> HertzLaw:
+        """Eq (2): K = (4/3)·sqrt(R1R2/(R1+R2))·k1k2/(k1+k2); radii in m (R: the effective radius)."""
+        if r1 <= 0 or r2 <= 0:
+            raise InputError(f"contact: radii must be positive, got {r1!r}, {r2!r}")
+        radius = r1 * r2 / (r1 + r2)
+        return cls(4.0 / 3.0 * math.sqrt(radius) * effective_modulus(m1, m2), radius)
+
+    @classmethod
     def sphere_on_flat(cls, radius: float, sphere: Material, flat: Material) -> HertzLaw:
-        """Eq (3) for an isotropic flat target: K = (4/3)·sqrt(R)·E*."""
+        """Eq (3) for an isotropic flat target (R2 → ∞): K = (4/3)·sqrt(R)·E*."""
         _positive("sphere radius", radius)
         k1, k2 = sphere.plane_modulus, flat.plane_modulus
         return cls(4.0 / 3.0 * math.sqrt(radius) * k1 * k2 / (k1 + k2), radius)
@@ -174,11 +176,17 @@ class HertzLaw:
         _positive("sphere radius", radius)
         return cls(4.0 / 3.0 * math.sqrt(radius) * laminate_modulus(sphere, transverse_modulus), radius)
 
-    def force(self, alpha: float, rate: float = 0.0) -> float:
-        return self.K * alpha**self.exponent if alpha > 0.0 else 0.0
+    def force(self, alpha, rate: float = 0.0):
+        """F(α) = K·max(α, 0)^n [N]."""
+        if isinstance(alpha, float):
+            return self.K * alpha**self.exponent if alpha > 0.0 else 0.0
+        return self.K * np.maximum(alpha, 0.0) ** self.exponent
 
-    def stiffness(self, alpha: float, rate: float = 0.0) -> float:
-        return self.exponent * self.K * alpha ** (self.exponent - 1.0) if alpha > 0.0 else 0.0
+    def stiffness(self, alpha, rate: float = 0.0):
+        """dF/dα = n·K·max(α, 0)^(n−1) [N/m]."""
+        if isinstance(alpha, float):
+            return self.exponent * self.K * alpha ** (self.exponent - 1.0) if alpha > 0.0 else 0.0
+        return self.exponent * self.K * np.maximum(alpha, 0.0) ** (self.exponent - 1.0)
 
     def damping(self, alpha: float, rate: float = 0.0) -> float:
         return 0.0
@@ -187,19 +195,22 @@ class HertzLaw:
         """Hertz contact radius a = sqrt(R·α) [m]."""
         return math.sqrt(self.R * alpha) if alpha > 0.0 else 0.0
 
-    def energy(self, alpha: float) -> float:
-        return self.K * alpha ** (self.exponent + 1.0) / (self.exponent + 1.0) if alpha > 0.0 else 0.0
+    def energy(self, alpha):
+        """Stored energy ∫₀^α F dα = K·α^(n+1)/(n+1) [J]."""
+        if isinstance(alpha, float):
+            return self.K * alpha ** (self.exponent + 1.0) / (self.exponent + 1.0) if alpha > 0.0 else 0.0
+        return self.K * np.maximum(alpha, 0.0) ** (self.exponent + 1.0) / (self.exponent + 1.0)
 
     def rigid_impact(self, mass: float, velocity: float) -> tuple[float, float, float]:
         """(α_max, F_max, duration) on a rigid immovable flat, n = 3/2 (Hertz 1882).
 
         α_max = (5mV²/(4K))^(2/5); duration = 2·(α_max/V)·∫₀¹(1 − s^(5/2))^(-1/2) ds
-        = 2.9432752·α_max/V.
+        = :data:`HERTZ_DURATION`·α_max/V, the same as 3.2181·(m/K)^(2/5)·V^(-1/5).
         """
         if self.exponent != 1.5:
             raise ValueError("closed form exists for n = 3/2 only")
         a = (5.0 * mass * velocity**2 / (4.0 * self.K)) ** 0.4
-        return a, self.force(a), 2.9432752 * a / velocity
+        return a, self.force(a), HERTZ_DURATION * a / velocity
 
 
 @dataclass(frozen=True)
@@ -509,3 +520,42 @@ class ViscoelasticSoftLaw:
     def advance(self, state: MaxwellState, alpha: float, rate: float) -> MaxwellState:
         b = self.branch(state)
         return MaxwellState(max(alpha, 0.0) / self.base.diameter, b.stress(alpha))
+
+
+# The contact laws by name (case files' ``contact.law``), each with the class it builds: one table,
+# as scipy's ``METHODS``. "identified" is a law.json of ``softimpact identify``: the soft-projectile
+# law (or its viscoelastic extension, :class:`ViscoelasticSoftLaw`).
+CONTACT_LAWS = {
+    "hertz": HertzLaw,
+    "hertz-unloading": YangSunLaw,
+    "hunt-crossley": HuntCrossleyLaw,
+    "identified": SoftProjectileLaw,
+}
+
+
+def resolve_law(law, hertz: Callable[[], HertzLaw]):
+    """A contact law given as a name of :data:`CONTACT_LAWS` or as an object, resolved in one place.
+
+    ``"hertz"`` is the pair's own Hertz law, ``hertz()``; the other names need their parameters
+    (restitution, a law file…), so they come as objects (a :class:`ContactLaw` or a
+    :class:`HistoryLaw`), returned as they are. InputError (argument ``law``) otherwise.
+    """
+    if isinstance(law, str):
+        if law not in CONTACT_LAWS:
+            raise InputError(f"unknown contact law {law!r} (known: {', '.join(CONTACT_LAWS)})", "law")
+        if law != "hertz":
+            raise InputError(f"contact law {law!r} needs its parameters: give the law object ({CONTACT_LAWS[law].__name__})", "law")
+        return hertz()
+    if not isinstance(law, (ContactLaw, HistoryLaw)):
+        raise InputError(f"law must be one of {', '.join(CONTACT_LAWS)} or a contact law object, got {type(law).__name__}", "law")
+    return law
+
+
+def law_name(law) -> str:
+    """The name of :data:`CONTACT_LAWS` a law object (or name) goes by; the class name if none."""
+    if isinstance(law, str):
+        return law
+    for name, cls in CONTACT_LAWS.items():
+        if type(law) is cls:
+            return name
+    return "identified" if isinstance(law, ViscoelasticSoftLaw) else type(law).__name__

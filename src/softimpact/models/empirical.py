@@ -21,7 +21,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..units import INCH
-from .contact import Hertz
+from .contact_laws import HertzLaw
 from .materials import Material
 from .pulses import SkewedPulse, TabulatedPulse, TailedPulse
 
@@ -124,8 +124,8 @@ class HertzModel:
     sphere: Material
     target: Material
 
-    def law(self, d: float) -> Hertz:
-        return Hertz.sphere_on_flat(d / 2, self.sphere, self.target)
+    def law(self, d: float) -> HertzLaw:
+        return HertzLaw.sphere_on_flat(d / 2, self.sphere, self.target)
 
     def parameters(self, m, d, V) -> PulseParameters:
         _check(m, d, V)

@@ -12,10 +12,13 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ..fem.bar import Rod
+from ..errors import InputError
+from ..units import INCH
 from .materials import Material, sphere_mass
 
-__all__ = ["EndCap", "BarSpec", "Projectile", "Gauge"]
+__all__ = ["EndCap", "BarSpec", "Projectile", "Gauge", "Impactor", "GAUGE_LENGTH"]
+
+GAUGE_LENGTH = 0.031 * INCH  # m: the paper's strain gauges, 0.031 in (docs/modelling-notes.md); the default of beam and plate gauges
 
 
 @dataclass(frozen=True)
@@ -46,17 +49,6 @@ class BarSpec:
     def area(self) -> float:
         return math.pi * self.diameter**2 / 4.0
 
-    def rod(self) -> Rod:
-        """The FE rod, with the end cap's mass lumped at x = 0."""
-        return Rod(
-            self.length,
-            self.area,
-            self.material.youngs_modulus,
-            self.material.density,
-            self.elements,
-            0.0 if self.end_cap is None else self.end_cap.mass,
-        )
-
 
 @dataclass(frozen=True)
 class Projectile:
@@ -66,6 +58,9 @@ class Projectile:
     diameter: float
     velocity: float
     mass: float
+
+    def __post_init__(self):
+        Impactor(self.mass, self.diameter, self.velocity)  # the same rule on every path: positive, velocity toward the target
 
     @classmethod
     def solid(cls, material: Material, diameter: float, velocity: float) -> Projectile:
@@ -79,3 +74,26 @@ class Gauge:
 
     name: str
     position: float
+
+
+@dataclass(frozen=True)
+class Impactor:
+    """A rigid impactor: mass [kg], diameter [m], velocity [m/s] toward the structure."""
+
+    mass: float
+    diameter: float
+    velocity: float
+
+    def __post_init__(self):
+        for name in ("mass", "diameter", "velocity"):
+            v = getattr(self, name)
+            if not (math.isfinite(v) and v > 0):
+                raise InputError(f"impactor.{name} must be positive, got {v!r}", name)
+
+    @property
+    def momentum(self) -> float:
+        return self.mass * self.velocity
+
+    @property
+    def kinetic_energy(self) -> float:
+        return 0.5 * self.mass * self.velocity**2

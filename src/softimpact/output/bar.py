@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..fem.bar import Rod
 from ..units import display
 from .files import csv_text, figure_bytes, json_text, strain_peaks
+from .impact import impact_columns
 from .report import Section
 
 __all__ = ["bar_summary", "bar_files", "bar_section"]
@@ -17,26 +19,42 @@ def bar_summary(result) -> dict:
     """The scalars of a bar run, SI with unit-suffixed keys, and the resolved case."""
     p = result.problem
     gauges = {}
-    for g, eps in zip(p.gauges, result.gauge_strain):
+    for g, eps in zip(p.gauges, result.strain):
         gauges[g.name] = {"position_m": g.position, **strain_peaks(result.time, eps)}
-    e = result.energies.total
+    e = result.energies.mechanical
     return {
         "title": p.title,
         "peak_force_N": result.peak_force,
         "time_of_peak_s": result.time_of_peak,
         "contact_duration_s": result.contact_duration,
-        "impulse_N_s": result.impulse,
+        "impulse_N_s": result.total_impulse,
         "rebound_velocity_m_s": result.rebound_velocity,
         "rebound_velocity_note": "impactor velocity after separation, positive toward the bar (negative = bounced back)",
-        "contact_intervals": result.contacts,
+        "contact_intervals": len(result.contacts),
         "projectile_mass_kg": p.projectile.mass,
         "end_cap_mass_kg": 0.0 if p.bar.end_cap is None else p.bar.end_cap.mass,
-        "hertz_constant_N_per_m1_5": p.contact_law().K,
-        "bar_wave_speed_m_s": p.bar.rod().wave_speed,
+        "hertz_constant_N_per_m1_5": p.hertz().K,
+        "bar_wave_speed_m_s": Rod.of(p.bar).wave_speed,
         "energy_drift_relative": float((e.max() - e.min()) / e[0]),
         "newton_iterations": result.newton_iterations,
         "gauges": gauges,
-        "case_SI": p,
+        "case_SI": _case(p),
+    }
+
+
+def _case(p) -> dict:
+    """The resolved case as summary.json has always written it: ``contact`` the law's name and ``law``
+    the law object (null for the bar's own Hertz law), though the problem holds one ``law``."""
+    return {
+        "bar": p.bar,
+        "projectile": p.projectile,
+        "solver": p.solver,
+        "gauges": p.gauges,
+        "contact": p.law_name,
+        "title": p.title,
+        "units": p.units,
+        "snapshots": p.snapshots,
+        "law": None if isinstance(p.law, str) else p.law,
     }
 
 
@@ -49,16 +67,8 @@ def bar_files(result, plain=None, inferred=None, figures: bool = True, prefix: s
     from . import plots
 
     p = result.problem
-    cols = {
-        "time_s": result.time,
-        "contact_force_N": result.contact_force,
-        "impactor_velocity_m_s": result.impactor_velocity,
-        "impactor_displacement_m": result.impactor_displacement,
-        "approach_m": result.approach,
-    }
-    for g, eps in zip(p.gauges, result.gauge_strain):
-        cols[f"strain_{g.name}"] = eps
-    cols["energy_total_J"] = result.energies.total
+    cols = impact_columns(result, target=False, energies=False)
+    cols["energy_total_J"] = result.energies.mechanical
     summary = bar_summary(result)
     if plain is not None:
         summary["without_end_cap"] = {
@@ -67,7 +77,7 @@ def bar_files(result, plain=None, inferred=None, figures: bool = True, prefix: s
             "contact_duration_s": plain.contact_duration,
         }
     files = {prefix + "history.csv": csv_text(cols), prefix + "summary.json": json_text(summary)}
-    L_over_c = p.bar.length / p.bar.rod().wave_speed
+    L_over_c = p.bar.length / Rod.of(p.bar).wave_speed
     chosen = [t for t in p.snapshots if t <= result.time[-1]]
     instants = np.array(chosen) if chosen else np.linspace(0.0, min(result.time[-1], 2.0 * L_over_c), 7)[1:]
     dt = result.time[1] - result.time[0]
@@ -109,13 +119,13 @@ def bar_section(result, plain, lag, prefix: str) -> Section:
         ["peak contact force", f"{result.peak_force * fu.factor:.1f} {fu.label}"],
         ["time of peak", f"{result.time_of_peak * tu.factor:.1f} {tu.label}"],
         ["contact duration", f"{result.contact_duration * tu.factor:.1f} {tu.label}"],
-        ["impulse", f"{result.impulse * iu.factor:.4g} {iu.label}"],
+        ["impulse", f"{result.total_impulse * iu.factor:.4g} {iu.label}"],
         ["rebound velocity (toward bar +)", f"{result.rebound_velocity * vu.factor:.3g} {vu.label}"],
     ]
     if plain is not None:
         rows.append(["peak force without end cap", f"{plain.peak_force * fu.factor:.1f} {fu.label}"])
         rows.append(["contact duration without end cap", f"{plain.contact_duration * tu.factor:.1f} {tu.label}"])
-    for g, eps in zip(p.gauges, result.gauge_strain):
+    for g, eps in zip(p.gauges, result.strain):
         k = int(np.argmin(eps))
         rows.append([f"peak compressive strain at {g.name}", f"{eps[k] * su.factor:.1f} {su.label} at {result.time[k] * tu.factor:.1f} {tu.label}"])
     return Section(

@@ -9,7 +9,7 @@ from ..units import display
 from .files import csv_text, energy_balance, figure_bytes, json_text, strain_peaks
 from .report import Section
 
-__all__ = ["beam_summary", "beam_files", "beam_section"]
+__all__ = ["beam_summary", "beam_scalars", "beam_files", "beam_section"]
 
 
 def beam_summary(model, result) -> dict:
@@ -33,15 +33,23 @@ def beam_summary(model, result) -> dict:
         "dofs": model.plane.n,
         "elements": [p.beam.nx, p.beam.nz],
         "effective_moduli_Pa": model.moduli(),
-        "peak_force_N": float(result.force.max()),
-        "impulse_N_s": float(np.trapezoid(result.force, result.time)),
-        "peak_deflection_under_load_m": float(result.deflection[np.argmax(np.abs(result.deflection))]),
+        **beam_scalars(result),
         "gauges": gauges,
         "case_SI": p,
     }
     if result.energy:
         out["energy_balance_relative"] = energy_balance(result.energy)
     return out
+
+
+def beam_scalars(result) -> dict:
+    """The scalars of a beam run that every beam output names alike (summary.json, sweep outputs,
+    converge): peak force [N], impulse [N·s] and the signed peak deflection under the load [m]."""
+    return {
+        "peak_force_N": float(result.force.max()),
+        "impulse_N_s": float(np.trapezoid(result.force, result.time)),
+        "peak_deflection_under_load_m": float(result.deflection[np.argmax(np.abs(result.deflection))]),
+    }
 
 
 def beam_files(model, result, figures: bool = True, prefix: str = "") -> dict[str, bytes | str]:

@@ -76,9 +76,9 @@ def strain_peaks(time: np.ndarray, eps: np.ndarray, window_end: bool = False) ->
     return out
 
 
-def energy_balance(energy: dict) -> float:
-    """Largest |kinetic + strain − work| over the run, relative to the largest work."""
-    return float(np.max(np.abs(energy["kinetic"] + energy["strain"] - energy["work"])) / max(np.max(np.abs(energy["work"])), 1e-300))
+def energy_balance(energy) -> float:
+    """Largest |kinetic + strain − work| over the run (:class:`softimpact.fem.energies.Energies`), relative to the largest work."""
+    return float(np.max(np.abs(energy.balance_error)) / max(np.max(np.abs(energy.work)), 1e-300))
 
 
 def csv_text(columns: dict[str, np.ndarray]) -> str:

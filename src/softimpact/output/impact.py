@@ -35,7 +35,7 @@ def _plate_target(problem, model, result) -> dict:
     """What a plate user reads besides the impact's scalars: the model, and the mid-surface
     deflection under the impact point (along the impact direction, down +)."""
     p = problem.target
-    w = result.target_displacement
+    w = result.deflection
     k = int(np.argmax(np.abs(w)))
     return {
         "model": f"fsdt ({p.plate.element.upper()})",
@@ -54,7 +54,7 @@ def impact_summary(problem, result, model=None) -> dict:
     On a plate (``model`` a PlateModel) also ``target``: the plate model and its deflection under the impact."""
     plate = getattr(problem, "on_plate", False)
     gauges = {}
-    for j, (name, eps) in enumerate(zip(result.gauge_names, result.gauge_strain)):
+    for j, (name, eps) in enumerate(zip(result.strain_names, result.strain)):
         gauges[name] = {**strain_peaks(result.time, eps), "peak_abs_strain": float(np.max(np.abs(eps)))}
         if plate:
             g = problem.target.gauges[j]
@@ -97,27 +97,32 @@ def impact_summary(problem, result, model=None) -> dict:
     }
 
 
-def impact_columns(result) -> dict[str, np.ndarray]:
-    """The columns of history.csv: time, force, impactor, approach, radius, target, gauges, energies."""
+def impact_columns(result, target: bool = True, energies: bool = True) -> dict[str, np.ndarray]:
+    """The columns of history.csv of a coupled run (:class:`softimpact.fem.impact.CoupledResult`): time,
+    force, impactor, approach; with ``target`` the approach rate, contact radius and target
+    deflection; the strains; with ``energies`` the energy histories. The bar's history.csv is
+    this builder without ``target`` and ``energies`` (:func:`softimpact.output.bar.bar_files`)."""
     cols = {
         "time_s": result.time,
-        "contact_force_N": result.contact_force,
+        "contact_force_N": result.force,
         "impactor_velocity_m_s": result.impactor_velocity,
         "impactor_displacement_m": result.impactor_displacement,
         "approach_m": result.approach,
-        "approach_rate_m_s": result.approach_rate,
-        "contact_radius_m": result.contact_radius,
-        "target_displacement_m": result.target_displacement,
     }
-    for name, eps in zip(result.gauge_names, result.gauge_strain):
+    if target:
+        cols["approach_rate_m_s"] = result.approach_rate
+        cols["contact_radius_m"] = result.contact_radius
+        cols["target_displacement_m"] = result.deflection
+    for name, eps in zip(result.strain_names, result.strain):
         cols[f"strain_{name}"] = eps
-    E = result.energies
-    cols["impactor_kinetic_energy_J"] = E.impactor_kinetic
-    cols["structure_kinetic_energy_J"] = E.structure_kinetic
-    cols["structure_strain_energy_J"] = E.structure_strain
-    cols["contact_work_J"] = E.contact_work
-    cols["contact_stored_energy_J"] = E.contact_energy
-    cols["surface_mismatch_J"] = E.surface_mismatch
+    if energies:
+        E = result.energies
+        cols["impactor_kinetic_energy_J"] = E.impactor_kinetic
+        cols["structure_kinetic_energy_J"] = E.kinetic
+        cols["structure_strain_energy_J"] = E.strain
+        cols["contact_work_J"] = E.contact_work
+        cols["contact_stored_energy_J"] = E.contact_energy
+        cols["surface_mismatch_J"] = E.surface_mismatch
     return cols
 
 
@@ -131,7 +136,7 @@ def impact_figures(problem, result, prefix: str = "") -> dict[str, bytes]:
     out = {}
 
     fig, ax = _figure()
-    ax.plot(t, result.contact_force * fu.factor, label=f"contact force ({problem.law_name})")
+    ax.plot(t, result.force * fu.factor, label=f"contact force ({problem.law_name})")
     for i, c in enumerate(result.contacts):
         ax.axvline(c.start * tu.factor, color="0.6", lw=0.8, ls=":")
         ax.annotate(f"contact {i + 1}", (c.start * tu.factor, c.peak_force * fu.factor), fontsize=8)
@@ -143,7 +148,7 @@ def impact_figures(problem, result, prefix: str = "") -> dict[str, bytes]:
 
     fig, ax = _figure()
     ax.plot(t, result.impactor_displacement * lu.factor, label="impactor displacement")
-    ax.plot(t, result.target_displacement * lu.factor, label="target mid-surface displacement")
+    ax.plot(t, result.deflection * lu.factor, label="target mid-surface displacement")
     ax.plot(t, result.approach * lu.factor, label="approach α (contact law's indentation)")
     ax.plot(t, result.contact_radius * lu.factor, "--", label="contact radius")
     ax.set_xlabel(f"time since first contact [{tu.label}]")
@@ -153,12 +158,12 @@ def impact_figures(problem, result, prefix: str = "") -> dict[str, bytes]:
     out[prefix + "approach.png"] = figure_bytes(fig)
 
     fig, ax = _figure()
-    for name, eps in zip(result.gauge_names, result.gauge_strain):
+    for name, eps in zip(result.strain_names, result.strain):
         ax.plot(t, eps * su.factor, label=f"gauge {name}")
     ax.set_xlabel(f"time since first contact [{tu.label}]")
     ax.set_ylabel(f"axial strain [{su.label}] (tension +)")
     ax.set_title("Strain at the gauges, coupled impact", fontsize=10)
-    if len(result.gauge_names):
+    if len(result.strain_names):
         ax.legend()
     out[prefix + "gauge-strains.png"] = figure_bytes(fig)
 
@@ -167,8 +172,8 @@ def impact_figures(problem, result, prefix: str = "") -> dict[str, bytes]:
     KE0 = result.impactor.kinetic_energy
     for label, e in (
         ("impactor kinetic", E.impactor_kinetic),
-        ("structure kinetic", E.structure_kinetic),
-        ("structure strain", E.structure_strain),
+        ("structure kinetic", E.kinetic),
+        ("structure strain", E.strain),
         ("stored in the contact", E.contact_energy),
         ("lost in the contact", E.contact_loss),
         ("sum − surface mismatch", E.total - E.surface_mismatch),

@@ -6,7 +6,7 @@ import numpy as np
 
 from .files import csv_text, energy_balance, figure_bytes, json_text, strain_peaks
 
-__all__ = ["plate_summary", "plate_files", "SNAPSHOTS"]
+__all__ = ["plate_summary", "plate_scalars", "plate_files", "SNAPSHOTS"]
 
 SNAPSHOTS = 6  # instants of the deflected-shape figure, spread over the run
 
@@ -32,8 +32,6 @@ def plate_summary(model, result) -> dict:
             "length_m": g.length,
             **strain_peaks(result.time, eps, window_end=True),
         }
-    w = result.deflection[0]
-    k = int(np.argmax(np.abs(w)))
     out = {
         "title": p.title,
         "model": f"fsdt ({p.plate.element.upper()})",
@@ -42,16 +40,26 @@ def plate_summary(model, result) -> dict:
         "elements": list(p.plate.elements),
         "supports": dict(zip(("x0", "x1", "y0", "y1"), p.plate.supports)),
         "natural_frequencies_Hz": [float(f) for f in model.frequencies(min(5, model.fe.n - 2))],
-        "peak_force_N": float(result.force.max()),
-        "impulse_N_s": float(np.trapezoid(result.force, result.time)),
-        "peak_deflection_at_load_m": float(w[k]),
-        "time_of_peak_deflection_s": float(result.time[k]),
+        **plate_scalars(result),
         "gauges": gauges,
         "case_SI": p,
     }
     if result.energy:
         out["energy_balance_relative"] = energy_balance(result.energy)
     return out
+
+
+def plate_scalars(result) -> dict:
+    """The scalars of a plate run that every plate output names alike (summary.json, sweep outputs,
+    converge): peak force [N], impulse [N·s], the signed peak deflection under the load [m] and its time [s]."""
+    w = result.deflection[0]
+    k = int(np.argmax(np.abs(w)))
+    return {
+        "peak_force_N": float(result.force.max()),
+        "impulse_N_s": float(np.trapezoid(result.force, result.time)),
+        "peak_deflection_at_load_m": float(w[k]),
+        "time_of_peak_deflection_s": float(result.time[k]),
+    }
 
 
 def plate_files(model, result, figures: bool = True) -> dict[str, bytes | str]:

@@ -27,7 +27,7 @@ def bar_gauge_strain(result, system: str):
     """Fig 4: strain history at each gauge."""
     tu, su = display(system, "time"), display(system, "strain")
     fig, ax = _figure()
-    for gauge, eps in zip(result.problem.gauges, result.gauge_strain):
+    for gauge, eps in zip(result.problem.gauges, result.strain):
         ax.plot(result.time * tu.factor, eps * su.factor, label=f"gauge {gauge.name} (FE)")
     ax.set_xlabel(f"time since first contact [{tu.label}]")
     ax.set_ylabel(f"axial strain [{su.label}] (tension +)")
@@ -41,9 +41,9 @@ def bar_contact_force(result, plain=None, inferred=None, system: str = "SI"):
     tu, fu = display(system, "time"), display(system, "force")
     fig, ax = _figure()
     cap = result.problem.bar.end_cap is not None
-    ax.plot(result.time * tu.factor, result.contact_force * fu.factor, label="FE, with end cap" if cap else "FE")
+    ax.plot(result.time * tu.factor, result.force * fu.factor, label="FE, with end cap" if cap else "FE")
     if plain is not None:
-        ax.plot(plain.time * tu.factor, plain.contact_force * fu.factor, "--", label="FE, without end cap")
+        ax.plot(plain.time * tu.factor, plain.force * fu.factor, "--", label="FE, without end cap")
     if inferred is not None:
         t, f, name = inferred
         ax.plot(t * tu.factor, f * fu.factor, ":", lw=2, label=f"EA·ε at gauge {name}, shifted by x/c")
@@ -86,10 +86,10 @@ def bar_energy(result, system: str = "SI"):
     e = result.energies
     for label, y in (
         ("impactor kinetic", e.impactor_kinetic),
-        ("bar kinetic", e.bar_kinetic),
-        ("bar strain", e.bar_strain),
-        ("contact", e.contact),
-        ("total", e.total),
+        ("bar kinetic", e.kinetic),
+        ("bar strain", e.strain),
+        ("contact", e.contact_energy),
+        ("total", e.mechanical),
     ):
         ax.plot(result.time * tu.factor, y * eu.factor, label=label, lw=2 if label == "total" else 1)
     ax.set_xlabel(f"time since first contact [{tu.label}]")

@@ -24,6 +24,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
 from ..errors import InputError
+from ..fem.bar import Rod
 from ..gates import Gate, at_most, pulse_skew
 from ..workflows.conditioning import Conditioned, condition_record
 from ..workflows.reduction import Record, Reduction, reduce_record
@@ -74,7 +75,7 @@ def condition(series, time, strain) -> tuple[Conditioned | None, tuple[str, ...]
     (if any) it must not be fitted; (None, ()) when the record cannot be conditioned (the
     reduction then says what is wrong with it). The end cap delays the reflected wave by
     2·m_cap/Z (its mass over the bar's impedance)."""
-    rod = series.bar.rod()
+    rod = Rod.of(series.bar)
     cap = 0.0 if series.bar.end_cap is None else series.bar.end_cap.mass
     try:
         c = condition_record(time, strain, series.gauge_position, series.bar.length, rod.wave_speed, end_delay=2 * cap / rod.impedance)

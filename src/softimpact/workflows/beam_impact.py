@@ -15,22 +15,23 @@ computed once by reciprocity; milliseconds per force history).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
 from ..errors import InputError
+from ..fem.contact import plane_contact_structure
+from ..fem.energies import Energies
+from ..fem.linear import MIN_STEPS_PER_RISE, LinearModel
 from ..fem.loads import PatchLoad
-from ..fem.newmark import NewmarkStepper, SolverSpec
+from ..fem.newmark import SolverSpec
 from ..fem.plane import PlaneBeam, PlaneModel
-from ..fem.response import ImpulseResponse
 from ..models.laminate import Stack, engineering_constants, plane_matrix
 from ..models.materials import Material
-from ..units import INCH
+from ..models.specimens import GAUGE_LENGTH
 
 __all__ = ["LAMINATE_MODELS", "BeamGauge", "BeamSpec", "BeamLoad", "BeamProblem", "BeamModel", "BeamResult", "isotropic_matrix", "check_problem"]
 
-MIN_STEPS_PER_RISE = 4  # a pulse rising in fewer time steps than this is not resolved
 MIN_ELEMENTS_THROUGH = (2, 4)  # element layers through the thickness: floor (one Q4 layer has no bending strain at the faces), comfortable
 MIN_ELEMENTS_PER_PATCH = (1.0, 2.0)  # elements across the contact patch 2·r0: floor, comfortable (paper: 16)
 LAMINATE_MODELS = ("smeared", "layered")  # homogenised through the thickness, or ply group by ply group
@@ -43,7 +44,7 @@ class BeamGauge:
     name: str
     position: float
     surface: str = "bottom"
-    length: float = 0.031 * INCH
+    length: float = GAUGE_LENGTH
 
 
 @dataclass(frozen=True)
@@ -138,6 +139,10 @@ class BeamProblem:
                 "time_step",
             )
 
+    def model(self, patch_radius: float | None = None) -> BeamModel:
+        """The assembled :class:`BeamModel` of this problem (``patch_radius``: the widest contact radius it loads)."""
+        return BeamModel(self, patch_radius)
+
 
 OUTPUTS = ("all", "strain")  # what a BeamModel observes (BeamModel's ``outputs``)
 
@@ -152,12 +157,13 @@ class BeamResult:
     strain: np.ndarray  # (n_gauges, n): each gauge on its own face
     bending: np.ndarray  # (n_gauges, n): (ε_face − ε_opposite)/2
     deflection: np.ndarray  # (n,) m, z-displacement of the top face under the impact point (up +)
-    displacement: np.ndarray | None = None  # (n_dofs, n) view, reduced DOFs, direct stepping only
-    energy: dict = field(default_factory=dict)  # kinetic, strain, work [J] at the steps energy["step"], direct stepping only
+    displacement: np.ndarray | None = None  # (n_dofs, n), reduced DOFs, direct stepping only
+    energy: Energies | None = None  # kinetic, strain, work [J] at the steps energy.step, direct stepping only
 
 
-class BeamModel:
-    """Assembled beam with its stepper, patch and output rows, for one (mesh, dt)."""
+class BeamModel(LinearModel):
+    """Assembled beam with its stepper, patch and output rows, for one (mesh, dt): the plane model
+    as a :class:`softimpact.fem.linear.LinearModel` (the structure protocol)."""
 
     def __init__(self, problem: BeamProblem, patch_radius: float | None = None, outputs: str = "all"):
         """``patch_radius``: the widest contact radius the model must load (for fits of r0).
@@ -167,18 +173,13 @@ class BeamModel:
         if outputs not in OUTPUTS:
             raise InputError(f"outputs: {outputs!r} is not one of {', '.join(OUTPUTS)}", "outputs")
         self.problem, self.outputs = problem, outputs
-        self.plane = PlaneModel(problem.beam.plane_beam())
-        pm = self.plane
-        M, K = pm.M, pm.K
+        self.plane = pm = PlaneModel(problem.beam.plane_beam())
         a, b = problem.beam.damping
-        C = None if a == 0 and b == 0 else a * M + b * K
-        self.stepper = NewmarkStepper(M, K, problem.solver.time_step, C=C, params=problem.solver.newmark)
+        C = None if a == 0 and b == 0 else a * pm.M + b * pm.K
         top_x = pm.node_x[pm.top_nodes]
-        self.patch = PatchLoad(top_x, problem.load.position, patch_radius or problem.load.contact_radius)
+        patch = PatchLoad(top_x, problem.load.position, patch_radius or problem.load.contact_radius)
         # Patch loads push the top face down (−z).
-        self.load_dofs = np.array([pm.dof(node, 1) for node in pm.top_nodes[self.patch.nodes]])
-        self.B = np.zeros((pm.n, self.load_dofs.size))
-        self.B[self.load_dofs, np.arange(self.load_dofs.size)] = -1.0
+        load_dofs = np.array([pm.dof(node, 1) for node in pm.top_nodes[patch.nodes]])
         rows = []
         for g in problem.gauges:
             other = "top" if g.surface == "bottom" else "bottom"
@@ -187,17 +188,8 @@ class BeamModel:
                 rows.append(pm.surface_strain(g.position, other, g.length))
         if outputs == "all":
             rows.append(pm.displacement(problem.load.position, "top", 1))
-        self.O = np.array(rows) if rows else np.zeros((0, pm.n))
-        self._engine = None
-
-    @property
-    def steps(self) -> int:
-        return self.problem.solver.steps
-
-    def nodal_loads(self, force: np.ndarray, radius: float | None = None) -> np.ndarray:
-        """Patch loads (p, n_t) for a force history sampled at the solver's times (r0 = ``radius``
-        or the problem's contact radius)."""
-        return self.patch.forces(force, self.problem.load.contact_radius if radius is None else radius)
+        O = np.array(rows) if rows else np.zeros((0, pm.n))
+        super().__init__(pm.M, pm.K, C, problem.solver, load_dofs, -1.0, O, patch, problem.load.contact_radius)
 
     def gauge_rows(self) -> np.ndarray:
         """Indices of the gauge strain rows among the model's outputs (and the engine's kernel)."""
@@ -212,79 +204,35 @@ class BeamModel:
         face, other = y[0 : 2 * ng : 2], y[1 : 2 * ng : 2]
         return face, 0.5 * (face - other), y[2 * ng]
 
-    def engine(self) -> ImpulseResponse:
-        """The response engine (impulse responses of the outputs to each patch node), built once."""
-        if self._engine is None:
-            self._engine = ImpulseResponse.reciprocal(self.stepper, self.B, self.steps, self.O)
-        return self._engine
-
-    def force_samples(self, history=None) -> np.ndarray:
-        h = self.problem.load.history if history is None else history
-        return np.asarray(h(self.problem.solver.times()) if callable(h) else h, float)
-
     def respond(self, history=None, radius: float | None = None) -> BeamResult:
         """Gauge strains for a force history through the response engine."""
         F = self.force_samples(history)
-        if F[0] != 0.0:
-            raise InputError("the force must be zero at first contact (t = 0)", "history")
-        y = self.engine().respond(self.nodal_loads(F, radius))
-        strain, bending, defl = self._split(y)
-        return BeamResult(self.problem, self.problem.solver.times(), F, strain, bending, defl)
+        strain, bending, defl = self._split(self.respond_outputs(F, radius))
+        return BeamResult(self.problem, self.solver.times(), F, strain, bending, defl)
 
     def direct(
         self, history=None, progress=None, energy: bool = True, displacement: bool = True, energy_samples: int = 200, radius: float | None = None
     ) -> BeamResult:
-        """Direct Newmark stepping of all DOFs; with ``energy``, the energy balance;
-        with ``displacement``, the whole displacement history (for deformed shapes:
-        n_dofs × n_steps floats; without it only the outputs are kept); ``radius``:
-        r0 of this history (default the problem's contact radius).
-
-        Work done by the load is summed over every step as ½(f_k + f_{k+1})·(u_{k+1} − u_k),
-        the rule under which average acceleration balances energy exactly; the
-        kinetic and strain energies are evaluated at about ``energy_samples``
-        evenly spaced steps (``energy["step"]``), which is what the balance check needs
-        and keeps the quadratic forms off the stepping's critical path.
-        """
+        """Direct Newmark stepping of all DOFs (:meth:`LinearModel.march`); with ``energy``, the
+        energy balance, its kinetic and strain energies at about ``energy_samples`` evenly spaced
+        steps (``energy.step``); with ``displacement``, the whole displacement history (for deformed
+        shapes: n_dofs × n_steps floats; without it only the outputs are kept); ``radius``: r0 of
+        this history (default the problem's contact radius)."""
         F = self.force_samples(history)
-        st = self.stepper
-        n, N = self.plane.n, self.steps
-        loads = -self.nodal_loads(F, radius)  # (p, N+1): patch forces on the load DOFs (down)
-        f0 = np.zeros(n)
-        f0[self.load_dofs] = loads[:, 0]
-        stride = max(1, N // max(1, energy_samples))
-        sampled = np.unique(np.r_[np.arange(0, N + 1, stride), N]) if energy else np.zeros(0, int)
-        u_all = np.zeros((N + 1, n)) if displacement else None
-        y = np.zeros((N + 1, self.O.shape[0]))  # outputs, time-major
-        cols = np.flatnonzero(np.any(self.O != 0.0, axis=0))  # the few DOFs the outputs read
-        O_cols = self.O[:, cols]
-        u_load = np.zeros((N + 1, self.load_dofs.size))  # for the work done by the load
-        u_samples, v_samples = np.zeros((sampled.size, n)), np.zeros((sampled.size, n))
-        u, v = np.zeros(n), np.zeros(n)
-        acc = st.initial_acceleration(u, v, f0)
-        j = 1 if sampled.size and sampled[0] == 0 else 0  # the zero state is already stored
-        for k in range(N):
-            rhs = st.predictor(u, v, acc)
-            rhs[self.load_dofs] += loads[:, k + 1]
-            u1 = st.solve(rhs)
-            v, acc = st.correct(u1, u, v, acc)
-            u = u1
-            y[k + 1] = O_cols @ u[cols]
-            u_load[k + 1] = u[self.load_dofs]
-            if u_all is not None:
-                u_all[k + 1] = u
-            if j < sampled.size and sampled[j] == k + 1:
-                u_samples[j], v_samples[j], j = u, v, j + 1
-            if progress is not None and k % 100 == 0:
-                progress(k)
-        strain, bending, defl = self._split(y.T)
-        energies = {}
-        if energy:
-            M, K = self.plane.M, self.plane.K
-            kinetic = 0.5 * np.einsum("kn,kn->k", v_samples, (M @ v_samples.T).T)
-            strain_energy = 0.5 * np.einsum("kn,kn->k", u_samples, (K @ u_samples.T).T)
-            work = np.concatenate(([0.0], np.cumsum(0.5 * np.einsum("pk,kp->k", loads[:, :-1] + loads[:, 1:], np.diff(u_load, axis=0)))))
-            energies = {"step": sampled, "kinetic": kinetic, "strain": strain_energy, "work": work[sampled]}
-        return BeamResult(self.problem, self.problem.solver.times(), F, strain, bending, defl, None if u_all is None else u_all.T, energies)
+        keep = np.arange(self.steps + 1) if displacement else ()
+        y, energies, saved = self.march(F, radius, energy, energy_samples, keep, progress)
+        strain, bending, defl = self._split(y)
+        return BeamResult(self.problem, self.solver.times(), F, strain, bending, defl, saved if displacement else None, energies)
+
+    def contact_structure(self, point: float, reach: float):
+        """The beam struck downward on its top face at ``point`` [m] (:func:`softimpact.fem.contact.plane_contact_structure`),
+        with the gauge strains (each on its own face) as outputs and the model's damping."""
+        pm, gauges = self.plane, self.problem.gauges
+        outputs = np.array([pm.surface_strain(g.position, g.surface, g.length) for g in gauges]).reshape(len(gauges), pm.n)
+        return plane_contact_structure(pm, point, reach, outputs, tuple(g.name for g in gauges), self.C)
+
+    def _drop_mesh(self, light) -> None:
+        light.plane = None
 
     def moduli(self) -> dict:
         """Effective engineering constants and the plane matrix of the (smeared) material."""

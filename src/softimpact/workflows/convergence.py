@@ -56,6 +56,7 @@ __all__ = [
     "richardson",
     "convergence_study",
     "observed_order",
+    "study_case",
 ]
 
 SAFETY_THREE_LEVELS = 1.25  # Roache's factor of safety when p is observed from three levels
@@ -293,3 +294,47 @@ def convergence_study(
             raise InputError(f"run: output {name!r} has shapes {[r.shape for r in rows]} over the levels (need a common grid)")
         results.append(richardson(np.stack(rows), ratio, formal_order, name))
     return ConvergenceStudy(levels, float(ratio), tuple(results))
+
+
+def study_case(kind, problem, levels: int, ratio: int, progress=None, case_level: int = 0) -> tuple[ConvergenceStudy, list[dict]]:
+    """Run ``levels`` refinements of ``problem`` (factors 1, r, r², …) and analyse them.
+
+    ``kind``: how to refine, check and run the problem (a case kind, :class:`softimpact.cases.CaseKind`:
+    ``refine(problem, factor)``, ``check(problem)``, ``study(problem, stride, progress) -> (outputs, size)``).
+    Every level is checked (resolution and resources) before the first is run: the finest
+    decides whether the study fits the machine. ``case_level``: the index of the user's own
+    discretisation among the levels; the levels below it are coarsenings the study chose (the
+    paper report's ½), so the warnings of their checks (a mesh below the advised resolution) are
+    not the user's and are not shown. ``progress(done, total, label)`` in time steps.
+    Returns the study and, per level, its size (``factor``, ``elements``, ``time_step_s``,
+    ``dofs`` as the model that ran counts them, ``run_time_s``).
+    """
+    import time
+    import warnings
+
+    from ..errors import SoftimpactWarning
+
+    progress = progress or (lambda done, total, label: None)
+    factors = [ratio**k for k in range(levels)]
+    problems = [kind.refine(problem, f) for f in factors]
+    for k, p in enumerate(problems):
+        with warnings.catch_warnings():
+            if k < case_level:
+                warnings.simplefilter("ignore", SoftimpactWarning)
+            kind.check(p)
+    work = [p.solver.steps for p in problems]
+    total = sum(work)
+    sizes = []
+
+    def run(k):
+        done = sum(work[:k])
+        label = f"level {k + 1}/{levels} (×{factors[k]})"
+        progress(done, total, label)
+        t0 = time.perf_counter()
+        values, size = kind.study(problems[k], factors[k], lambda i: progress(done + i, total, label))
+        sizes.append({"factor": factors[k], **size, "run_time_s": time.perf_counter() - t0})
+        return values
+
+    result = convergence_study(run, range(levels), float(ratio), formal_order=2.0)
+    progress(total, total, "done")
+    return result, sizes

@@ -40,6 +40,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..fem.bar import Rod, assemble_rod
+from ..fem.contact import rod_contact_structure
 from ..fem.impact import ContactStructure, integrate_impact
 from ..fem.newmark import NewmarkStepper
 from ..models.contact_laws import SoftProjectileLaw, ViscoelasticSoftLaw
@@ -309,19 +310,8 @@ def pulse_shape(t: np.ndarray, F: np.ndarray) -> tuple[float, float, float, floa
 
 
 def _rod_structure(rod: Rod) -> ContactStructure:
-    model = assemble_rod(rod)
-    e = np.zeros(model.n)
-    e[model.end_dof] = 1.0
-    return ContactStructure(
-        M=model.M,
-        K=model.K,
-        surface_x=np.array([0.0]),
-        surface_dofs=np.array([model.end_dof]),
-        load_sign=1.0,
-        center=0.0,
-        approach_row=e,
-        outputs=np.zeros((0, model.n)),
-    )
+    """The rod struck at its end, no outputs (:func:`softimpact.fem.contact.rod_contact_structure`)."""
+    return rod_contact_structure(assemble_rod(rod))
 
 
 def _simulate(law: IdentifiedLaw, tst: BarTest, structure: ContactStructure, steps_per_pulse: int, duration: float):
@@ -350,9 +340,9 @@ def closure(law: IdentifiedLaw, tests, rod: Rod, steps_per_pulse: int = STEPS_PE
         h = _simulate(law, tst, structure, steps_per_pulse, measured[2])
         names.append(tst.name)
         meas.append(measured)
-        sim.append(pulse_shape(h.time, h.contact_force))
+        sim.append(pulse_shape(h.time, h.force))
         ts.append(h.time)
-        fs.append(h.contact_force)
+        fs.append(h.force)
     meas, sim = np.array(meas), np.array(sim)
     three = [0, 2, 3]  # F0, T, I of (F0, t_F0, T, I)
     return Closure(tuple(names), meas[:, three], sim[:, three], tuple(ts), tuple(fs), np.column_stack((meas[:, 1], sim[:, 1])))
@@ -426,7 +416,7 @@ def refine(
     def errors(z):
         trial = with_values(z)
         runs = [(tests[i], _simulate(trial, tests[i], structure, steps_per_pulse, shapes[i][2])) for i in reps.values()]
-        sim = np.array([_scaled_shape(pulse_shape(h.time, h.contact_force), t) for t, h in runs])
+        sim = np.array([_scaled_shape(pulse_shape(h.time, h.force), t) for t, h in runs])
         return (sim[group] / measured - 1.0).ravel()
 
     def quartic(z):

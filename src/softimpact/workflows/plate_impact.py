@@ -17,24 +17,24 @@ reciprocity; milliseconds per force history).
 
 from __future__ import annotations
 
+import copy
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
 from ..errors import InputError
-from ..fem.newmark import NewmarkStepper, SolverSpec, spd_factor
+from ..fem.contact import plate_contact_structure, plate_reach
+from ..fem.energies import Energies
+from ..fem.linear import MIN_STEPS_PER_RISE, LinearModel
+from ..fem.newmark import SolverSpec
 from ..fem.plate import EDGES, ELEMENTS, SUPPORT_KINDS, Plate, PlateFE
 from ..fem.plate_loads import CircularPatch
-from ..fem.response import ImpulseResponse
 from ..models.laminate import Stack
 from ..models.plate_laminate import SHEAR_CORRECTION, PlateSection, plate_section
+from ..models.specimens import GAUGE_LENGTH
 
 __all__ = ["PlateSpec", "PlateLoad", "PlateGauge", "PlateProblem", "PlateResult", "PlateModel", "check_problem"]
-
-MIN_STEPS_PER_RISE = 4  # a pulse rising in fewer time steps than this is not resolved
-DEFAULT_GAUGE_LENGTH = 0.031 * 0.0254  # m, the paper's gauges (docs/modelling-notes.md)
 
 
 def _positive(name: str, value) -> None:
@@ -47,10 +47,8 @@ class PlateSpec:
     """The plate: lengths along x (the 0° fibres) and y [m], elements (nx, ny),
     supports of the edges (x0, x1, y0, y1), the laminate stack, the shear
     correction factor, Rayleigh damping (α [1/s], β [s]: C = αM + βK) and the
-    element, ``"mitc4"`` or ``"mitc9"`` (:mod:`softimpact.fem.plate`). The default
-    here stays MITC4, so that code built on ``elements`` keeps its meaning and
-    cost; plate case files default to MITC9 (in every command), which reaches
-    2 % on the issue's plate at 48 × 48 where MITC4 needs ~360 × 360."""
+    element, ``"mitc9"`` (the default, as in case files: 2 % on the issue's plate at
+    48 × 48 where MITC4 needs ~360 × 360) or ``"mitc4"`` (:mod:`softimpact.fem.plate`)."""
 
     length_x: float
     length_y: float
@@ -59,7 +57,7 @@ class PlateSpec:
     supports: tuple[str, str, str, str] = ("simply-supported",) * 4
     shear_correction: float = SHEAR_CORRECTION
     damping: tuple[float, float] = (0.0, 0.0)
-    element: str = "mitc4"
+    element: str = "mitc9"
 
     def __post_init__(self):
         _positive("length_x", self.length_x)
@@ -117,7 +115,7 @@ class PlateGauge:
     position: tuple[float, float]
     surface: str = "bottom"
     direction: str | float = "x"
-    length: float = DEFAULT_GAUGE_LENGTH
+    length: float = GAUGE_LENGTH
 
     def __post_init__(self):
         if self.surface not in ("top", "bottom"):
@@ -174,6 +172,10 @@ class PlateProblem:
                 f"{rise * 1e6:.3g} us (need at most time_of_peak/{MIN_STEPS_PER_RISE})"
             )
 
+    def model(self, patch_radius: float | None = None) -> PlateModel:
+        """The assembled :class:`PlateModel` of this problem (``patch_radius``: the widest contact radius it loads)."""
+        return PlateModel(self, patch_radius)
+
     def mirrored_edges(self) -> tuple[str, ...]:
         """The symmetry edges (of x0, x1, y0, y1) that miss the load point: about each, the model
         carries the load mirrored too (a second load), which a half or quarter model of one
@@ -194,7 +196,7 @@ class PlateResult:
     strain: np.ndarray  # (n_gauges, n)
     deflection: np.ndarray  # (1 + n_points, n) m, up +: impact point first, then problem.points
     displacement: np.ndarray | None = None  # (n_dofs, n_kept), free DOFs, direct stepping only
-    energy: dict = field(default_factory=dict)  # kinetic, strain, work [J], direct stepping only
+    energy: Energies | None = None  # kinetic, strain, work [J] at every step, direct stepping only
     kept: np.ndarray | None = None  # step indices of the columns of ``displacement``
 
 
@@ -223,47 +225,22 @@ def check_problem(problem: PlateProblem) -> None:
     require_resources(f"a {nx} x {ny} {spec.element.upper()} plate over {steps} steps", memory, flops)
 
 
-class PlateModel:
-    """Assembled plate with its stepper, contact patch and output rows, for one (mesh, dt)."""
+class PlateModel(LinearModel):
+    """Assembled plate with its stepper, contact patch and output rows, for one (mesh, dt): the
+    plate as a :class:`softimpact.fem.linear.LinearModel` (the structure protocol)."""
 
     def __init__(self, problem: PlateProblem, patch_radius: float | None = None):
         """``patch_radius``: the widest contact radius the model must load (for fits of r0)."""
         self.problem = problem
         self.fe = fe = PlateFE(problem.plate.plate())
-        M, K = fe.M, fe.K
         a, b = problem.plate.damping
-        C = None if a == 0 and b == 0 else a * M + b * K
-        self.stepper = NewmarkStepper(M, K, problem.solver.time_step, C=C, params=problem.solver.newmark)
+        C = None if a == 0 and b == 0 else a * fe.M + b * fe.K
         load = problem.load
-        self.patch = CircularPatch(fe, load.position, patch_radius or load.contact_radius, grow=load.grow)
-        # Patch loads push the plate down (−z).
-        self.load_dofs = self.patch.dofs
-        self.B = np.zeros((fe.n, self.load_dofs.size))
-        self.B[self.load_dofs, np.arange(self.load_dofs.size)] = -1.0
+        patch = CircularPatch(fe, load.position, patch_radius or load.contact_radius, grow=load.grow)
         rows = [fe.surface_strain(*g.position, g.surface, g.direction, g.length) for g in problem.gauges]
         rows += [fe.deflection(*p) for p in (load.position,) + tuple(problem.points)]
-        self.O = np.array(rows)
-        self._engine = None
-
-    @property
-    def steps(self) -> int:
-        return self.problem.solver.steps
-
-    def force_samples(self, history=None) -> np.ndarray:
-        h = self.problem.load.history if history is None else history
-        return np.asarray(h(self.problem.solver.times()) if callable(h) else h, float)
-
-    def nodal_loads(self, force: np.ndarray, radius: float | None = None) -> np.ndarray:
-        """Patch loads (n_patch_nodes, n_t) [N], compression +, for a force history sampled at
-        the solver's times (r0 = ``radius`` or the problem's contact radius)."""
-        return self.patch.forces(force, self.problem.load.contact_radius if radius is None else radius)
-
-    def engine(self) -> ImpulseResponse:
-        """The response engine (impulse responses of the outputs to each patch node), built once."""
-        if self._engine is None:
-            with threadpool_limits(1, user_api="blas"):  # see direct()
-                self._engine = ImpulseResponse.reciprocal(self.stepper, self.B, self.steps, self.O)
-        return self._engine
+        # Patch loads push the plate down (−z).
+        super().__init__(fe.M, fe.K, C, problem.solver, patch.dofs, -1.0, np.array(rows), patch, load.contact_radius)
 
     def _split(self, y: np.ndarray):
         ng = len(self.problem.gauges)
@@ -275,112 +252,37 @@ class PlateModel:
         A patch of fixed radius loads one pattern scaled by F(t): the engine then combines its
         impulse responses over the patch once and convolves each output with F alone."""
         F = self.force_samples(history)
-        if F[0] != 0.0:
-            raise InputError("history: the force must be zero at first contact (t = 0)")
         if self.patch.grow:
-            y = self.engine().respond(self.nodal_loads(F, radius))
+            y = self.respond_outputs(F, radius)
         else:
-            r0 = self.problem.load.contact_radius if radius is None else radius
+            if F[0] != 0.0:
+                raise InputError("the force must be zero at first contact (t = 0)", "history")
+            r0 = self.load_radius if radius is None else radius
             y = self.engine().respond_pattern(self.nodal_loads(np.ones(1), r0)[:, 0], F)
         strain, defl = self._split(y)
-        return PlateResult(self.problem, self.problem.solver.times(), F, strain, defl)
+        return PlateResult(self.problem, self.solver.times(), F, strain, defl)
 
     def direct(self, history=None, progress=None, energy: bool = True, snapshots=None) -> PlateResult:
-        """Direct Newmark stepping of all DOFs; with ``energy``, the energy balance.
-
-        ``snapshots``: step indices at which to keep the displacement of all DOFs
-        (``None``: every step, memory n_dofs × n_steps). Work done by the load is
-        summed as ½(f_k + f_{k+1})·(u_{k+1} − u_k), the rule under which average
-        acceleration balances energy exactly.
-        """
+        """Direct Newmark stepping of all DOFs (:meth:`LinearModel.march`); with ``energy``, the
+        energy balance at every step. ``snapshots``: step indices at which to keep the displacement
+        of all DOFs (``None``: every step, memory n_dofs × n_steps)."""
         F = self.force_samples(history)
-        st, fe = self.stepper, self.fe
-        n, N = fe.n, self.steps
-        loads = -self.nodal_loads(F)  # (n_patch, N + 1)
-        dofs = self.load_dofs
-        keep = np.arange(N + 1) if snapshots is None else np.asarray(snapshots, int)
-        if keep.size and (keep.min() < 0 or keep.max() > N):
-            raise InputError(f"snapshots: step indices must lie in 0 … {N}, got {snapshots!r}")
-        slot = {int(k): i for i, k in enumerate(keep)}
-        saved = np.zeros((keep.size, n))
-        out = np.zeros((N + 1, self.O.shape[0]))
-        u, v = np.zeros(n), np.zeros(n)
-        f0 = np.zeros(n)
-        f0[dofs] = loads[:, 0]
-        acc = st.initial_acceleration(u, v, f0)
-        kinetic, strain_energy, work = (np.zeros(N + 1) for _ in range(3))
-        with threadpool_limits(1, user_api="blas"):
-            self._march(loads, dofs, u, v, acc, out, slot, saved, (kinetic, strain_energy, work) if energy else None, progress)
-        strain, defl = self._split(out.T)
-        energies = {"kinetic": kinetic, "strain": strain_energy, "work": work} if energy else {}
-        return PlateResult(self.problem, self.problem.solver.times(), F, strain, defl, saved.T, energies, keep)
+        keep = np.arange(self.steps + 1) if snapshots is None else np.asarray(snapshots, int)
+        y, energies, saved = self.march(F, None, energy, None, keep, progress)
+        strain, defl = self._split(y)
+        return PlateResult(self.problem, self.solver.times(), F, strain, defl, saved, energies, keep)
 
-    def _march(self, loads, dofs, u, v, acc, out, slot, saved, energy, progress) -> None:
-        """The stepping loop of :meth:`direct`, filling ``out``, ``saved`` and the energies in place.
+    def contact_structure(self, point: tuple[float, float], reach: float):
+        """The plate struck downward on its top face at ``point`` (x, y) [m], contact discs up to
+        ``reach`` [m] (:func:`softimpact.fem.contact.plate_contact_structure`), the gauges as outputs."""
+        ng = len(self.problem.gauges)
+        return plate_contact_structure(self.fe, point, reach, self.O[:ng], tuple(g.name for g in self.problem.gauges), self.C)
 
-        One matrix product a step: the loop carries M·u, M·v, M·a along with u, v, a.
-        Newmark's corrector is linear, so M·a_{k+1} = a0 (M·u_{k+1} − M·u_k) − a2 M·v_k − a3 M·a_k
-        and M·v_{k+1} = M·v_k + a6 M·a_k + a7 M·a_{k+1} follow from the one new product
-        M·u_{k+1}; the next predictor is their sum, the kinetic energy ½ v·(M·v), and the strain
-        energy ½ u·(K·u) = ½ u·(f − M·a) by the equation of motion the step satisfies
-        (undamped; with damping the loop forms K·u and C·v as products).
+    def contact_reach(self, point: tuple[float, float], diameter: float) -> float:
+        """The impactor's diameter cut by the plate's edges (:func:`softimpact.fem.contact.plate_reach`)."""
+        return plate_reach(self.fe, self.problem.plate.supports, point, diameter)
 
-        Run with one BLAS thread: the per-step products are small (a few gauge rows,
-        dot products), and OpenBLAS threads spin on a busy machine (at 64 × 64 this
-        loop took 22 s of overhead with two threads against 5 s of solves).
-        """
-        st = self.stepper
-        M, K = st.M, st.K
-        a0, a2, a3, a6, a7 = st.a0, st.a2, st.a3, st.a6, st.a7
-        carry = st.C is None
-        Mu, Mv, Ma = M @ u, M @ v, M @ acc
-        for k in range(self.steps):
-            f1 = loads[:, k + 1]
-            if carry:
-                rhs = a0 * Mu + a2 * Mv + a3 * Ma
-            else:
-                rhs = st.predictor(u, v, acc)
-            rhs[dofs] += f1
-            u1 = st.solve(rhs)
-            v1, acc = st.correct(u1, u, v, acc)
-            if carry:
-                Mu1 = M @ u1
-                Ma1 = a0 * (Mu1 - Mu) - a2 * Mv - a3 * Ma
-                Mv = Mv + a6 * Ma + a7 * Ma1
-                Ma = Ma1
-            if energy is not None:
-                kinetic, strain_energy, work = energy
-                if carry:
-                    kinetic[k + 1] = 0.5 * v1 @ Mv
-                    strain_energy[k + 1] = 0.5 * (u1[dofs] @ f1 - u1 @ Ma)
-                else:
-                    kinetic[k + 1] = 0.5 * v1 @ (M @ v1)
-                    strain_energy[k + 1] = 0.5 * u1 @ (K @ u1)
-                work[k + 1] = work[k] + 0.5 * (loads[:, k] + f1) @ (u1[dofs] - u[dofs])
-            if carry:
-                Mu = Mu1
-            u, v = u1, v1
-            out[k + 1] = self.O @ u
-            if k + 1 in slot:
-                saved[slot[k + 1]] = u
-            if progress is not None and k % 100 == 0:
-                progress(k)
-
-    def frequencies(self, count: int = 5) -> np.ndarray:
-        """The ``count`` lowest natural frequencies [Hz] of the undamped plate (shift-invert Lanczos)."""
-        import scipy.sparse.linalg as spl
-
-        if not (isinstance(count, int) and 1 <= count < self.fe.n - 1):
-            raise InputError(f"count must be an integer from 1 to {self.fe.n - 2}, got {count!r}")
-        K, M = self.fe.K, self.fe.M
-        try:  # a supported plate: K is positive definite, and our factor is the fast K⁻¹
-            with threadpool_limits(1, user_api="blas"):
-                factor = spd_factor(K)
-            op = spl.LinearOperator(K.shape, matvec=factor.solve, dtype=float)
-        except np.linalg.LinAlgError:  # rigid modes: let ARPACK factor K − 0·M its own way
-            op = None
-        # tol 1e-10 (relative, on the shift-inverted values): the frequencies to ~1e-13 and, on the
-        # 48 × 48 MITC9 plate, 21 solves instead of ARPACK's default (machine precision) 32.
-        ncv = min(max(2 * count + 1, 20), self.fe.n - 1)
-        vals = spl.eigsh(K, k=count, M=M, sigma=0.0, which="LM", OPinv=op, ncv=ncv, tol=1e-10, return_eigenvectors=False)
-        return np.sqrt(np.abs(np.sort(vals))) / (2 * np.pi)
+    def _drop_mesh(self, light) -> None:
+        light.fe = None
+        light.patch = copy.copy(self.patch)
+        light.patch.fe = None

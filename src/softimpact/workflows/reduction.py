@@ -55,6 +55,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
+from ..fem.bar import Rod
 from ..models.dispersion import RoundBar, disperse, radial_band_edge, rayleigh_speed_ratio
 from ..models.noise import white_noise_sigma
 from ..models.pulse_fit import fit_main_pulse
@@ -290,7 +291,7 @@ def reduce_record(
     L, x = bar.length, gauge_position
     if not 0 <= x < L:
         _fail(name, f"gauge position {x!r} m must lie on the bar [0, {L!r}) m")
-    rod = bar.rod()
+    rod = Rod.of(bar)
     c, EA, Z = rod.wave_speed, rod.axial_stiffness, rod.impedance
     tau, period = 2 * (L - x) / c, 2 * L / c
     round_bar = RoundBar(c, bar.material.poisson_ratio, bar.diameter / 2) if dispersion else None

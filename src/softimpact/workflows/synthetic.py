@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..fem.bar import assemble_rod
+from ..fem.bar import Rod, assemble_rod
 from ..fem.newmark import NewmarkStepper
 from ..fem.response import ImpulseResponse
 from ..models.specimens import BarSpec
@@ -36,7 +36,7 @@ class GaugeModel:
 
 def gauge_model(bar: BarSpec, gauge_position: float, dt: float, duration: float) -> GaugeModel:
     """Assemble the bar and compute its gauge impulse response once."""
-    model = assemble_rod(bar.rod())
+    model = assemble_rod(Rod.of(bar))
     steps = int(round(duration / dt))
     stepper = NewmarkStepper(model.M, model.K, dt)
     e0 = np.zeros(model.n)

@@ -12,7 +12,6 @@ import time
 
 from ...output.report import render_report
 from .. import Outcome, Progress, no_progress
-from ..sweep import threshold_section
 from .bar_calibration import bar_calibration_sections
 from .beam_as_plate import beam_as_plate_section
 from .beams import beam_sections
@@ -21,6 +20,7 @@ from .discretisation import discretisation_sections
 from .notes import NOTES, SYSTEM
 from .question import question_section
 from .rubber_series import rubber_series_sections
+from .thresholds import threshold_section
 
 __all__ = ["paper", "NOTES", "SYSTEM", "STEPS"]
 

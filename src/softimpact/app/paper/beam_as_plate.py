@@ -43,7 +43,7 @@ def beam_as_plate(plate_element: float = STRIP_ELEMENT, progress: Progress = no_
         half = spec.width / 2
         elements = (max(2, round(spec.length / plate_element)), max(2, round(half / plate_element)))
         plate = PlateProblem(
-            PlateSpec(spec.length, half, elements, spec.stack, ("clamped", "free", "symmetry", "free")),
+            PlateSpec(spec.length, half, elements, spec.stack, ("clamped", "free", "symmetry", "free"), element="mitc4"),
             PlateLoad((problem.load.position, 0.0), problem.load.contact_radius, problem.load.history),
             problem.solver,
             tuple(PlateGauge(g.name, (g.position, 0.0), g.surface, "x", g.length) for g in problem.gauges),

@@ -6,9 +6,9 @@ from dataclasses import replace
 
 import numpy as np
 
+from ...fem.bar import Rod
 from ...fem.newmark import SolverSpec
 from ...input.beam_case import load_beam_case
-from ...input.impact_case import ImpactProblem
 from ...input.scaling_constants import start_pulse
 from ...input.series import load_calibration_series, load_series
 from ...input.series_records import read_series_records
@@ -22,10 +22,9 @@ from ...output.report import Section
 from ...studies.series import reduce_series
 from ...units import INCH, display
 from ...workflows.beam_impact import BeamLoad, BeamModel
-from ...workflows.coupled import Impactor
+from ...workflows.coupled import Impactor, ImpactProblem, run_impact
 from ...workflows.identification import bar_tests, closure, pulse_figures, refine
 from ...workflows.identification import identify as fit_law
-from ..impact import run_impact
 
 __all__ = ["question_section"]
 
@@ -78,7 +77,7 @@ def _identified_law(figures: bool, files: dict, prefix: str):
     added under ``prefix``. Returns (law, bar tests, closure)."""
     series = load_series("paper-rubber-series")
     tests = bar_tests(reduce_series(series, *read_series_records(series)))
-    rod = series.bar.rod()
+    rod = Rod.of(series.bar)
     law, approaches = fit_law(tests, rod)
     law = refine(law, tests, rod, QUESTION_REFINE, steps_per_pulse=QUESTION_STEPS_PER_PULSE)
     cl = closure(law, tests, rod, QUESTION_STEPS_PER_PULSE)
@@ -114,7 +113,7 @@ def _predicted_rows(cs, law):
         ip = ImpactProblem(target, cs.case, Impactor(P.mass, P.diameter, V), lookup(P.material), "identified", law.law(P.mass, P.diameter, V), "", SYSTEM)
         # the strain figure shows row 1 over the whole window; the others need the pulse only
         _, res = run_impact(ip, model, energy=False, stop_after=None if not curves else QUESTION_AFTER)
-        F0c, Tc, _ = pulse_figures(res.time, res.contact_force)
+        F0c, Tc, _ = pulse_figures(res.time, res.force)
         bar = start_pulse(cs.projectile, cs.constants, V)
         r_max = float(np.max(res.contact_radius[res.time <= Tc]))
         rows.append(
@@ -142,7 +141,7 @@ def _strain_peaks(model, curve, table: str):
     on ``model``) and the peak-|strain| rows with the coupled and bar-law differences from the Table's."""
     su = display(SYSTEM, "strain")
     _, res, paper_pulse, bar = curve
-    strains = [("coupled, identified law", res.time, res.gauge_strain)]
+    strains = [("coupled, identified law", res.time, res.strain)]
     for label, pulse in (("Table " + table + " history", paper_pulse), ("bar law carried over", bar)):
         r = model.direct(history=pulse, energy=False)
         strains.append((label, r.time, r.strain))
@@ -184,7 +183,7 @@ def _question_forces(curves, system, title):
     for i, (V, res, paper_pulse, bar) in enumerate(curves):
         c = f"C{i}"
         t = res.time
-        ax.plot(t * tu.factor, res.contact_force * fu.factor, color=c, label=f"{V / INCH:.0f} in/s")
+        ax.plot(t * tu.factor, res.force * fu.factor, color=c, label=f"{V / INCH:.0f} in/s")
         ax.plot(t * tu.factor, paper_pulse(t) * fu.factor, color=c, ls="--", lw=1)
         ax.plot(t * tu.factor, bar(t) * fu.factor, color=c, ls=":", lw=1)
     ax.set_xlabel(f"time since first contact [{tu.label}]")

@@ -1,0 +1,78 @@
+"""The case registry: one :class:`CaseKind` per kind of case (bar, beam, plate, impact).
+
+Every command that takes a case, ``sweep`` and ``converge`` read a case through its
+kind (:data:`KINDS`, :func:`kind_of`). A kind provides
+
+- ``table``: the TOML table only that kind of case has (``detect(data)`` looks for it);
+- ``load(case, history=None) -> (problem, inputs)``: a case file or built-in name read and checked;
+- ``problem(data, base)``: a parsed case (a dict) as a problem (raises InputError);
+- ``check(problem)``: resolution and resource guards, before anything is built;
+- ``refine(problem, factor)``: mesh and time step refined together (``converge``);
+- ``study(problem, stride, progress) -> (outputs, size)``: one level of a convergence
+  study: the kind's :meth:`summary` scalars, the histories every ``stride``-th sample,
+  and the size of the model that ran (its true DOF count);
+- ``structure_key(data)``: a text equal for two cases exactly when they share the
+  expensive part (mesh, factorisation, impulse responses): sweep runs are grouped by it;
+- ``prepare(data, base, runs, outputs)`` / ``run(prepared, data, base, outputs)``: that
+  expensive part built once per group (it must pickle: it travels to Dask workers), and
+  one run → the kind's :meth:`summary`;
+- ``summary(problem, result, model)``: the ONE set of scalar outputs of the kind, as the
+  command's summary.json names them (sweep outputs and converge read the same keys);
+- ``output_keys(problem)``: the dotted outputs a sweep may ask for;
+- ``expand(data, key)``: make ``key`` settable (a catalogue ply turned into its inline table).
+
+This package sits below app: it imports input, output, workflows, fem and models.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from ..errors import InputError
+from ._common import CaseKind, flatten
+from .bar import BarKind
+from .beam import BeamKind
+from .impact import ImpactKind
+from .plate import PlateKind
+
+__all__ = ["CaseKind", "KINDS", "kind_of", "case_kind", "builtin_listing", "flatten", "BarKind", "BeamKind", "PlateKind", "ImpactKind"]
+
+# Order matters only for files holding several tables: an impact case names its target in [target].
+KINDS: dict[str, CaseKind] = {"impact": ImpactKind(), "beam": BeamKind(), "plate": PlateKind(), "bar": BarKind()}
+
+
+def kind_of(data: dict, where: str = "case") -> CaseKind:
+    """The kind of a parsed case (the table only that kind has); InputError naming ``where`` otherwise."""
+    if "test" in data or "tests" in data:
+        raise InputError(f"{where}: a series (its [[test]] tables are reduced by `softimpact reduce`/`fit`), not a case")
+    if "sweep" in data:
+        raise InputError(f"{where}: a sweep spec (run it with `softimpact sweep`), not a case")
+    for kind in KINDS.values():
+        if kind.detect(data):
+            return kind
+    tables = ", ".join(f"[{k.table}]" for k in KINDS.values())
+    raise InputError(f"{where}: not a case: none of the tables {tables} is present")
+
+
+def case_kind(case: str) -> tuple[CaseKind, Path]:
+    """The kind of a case file or built-in name, and its path."""
+    from ..input.toml import load_toml, locate
+
+    path = locate(case)
+    return kind_of(load_toml(path), str(path)), path
+
+
+def builtin_listing() -> list[tuple[str, str, str]]:
+    """The built-in cases and series (``softimpact cases``): (name, kind, title); the kind of a
+    series is "series", of a file no kind detects "?"."""
+    from ..input.toml import builtin_cases, load_toml
+
+    rows = []
+    for name, path in builtin_cases().items():
+        data = load_toml(path)
+        try:
+            kind = kind_of(data).name
+        except InputError:
+            kind = "series" if ("test" in data or "tests" in data) else "?"
+        rows.append((name, kind, str(data.get("title", ""))))
+    return rows

@@ -1,0 +1,90 @@
+"""Bar cases (``softimpact bar``): a projectile on the instrumented bar, a nonlinear contact run each."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from ..errors import InputError
+from ._common import GAUGE_FIELDS, magnitude_and_history
+
+__all__ = ["BarKind"]
+
+
+class BarKind:
+    """Bar cases: nothing is shared between sweep runs (each run steps the contact anew)."""
+
+    name = "bar"
+    table = "projectile"  # a bar series has a [bar] too, but no [projectile]
+
+    def detect(self, data):
+        return "projectile" in data
+
+    def load(self, case, history=None):
+        from ..input.bar_case import load_bar_case
+
+        if history is not None:
+            raise InputError("--history: a bar case has no table of histories", "history")
+        problem, path = load_bar_case(case)
+        return problem, (path,)
+
+    def problem(self, data, base):
+        from ..input.bar_case import bar_problem
+
+        return bar_problem(data)
+
+    def check(self, problem):
+        from ..workflows.bar_impact import check_problem
+
+        check_problem(problem)
+
+    def refine(self, problem, factor):
+        from ..workflows.refinement import refine_bar
+
+        return refine_bar(problem, factor)
+
+    def study(self, problem, stride, progress=None):
+        """Pulse scalars, the force history and gauge peaks and histories of a run; its size (the
+        Hermite rod's DOFs: an axial displacement and a strain per node)."""
+        from ..fem.bar import Rod, assemble_rod
+        from ..workflows.bar_impact import simulate_impact
+
+        r = simulate_impact(problem)
+        out = {
+            "peak_force_N": r.peak_force,
+            "time_of_peak_s": r.time_of_peak,
+            "contact_duration_s": r.contact_duration,
+            "impulse_N_s": r.total_impulse,  # ∫F dt over the run, as the bar's summary.json
+            "contact_force_history_N": r.force[::stride],
+        }
+        magnitude_and_history(out, [g.name for g in problem.gauges], r.strain, stride)
+        dofs = int(assemble_rod(Rod.of(problem.bar)).n)
+        return out, {"elements": [problem.bar.elements], "time_step_s": problem.solver.time_step, "dofs": dofs}
+
+    def structure_key(self, data):
+        return json.dumps(data, sort_keys=True, default=str)
+
+    def prepare(self, data, base, runs, outputs=()):
+        return None
+
+    def run(self, prepared, data, base, outputs=(), problem=None):
+        """One run of the case ``data`` (or of ``problem``, already read)."""
+        from ..workflows.bar_impact import simulate_impact
+
+        return self.summary(None, simulate_impact(problem or self.problem(data, Path(base))))
+
+    def summary(self, problem, result, model=None):
+        """The scalars of ``softimpact bar``'s summary.json (:func:`softimpact.output.bar.bar_summary`)."""
+        from ..output.bar import bar_summary
+
+        s = bar_summary(result)
+        return {k: v for k, v in s.items() if isinstance(v, (int, float, dict)) and k != "case_SI"}
+
+    def output_keys(self, problem):
+        keys = ["peak_force_N", "time_of_peak_s", "contact_duration_s", "impulse_N_s", "rebound_velocity_m_s", "energy_drift_relative", "newton_iterations"]
+        for g in problem.gauges:
+            keys += [f"gauges.{g.name}.{f}" for f in GAUGE_FIELDS]
+        return tuple(keys)
+
+    def expand(self, data, key):
+        pass

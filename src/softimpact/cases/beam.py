@@ -1,0 +1,133 @@
+"""Beam cases (``softimpact beam``): a force history on a laminated beam (plane model)."""
+
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import InputError
+from ._common import LOAD_KEYS, expand_ply, gauge_keys, gauge_outputs, without
+
+__all__ = ["BeamKind"]
+
+
+def _screenable(stack) -> bool:
+    from ..models.failure import STRENGTHS
+
+    return stack is not None and stack.ply.name in STRENGTHS and hasattr(stack, "angles")
+
+
+class BeamKind:
+    """Beam cases. Sweep runs differing only in the force history share one BeamModel and its
+    impulse responses (the response engine: one convolution a run)."""
+
+    name = "beam"
+    table = "beam"
+
+    def detect(self, data):
+        return "beam" in data
+
+    def load(self, case, history=None):
+        from ..input.beam_case import load_beam_case
+
+        problem, path = load_beam_case(case, history)
+        return problem, (path,)
+
+    def problem(self, data, base):
+        from ..input.beam_case import beam_problem
+
+        return beam_problem(data, base)
+
+    def check(self, problem):
+        from ..workflows.beam_impact import check_problem
+
+        check_problem(problem)
+
+    def refine(self, problem, factor):
+        from ..workflows.refinement import refine_beam
+
+        return refine_beam(problem, factor)
+
+    def study(self, problem, stride, progress=None):
+        """Deflection under the load, gauge peaks, first-lobe peaks, first zero crossings and histories; the model's size."""
+        from ..models.features import first_lobe_peak, first_zero_crossing
+        from ..workflows.beam_impact import BeamModel
+
+        model = BeamModel(problem)
+        r = model.direct(progress=progress, energy=False, displacement=False)
+        from ..output.beam import beam_scalars
+
+        out = {"peak_deflection_under_load_m": beam_scalars(r)["peak_deflection_under_load_m"]}
+        for g, eps in zip(problem.gauges, r.strain):
+            out[f"strain_{g.name}_peak_magnitude"] = float(np.max(np.abs(eps)))  # unsigned: see magnitude_and_history
+            out[f"strain_{g.name}_first_lobe_peak"] = first_lobe_peak(r.time, eps)
+            out[f"strain_{g.name}_first_zero_crossing_s"] = first_zero_crossing(r.time, eps)
+            out[f"strain_{g.name}_history"] = eps[::stride]
+        return out, {"elements": [problem.beam.nx, problem.beam.nz], "time_step_s": problem.solver.time_step, "dofs": int(model.size)}
+
+    def structure_key(self, data):
+        return without(data, LOAD_KEYS)
+
+    def prepare(self, data, base, runs, outputs=()):
+        from ..workflows.beam_impact import BeamModel
+
+        model = BeamModel(self.problem(data, base))
+        # Several runs: only the kernels, the patch and the problem travel to the workers (the light
+        # copy: no mesh, matrices or factor; 8 MB → under 1 MB); one run steps directly.
+        return model.for_workers() if runs > 1 else model
+
+    def run(self, prepared, data, base, outputs=()):
+        from ..input.beam_case import read_history
+        from ..input.toml import Table, naming
+        from ..workflows.beam_impact import BeamResult
+
+        model = prepared
+        if model.stepper is not None:  # a group of one run: stepping beats building the kernels
+            problem = model.problem
+            result = model.direct(energy=False)
+        else:
+            # Only the force history differs within a group: parse it alone, on the group's problem.
+            pulse = read_history(Table(data["load"], "load"), "history", Path(base))
+            with naming({"time_step": "solver.time_step", "history": "load.history"}):
+                problem = dataclasses.replace(model.problem, load=dataclasses.replace(model.problem.load, history=pulse))
+            F = model.force_samples(pulse)
+            if F[0] != 0.0:
+                raise InputError("the force must be zero at first contact (t = 0)", "history")
+            y = model.engine().convolve(model.nodal_loads(F))
+            ng = len(problem.gauges)
+            result = BeamResult(problem, problem.solver.times(), F, y[0 : 2 * ng : 2], 0.5 * (y[0 : 2 * ng : 2] - y[1 : 2 * ng : 2]), y[2 * ng])
+        out = self.summary(problem, result)
+        wanted = not outputs or any(o.startswith("damage.") for o in outputs)
+        if wanted and _screenable(problem.beam.stack):
+            out["damage"] = self.damage(problem, result)
+        return out
+
+    def summary(self, problem, result, model=None):
+        """Peak force, impulse, deflection under the load (:func:`softimpact.output.beam.beam_scalars`, as
+        ``softimpact beam``'s summary.json) and gauge peaks."""
+        from ..output.beam import beam_scalars
+
+        return {**beam_scalars(result), **gauge_outputs(result.time, [g.name for g in problem.gauges], result.strain)}
+
+    def damage(self, problem, result) -> dict:
+        """Peak damage indices at the gauge sections and the delamination threshold force."""
+        from ..models.failure import STRENGTHS
+        from ..workflows.damage import beam_damage
+
+        stack = problem.beam.stack
+        other = result.strain - 2 * result.bending
+        dmg = beam_damage(stack, STRENGTHS[stack.ply.name], problem.beam.plane, result.strain, other, [g.surface for g in problem.gauges], result.force)
+        return {**dmg.peaks(), "threshold_force_N": dmg.threshold_force}
+
+    def output_keys(self, problem):
+        from ..models.failure import CRITERIA
+
+        keys = ["peak_force_N", "impulse_N_s", "peak_deflection_under_load_m"] + gauge_keys([g.name for g in problem.gauges])
+        if _screenable(problem.beam.stack):
+            keys += [f"damage.{c}" for c in CRITERIA] + ["damage.delamination", "damage.threshold_force_N"]
+        return tuple(keys)
+
+    def expand(self, data, key):
+        expand_ply(data, key, "beam.laminate.ply")

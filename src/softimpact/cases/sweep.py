@@ -1,0 +1,308 @@
+"""Sweeps planned and run: the runs of a spec grouped by structure, cut into chunks, and run
+in a plain loop or as Dask tasks, each finished chunk checkpointed.
+
+The spec (:mod:`softimpact.input.sweep_spec`) lists the runs; runs sharing a
+structure (same mesh, laminate, support, solver: everything but the load, as the
+case's kind says, :meth:`softimpact.cases.CaseKind.structure_key`) form a group
+whose expensive part (factorisation, impulse responses) is built once and shared
+by its chunks. Chunks run as Dask tasks (a LocalCluster of ``workers`` processes,
+or the cluster at ``scheduler``), or in a plain loop (``workers = 0``). Each
+finished chunk is checkpointed in ``OUT/checkpoints/<spec fingerprint>/`` through
+output's atomic writer (:func:`softimpact.output.sweep.save_checkpoint`): a killed
+sweep started again computes only the chunks missing there, so every run is
+computed once. Nothing here parses arguments or writes the sweep's files.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import InputError
+from ..input.sweep_spec import Level, SweepSpec
+from ..output.sweep import load_checkpoint, save_checkpoint
+from ..workflows import sweep_stats
+from . import KINDS, kind_of
+from ._common import flatten
+
+__all__ = [
+    "SweepPlan",
+    "Chunk",
+    "plan_sweep",
+    "execute",
+    "prepare_group",
+    "run_chunk",
+    "check_scheduler",
+    "run_table",
+    "plan_thresholds",
+    "sweep_results",
+    "CHECKPOINTS",
+]
+
+Progress = Callable[[int, int, str], None]  # progress(done, total, label)
+CHECKPOINTS = "checkpoints"  # folder in OUT holding one JSON file per finished chunk
+_ADDRESS = re.compile(r"^(?:(tcp|tls|inproc|ucx|ws|wss)://)?(\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9_.-]+):([0-9]{1,5})$")
+
+
+def check_scheduler(address: str | None) -> None:
+    """Refuse, before anything runs, a --scheduler that is not ``[protocol://]host:port``."""
+    if address is None:
+        return
+    m = _ADDRESS.match(address.strip())
+    if not m or not 0 < int(m.group(3)) < 65536:
+        raise InputError(f"--scheduler: {address!r} is not an address [tcp://]host:port (port 1-65535), e.g. tcp://127.0.0.1:8786")
+
+
+@dataclass(frozen=True)
+class Chunk:
+    """Runs ``items`` [(run index, case dict)] of group ``group`` (of ``group_size`` runs)."""
+
+    name: str
+    group: int
+    group_size: int
+    items: tuple
+
+
+@dataclass(frozen=True)
+class SweepPlan:
+    """The runs of ``spec`` (a case of kind ``kind``), in ``groups`` structure groups cut into ``chunks``."""
+
+    spec: SweepSpec
+    kind: str
+    runs: tuple
+    chunks: tuple[Chunk, ...]
+    groups: int
+
+
+def plan_sweep(spec: SweepSpec) -> SweepPlan:
+    """Runs, grouped by structure and cut into chunks; checks the first run's case and the outputs."""
+    kind = kind_of(spec.case_data, f"sweep.case ({spec.case_path.name})")
+    runs = spec.runs()
+    cases = [spec.case_for(r, kind.expand) for r in runs]
+    base = spec.case_path.parent
+    # Bad specs fail at once: with the draws at their medians, the first run and the first run
+    # taking each level value must parse (a run failing on an unlucky draw is only recorded).
+    central = spec.runs(central=True)
+    probe = {0}
+    for p in spec.parameters:
+        if isinstance(p, Level):
+            for value in p.values:
+                probe.add(next(r.index for r in central if (p.key, value) in r.sets))
+    for i in sorted(probe):
+        try:
+            checked = kind.problem(spec.case_for(central[i], kind.expand), base)
+        except InputError as exc:
+            raise InputError(f"sweep: {spec.case_path.name}: {exc}") from None
+        if i == 0:
+            problem = checked
+    known = kind.output_keys(problem)
+    for o in spec.outputs:
+        if o not in known:
+            raise InputError(f"sweep.outputs: {o!r} is not an output of a {kind.name} case (known: {', '.join(known)})")
+    groups: dict[str, list[int]] = {}
+    for r, data in zip(runs, cases):
+        groups.setdefault(kind.structure_key(data), []).append(r.index)
+    chunks = []
+    for g, members in enumerate(groups.values()):
+        for k in range(0, len(members), spec.chunk):
+            part = members[k : k + spec.chunk]
+            chunks.append(Chunk(f"chunk-{g:05d}-{k // spec.chunk:05d}", g, len(members), tuple((i, cases[i]) for i in part)))
+    return SweepPlan(spec, kind.name, tuple(runs), tuple(chunks), len(groups))
+
+
+def _one_line(exc: BaseException) -> str:
+    text = str(exc).strip().splitlines()
+    return f"{type(exc).__name__}: {text[0] if text else ''}".strip().rstrip(":")
+
+
+class _Failed:
+    """A group whose shared part could not be built: each of its runs fails with ``reason``."""
+
+    def __init__(self, reason: str):
+        self.reason = reason
+
+
+def prepare_group(kind: str, candidates, base: str, runs: int, outputs=()):
+    """The shared part of a group (a Dask task: plain arguments, picklable result), from the
+    first of the group's ``candidates`` (case dicts) that builds: a run's own load may be bad.
+    ``outputs``: the spec's, so the kind may leave out what none of them needs."""
+    first = None
+    for data in candidates:
+        try:
+            return KINDS[kind].prepare(data, Path(base), runs, tuple(outputs))
+        except Exception as exc:  # a drawn structure can be invalid: its runs fail, the sweep goes on
+            first = first or _Failed(_one_line(exc))
+            if runs == 1:
+                break
+    return first
+
+
+def run_chunk(kind: str, prepared, items, base: str, outputs) -> list[dict]:
+    """Runs of one chunk → rows {run, outputs (dict or None), error (None or one line)}."""
+    case_kind = KINDS[kind]
+    rows = []
+    for run, data in items:
+        if isinstance(prepared, _Failed):
+            rows.append({"run": run, "outputs": None, "error": prepared.reason})
+            continue
+        try:
+            flat = flatten(case_kind.run(prepared, data, Path(base), tuple(outputs)))
+            rows.append({"run": run, "outputs": {o: float(flat[o]) for o in outputs}, "error": None})
+        except Exception as exc:  # recorded with its reason; the sweep goes on
+            rows.append({"run": run, "outputs": None, "error": _one_line(exc)})
+    return rows
+
+
+def group_chunk(kind: str, base: str, runs: int, items, outputs) -> list[dict]:
+    """A group of one chunk as one task: prepare and run where the data is."""
+    return run_chunk(kind, prepare_group(kind, [d for _, d in items], base, runs, outputs), items, base, outputs)
+
+
+def _client(workers: int, scheduler: str | None):
+    try:
+        from distributed import Client, LocalCluster
+    except ImportError:
+        raise InputError("--workers/--scheduler: Dask is not installed (pip install 'softimpact[sweep]'), or use --workers 0") from None
+    if scheduler:
+        try:
+            return Client(scheduler, timeout="10s"), None
+        except (OSError, TimeoutError) as exc:
+            raise InputError(f"--scheduler: cannot reach {scheduler} ({_one_line(exc)})") from None
+    import dask
+
+    # Dask's statistical profiler samples the task thread every 10 ms and, holding the GIL,
+    # doubles the cost of a millisecond-sized run: off for the local cluster.
+    with dask.config.set({"distributed.worker.profile.enabled": False}):
+        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None)
+    return Client(cluster), cluster
+
+
+def execute(plan: SweepPlan, out: Path | None, workers: int = 0, scheduler: str | None = None, progress: Progress | None = None) -> tuple[dict, int]:
+    """Run the plan's missing chunks; returns ({run: row}, runs computed now).
+
+    With ``out``, finished chunks are read from and written to its checkpoints.
+    ``workers = 0`` without ``scheduler`` runs a plain loop in this process.
+    """
+    spec, kind = plan.spec, plan.kind
+    progress = progress or (lambda done, total, label: None)
+    base = str(spec.case_path.parent)
+    folder = None if out is None else Path(out) / CHECKPOINTS / spec.fingerprint
+    rows: dict[int, dict] = {}
+    pending = []
+    for c in plan.chunks:
+        done = None if folder is None else load_checkpoint(folder, c.name, [i for i, _ in c.items])
+        if done is None:
+            pending.append(c)
+        else:
+            rows.update({r["run"]: r for r in done})
+    total = len(plan.runs)
+    progress(len(rows), total, "runs")
+
+    def finish(chunk, result):
+        if folder is not None:
+            save_checkpoint(folder, chunk.name, result)
+        rows.update({r["run"]: r for r in result})
+        progress(len(rows), total, "runs")
+
+    by_group: dict[int, list[Chunk]] = {}
+    for c in pending:
+        by_group.setdefault(c.group, []).append(c)
+    if workers == 0 and not scheduler:
+        for chunks in by_group.values():
+            prepared = prepare_group(kind, [d for _, d in chunks[0].items], base, chunks[0].group_size, spec.outputs)
+            for c in chunks:
+                finish(c, run_chunk(kind, prepared, c.items, base, spec.outputs))
+        return rows, sum(len(c.items) for c in pending)
+    client, cluster = _client(workers, scheduler)
+    try:
+        from distributed import as_completed
+
+        futures = {}
+        for chunks in by_group.values():
+            first = chunks[0]
+            if len(chunks) == 1 and first.group_size == len(first.items):
+                f = client.submit(group_chunk, kind, base, first.group_size, first.items, spec.outputs, pure=False)
+                futures[f] = first
+                continue
+            prepared = client.submit(prepare_group, kind, [d for _, d in first.items], base, first.group_size, spec.outputs, pure=False)
+            for c in chunks:
+                futures[client.submit(run_chunk, kind, prepared, c.items, base, spec.outputs, pure=False)] = c
+        for f in as_completed(list(futures)):
+            finish(futures[f], f.result())
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+    return rows, sum(len(c.items) for c in pending)
+
+
+def run_table(plan: SweepPlan, rows: dict) -> dict[str, np.ndarray | list]:
+    spec = plan.spec
+    names = []
+    for p in spec.parameters:
+        names += [c for c in p.columns if c not in names]
+    cols: dict = {"run": np.array([r.index for r in plan.runs], dtype=np.int64)}
+    for n in names:
+        vals = [r.row.get(n) for r in plan.runs]
+        cols[n] = np.array(vals, float) if all(isinstance(v, (int, float)) for v in vals) else [None if v is None else str(v) for v in vals]
+    for o in spec.outputs:
+        cols[o] = np.array([np.nan if rows[r.index]["outputs"] is None else rows[r.index]["outputs"][o] for r in plan.runs])
+    cols["error"] = [rows[r.index]["error"] or "" for r in plan.runs]
+    return cols
+
+
+def _velocity_key(spec: SweepSpec) -> str | None:
+    keys = [p.key for p in spec.parameters if isinstance(p, Level) and p.key.endswith("velocity") and all(isinstance(v, float) for v in p.si)]
+    return keys[0] if keys else None
+
+
+def plan_thresholds(plan: SweepPlan, cols: dict) -> list[dict]:
+    """Threshold velocities of the plan's damage outputs against its velocity level
+    (:func:`softimpact.workflows.sweep_stats.thresholds`), per combination of the other levels;
+    [] without a velocity level or a damage output."""
+    spec = plan.spec
+    vkey = _velocity_key(spec)
+    damage = [o for o in spec.outputs if o.startswith("damage.") and o != "damage.threshold_force_N"]
+    if vkey is None or not damage:
+        return []
+    others = [p.key for p in spec.parameters if isinstance(p, Level) and p.key != vkey]
+    labels = [" ".join(str(cols[k][i]) for k in others) for i in range(len(plan.runs))]
+    draws = np.array([r.draw for r in plan.runs])
+    return sweep_stats.thresholds(np.asarray(cols[vkey], float), labels, draws, {o: cols[o] for o in damage})
+
+
+def sweep_results(plan: SweepPlan, rows: dict, computed: int) -> tuple[dict, dict, list[dict]]:
+    """The run table (columns), the summary (counts, failures, statistics, Spearman and Sobol
+    sensitivities per output) and the thresholds of finished ``rows``; ``computed``: runs computed now."""
+    from .. import __version__
+
+    spec = plan.spec
+    cols = run_table(plan, rows)
+    varied = {k: v for k, v in cols.items() if k not in spec.outputs and k not in ("run", "error")}
+    failures = [{"run": int(cols["run"][i]), "reason": e} for i, e in enumerate(cols["error"]) if e]
+    summary = {
+        "softimpact_version": __version__,
+        "case": str(spec.case_path),
+        "case_type": plan.kind,
+        "method": spec.method,
+        "seed": spec.seed,
+        "fingerprint": spec.fingerprint,
+        "runs": len(plan.runs),
+        "succeeded": len(plan.runs) - len(failures),
+        "failed": len(failures),
+        "groups": plan.groups,
+        "computed_now": computed,
+        "from_checkpoints": len(plan.runs) - computed,
+        "failures": failures,
+        "statistics": {o: sweep_stats.statistics(cols[o]) for o in spec.outputs},
+        "sensitivity_spearman": {o: sweep_stats.sensitivity(varied, np.asarray(cols[o], float)) for o in spec.outputs},
+        "sensitivity_sobol_first_order": {o: sweep_stats.sobol_first_order(varied, np.asarray(cols[o], float)) for o in spec.outputs},
+    }
+    th = plan_thresholds(plan, cols)
+    if th:
+        summary["thresholds"] = th
+    return cols, summary, th

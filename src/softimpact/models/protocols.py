@@ -1,0 +1,109 @@
+"""The pluggable parts of softimpact, named once (:class:`typing.Protocol`, runtime-checkable).
+
+- :class:`ContactLaw` — a memoryless contact law: the approach α [m] (positive when the
+  bodies overlap) and its rate α̇ [m/s] to a compressive force F ≥ 0 [N]
+  (:mod:`softimpact.models.contact_laws`).
+- :class:`HistoryLaw` — a contact law with memory, kept in an explicit frozen state.
+- :class:`Pulse` — a force history F(t) [N] of a given impulse and duration
+  (:mod:`softimpact.models.pulses`).
+- :class:`ContactPatch` — how a unit contact force of half-width a [m] is shared among
+  the loadable surface nodes: ``shares(a) -> (s, ds/da)``, each (p,), Σ s = 1
+  (:class:`softimpact.fem.impact.ContactPatch`, :class:`softimpact.fem.plate_loads.DiscShares`).
+- :class:`StructureModel` — a linear structure ready for a run at one time step
+  (:class:`softimpact.fem.linear.LinearModel`: the bar's rod, the plane beam, the plate).
+
+Objects satisfy a protocol by having its methods; nothing here imports fem.
+"""
+
+from __future__ import annotations
+
+from typing import Protocol, runtime_checkable
+
+import numpy as np
+
+__all__ = ["ContactLaw", "HistoryLaw", "Pulse", "ContactPatch", "StructureModel"]
+
+
+@runtime_checkable
+class ContactLaw(Protocol):
+    """A memoryless contact law; SI scalars in and out, F = 0 for α ≤ 0 (no tension).
+
+    ``force`` F [N], ``stiffness`` ∂F/∂α [N/m] (Newton's tangent), ``damping`` ∂F/∂α̇ [N·s/m]
+    (zero for rate-independent laws), ``radius`` the contact radius a [m], ``energy`` the
+    recoverable energy stored at α [J].
+    """
+
+    def force(self, alpha: float, rate: float = 0.0) -> float: ...
+
+    def stiffness(self, alpha: float, rate: float = 0.0) -> float: ...
+
+    def damping(self, alpha: float, rate: float = 0.0) -> float: ...
+
+    def radius(self, alpha: float) -> float: ...
+
+    def energy(self, alpha: float) -> float: ...
+
+
+@runtime_checkable
+class HistoryLaw(Protocol):
+    """A law with memory: ``initial_state()``; ``branch(state)``, the memoryless law valid within
+    one step; ``advance(state, alpha, rate)``, the state after a converged step. Nothing mutates."""
+
+    def initial_state(self): ...
+
+    def branch(self, state) -> ContactLaw: ...
+
+    def advance(self, state, alpha: float, rate: float): ...
+
+
+@runtime_checkable
+class Pulse(Protocol):
+    """A force history: ``pulse(t)`` [N] for t [s] (scalar or array), its ``impulse`` ∫F dt [N·s]
+    and ``duration`` [s]."""
+
+    def __call__(self, t): ...
+
+    @property
+    def impulse(self) -> float: ...
+
+    @property
+    def duration(self) -> float: ...
+
+
+@runtime_checkable
+class ContactPatch(Protocol):
+    """Shares of a unit contact force of half-width a [m] among the p loadable nodes:
+    ``shares(a) -> (s, ds/da)``, shapes (p,), Σ s = 1; ``half_spacing`` [m]: below it the nearest
+    node takes all of the force."""
+
+    half_spacing: float
+
+    def shares(self, a: float) -> tuple[np.ndarray, np.ndarray]: ...
+
+
+@runtime_checkable
+class StructureModel(Protocol):
+    """A linear structure M·ü + C·u̇ + K·u = B·f(t) at one time step (SI, n = ``size`` DOFs).
+
+    ``M``, ``K`` (n, n), ``C`` (n, n) or None; ``stepper`` the Newmark stepper factored once for
+    (model, dt); ``O`` (n_out, n) the output rows; ``nodal_loads(force, radius)`` the patch loads
+    (p, n_t) of a force history; ``engine()`` the response engine (impulse responses of the
+    outputs, built once); ``respond`` and ``direct`` the same outputs through the engine or by
+    stepping every DOF (with energies); ``contact_structure(point, reach)`` the structure as
+    the coupled stepper sees it; ``for_workers()`` a light copy that pickles small.
+    """
+
+    @property
+    def size(self) -> int: ...
+
+    def nodal_loads(self, force: np.ndarray, radius: float | None = None) -> np.ndarray: ...
+
+    def engine(self): ...
+
+    def respond(self, history=None, radius: float | None = None): ...
+
+    def direct(self, history=None, *args, **kwargs): ...
+
+    def contact_structure(self, point, reach: float): ...
+
+    def for_workers(self): ...

@@ -1,0 +1,93 @@
+"""Outputs of ``softimpact sweep``: runs.parquet, summary.json, thresholds.csv and thresholds.png;
+and the sweep's checkpoints (one JSON file per finished chunk), written atomically.
+
+A checkpoint is written through :func:`softimpact.output.files.write_outputs` (staged,
+then moved into place): a chunk is checkpointed whole or not at all, and a full disk
+is an InputError naming the folder (exit 2) that leaves no file a resume would trust.
+"""
+
+from __future__ import annotations
+
+import io
+import json
+from pathlib import Path
+
+import numpy as np
+
+from .files import csv_text, figure_bytes, json_text, write_outputs
+
+__all__ = ["sweep_files", "threshold_figure", "threshold_csv", "save_checkpoint", "load_checkpoint", "parquet_bytes"]
+
+
+def save_checkpoint(folder: Path, name: str, rows: list[dict]) -> None:
+    """``folder/name.json``: the rows of a finished chunk, written atomically."""
+    write_outputs(folder, {f"{name}.json": json.dumps(rows)})
+
+
+def load_checkpoint(folder: Path, name: str, runs) -> list[dict] | None:
+    """The rows of ``folder/name.json`` if it holds exactly the runs ``runs``; None otherwise (run it again)."""
+    path = Path(folder) / f"{name}.json"
+    if not path.is_file():
+        return None
+    try:
+        rows = json.loads(path.read_text(encoding="utf-8"))
+        return rows if sorted(r["run"] for r in rows) == sorted(runs) else None
+    except (OSError, ValueError, TypeError, KeyError):
+        return None
+
+
+def parquet_bytes(cols: dict) -> bytes:
+    """A table of columns (name → array or list) as Parquet."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    buf = io.BytesIO()
+    pq.write_table(pa.table({k: pa.array(v) for k, v in cols.items()}), buf)
+    return buf.getvalue()
+
+
+def threshold_csv(th: list[dict]) -> str:
+    """Threshold rows (:func:`softimpact.workflows.sweep_stats.thresholds`) as CSV text."""
+    return csv_text({k: np.array([t[k] for t in th], dtype=object if k in ("levels", "index") else float) for k in th[0]})
+
+
+def sweep_files(cols: dict, summary: dict, th: list[dict], figures: bool, system: str = "in-lbf-s") -> dict:
+    """runs.parquet, summary.json and, with thresholds, thresholds.csv (+ thresholds.png)."""
+    files = {"runs.parquet": parquet_bytes(cols)}
+    if th:
+        files["thresholds.csv"] = threshold_csv(th)
+        if figures:
+            files["thresholds.png"] = figure_bytes(threshold_figure(th, system))
+    files["summary.json"] = json_text(summary)
+    return files
+
+
+def threshold_figure(th: list[dict], system: str, title: str = "Threshold velocity (index reaches 1): median and 5-95 % band"):
+    import matplotlib.pyplot as plt
+
+    from ..units import display
+
+    vu = display(system, "velocity")
+    fig, ax = plt.subplots(figsize=(7, 4))
+    labels = list(dict.fromkeys(t["levels"] for t in th))
+    indices = list(dict.fromkeys(t["index"] for t in th))
+    width = 0.8 / max(len(indices), 1)
+    for j, name in enumerate(indices):
+        xs, ys, lo, hi = [], [], [], []
+        for i, lab in enumerate(labels):
+            t = next(t for t in th if t["levels"] == lab and t["index"] == name)
+            xs.append(i + (j - (len(indices) - 1) / 2) * width)
+            ys.append(t["threshold_velocity_median_m_s"] * vu.factor)
+            lo.append(ys[-1] - t["threshold_velocity_p05_m_s"] * vu.factor)
+            hi.append(t["threshold_velocity_p95_m_s"] * vu.factor - ys[-1])
+        ax.errorbar(xs, ys, yerr=[np.nan_to_num(lo), np.nan_to_num(hi)], fmt="o", capsize=3, label=name)
+        for x, y in zip(xs, ys):
+            if not np.isfinite(y):  # no draw reached 1 within the swept velocities
+                ax.annotate("not reached", (x, 0.02), xycoords=("data", "axes fraction"), rotation=90, fontsize=7, ha="center")
+    ax.set_xlim(-0.5, len(labels) - 0.5)
+    ax.set_xticks(range(len(labels)), [lab or "all runs" for lab in labels], fontsize=8)
+    ax.set_ylabel(f"threshold velocity [{vu.label}]")
+    ax.set_title(title, fontsize=10)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    return fig
