@@ -3,19 +3,18 @@
 import csv
 import json
 import math
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 from click.testing import CliRunner
 
-sys.path.insert(0, str(Path(__file__).parent))
-from coupled_helpers import INCH, independent_explicit, long_beam_model  # noqa: E402
-
 from softimpact.cli import main  # noqa: E402
 from softimpact.models.contact_laws import HertzLaw  # noqa: E402
 from softimpact.models.materials import lookup  # noqa: E402
+
+from _support.constants import INCH
+from _support.coupled import independent_explicit, long_beam_model
 
 STEEL = lookup("steel")
 E2 = 7.9e9  # T300/934 transverse modulus (NOTES.md)
@@ -222,7 +221,7 @@ def long_beam():
 def test_command_agrees_with_independent_explicit_solution(tmp_path, long_beam, case):
     """`softimpact impact` on the long beam (Hertz, 7.9 GPa, 200 × 6, 0.5 µs): peak force, time of peak,
     contact duration, impulse and gauge-strain peaks within 1 % of an independent explicit
-    central-difference integration of the same formulation (tests/coupled_helpers.py)."""
+    central-difference integration of the same formulation (tests/_support/coupled.py)."""
     d_in, v_in = case
     out = tmp_path / "out"
     r = _run("impact", _case(tmp_path, diameter=f"{d_in} in", velocity=f"{v_in} in/s", duration="400 us"), "--out", out, "--no-figures")

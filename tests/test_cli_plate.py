@@ -6,15 +6,16 @@ import json
 import math
 
 import numpy as np
-import plate_navier as nav
 import pytest
 from click.testing import CliRunner
-from conftest import INCH
 
 from softimpact.cli import main
 from softimpact.input.toml import locate
 from softimpact.models.laminate import PLIES, Stack, parse_layup
 from softimpact.models.plate_laminate import plate_section
+
+from _support import plate_navier as nav
+from _support.constants import INCH
 
 LBF = 4.4482216152605
 BASE = locate("plate-ss-8in").read_text()

@@ -36,13 +36,14 @@ observed order is checked below.
 """
 
 import numpy as np
-import plate_navier as nav
 import pytest
-from conftest import INCH
-from test_plate import PAPER_PULSE, SECTION, STACK, A
 
 from softimpact.fem.newmark import SolverSpec
 from softimpact.workflows.plate_impact import PlateGauge, PlateLoad, PlateModel, PlateProblem, PlateSpec
+
+from _support import plate_navier as nav
+from _support.constants import INCH
+from _support.problems import PAPER_PULSE, SECTION, STACK, A
 
 pytestmark = pytest.mark.slow
 

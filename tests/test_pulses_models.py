@@ -3,13 +3,14 @@
 import math
 
 import pytest
-from conftest import INCH
 from scipy.integrate import quad
 
 from softimpact.errors import InputError
 from softimpact.models.empirical import PRESETS, PROJECTILES, HertzModel, ScalingLaw, WilbeckModel
 from softimpact.models.materials import lookup
 from softimpact.models.pulses import SkewedPulse, TailedPulse
+
+from _support.constants import INCH
 
 LBF = 4.4482216152605
 

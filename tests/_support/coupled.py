@@ -1,4 +1,4 @@
-"""Test-side helpers: the paper's long beam model and its ContactStructure (fem.plane_contact)."""
+"""The paper's long beam model, its ContactStructure (fem.plane_contact) and an independent explicit coupled integration."""
 
 import math
 from dataclasses import replace
@@ -11,7 +11,7 @@ from softimpact.fem.newmark import SolverSpec
 from softimpact.input.beam_case import load_beam_case
 from softimpact.workflows.beam_impact import BeamModel
 
-INCH = 0.0254
+from .constants import INCH
 
 
 def long_beam_model(time_step=0.5e-6, duration=600e-6, nx=200, nz=6):
