@@ -37,9 +37,16 @@ def shared_paper(tmp_path_factory, worker_id: str) -> PaperReport:
 
     shared = tmp_path_factory.getbasetemp().parent  # the run's folder, parent of every worker's basetemp
     out = shared / "paper"
+    failed = shared / "paper.failed"  # a failed run is not repeated by the next worker: it reads why instead
     with FileLock(str(shared / "paper.lock")):
+        if failed.is_file():
+            raise AssertionError(failed.read_text())
         if not (shared / DONE).is_file():
-            _run(out)
+            try:
+                _run(out)
+            except Exception as e:
+                failed.write_text(f"softimpact paper failed in another worker: {e}")
+                raise
             (shared / DONE).write_text("ok\n")
     return _read(out)
 
