@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from softimpact.cli import main  # noqa: E402
-from softimpact.models.contact_laws import HertzLaw  # noqa: E402
-from softimpact.models.materials import lookup  # noqa: E402
+from softimpact.cli import main
+from softimpact.models.contact_laws import HertzLaw
+from softimpact.models.materials import lookup
 
 from _support.constants import INCH
 from _support.coupled import independent_explicit, long_beam_model

@@ -15,9 +15,8 @@ from softimpact.models.laminate import PLIES, Stack, parse_layup
 from softimpact.models.plate_laminate import plate_section
 
 from _support import plate_navier as nav
-from _support.constants import INCH
+from _support.constants import INCH, LBF
 
-LBF = 4.4482216152605
 BASE = locate("plate-ss-8in").read_text()
 # 12 × 12 MITC4 elements for speed; MITC9 (`softimpact plate`'s default) on 6 × 6 has the same nodes.
 SMALL = BASE.replace("elements = [48, 48]", 'elements = [12, 12]\nelement = "mitc4"').replace('duration = "1000 us"', 'duration = "100 us"')

@@ -7,17 +7,16 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.special import beta as beta_fn
 
-from softimpact.fem.impact import ContactPatch, ContactStructure  # noqa: E402
-from softimpact.fem.loads import PatchLoad  # noqa: E402
-from softimpact.fem.newmark import SolverSpec  # noqa: E402
-from softimpact.models.contact_laws import HertzLaw, HuntCrossleyLaw, YangSunLaw  # noqa: E402
-from softimpact.models.materials import Material  # noqa: E402
-from softimpact.workflows.coupled import Impactor, simulate_coupled  # noqa: E402
+from softimpact.fem.impact import ContactPatch, ContactStructure
+from softimpact.fem.loads import PatchLoad
+from softimpact.fem.newmark import SolverSpec
+from softimpact.models.contact_laws import HertzLaw, HuntCrossleyLaw, YangSunLaw
+from softimpact.models.materials import Material
+from softimpact.workflows.coupled import Impactor, simulate_coupled
 
-from _support.constants import INCH
+from _support.constants import INCH, PSI
 from _support.coupled import beam_structure, long_beam_model
 
-PSI = 4.4482216152605 / INCH**2
 STEEL = Material("steel", 30.0e6 * PSI, 0.29, 0.283 * 0.45359237 / INCH**3)
 E2 = 7.9e9  # T300/934 transverse modulus (NOTES.md)
 

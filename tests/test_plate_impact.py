@@ -12,18 +12,18 @@ import pytest
 from click.testing import CliRunner
 from scipy.integrate import solve_ivp
 
-from softimpact.app.impact import run_impact  # noqa: E402
-from softimpact.cli import main  # noqa: E402
-from softimpact.fem.newmark import SolverSpec  # noqa: E402
-from softimpact.input.impact_case import load_impact_case  # noqa: E402
-from softimpact.models.contact_laws import HertzLaw  # noqa: E402
-from softimpact.models.materials import lookup  # noqa: E402
-from softimpact.workflows.coupled import Impactor  # noqa: E402
-from softimpact.workflows.plate_impact import PlateGauge  # noqa: E402
+from softimpact.app.impact import run_impact
+from softimpact.cli import main
+from softimpact.fem.newmark import SolverSpec
+from softimpact.input.impact_case import load_impact_case
+from softimpact.models.contact_laws import HertzLaw
+from softimpact.models.materials import lookup
+from softimpact.workflows.coupled import Impactor
+from softimpact.workflows.plate_impact import PlateGauge
 
+from _support.constants import INCH
 from _support.plate_navier import cosine_patch_coefficients, modes
 
-INCH = 0.0254
 CASES = Path(__file__).parents[1] / "src/softimpact/data/cases"
 
 
