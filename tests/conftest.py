@@ -14,9 +14,10 @@ os.environ["SOFTIMPACT_CACHE_DIR"] = tempfile.mkdtemp(prefix="softimpact-cache-"
 
 
 @pytest.fixture(scope="session")
-def paper_report(tmp_path_factory, worker_id) -> PaperReport:
+def paper_report(tmp_path_factory, request) -> PaperReport:
     """`softimpact paper` run once per test run (across xdist workers, under a file lock) and read from disk."""
-    return shared_paper(tmp_path_factory, worker_id)
+    worker = getattr(request.config, "workerinput", {}).get("workerid", "master")  # xdist's worker_id, also without xdist
+    return shared_paper(tmp_path_factory, worker)
 
 
 def pytest_collection_modifyitems(config, items):
