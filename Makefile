@@ -1,7 +1,8 @@
 # Two commands set everything up on a fresh machine:
 #   make run   - create .venv, install softimpact, run the whole paper into results/paper
 #   make test  - create .venv, install softimpact with its test extras, run the tests (all of them, slow ones too)
-#                on two processes (pytest-xdist; a test file stays on one, so its fixtures are built once), one BLAS thread each
+#                on two processes (pytest-xdist; a test file stays on one, so its fixtures are built once), one BLAS thread each;
+#                files in the order tests/conftest.py sets (the shared paper first), not xdist's by-size order
 #   make lint  - ruff: lint and format check
 #   make fuzz  - the long property-based fuzz run (case files, CSV records, unit strings; minutes)
 PYTHON ?= python3
@@ -21,7 +22,7 @@ run: $(BIN)/softimpact
 	MPLBACKEND=Agg $(BIN)/softimpact paper --out $(OUT)
 
 test: $(BIN)/softimpact
-	MPLBACKEND=Agg OMP_NUM_THREADS=1 $(BIN)/python -m pytest -q -n 2 --dist loadfile
+	MPLBACKEND=Agg OMP_NUM_THREADS=1 $(BIN)/python -m pytest -q -n 2 --dist loadfile --no-loadscope-reorder
 
 fuzz: $(BIN)/softimpact
 	HYPOTHESIS_PROFILE=long MPLBACKEND=Agg $(BIN)/python -m pytest -q -m fuzz tests/test_fuzz.py

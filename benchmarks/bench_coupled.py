@@ -20,12 +20,14 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
-from coupled_helpers import INCH, beam_structure, long_beam_model  # noqa: E402
 from timing import best, process  # noqa: E402
 
 from softimpact.models.contact_laws import HertzLaw  # noqa: E402
 from softimpact.models.materials import Material  # noqa: E402
 from softimpact.workflows.coupled import Impactor, simulate_coupled  # noqa: E402
+
+from _support.constants import INCH  # noqa: E402
+from _support.coupled import beam_structure, long_beam_model  # noqa: E402
 
 
 def main():

@@ -6,7 +6,6 @@ from dataclasses import replace
 import numpy as np
 import pytest
 import scipy.sparse.linalg as spl
-from conftest import INCH
 from scipy.integrate import quad
 from scipy.linalg import expm
 from scipy.optimize import brentq
@@ -18,6 +17,8 @@ from softimpact.input.beam_case import load_beam_case
 from softimpact.models.laminate import PLIES, Stack, parse_layup, plane_matrix
 from softimpact.models.pulses import SkewedPulse
 from softimpact.workflows.beam_impact import BeamModel
+
+from _support.constants import INCH
 
 STACK = Stack(PLIES["T300/934"], parse_layup("[90/0]5s"))
 D = plane_matrix(STACK.effective())

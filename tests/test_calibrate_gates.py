@@ -15,7 +15,8 @@ from softimpact.cli import main
 from softimpact.input.records import read_strains
 from softimpact.output.files import csv_text
 
-LBF = 4.4482216152605
+from _support.constants import LBF
+
 RECORD = resources.files("softimpact") / "data" / "series" / "paper-long-calibration" / "long-V1166.csv"
 
 

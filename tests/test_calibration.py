@@ -5,7 +5,6 @@ from dataclasses import replace
 import numpy as np
 import pytest
 from click.testing import CliRunner
-from conftest import INCH
 
 from softimpact.cli import main
 from softimpact.errors import InputError
@@ -16,6 +15,8 @@ from softimpact.models.pulses import SkewedPulse
 from softimpact.workflows.beam_impact import BeamModel
 from softimpact.workflows.calibration import Measured, calibrate
 from softimpact.workflows.synthetic import beam_measurement
+
+from _support.constants import INCH
 
 TRUE = SkewedPulse(44 * 4.4482216152605, 30e-6, 355e-6)  # Table II, history 1
 V = 1166 * INCH

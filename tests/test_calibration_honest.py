@@ -22,7 +22,8 @@ from softimpact.workflows.beam_impact import BeamModel
 from softimpact.workflows.refinement import refine_beam
 from softimpact.workflows.synthetic import beam_measurement
 
-LBF, INCH = 4.4482216152605, 0.0254
+from _support.constants import INCH, LBF
+
 ROWS = [(1166, 44, 30, 355, 0.25), (1932, 90, 21, 250, 0.25), (3058, 215, 13, 158, 0.30), (4026, 325, 10, 120, 0.35)]  # Table II
 
 

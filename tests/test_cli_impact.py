@@ -3,19 +3,18 @@
 import csv
 import json
 import math
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 from click.testing import CliRunner
 
-sys.path.insert(0, str(Path(__file__).parent))
-from coupled_helpers import INCH, independent_explicit, long_beam_model  # noqa: E402
+from softimpact.cli import main
+from softimpact.models.contact_laws import HertzLaw
+from softimpact.models.materials import lookup
 
-from softimpact.cli import main  # noqa: E402
-from softimpact.models.contact_laws import HertzLaw  # noqa: E402
-from softimpact.models.materials import lookup  # noqa: E402
+from _support.constants import INCH
+from _support.coupled import independent_explicit, long_beam_model
 
 STEEL = lookup("steel")
 E2 = 7.9e9  # T300/934 transverse modulus (NOTES.md)
@@ -222,7 +221,7 @@ def long_beam():
 def test_command_agrees_with_independent_explicit_solution(tmp_path, long_beam, case):
     """`softimpact impact` on the long beam (Hertz, 7.9 GPa, 200 × 6, 0.5 µs): peak force, time of peak,
     contact duration, impulse and gauge-strain peaks within 1 % of an independent explicit
-    central-difference integration of the same formulation (tests/coupled_helpers.py)."""
+    central-difference integration of the same formulation (tests/_support/coupled.py)."""
     d_in, v_in = case
     out = tmp_path / "out"
     r = _run("impact", _case(tmp_path, diameter=f"{d_in} in", velocity=f"{v_in} in/s", duration="400 us"), "--out", out, "--no-figures")
@@ -240,32 +239,3 @@ def test_command_agrees_with_independent_explicit_solution(tmp_path, long_beam, 
     assert s["impulse_N_s"] == pytest.approx(imp, rel=0.01)
     for j, g in enumerate(("g1", "g2")):
         assert s["gauges"][g]["peak_abs_strain"] == pytest.approx(np.max(np.abs(eps[j])), rel=0.01)
-
-
-# --- the paper report's section --------------------------------------------------------------------
-
-
-@pytest.mark.slow
-def test_question_section_tables():
-    """The report's predicted Tables II and III: the paper's rows as printed in the paper, the carried-over
-    bar law at eq (4) with Table I's α1 = 4.25 (1/2-in ball, 1.1 g), and the coupled prediction's
-    errors written against the paper's values."""
-    from softimpact.app.paper.question import question_section
-
-    files = {}
-    sec = question_section(False, files)
-    tables = {t[0].split(" (")[0]: t for t in sec.tables}
-    lbf = 4.4482216152605
-    for name, paper in (
-        ("Table II", [(1166, 44, 30, 355), (1932, 90, 21, 250), (3058, 215, 13, 158), (4026, 325, 10, 120)]),
-        ("Table III", [(1166, 42, 35, 415), (1981, 84, 20, 310), (2994, 170, 13, 205), (4049, 245, 10, 155)]),
-    ):
-        _, header, rows = tables[name]
-        assert len(rows) == 4
-        for row, (V, F0, tF0, T) in zip(rows, paper):
-            assert (int(row[0]), int(row[1]), int(row[4]), int(row[7])) == (V, F0, tF0, T)
-            bar_F0 = 4.25 * 1.1e-3 * (V * INCH) ** 2 / (2 * 0.5 * INCH) / lbf
-            assert float(row[3].split()[0]) == pytest.approx(bar_F0, abs=0.6)
-            coupled, err = row[2].split()
-            assert float(err.strip("(%)")) == pytest.approx(100 * (float(coupled) / F0 - 1), abs=1.5)
-    assert "law.json" in {k.split("/")[-1] for k in files}

@@ -6,17 +6,17 @@ import json
 import math
 
 import numpy as np
-import plate_navier as nav
 import pytest
 from click.testing import CliRunner
-from conftest import INCH
 
 from softimpact.cli import main
 from softimpact.input.toml import locate
 from softimpact.models.laminate import PLIES, Stack, parse_layup
 from softimpact.models.plate_laminate import plate_section
 
-LBF = 4.4482216152605
+from _support import plate_navier as nav
+from _support.constants import INCH, LBF
+
 BASE = locate("plate-ss-8in").read_text()
 # 12 × 12 MITC4 elements for speed; MITC9 (`softimpact plate`'s default) on 6 × 6 has the same nodes.
 SMALL = BASE.replace("elements = [48, 48]", 'elements = [12, 12]\nelement = "mitc4"').replace('duration = "1000 us"', 'duration = "100 us"')

@@ -11,7 +11,7 @@ from softimpact.cli import main
 from softimpact.input.series import load_series
 from softimpact.input.toml import builtin_cases
 
-LBF = 4.4482216152605
+from _support.constants import LBF
 
 
 def _mini_series(tmp_path, extra_record=None):

@@ -5,11 +5,12 @@ import re
 
 import numpy as np
 import pytest
-from conftest import INCH
 
 from softimpact.errors import InputError
 from softimpact.models.pulses import SkewedPulse
 from softimpact.workflows import conditioning as cond
+
+from _support.constants import INCH
 
 L, X, C = 2.0, 18 * INCH, 5051.0  # bar length [m], gauge position [m], wave speed [m/s]
 PRE = 50e-6  # s of pre-trigger: first contact at t = 0, record from −PRE

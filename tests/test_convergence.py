@@ -4,7 +4,6 @@ import math
 
 import numpy as np
 import pytest
-from conftest import INCH, LB_PER_IN3, PSI
 from scipy.integrate import solve_ivp
 
 from softimpact.errors import InputError
@@ -14,6 +13,8 @@ from softimpact.workflows.bar_impact import simulate_impact, without_end_cap
 from softimpact.workflows.beam_impact import BeamModel
 from softimpact.workflows.convergence import convergence_study, observed_order, richardson
 from softimpact.workflows.refinement import refine_bar, refine_beam
+
+from _support.constants import INCH, LB_PER_IN3, PSI
 
 # A closed-form sequence f(h) = f* + C h² + D h³ with a known limit and order.
 F_STAR, C2, D3 = 3.0, 0.7, -0.4

@@ -1,26 +1,23 @@
 """Coupled impactor–structure integration (fem.impact, workflows.coupled)."""
 
 import math
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 from scipy.special import beta as beta_fn
 
-sys.path.insert(0, str(Path(__file__).parent))
-from coupled_helpers import INCH, beam_structure, long_beam_model  # noqa: E402
+from softimpact.fem.bar import Rod
+from softimpact.fem.impact import ContactPatch, ContactStructure
+from softimpact.fem.loads import PatchLoad
+from softimpact.fem.newmark import SolverSpec
+from softimpact.models.contact_laws import HertzLaw, HuntCrossleyLaw, YangSunLaw
+from softimpact.models.materials import Material
+from softimpact.workflows.coupled import Impactor, simulate_coupled
 
-from softimpact.fem.bar import Rod  # noqa: E402
-from softimpact.fem.impact import ContactPatch, ContactStructure  # noqa: E402
-from softimpact.fem.loads import PatchLoad  # noqa: E402
-from softimpact.fem.newmark import SolverSpec  # noqa: E402
-from softimpact.models.contact_laws import HertzLaw, HuntCrossleyLaw, YangSunLaw  # noqa: E402
-from softimpact.models.materials import Material  # noqa: E402
-from softimpact.workflows.coupled import Impactor, simulate_coupled  # noqa: E402
+from _support.constants import INCH, PSI
+from _support.coupled import beam_structure, long_beam_model
 
-PSI = 4.4482216152605 / INCH**2
 STEEL = Material("steel", 30.0e6 * PSI, 0.29, 0.283 * 0.45359237 / INCH**3)
 E2 = 7.9e9  # T300/934 transverse modulus (NOTES.md)
 

@@ -4,12 +4,13 @@ import math
 
 import numpy as np
 import pytest
-from conftest import INCH
 from scipy.special import jv
 
 from softimpact.errors import InputError
 from softimpact.models import dispersion as dsp
 from softimpact.models.pulses import SkewedPulse
+
+from _support.constants import INCH
 
 # Bancroft (1941), Phys. Rev. 59, 588, Table I: c/c0 of the first mode against
 # d/Λ (diameter over wavelength), columns ν = 0.25, 0.30, 0.35.

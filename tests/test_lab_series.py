@@ -25,11 +25,12 @@ from softimpact.fem.bar import Rod
 from softimpact.models.dispersion import RoundBar, phase_velocity, radial_factors
 from softimpact.models.materials import lookup
 
+from _support.constants import INCH
+
 nptdms = pytest.importorskip("nptdms")
 h5py = pytest.importorskip("h5py")
 scipy_io = pytest.importorskip("scipy.io")
 
-INCH = 0.0254
 AL = lookup("Al 6061-T6")
 L, D, X = 36 * INCH, 0.5 * INCH, 18 * INCH  # the paper's bar, gauge at mid-length
 AREA = math.pi * D**2 / 4

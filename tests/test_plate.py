@@ -1,33 +1,25 @@
 """FSDT (MITC4, MITC9) laminated plate: CLT thin limit, Navier FSDT oracle, invariants, convergence."""
 
 import math
-import sys
 from dataclasses import replace
-from pathlib import Path
 
 import numpy as np
-import plate_navier as nav
 import pytest
 import scipy.linalg
 import scipy.sparse.linalg as spl
-from conftest import INCH
 
 from softimpact.errors import InputError
 from softimpact.fem.newmark import SolverSpec
 from softimpact.fem.plate import PHI_X, PHI_Y, Plate, PlateFE, W
 from softimpact.fem.plate_loads import CircularPatch
-from softimpact.models.laminate import PLIES, Stack, parse_layup
+from softimpact.models.laminate import Stack, parse_layup
 from softimpact.models.plate_laminate import PlateSection, plate_section
-from softimpact.models.pulses import SkewedPulse
 from softimpact.workflows.plate_impact import PlateGauge, PlateLoad, PlateModel, PlateProblem, PlateSpec
 
-LBF = 4.4482216152605  # N
-PLY = PLIES["T300/934"]
-STACK = Stack(PLY, parse_layup("[90/0]5s"))
-SECTION = plate_section(STACK)
-A = 8 * INCH
-PAPER_PULSE = SkewedPulse(100 * LBF, 20e-6, 250e-6)  # eq (15), the issue's pulse
-SMOOTH_PULSE = SkewedPulse(100 * LBF, 125e-6, 250e-6)  # a half sine: fewer short waves, for fast checks
+from _support import plate_navier as nav
+from _support.constants import INCH
+from _support.problems import PAPER_PULSE, PLY, SECTION, SMOOTH_PULSE, STACK, A
+
 GAUGES = (
     PlateGauge("x1", (5 * INCH, 4 * INCH), "bottom", "x", 0.031 * INCH),
     PlateGauge("y2", (4 * INCH, 6 * INCH), "bottom", "y", 0.031 * INCH),
@@ -198,11 +190,11 @@ def test_mitc9_unsymmetric_laminate_agrees_with_mitc4_extrapolated():
 
 def test_mitc9_assembly_equals_scikit_fem():
     """The package's own MITC9 assembly (one element matrix per element size, scattered at once) and a plain
-    scikit-fem assembly (``ElementQuad2`` forms with the same rules, benchmarks/plain_plate.py) give the
+    scikit-fem assembly (``ElementQuad2`` forms with the same rules, tests/_support/plain_plate.py) give the
     same six lowest frequencies of the SS plate on 6 × 6, to 1e-10."""
-    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
-    import plain_plate
     from skfem import condense
+
+    from _support import plain_plate
 
     K, M, basis, _ = plain_plate.assemble(6)
     Kc, Mc = condense(K, M, D=plain_plate.simply_supported(basis), expand=False)

@@ -4,7 +4,6 @@ an independent Navier-mode oracle integrated by solve_ivp, the file contract and
 import csv
 import json
 import math
-import sys
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -13,18 +12,17 @@ import pytest
 from click.testing import CliRunner
 from scipy.integrate import solve_ivp
 
-sys.path.insert(0, str(Path(__file__).parent))
-from plate_navier import cosine_patch_coefficients, modes  # noqa: E402
+from softimpact.cli import main
+from softimpact.fem.newmark import SolverSpec
+from softimpact.input.impact_case import load_impact_case
+from softimpact.models.contact_laws import HertzLaw
+from softimpact.models.materials import lookup
+from softimpact.workflows.coupled import Impactor, run_impact
+from softimpact.workflows.plate_impact import PlateGauge
 
-from softimpact.cli import main  # noqa: E402
-from softimpact.fem.newmark import SolverSpec  # noqa: E402
-from softimpact.input.impact_case import load_impact_case  # noqa: E402
-from softimpact.models.contact_laws import HertzLaw  # noqa: E402
-from softimpact.models.materials import lookup  # noqa: E402
-from softimpact.workflows.coupled import Impactor, run_impact  # noqa: E402
-from softimpact.workflows.plate_impact import PlateGauge  # noqa: E402
+from _support.constants import INCH
+from _support.plate_navier import cosine_patch_coefficients, modes
 
-INCH = 0.0254
 CASES = Path(__file__).parents[1] / "src/softimpact/data/cases"
 
 
@@ -131,7 +129,7 @@ def navier_hertz_impact(section, a, b, center, r0, K, mass, V, t_end, terms=99, 
     """First contact of a rigid ball (Hertz F = K·α^{3/2}) on a simply supported FSDT plate loaded by
     the unit cosine disc of radius r0, the approach taken at the centre's mid-surface.
 
-    The plate is its Navier modes (tests/plate_navier.py): η̈ + ω²η = b·F for modes below
+    The plate is its Navier modes (tests/_support/plate_navier.py): η̈ + ω²η = b·F for modes below
     ``f_dynamic`` [Hz], the others quasi-static (w_static = c·F, c = Σ b·g/ω²); with the ball
     (ẍ = −F/m) that is an ODE integrated by DOP853, α solving α − c·K·α^{3/2} = x + w_dyn.
     Converged here: 99 → 199 terms and 100 kHz → 300 kHz change F0 and T by < 1e-4.

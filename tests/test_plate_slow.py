@@ -36,13 +36,14 @@ observed order is checked below.
 """
 
 import numpy as np
-import plate_navier as nav
 import pytest
-from conftest import INCH
-from test_plate import PAPER_PULSE, SECTION, STACK, A
 
 from softimpact.fem.newmark import SolverSpec
 from softimpact.workflows.plate_impact import PlateGauge, PlateLoad, PlateModel, PlateProblem, PlateSpec
+
+from _support import plate_navier as nav
+from _support.constants import INCH
+from _support.problems import PAPER_PULSE, SECTION, STACK, A
 
 pytestmark = pytest.mark.slow
 
@@ -129,20 +130,3 @@ def test_paper_plate_within_2_percent_over_1000_us(mesh_runs, navier):
     assert np.all(es < 0.02) and ed < 0.02
     es, ed = errors(s, d, stepped)
     assert np.all(es < 0.02) and ed < 0.02
-
-
-def test_beam_as_plate_section_layered_beam_agrees_with_the_plate():
-    """The paper report's beam-as-plate section: 2 beams × 4 histories × 2 gauges. The plane-strain
-    beam with the real stacking (layered 2-D elasticity, an independent model) and the FSDT strip
-    agree on the peak gauge strains within 7 % (measured ≤ 6.1 %) and within 1 % for history 1,
-    while the smeared beam, 15 % too stiff in bending, is off by more than 7 % somewhere."""
-    from softimpact.app.paper.beam_as_plate import beam_as_plate_section
-
-    section = beam_as_plate_section(False, {})
-    rows = section.tables[0][2]
-    assert len(rows) == 16
-    layered = np.array([float(r[4]) for r in rows])
-    smeared = np.array([float(r[3]) for r in rows])
-    assert np.all(np.abs(layered) < 7)
-    assert np.all(np.abs([float(r[4]) for r in rows if "history 1" in r[0]]) < 1)
-    assert np.max(np.abs(smeared)) > 7

@@ -4,10 +4,11 @@ import math
 
 import numpy as np
 import pytest
-from conftest import INCH
 
 from softimpact.models.pulse_fit import fit_main_pulse, fit_pulse, fit_tail_aware
 from softimpact.models.pulses import SkewedPulse
+
+from _support.constants import INCH
 
 DT = 0.5e-6  # s, sampling interval of the synthetic records
 NOISE = 0.01  # white noise, as a fraction of F0

@@ -3,7 +3,6 @@
 import math
 
 import pytest
-from conftest import INCH
 from scipy.integrate import quad
 
 from softimpact.errors import InputError
@@ -11,7 +10,7 @@ from softimpact.models.empirical import PRESETS, PROJECTILES, HertzModel, Scalin
 from softimpact.models.materials import lookup
 from softimpact.models.pulses import SkewedPulse, TailedPulse
 
-LBF = 4.4482216152605
+from _support.constants import INCH, LBF
 
 
 @pytest.mark.parametrize("skew", [0.05, 0.25, 0.5, 0.9])

@@ -2,7 +2,6 @@
 
 import numpy as np
 import pytest
-from conftest import INCH
 
 from softimpact.errors import InputError
 from softimpact.models.bridge import Bridge
@@ -11,6 +10,8 @@ from softimpact.models.pulses import SkewedPulse, TailedPulse
 from softimpact.models.specimens import BarSpec, EndCap
 from softimpact.workflows.reduction import Record, reduce_record, wave_separation
 from softimpact.workflows.synthetic import gauge_model, synthetic_record
+
+from _support.constants import INCH
 
 AL = lookup("Al 6061-T6")
 PLAIN = BarSpec(AL, 36 * INCH, 0.5 * INCH, 96)

@@ -2,7 +2,6 @@
 
 import numpy as np
 import pytest
-from conftest import INCH
 
 from softimpact.models.empirical import ScalingLaw
 from softimpact.models.materials import lookup
@@ -10,6 +9,8 @@ from softimpact.models.specimens import BarSpec
 from softimpact.workflows.reduction import Record, reduce_record
 from softimpact.workflows.scaling import TestPoint, fit_groups, fit_line
 from softimpact.workflows.synthetic import gauge_model, synthetic_record
+
+from _support.constants import INCH
 
 KNOWN = {0.5 * INCH: (ScalingLaw(4.25, 0.93, 0.25, 0.68), 1.1e-3), 0.375 * INCH: (ScalingLaw(4.0, 1.03, 0.20, 0.74), 0.46e-3)}
 

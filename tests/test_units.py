@@ -3,10 +3,11 @@
 import math
 
 import pytest
-from conftest import INCH, LB_PER_IN3, PSI
 
 from softimpact.errors import InputError
 from softimpact.units import display, parse
+
+from _support.constants import INCH, LB_PER_IN3, PSI
 
 
 @pytest.mark.parametrize(

@@ -1,4 +1,4 @@
-"""Test-side helpers: the paper's long beam model and its ContactStructure (fem.contact)."""
+"""The paper's long beam model, its ContactStructure (fem.contact) and an independent explicit coupled integration."""
 
 import math
 from dataclasses import replace
@@ -10,7 +10,7 @@ from softimpact.fem.newmark import SolverSpec
 from softimpact.input.beam_case import load_beam_case
 from softimpact.workflows.beam_impact import BeamModel
 
-INCH = 0.0254
+from .constants import INCH
 
 
 def beam_structure(model: BeamModel, position: float, reach: float):

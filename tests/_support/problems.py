@@ -1,0 +1,34 @@
+"""The paper's 8 × 8 in plate problem, shared by the plate tests; its exact solution is
+:mod:`_support.plate_navier` (FSDT Navier series), as scipy's ``test_ivp.py`` pairs problems with exact solutions."""
+
+from softimpact.models.laminate import PLIES, Stack, parse_layup
+from softimpact.models.plate_laminate import plate_section
+from softimpact.models.pulses import SkewedPulse
+
+from .constants import INCH, LBF
+
+PLY = PLIES["T300/934"]
+STACK = Stack(PLY, parse_layup("[90/0]5s"))  # the paper's beams' layup, 20 plies, 0.110 in
+SECTION = plate_section(STACK)
+A = 8 * INCH  # m: side of the square plate
+PAPER_PULSE = SkewedPulse(100 * LBF, 20e-6, 250e-6)  # eq (15), the issue's pulse
+SMOOTH_PULSE = SkewedPulse(100 * LBF, 125e-6, 250e-6)  # a half sine: fewer short waves, for fast checks
+
+# ---- the synthetic rubber-ball series (paper-rubber-series) and the law that made it -------------------------
+# Table I of the paper: α1 = F0·2d/(mV²), α2 = T·V/d, α3 = tF0/T, α4 = I/(2mV), by ball diameter [in];
+# α3 of the 1/2-in ball was lost in the text and the 3/8-in 0.25 is used (docs/modelling-notes.md).
+TABLE_I = {0.375: (4.00, 1.03, 0.25, 0.74), 0.5: (4.25, 0.93, 0.25, 0.66)}
+BALL_MASS = {0.375: 0.46e-3, 0.5: 1.1e-3}  # kg: 1/2 in → 1.1 g (the text), 3/8 in → 0.46 g (same density)
+# Tables II and III of the paper: V [in/s], F0 [lbf], tF0 [µs], T [µs], r0 [in] of the four force histories.
+TABLE_II = [(1166, 44, 30, 355, 0.25), (1932, 90, 21, 250, 0.25), (3058, 215, 13, 158, 0.30), (4026, 325, 10, 120, 0.35)]
+TABLE_III = [(1166, 42, 35, 415, 0.25), (1981, 84, 20, 310, 0.25), (2994, 170, 13, 205, 0.30), (4049, 245, 10, 155, 0.35)]
+
+
+def table_i_pulse(diameter: float, velocity: float) -> tuple[float, float, float, float]:
+    """Eqs (4)-(7) with Table I: F0 [N], tF0 [s], T [s], I [N·s] of a rubber ball of ``diameter`` [m] at ``velocity`` [m/s]:
+    the law tools/make_rubber_series.py drove the bar FE with to make the synthetic series."""
+    key = round(diameter / INCH, 3)
+    a1, a2, a3, a4 = TABLE_I[key]
+    m = BALL_MASS[key]
+    T = a2 * diameter / velocity
+    return a1 * m * velocity**2 / (2 * diameter), a3 * T, T, a4 * 2 * m * velocity
