@@ -158,3 +158,19 @@ def test_soft_law_validation(bad):
     args = dict(mass=1e-3, diameter=0.01, velocity=20.0, k=1.0, p=1.0, c=0.5) | bad
     with pytest.raises(Exception, match=next(iter(bad))):
         SoftProjectileLaw(**args)
+
+
+def test_a_law_is_a_name_or_an_object_resolved_in_one_table():
+    """resolve_law: "hertz" is the pair's own Hertz law, an object is returned as it is, and a name that needs
+    parameters or is unknown, or an object that is no law, is an InputError naming ``law``."""
+    from softimpact.errors import InputError
+    from softimpact.models.contact_laws import CONTACT_LAWS, law_name, resolve_law
+
+    assert resolve_law("hertz", lambda: HERTZ) is HERTZ
+    lossy = HuntCrossleyLaw(HERTZ.K, HERTZ.R, 0.5, 2.0)
+    assert resolve_law(lossy, lambda: HERTZ) is lossy and law_name(lossy) == "hunt-crossley" and law_name(HERTZ) == "hertz"
+    assert set(CONTACT_LAWS) == {"hertz", "hertz-unloading", "hunt-crossley", "identified"}
+    for bad in ("hunt-crossley", "rubber", 3.0):
+        with pytest.raises(InputError) as exc:
+            resolve_law(bad, lambda: HERTZ)
+        assert exc.value.argument == "law"

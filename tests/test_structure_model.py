@@ -92,3 +92,20 @@ def test_light_copy_for_workers_pickles_small_and_responds_the_same(model):
     assert np.array_equal(pickle.loads(pickle.dumps(light)).respond(PULSE).strain, reference)
     kernels = light._engine.kernel.nbytes + (0 if light._engine._start is None else sum(k.nbytes for k in light._engine._start if k is not None))
     assert size < kernels + 1e6
+
+
+def test_laws_pulses_and_patches_satisfy_their_protocols():
+    """Every contact law, the eq-15 pulse and both contact patches (line, plate disc) satisfy the protocols of models.protocols."""
+    from softimpact.fem.impact import ContactPatch as LinePatch
+    from softimpact.fem.plate_loads import CircularPatch, DiscShares
+    from softimpact.models.contact_laws import HertzLaw, HuntCrossleyLaw, YangSunLaw
+    from softimpact.models.materials import lookup
+    from softimpact.models.protocols import ContactLaw, ContactPatch, HistoryLaw, Pulse
+
+    hertz = HertzLaw.sphere_on_flat(0.008, lookup("steel"), lookup("Al 6061-T6"))
+    assert isinstance(hertz, ContactLaw) and isinstance(HuntCrossleyLaw(hertz.K, hertz.R, 0.5, 2.0), ContactLaw)
+    assert isinstance(YangSunLaw(hertz, 1e-5), HistoryLaw)
+    assert isinstance(PULSE, Pulse)
+    plate = _plate()
+    assert isinstance(LinePatch(np.array([0.0, 1e-3, 2e-3]), 1e-3), ContactPatch)
+    assert isinstance(DiscShares(CircularPatch(plate.fe, (4 * INCH, 4 * INCH), 0.5 * INCH)), ContactPatch)
