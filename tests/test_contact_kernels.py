@@ -11,15 +11,14 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from softimpact.fem.bar import assemble_rod
-from softimpact.fem.contact import beam_contact_structure, plate_structure
-from softimpact.fem.impact import ContactStructure, integrate_impact
+from softimpact.fem.bar import BarModel, Rod
+from softimpact.fem.impact import integrate_impact
 from softimpact.fem.kernels import ContactKernels
 from softimpact.fem.newmark import NewmarkStepper, SolverSpec
 from softimpact.input.bar_case import load_bar_case
 from softimpact.input.impact_case import load_impact_case
 from softimpact.models.contact_laws import HertzLaw, HuntCrossleyLaw, SoftProjectileLaw, ViscoelasticSoftLaw, YangSunLaw
-from softimpact.workflows.coupled import impact_model, plate_reach
+from softimpact.workflows.coupled import impact_model
 
 TOL = 1e-6  # of the peak: issue 21's bar for "equal to direct coupled stepping"
 
@@ -27,11 +26,8 @@ TOL = 1e-6  # of the peak: issue 21's bar for "equal to direct coupled stepping"
 def _bar():
     """The paper's instrumented bar (paper-calibration) as a contact structure: struck end, gauge strain."""
     problem, _ = load_bar_case("paper-calibration")
-    model = assemble_rod(problem.bar.rod())
-    end = np.zeros(model.n)
-    end[model.end_dof] = 1.0
-    outputs = model.strain_probe(np.array([g.position for g in problem.gauges])).toarray()
-    s = ContactStructure(model.M, model.K, np.array([0.0]), np.array([model.end_dof]), 1.0, 0.0, end, outputs)
+    model = BarModel(Rod.of(problem.bar), problem.solver, [g.position for g in problem.gauges], field=[])
+    s = model.contact_structure(0.0)
     target = problem.bar.material if problem.bar.end_cap is None else problem.bar.end_cap.material
     hertz = HertzLaw.sphere_on_flat(problem.projectile.diameter / 2.0, problem.projectile.material, target)
     return s, problem.solver, hertz, problem.projectile.mass, problem.projectile.velocity
@@ -48,10 +44,7 @@ def _target(case: str, elements, time_step: float, duration: float):
     solver = SolverSpec(time_step, duration, problem.solver.newmark)
     problem = replace(problem, target=replace(t, solver=solver))
     model = impact_model(problem)
-    if problem.on_plate:
-        s = plate_structure(model, problem.position, plate_reach(model, problem.position, problem.impactor.diameter))
-    else:
-        s = beam_contact_structure(model, problem.position, problem.impactor.diameter)
+    s = model.contact_structure(problem.position, model.contact_reach(problem.position, problem.impactor.diameter))
     return s, solver, problem.law, problem.impactor.mass, problem.impactor.velocity
 
 
@@ -89,13 +82,13 @@ def test_kernel_run_equals_direct_coupled_stepping(structures, target, law_name)
     st = NewmarkStepper(s.M, s.K, solver.time_step, C=s.C, params=solver.newmark)
     direct = integrate_impact(s, law, mass, velocity, solver.time_step, solver.steps, newmark=solver.newmark, stepper=st, energy=False)
     fast = kernels[target].run(law, mass, velocity)
-    peak = np.max(direct.contact_force)
+    peak = np.max(direct.force)
     assert peak > 0
-    assert np.max(np.abs(fast.contact_force - direct.contact_force)) <= TOL * peak
+    assert np.max(np.abs(fast.force - direct.force)) <= TOL * peak
     assert np.max(np.abs(fast.approach - direct.approach)) <= TOL * np.max(np.abs(direct.approach))
     assert np.max(np.abs(fast.target_displacement - direct.target_displacement)) <= TOL * np.max(np.abs(direct.target_displacement))
     assert np.max(np.abs(fast.outputs - direct.outputs)) <= TOL * np.max(np.abs(direct.outputs))
-    on_d, on_f = direct.contact_force > 0, fast.contact_force > 0
+    on_d, on_f = direct.force > 0, fast.force > 0
     assert np.array_equal(on_d, on_f)
     assert np.allclose(fast.impactor_velocity, direct.impactor_velocity, rtol=0, atol=TOL * velocity)
 
@@ -110,7 +103,7 @@ def test_kernel_run_equals_direct_stepping_with_numerical_damping():
     st = NewmarkStepper(s.M, s.K, solver.time_step, C=s.C, params=damped)
     direct = integrate_impact(s, law, mass, velocity, solver.time_step, solver.steps, newmark=damped, stepper=st, energy=False)
     fast = ContactKernels(s, solver.time_step, solver.steps, damped, stepper=st).run(law, mass, velocity)
-    assert np.max(np.abs(fast.contact_force - direct.contact_force)) <= TOL * np.max(direct.contact_force)
+    assert np.max(np.abs(fast.force - direct.force)) <= TOL * np.max(direct.force)
     assert np.max(np.abs(fast.outputs - direct.outputs)) <= TOL * np.max(np.abs(direct.outputs))
 
 
@@ -119,7 +112,7 @@ def test_repeated_contacts_are_followed(structures):
     cases, kernels = structures
     s, solver, hertz, mass, velocity = cases["beam"]
     fast = kernels["beam"].run(hertz, mass, velocity)
-    starts = np.flatnonzero(np.diff((fast.contact_force > 0).astype(int)) == 1)
+    starts = np.flatnonzero(np.diff((fast.force > 0).astype(int)) == 1)
     assert starts.size >= 2
 
 
@@ -128,7 +121,7 @@ def test_momentum_balance_of_a_kernel_run(structures):
     cases, kernels = structures
     s, solver, hertz, mass, velocity = cases["plate"]
     fast = kernels["plate"].run(hertz, mass, velocity)
-    impulse = np.sum(0.5 * (fast.contact_force[1:] + fast.contact_force[:-1])) * solver.time_step
+    impulse = np.sum(0.5 * (fast.force[1:] + fast.force[:-1])) * solver.time_step
     assert impulse == pytest.approx(mass * (velocity - fast.impactor_velocity[-1]), rel=1e-9)
 
 

@@ -38,7 +38,8 @@ import math
 import numpy as np
 
 from ..errors import InputError
-from ..models.contact_laws import HistoryLaw
+from ..models.protocols import HistoryLaw
+from ..models.specimens import Impactor
 from .impact import ContactPatch, ContactStructure, ImpactHistory, _solve_contact
 from .newmark import NewmarkParameters, NewmarkStepper
 from .response import ImpulseResponse
@@ -93,10 +94,7 @@ class ContactKernels:
         structure) through contact ``law`` (a ContactLaw or HistoryLaw): the histories of
         :func:`softimpact.fem.impact.integrate_impact` for the same structure, step and run length,
         structure energies NaN. ``stop_after``: stop this long [s] after the impactor has left for good."""
-        if not (math.isfinite(mass) and mass > 0):
-            raise InputError(f"impactor.mass must be positive, got {mass!r}")
-        if not (math.isfinite(velocity) and velocity > 0):
-            raise InputError(f"impactor.velocity must be positive (toward the structure), got {velocity!r}")
+        Impactor(mass, 1.0, velocity)  # validates mass and velocity (> 0, toward the structure): the direct path's rule
         dt, N = self.dt, self.steps
         if hasattr(law, "for_time_step"):
             law = law.for_time_step(dt)
@@ -129,7 +127,7 @@ class ContactKernels:
             q = r1 * ald[k] + r2 * ala - kappa * al[k]
             if target > 0.0:
                 guess = 2.0 * al[k] - al[k - 1] if k >= 1 else target
-                a_new, f, sh, its = _solve_contact(branch, patch, cG, hm, kappa, q, target, guess)
+                a_new, f, sh, its = _solve_contact(branch, patch, cG, hm, kappa, q, target, guess, k + 1, dt)
                 iterations += its
                 r = branch.radius(a_new)
             else:
@@ -171,7 +169,7 @@ class ContactKernels:
         nan = np.full(last + 1, np.nan)
         return ImpactHistory(
             time=t[sl],
-            contact_force=F[sl],
+            force=F[sl],
             approach=al[sl],
             approach_rate=ald[sl],
             contact_radius=rad[sl],
