@@ -63,7 +63,7 @@ def test_lossy_laws_on_the_bar(tmp_path, hertz_run, contact):
 
 def test_identified_law_on_the_bar(tmp_path):
     """A bar case with law = "identified" reads its law.json (relative to the case) and runs."""
-    from softimpact.output.law_json import law_json
+    from softimpact.formats.law_json import law_json
     from softimpact.workflows.identification import IdentifiedLaw
 
     law = IdentifiedLaw(("k_ref", "p", "c_ref", "q_k", "q_c"), np.array([2.0, 1.0, 1.0, 0.0, 0.0]), np.zeros(5), 0.0159, np.zeros(1), 0.0)

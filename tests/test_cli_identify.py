@@ -11,9 +11,9 @@ from click.testing import CliRunner
 from softimpact.cli import main
 from softimpact.fem.bar import Rod, assemble_rod
 from softimpact.fem.contact import rod_contact_structure
+from softimpact.formats.law_json import law_json, read_law
 from softimpact.input.series import load_series
 from softimpact.models.contact_laws import SoftProjectileLaw, ViscoelasticSoftLaw
-from softimpact.output.law_json import law_json, read_law
 from softimpact.workflows.identification import BarTest, IdentifiedLaw, closure, identify
 
 from _support.constants import INCH

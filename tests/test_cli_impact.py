@@ -131,7 +131,7 @@ def test_dissipative_laws_lose_energy_and_keep_momentum(tmp_path, law):
 def test_identified_law_from_law_file(tmp_path):
     """An identified law read from law.json drives the run: the force column is the law's formula of the
     approach and approach-rate columns."""
-    from softimpact.output.law_json import law_json
+    from softimpact.formats.law_json import law_json
     from softimpact.workflows.identification import IdentifiedLaw
 
     law = IdentifiedLaw(("k_ref", "p", "c_ref", "q_k", "q_c"), np.array([2.0, 1.2, 0.5, 0.0, 0.0]), np.zeros(5), 0.5 * INCH, np.zeros(1), 0.0)
@@ -153,7 +153,7 @@ def test_warnings_for_an_unfinished_contact_and_an_extrapolated_law(tmp_path):
     """law.json records the velocities and diameters it was identified on; an impactor well outside
     them runs with a warning that the force is an extrapolation (inside: none); a run that ends before
     the first contact does gets a warning that its duration and rebound are unknown (they are null)."""
-    from softimpact.output.law_json import law_json
+    from softimpact.formats.law_json import law_json
     from softimpact.workflows.identification import IdentifiedLaw
 
     ranges = {"velocity_m_s": [1000 * INCH, 5000 * INCH], "diameter_m": [0.375 * INCH, 0.5 * INCH]}

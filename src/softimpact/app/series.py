@@ -13,11 +13,11 @@ reported and the others still reduce.
 
 from __future__ import annotations
 
+from ..formats.scaling_json import scaling_summary
 from ..gates import quality
 from ..input.series import load_series
 from ..input.series_records import read_series_records
 from ..output.files import json_text
-from ..output.scaling_json import scaling_summary
 from ..output.series import reduction_files, scaling_files
 from ..studies.series import failed_reductions, fit_series, reduce_series, reduction_gates
 from ..workflows.scaling import fit_gates

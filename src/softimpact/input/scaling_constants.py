@@ -8,9 +8,9 @@ from pathlib import Path
 
 from .. import units
 from ..errors import InputError
+from ..formats.scaling_json import read_scaling_law
 from ..models.empirical import PRESETS, PROJECTILES, ScalingLaw
 from ..models.pulses import SkewedPulse
-from ..output.scaling_json import read_scaling_law
 
 __all__ = ["scaling_law", "start_pulse"]
 
