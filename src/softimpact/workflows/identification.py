@@ -44,7 +44,7 @@ from ..fem.contact import rod_contact_structure
 from ..fem.impact import ContactStructure, integrate_impact
 from ..fem.newmark import NewmarkStepper
 from ..models.contact_laws import SoftProjectileLaw, ViscoelasticSoftLaw
-from ..models.pulse_fit import fit_main_pulse
+from ..models.pulse_fit import MAIN_PULSE_CUTOFF, fit_main_pulse
 
 __all__ = [
     "BarTest",
@@ -62,7 +62,6 @@ __all__ = [
     "PARAMETERS",
 ]
 
-MAIN_PULSE_CUTOFF = 0.15  # the main pulse ends where F falls to this fraction of F0 (as in the reduction)
 STEPS_PER_PULSE = 400  # closure simulation: steps per measured main-pulse duration
 # the order of IdentifiedLaw.values; kappa_ref = 0 is the memoryless law of the first identifications
 PARAMETERS = ("k_ref", "p", "c_ref", "q_k", "q_c", "q_p", "kappa_ref", "theta_ref", "q_kappa", "q_theta")

@@ -58,7 +58,7 @@ from ..errors import InputError
 from ..fem.bar import Rod
 from ..models.dispersion import RoundBar, disperse, radial_band_edge, rayleigh_speed_ratio
 from ..models.noise import white_noise_sigma
-from ..models.pulse_fit import fit_main_pulse
+from ..models.pulse_fit import MAIN_PULSE_CUTOFF, fit_main_pulse
 from ..models.pulses import SkewedPulse
 from ..models.specimens import BarSpec
 
@@ -82,7 +82,7 @@ class Record:
 class ReductionSettings:
     """Thresholds, as fractions of the peak (see the module docstring)."""
 
-    fit_cutoff: float = 0.15  # the eq-15 fit uses the pulse until it falls to this fraction of F0
+    fit_cutoff: float = MAIN_PULSE_CUTOFF  # the eq-15 fit uses the pulse until it falls to this fraction of F0
     duration_threshold: float = 0.05  # threshold-based duration
     detection_sigmas: float = 8.0  # arrival: the signal leaves the noise by this many σ ...
     detection_fraction: float = 0.05  # ... and by this fraction of its peak
