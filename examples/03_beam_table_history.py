@@ -15,7 +15,6 @@ from pathlib import Path
 
 import matplotlib.pyplot as plt
 import numpy as np
-
 from click.testing import CliRunner
 
 from softimpact.cli import main

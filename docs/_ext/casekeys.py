@@ -261,7 +261,9 @@ def _type(k: Key) -> str:
 
     if k.method == "quantity":
         return f"{k.kind} [{units.SI_UNITS[k.kind]}]"
-    return {"number": "number", "integer": "integer", "string": "text", "table": "table", "tables": "array of tables", "raw": "value (see the format)"}[k.method]
+    return {"number": "number", "integer": "integer", "string": "text", "table": "table", "tables": "array of tables", "raw": "value (see the format)"}[
+        k.method
+    ]
 
 
 def markdown(keys: dict[str, dict[str, Key]]) -> str:
