@@ -79,3 +79,16 @@ def test_docs_build_with_no_warning(tmp_path):
     )
     assert run.returncode == 0, run.stderr[-4000:]
     assert (tmp_path / "html" / "index.html").is_file()
+
+
+@pytest.mark.parametrize("command", ["bar", "beam"])
+def test_output_contract_page_lists_the_recorded_columns(command):
+    """The history.csv columns docs/reference/outputs.md gives for a command are those of the recorded output contract, in order."""
+    import json
+    import re
+
+    recorded = json.loads((ROOT / "tests" / "data" / "contract.json").read_text(encoding="utf-8"))[command]["history.csv"]
+    columns = list(dict.fromkeys(re.sub(r"^(strain|bending_strain)_.+$", r"\1_<gauge>", c) for c in recorded))
+    page = (ROOT / "docs" / "reference" / "outputs.md").read_text(encoding="utf-8")
+    row = next(line for line in page.splitlines() if line.startswith(f"| `{command}` |") and "time_s" in line)
+    assert re.findall(r"`([^`]+)`", row.split("|")[2]) == columns
