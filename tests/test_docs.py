@@ -92,3 +92,10 @@ def test_output_contract_page_lists_the_recorded_columns(command):
     page = (ROOT / "docs" / "reference" / "outputs.md").read_text(encoding="utf-8")
     row = next(line for line in page.splitlines() if line.startswith(f"| `{command}` |") and "time_s" in line)
     assert re.findall(r"`([^`]+)`", row.split("|")[2]) == columns
+
+
+def test_every_key_read_whole_says_what_it_holds(recorded):
+    """A key a reader takes whole (Table.raw: lists, inline tables, names or tables) has its value described in casekeys.RAW_VALUES."""
+    casekeys = _casekeys()
+    bare = [f"{fmt}: {path}" for fmt, keys in recorded.items() for path, k in keys.items() if k.method == "raw" and casekeys.raw_value(path) is None]
+    assert not bare, f"describe these in docs/_ext/casekeys.py RAW_VALUES: {bare}"

@@ -227,6 +227,41 @@ def _cell(text: str) -> str:
     return str(text).replace("|", "\\|")
 
 
+# What a key read whole (``Table.raw``) holds: the reader checks its shape itself. Matched on the end
+# of the key's path; tests/test_docs.py fails when a raw key has no line here.
+RAW_VALUES = {
+    "material": "a catalogue name (text) or an inline table (`youngs_modulus`, `poisson_ratio`, `density`, optional `name`, `source`)",
+    "ply": "a catalogue ply name (text) or an inline table (`E1`…`G23`, `nu12`…`nu23`, `density`, `thickness`)",
+    "snapshots": "a list of times (quantities) within the run",
+    "beam.elements": "`[along the length, through the thickness]`, two integers ≥ 1",
+    "plate.elements": "`[along x, along y]`, two integers ≥ 2",
+    "fractions": "a table of angle (degrees, as the key) = volume fraction",
+    "frequencies": "two frequencies (quantities) at which the Rayleigh damping equals `ratio`",
+    "support": "a table `{ x0 = …, x1 = …, y0 = …, y1 = … }` of edge supports",
+    "position": "`[x, y]`, two lengths",
+    "grow": "true or false: the contact disc grows with the force by eq (10)",
+    "direction": '`"x"`, `"y"` or an angle in degrees from x',
+    "record": "a path (relative to the series file) or a table `{ file, channel, unit }`",
+    "second_record": "as `record`: the second gauge's record",
+    "channel": "a channel name (`group/channel` or a unique `channel`) or an index",
+    "accept_flagged": "true or false: fit this test even if flagged",
+    "constants": "a scaling.json path (of `softimpact fit`) or a preset name",
+    "outputs": "a list of output keys (`peak_force_N`, `strain_<g>.peak`, `damage.<index>`, …)",
+    "value": "any value the key takes (a whole table replaces the table)",
+    "values": "a list of levels (quantities or values)",
+    "range": "`[low, high, n]`: n levels evenly spaced",
+    "distribution": "`{ uniform = [lo, hi] }`, `{ normal = [mean, sd] }` or `{ lognormal = [median, sigma of ln] }`",
+}
+
+
+def raw_value(path: str) -> str | None:
+    """The description of a raw key's value (longest matching end of its path), or None."""
+    for suffix in sorted(RAW_VALUES, key=len, reverse=True):
+        if path == suffix or path.endswith("." + suffix) or path.endswith("]." + suffix):
+            return RAW_VALUES[suffix]
+    return None
+
+
 # Defaults that come from elsewhere in the file (the reader computes them): said in words.
 _CONTEXT_DEFAULTS = {
     "title": "the file's name",
@@ -261,9 +296,9 @@ def _type(k: Key) -> str:
 
     if k.method == "quantity":
         return f"{k.kind} [{units.SI_UNITS[k.kind]}]"
-    return {"number": "number", "integer": "integer", "string": "text", "table": "table", "tables": "array of tables", "raw": "value (see the format)"}[
-        k.method
-    ]
+    if k.method == "raw":
+        return raw_value(k.path) or "value"
+    return {"number": "number", "integer": "integer", "string": "text", "table": "table", "tables": "array of tables"}[k.method]
 
 
 def markdown(keys: dict[str, dict[str, Key]]) -> str:
