@@ -17,6 +17,8 @@ import csv
 import tempfile
 from pathlib import Path
 
+import matplotlib.pyplot as plt
+import numpy as np
 from click.testing import CliRunner
 
 from softimpact.cli import main
@@ -31,6 +33,20 @@ print(run.output)
 rows = list(csv.DictReader((out / "tables.csv").open()))
 for r in rows:
     print(r["test"], f"F0 = {float(r['peak_force_N']) / 4.4482216:.1f} lbf", f"T = {float(r['duration_s']) * 1e6:.0f} us")
+
+# %%
+# The calibrated history at 1166 in/s, and the computed gauge strain against the measured one.
+h = np.genfromtxt(out / "history-long-V1166.csv", delimiter=",", names=True)
+fig, (top, bottom) = plt.subplots(2, 1, sharex=True)
+top.plot(h["time_s"] * 1e6, h["force_N"], label="calibrated (eq 15)")
+top.plot(h["time_s"] * 1e6, h["deconvolved_force_N"], lw=0.8, label="deconvolved")
+top.set_ylabel("force [N]")
+top.legend()
+bottom.plot(h["time_s"] * 1e6, h["measured_g1"] * 1e6, lw=0.8, label="measured g1")
+bottom.plot(h["time_s"] * 1e6, h["computed_g1"] * 1e6, label="computed g1")
+bottom.set_xlabel("time [µs]")
+bottom.set_ylabel("strain [µε]")
+bottom.legend()
 
 # %%
 # One number: F0 at 1166 in/s against Table II (44 lbf).

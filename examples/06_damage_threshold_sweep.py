@@ -20,6 +20,7 @@ import json
 import tempfile
 from pathlib import Path
 
+import matplotlib.pyplot as plt
 from click.testing import CliRunner
 
 from softimpact.cli import main
@@ -45,8 +46,11 @@ print(run.output)
 
 # %%
 # The threshold velocities, one per damage index.
-for row in csv.DictReader((out / "thresholds.csv").open()):
-    print(f"{row['index']}: {float(row['threshold_velocity_median_m_s']) / 0.0254:.0f} in/s")
+thresholds = {row["index"]: float(row["threshold_velocity_median_m_s"]) / 0.0254 for row in csv.DictReader((out / "thresholds.csv").open())}
+print({k: f"{v:.0f} in/s" for k, v in thresholds.items()})
+fig, ax = plt.subplots()
+ax.barh(list(thresholds), list(thresholds.values()))
+ax.set_xlabel("threshold impact velocity [in/s]")
 
 # %%
 # One number: the largest peak force (at 5000 in/s) against eq (4).
