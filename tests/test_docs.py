@@ -81,17 +81,30 @@ def test_docs_build_with_no_warning(tmp_path):
     assert (tmp_path / "html" / "index.html").is_file()
 
 
-@pytest.mark.parametrize("command", ["bar", "beam"])
-def test_output_contract_page_lists_the_recorded_columns(command):
-    """The history.csv columns docs/reference/outputs.md gives for a command are those of the recorded output contract, in order."""
+def _recorded_columns(command: str) -> list[str]:
+    """The history.csv columns of a command in the recorded output contract, gauge names as ``<gauge>``."""
     import json
     import re
 
     recorded = json.loads((ROOT / "tests" / "data" / "contract.json").read_text(encoding="utf-8"))[command]["history.csv"]
-    columns = list(dict.fromkeys(re.sub(r"^(strain|bending_strain)_.+$", r"\1_<gauge>", c) for c in recorded))
+    return list(dict.fromkeys(re.sub(r"^(strain|bending_strain)_.+$", r"\1_<gauge>", c) for c in recorded))
+
+
+@pytest.mark.parametrize("command", ["bar", "beam"])
+def test_output_contract_page_lists_the_recorded_columns(command):
+    """The history.csv columns docs/reference/outputs.md gives for a command are those of the recorded output contract, in order."""
+    import re
+
     page = (ROOT / "docs" / "reference" / "outputs.md").read_text(encoding="utf-8")
     row = next(line for line in page.splitlines() if line.startswith(f"| `{command}` |") and "time_s" in line)
-    assert re.findall(r"`([^`]+)`", row.split("|")[2]) == columns
+    assert re.findall(r"`([^`]+)`", row.split("|")[2]) == _recorded_columns(command)
+
+
+@pytest.mark.parametrize("command", ["bar", "beam"])
+def test_naming_table_names_every_recorded_column(command):
+    """Every history.csv column of the recorded output contract has its line in the naming table (docs/naming.md)."""
+    table = (ROOT / "docs" / "naming.md").read_text(encoding="utf-8")
+    assert [c for c in _recorded_columns(command) if f"`{c}`" not in table] == []
 
 
 def test_every_key_read_whole_says_what_it_holds(recorded):
