@@ -37,6 +37,7 @@ class Key:
     """One key a reader asked for."""
 
     path: str  # "bar.end_cap.diameter", "gauges[].position"
+    fmt: str  # the file format (a key of FORMATS)
     method: str  # the Table method that read it
     kind: str = ""  # the quantity's kind (length, time, …) for ``quantity``
     default: object = None
@@ -73,7 +74,7 @@ class Recorder:
         elif method == "integer":
             limit = f"≥ {args.get('minimum', 1)}"
         choices = tuple(args.get("choices") or ())
-        known[path] = Key(path, method, args.get("kind", ""), default, required, choices, limit)
+        known[path] = Key(path, self.current, method, args.get("kind", ""), default, required, choices, limit)
 
 
 @contextmanager
@@ -262,10 +263,13 @@ def raw_value(path: str) -> str | None:
     return None
 
 
-# Defaults that come from elsewhere in the file (the reader computes them): said in words.
+# Defaults that come from elsewhere in the file (the reader computes them): said in words
+# (keyed by path, or by "format:path" where only one format's reader computes it).
 _CONTEXT_DEFAULTS = {
-    "title": "the file's name",
-    "test[].name": "the record's file name",
+    "series:title": "the file's name",
+    "calibration:title": "the file's name",
+    "series:test[].name": "the record's file name",
+    "calibration:test[].name": "the measured file's name",
     "gauge.poisson_ratio": "the bar material's",
     "load.table[].contact_radius": "`load.contact_radius`",
     "contact.target_modulus": "the ply's through-thickness modulus",
@@ -277,8 +281,9 @@ _CONTEXT_DEFAULTS = {
 def _default(k: Key) -> str:
     from softimpact import units
 
-    if k.path in _CONTEXT_DEFAULTS and not k.required:
-        return _CONTEXT_DEFAULTS[k.path]
+    context = _CONTEXT_DEFAULTS.get(f"{k.fmt}:{k.path}", _CONTEXT_DEFAULTS.get(k.path))
+    if context and not k.required:
+        return context
 
     if k.method in ("table", "tables"):
         return "required" if k.required else "optional"
