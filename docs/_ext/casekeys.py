@@ -266,6 +266,7 @@ def raw_value(path: str) -> str | None:
 # Defaults that come from elsewhere in the file (the reader computes them): said in words
 # (keyed by path, or by "format:path" where only one format's reader computes it).
 _CONTEXT_DEFAULTS = {
+    **{f"load.history.alpha{i}": f"the `constants` preset's α{i}" for i in range(1, 5)},
     "series:title": "the file's name",
     "calibration:title": "the file's name",
     "series:test[].name": "the record's file name",
@@ -315,7 +316,9 @@ def markdown(keys: dict[str, dict[str, Key]]) -> str:
         "`softimpact.input` over the built-in cases and variants that take each branch, and records what it asks",
         "for), so it lists exactly the keys the readers accept. A quantity is a string with its unit",
         '(`"0.5 in"`, `"62.1 in/s"`, `"0.5 us"`); its SI unit is given, any unit of the same dimension is accepted.',
-        "Rows of an array of tables are shown as `name[]`. Unknown keys are refused.",
+        "Rows of an array of tables are shown as `name[]`. Unknown keys are refused. *Required* means required where",
+        'the reader gets to it: `load.history.peak_force` with `shape = "skewed"`, `contact.restitution` with',
+        '`law = "hunt-crossley"`, one of `beam.laminate` and `beam.material`, and so on.',
         "",
     ]
     for fmt, title in FORMATS.items():
