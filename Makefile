@@ -4,13 +4,15 @@
 #                on two processes (pytest-xdist; a test file stays on one, so its fixtures are built once), one BLAS thread each;
 #                files in the order tests/conftest.py sets (the shared paper first), not xdist's by-size order
 #   make lint  - ruff: lint and format check
+#   make docs  - the documentation site (Sphinx, warnings are errors) into docs/_build/html; the examples are run
+#                by the tests (tests/test_examples.py), not here: SOFTIMPACT_DOCS_RUN_EXAMPLES=1 make docs draws their figures
 #   make fuzz  - the long property-based fuzz run (case files, CSV records, unit strings; minutes)
 PYTHON ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
 OUT ?= results/paper
 
-.PHONY: run test lint bench clean fuzz
+.PHONY: run test lint bench clean fuzz docs
 
 $(BIN)/softimpact: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -23,6 +25,9 @@ run: $(BIN)/softimpact
 
 test: $(BIN)/softimpact
 	MPLBACKEND=Agg OMP_NUM_THREADS=1 $(BIN)/python -m pytest -q -n 2 --dist loadfile --no-loadscope-reorder
+
+docs: $(BIN)/softimpact
+	MPLBACKEND=Agg $(BIN)/python -m sphinx -W --keep-going -q -b html docs docs/_build/html
 
 fuzz: $(BIN)/softimpact
 	HYPOTHESIS_PROFILE=long MPLBACKEND=Agg $(BIN)/python -m pytest -q -m fuzz tests/test_fuzz.py
@@ -39,4 +44,4 @@ bench: $(BIN)/softimpact
 	$(BIN)/python benchmarks/bench_coupled.py
 
 clean:
-	rm -rf $(VENV) results build src/*.egg-info
+	rm -rf $(VENV) results build src/*.egg-info docs/_build docs/_generated docs/gallery docs/sg_execution_times.rst

@@ -1,0 +1,345 @@
+"""The case-file reference, recorded from the readers themselves so it cannot drift.
+
+Every reader in :mod:`softimpact.input` asks its :class:`~softimpact.input.toml.Table` for each
+key (``quantity(key, kind)``, ``number``, ``integer``, ``string(..., choices=)``, ``table``,
+``tables``, ``raw``). :func:`record` wraps those methods for the time of a read, runs each reader
+over the built-in cases and over variants that take every branch (every contact law, history
+shape, inline material and ply, bridge keys, …), and keeps what was asked: the key's full path
+(array rows as ``[]``), its type, SI unit, default and limits. :func:`markdown` renders it, and
+the Sphinx hook :func:`setup` writes ``docs/_generated/case-files.md`` before each build.
+``tests/test_docs.py`` checks the record against a static scan of the readers' source.
+"""
+
+from __future__ import annotations
+
+import copy
+import inspect
+import re
+from contextlib import ExitStack, contextmanager
+from dataclasses import dataclass
+from pathlib import Path
+from unittest import mock
+
+FORMATS = {
+    "bar": "Bar case (`softimpact bar`)",
+    "beam": "Beam case (`softimpact beam`, `calibrate`)",
+    "plate": "Plate case (`softimpact plate`)",
+    "impact": "Impact case (`softimpact impact`)",
+    "series": "Bar test series (`softimpact reduce`, `fit`, `identify`)",
+    "calibration": "Calibration series (`softimpact calibrate SERIES`)",
+    "sweep": "Sweep spec (`softimpact sweep`)",
+}
+_METHODS = ("quantity", "number", "integer", "string", "table", "tables", "raw")
+
+
+@dataclass
+class Key:
+    """One key a reader asked for."""
+
+    path: str  # "bar.end_cap.diameter", "gauges[].position"
+    fmt: str  # the file format (a key of FORMATS)
+    method: str  # the Table method that read it
+    kind: str = ""  # the quantity's kind (length, time, …) for ``quantity``
+    default: object = None
+    required: bool = True
+    choices: tuple = ()
+    limit: str = ""
+
+
+class Recorder:
+    """Collects the keys read while :attr:`current` names a format."""
+
+    def __init__(self):
+        self.current: str | None = None
+        self.keys: dict[str, dict[str, Key]] = {f: {} for f in FORMATS}
+
+    def note(self, table, name: str, method: str, args: dict) -> None:
+        if self.current is None:
+            return
+        path = re.sub(r"\[\d+\]", "[]", table.key(name))
+        known = self.keys[self.current]
+        if path in known and (method == "raw" or known[path].method != "raw"):
+            return
+        from softimpact.input import toml
+
+        default = args.get("default", toml._MISSING)
+        if method in ("table", "tables"):
+            required, default = not args.get("optional", False), None
+        else:
+            required = default is toml._MISSING
+            default = None if required else default
+        limit = ""
+        if method == "quantity":
+            limit = "> 0" if args.get("positive", True) else ""
+        elif method == "integer":
+            limit = f"≥ {args.get('minimum', 1)}"
+        choices = tuple(args.get("choices") or ())
+        known[path] = Key(path, self.current, method, args.get("kind", ""), default, required, choices, limit)
+
+
+@contextmanager
+def _recording(rec: Recorder):
+    """Wrap the Table methods (and keep the readers of an impact case's target out of its record)."""
+    from softimpact.input import impact_case, toml
+
+    def wrap(method):
+        original = getattr(toml.Table, method)
+        signature = inspect.signature(original)
+
+        def wrapper(self, name, *args, **kwargs):
+            bound = signature.bind(self, name, *args, **kwargs)
+            rec.note(self, name, method, dict(bound.arguments))
+            return original(self, name, *args, **kwargs)
+
+        return wrapper
+
+    def quiet(reader):
+        def wrapper(*args, **kwargs):
+            current, rec.current = rec.current, None
+            try:
+                return reader(*args, **kwargs)
+            finally:
+                rec.current = current
+
+        return wrapper
+
+    with ExitStack() as stack:
+        for method in _METHODS:
+            stack.enter_context(mock.patch.object(toml.Table, method, wrap(method)))
+        stack.enter_context(mock.patch.object(impact_case, "beam_problem", quiet(impact_case.beam_problem)))
+        stack.enter_context(mock.patch.object(impact_case, "plate_problem", quiet(impact_case.plate_problem)))
+        yield
+
+
+def _data(name: str) -> dict:
+    from softimpact.input.toml import builtin_cases, load_toml
+
+    return load_toml(builtin_cases()[name])
+
+
+def _set(data: dict, **dotted) -> dict:
+    """A deep copy of ``data`` with dotted keys (``bar__end_cap`` for ``bar.end_cap``) set; None deletes."""
+    out = copy.deepcopy(data)
+    for key, value in dotted.items():
+        *head, last = key.split("__")
+        d = out
+        for part in head:
+            d = d.setdefault(part, {})
+        if value is None:
+            d.pop(last, None)
+        else:
+            d[last] = value
+    return out
+
+
+_INLINE_MATERIAL = {"name": "aluminium", "youngs_modulus": "10e6 psi", "poisson_ratio": 0.33, "density": "0.0975 lb/in^3", "source": "handbook"}
+_INLINE_PLY = {
+    "name": "ply",
+    **{k: "10 GPa" for k in ("E1", "E2", "E3", "G12", "G13", "G23")},
+    **{k: 0.3 for k in ("nu12", "nu13", "nu23")},
+    "density": "1600 kg/m^3",
+    "thickness": "0.1 mm",
+    "source": "test",
+}
+
+
+def _variants() -> dict[str, list]:
+    """Per format: (reader arguments) that together take every branch of its reader."""
+    from pathlib import Path as P
+
+    bar = _data("paper-calibration")
+    beam = _data("paper-long-beam")
+    plate = _data("plate-ss-8in")
+    impact = _data("paper-long-beam-impact")
+    pimpact = _data("plate-ss-8in-impact")
+    contact_laws = [
+        {"law": "hertz-unloading", "critical_indentation": "0.1 mm", "target_modulus": "8 GPa"},
+        {"law": "hunt-crossley", "restitution": 0.8, "form": "hunt-crossley"},
+        {"law": "identified", "law_file": "law.json"},
+    ]
+    history = [
+        {"shape": "skewed", "peak_force": "100 lbf", "time_of_peak": "50 us", "duration": "200 us"},
+        {"shape": "table", "file": "force.csv"},
+        {"shape": "empirical", "projectile": "rubber-1/2in", "constants": "silicone-1/2in", "velocity": "1166 in/s", **{f"alpha{i}": 1.0 for i in range(1, 5)}},
+    ]
+    row = {"velocity": "1166 in/s", "peak_force": "100 lbf", "time_of_peak": "50 us", "duration": "200 us", "contact_radius": "0.1 in"}
+    return {
+        "bar": [(bar,), (_set(bar, bar__material=_INLINE_MATERIAL, bar__end_cap={"material": "steel", "diameter": "1 in", "length": "0.25 in"}, output={"snapshots": ["10 us"]}),)]
+        + [(_set(bar, contact=c),) for c in contact_laws],
+        "beam": [(beam,), (beam, P("."), 1)]
+        + [(_set(beam, load__history=h, load__table=[row]), P("."), 1) for h in history]
+        + [
+            (_set(beam, beam__laminate={"ply": _INLINE_PLY, "fractions": {"0": 0.5, "90": 0.5}, "thickness": "1 mm", "model": "layered"}, beam__plane="stress", beam__mass="lumped", beam__damping={"ratio": 0.01, "frequencies": ["1 kHz", "10 kHz"]}),),
+            (_set(beam, beam__laminate=None, beam__material={"material": "steel", "thickness": "1 mm"}),),
+            (_set(beam, beam__laminate=None, beam__material={**{k: v for k, v in _INLINE_MATERIAL.items() if k != "source"}, "thickness": "1 mm"}),),
+        ],
+        "plate": [(plate,), (_set(plate, plate__element="mitc4", plate__model="fsdt", load__grow=False, gauges=[{"name": "g", "position": ["1 in", "1 in"], "surface": "top", "direction": 45, "length": "0.1 in"}]),)],
+        "impact": [(impact,), (pimpact,), (_set(impact, impactor__mass="1 g", gauges=[{"name": "g", "position": "1 in", "surface": "top", "length": "0.1 in"}]),)]
+        + [(_set(impact, contact=c),) for c in contact_laws],
+        "series": [
+            "paper-rubber-series",
+            _set(_data("paper-rubber-series"), bar__dispersion="pochhammer-chree", gauge__bridge="quarter", gauge__gauge_factor=2.1, gauge__excitation="5 V", gauge__gain=100, gauge__polarity=-1, gauge__poisson_ratio=0.3, gauge__gauge_resistance_ohm=350, gauge__lead_resistance_ohm=0.4, gauge__shunt_resistance_ohm=100e3, gauge__shunt_step="-0.3 V"),
+            _set(_data("paper-rubber-series"), gauge__second_position="27 in", test=[{"name": "t", "record": {"file": "a.tdms", "channel": "g", "unit": "mV"}, "second_record": "b.csv", "velocity": "1000 in/s", "diameter": "0.5 in", "mass": "1 g", "accept_flagged": True}]),
+        ],
+        "calibration": ["paper-long-calibration", _set(_data("paper-long-calibration"), projectile="rubber-1/2in", constants="scaling.json", test=[{"name": "t", "measured": "m.csv", "velocity": "1000 in/s", "contact_radius": "0.1 in", "contact_time": "10 us", "reference": {"peak_force": "1 lbf", "time_of_peak": "1 us", "duration": "2 us", "contact_radius": "0.1 in"}}])],
+        "sweep": [
+            ({"sweep": {"case": "paper-long-beam", "method": "monte-carlo", "runs": 10, "seed": 1, "chunk": 5, "outputs": ["peak_force_N"], "parameter": [
+                {"key": "load.history", "value": {"shape": "skewed", "peak_force": "1 lbf", "time_of_peak": "1 us", "duration": "2 us"}},
+                {"key": "load.history.peak_force", "values": ["1 lbf", "2 lbf"]},
+                {"key": "load.history.duration", "range": ["1 us", "2 us", 3]},
+                {"key": "load.history.time_of_peak", "distribution": {"uniform": ["1 us", "2 us"]}},
+                {"key": "load.history.velocity", "from": "scaling.json", "group": "0.5 in"}]}},),
+        ],
+    }  # fmt: skip
+
+
+def record() -> dict[str, dict[str, Key]]:
+    """Run every reader over its variants and return the keys asked for, per format."""
+    from softimpact.input import bar_case, beam_case, impact_case, plate_case, series, sweep_spec, toml
+
+    rec = Recorder()
+    readers = {
+        "bar": bar_case.bar_problem,
+        "beam": beam_case.beam_problem,
+        "plate": plate_case.plate_problem,
+        "impact": impact_case.impact_problem,
+        "sweep": lambda data: sweep_spec.read_sweep_spec(data, Path(".")),
+    }
+    with _recording(rec):
+        for fmt, variants in _variants().items():
+            for variant in variants:
+                rec.current = fmt
+                try:
+                    if fmt in readers:
+                        readers[fmt](*variant)
+                    else:  # the series readers take a name: hand them the variant's data
+                        name = variant if isinstance(variant, str) else {"series": "paper-rubber-series", "calibration": "paper-long-calibration"}[fmt]
+                        data = toml.load_toml(toml.locate(name)) if isinstance(variant, str) else variant
+                        with mock.patch.object(series, "load_toml", lambda path, data=data: data):
+                            (series.load_series if fmt == "series" else series.load_calibration_series)(name)
+                except Exception:  # noqa: BLE001 - a variant may stop at a file it names; what it read before counts
+                    pass
+                finally:
+                    rec.current = None
+    return rec.keys
+
+
+def _cell(text: str) -> str:
+    return str(text).replace("|", "\\|")
+
+
+# What a key read whole (``Table.raw``) holds: the reader checks its shape itself. Matched on the end
+# of the key's path; tests/test_docs.py fails when a raw key has no line here.
+RAW_VALUES = {
+    "material": "a catalogue name (text) or an inline table (`youngs_modulus`, `poisson_ratio`, `density`, optional `name`, `source`)",
+    "ply": "a catalogue ply name (text) or an inline table (`E1`…`G23`, `nu12`…`nu23`, `density`, `thickness`)",
+    "snapshots": "a list of times (quantities) within the run",
+    "beam.elements": "`[along the length, through the thickness]`, two integers ≥ 1",
+    "plate.elements": "`[along x, along y]`, two integers ≥ 2",
+    "fractions": "a table of angle (degrees, as the key) = volume fraction",
+    "frequencies": "two frequencies (quantities) at which the Rayleigh damping equals `ratio`",
+    "support": "a table `{ x0 = …, x1 = …, y0 = …, y1 = … }` of edge supports",
+    "position": "`[x, y]`, two lengths",
+    "grow": "true or false: the contact disc grows with the force by eq (10)",
+    "direction": '`"x"`, `"y"` or an angle in degrees from x',
+    "record": "a path (relative to the series file) or a table `{ file, channel, unit }`",
+    "second_record": "as `record`: the second gauge's record",
+    "channel": "a channel name (`group/channel` or a unique `channel`) or an index",
+    "accept_flagged": "true or false: fit this test even if flagged",
+    "constants": "a scaling.json path (of `softimpact fit`) or a preset name",
+    "outputs": "a list of output keys (`peak_force_N`, `strain_<g>.peak`, `damage.<index>`, …)",
+    "value": "any value the key takes (a whole table replaces the table)",
+    "values": "a list of levels (quantities or values)",
+    "range": "`[low, high, n]`: n levels evenly spaced",
+    "distribution": "`{ uniform = [lo, hi] }`, `{ normal = [mean, sd] }` or `{ lognormal = [median, sigma of ln] }`",
+}
+
+
+def raw_value(path: str) -> str | None:
+    """The description of a raw key's value (longest matching end of its path), or None."""
+    for suffix in sorted(RAW_VALUES, key=len, reverse=True):
+        if path == suffix or path.endswith("." + suffix) or path.endswith("]." + suffix):
+            return RAW_VALUES[suffix]
+    return None
+
+
+# Defaults that come from elsewhere in the file (the reader computes them): said in words
+# (keyed by path, or by "format:path" where only one format's reader computes it).
+_CONTEXT_DEFAULTS = {
+    **{f"load.history.alpha{i}": f"the `constants` preset's α{i}" for i in range(1, 5)},
+    "series:title": "the file's name",
+    "calibration:title": "the file's name",
+    "series:test[].name": "the record's file name",
+    "calibration:test[].name": "the measured file's name",
+    "gauge.poisson_ratio": "the bar material's",
+    "load.table[].contact_radius": "`load.contact_radius`",
+    "contact.target_modulus": "the ply's through-thickness modulus",
+    "projectile.mass": "from density and diameter",
+    "impactor.mass": "from density and diameter",
+}
+
+
+def _default(k: Key) -> str:
+    from softimpact import units
+
+    context = _CONTEXT_DEFAULTS.get(f"{k.fmt}:{k.path}", _CONTEXT_DEFAULTS.get(k.path))
+    if context and not k.required:
+        return context
+
+    if k.method in ("table", "tables"):
+        return "required" if k.required else "optional"
+    if k.required:
+        return "required"
+    if k.default is None:
+        return "optional"
+    if k.method == "quantity" and isinstance(k.default, (int, float)):
+        return f"`{k.default:.6g} {units.SI_UNITS[k.kind]}`"
+    return f"`{k.default!r}`"
+
+
+def _type(k: Key) -> str:
+    from softimpact import units
+
+    if k.method == "quantity":
+        return f"{k.kind} [{units.SI_UNITS[k.kind]}]"
+    if k.method == "raw":
+        return raw_value(k.path) or "value"
+    return {"number": "number", "integer": "integer", "string": "text", "table": "table", "tables": "array of tables"}[k.method]
+
+
+def markdown(keys: dict[str, dict[str, Key]]) -> str:
+    """The reference page: one table per file format, keys in the order the reader asks for them."""
+    lines = [
+        "# Case-file reference",
+        "",
+        "Generated at build time from the readers themselves (`docs/_ext/casekeys.py` runs every reader of",
+        "`softimpact.input` over the built-in cases and variants that take each branch, and records what it asks",
+        "for), so it lists exactly the keys the readers accept. A quantity is a string with its unit",
+        '(`"0.5 in"`, `"62.1 in/s"`, `"0.5 us"`); its SI unit is given, any unit of the same dimension is accepted.',
+        "Rows of an array of tables are shown as `name[]`. Unknown keys are refused. *Required* means required where",
+        'the reader gets to it: `load.history.peak_force` with `shape = "skewed"`, `contact.restitution` with',
+        '`law = "hunt-crossley"`, one of `beam.laminate` and `beam.material`, and so on.',
+        "",
+    ]
+    for fmt, title in FORMATS.items():
+        lines += [f"## {title}", "", "| key | type [SI unit] | default | limits |", "|---|---|---|---|"]
+        tops = list(dict.fromkeys(path.split(".")[0].split("[")[0] for path in keys[fmt]))
+        for k in sorted(keys[fmt].values(), key=lambda k: (tops.index(k.path.split(".")[0].split("[")[0]), k.path)):
+            limits = ", ".join(f"`{c}`" for c in k.choices) if k.choices else k.limit
+            lines.append(f"| `{_cell(k.path)}` | {_cell(_type(k))} | {_cell(_default(k))} | {_cell(limits)} |")
+        lines.append("")
+    return "\n".join(lines)
+
+
+def _write(app) -> None:
+    out = Path(app.srcdir) / "_generated"
+    out.mkdir(exist_ok=True)
+    text = markdown(record())
+    target = out / "case-files.md"
+    if not target.exists() or target.read_text() != text:
+        target.write_text(text)
+
+
+def setup(app):
+    app.connect("builder-inited", _write)
+    return {"parallel_read_safe": True, "parallel_write_safe": True}
