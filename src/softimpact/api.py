@@ -510,12 +510,19 @@ def _axes(ax):
 class ImpactResult(_Written):
     """A coupled impact on a beam or plate (:func:`impact`, or :func:`run` of an impact case).
 
-    Attributes
+    Parameters
     ----------
     problem : softimpact.workflows.coupled.ImpactProblem
         Every input in SI (target, impactor, law, solver, gauges).
     result : softimpact.fem.impact.CoupledResult
         The histories and first-contact scalars (SI, compression +).
+    model : StructureModel, optional
+        The assembled model that ran (reused by ``write_fields``).
+    case_files : tuple of Path
+        The case files read (never overwritten by ``write``).
+
+    Attributes
+    ----------
     peak_force : float
         [N] of the first contact; ``time_of_peak`` [s], ``contact_duration`` [s] (nan when
         not separated), ``impulse`` [N·s].
@@ -605,12 +612,16 @@ class ImpactResult(_Written):
 class BeamResult(_Written):
     """A beam under a prescribed force history (:func:`run` of a beam case; ``softimpact beam``).
 
-    Attributes
+    Parameters
     ----------
     problem : softimpact.workflows.beam_impact.BeamProblem
         Every input in SI.
     result : softimpact.workflows.beam_impact.BeamResult
         time [s], force [N], strain (n_gauges, n_steps + 1), deflection [m], displacement.
+    model : StructureModel, optional
+        The assembled model that ran (reused by ``write_fields``).
+    case_files : tuple of Path
+        The case files read (never overwritten by ``write``).
     """
 
     problem: object
@@ -666,12 +677,16 @@ class BeamResult(_Written):
 class PlateResult(_Written):
     """A plate under a prescribed force history (:func:`run` of a plate case; ``softimpact plate``).
 
-    Attributes
+    Parameters
     ----------
     problem : softimpact.workflows.plate_impact.PlateProblem
         Every input in SI.
     result : softimpact.workflows.plate_impact.PlateResult
         time [s], force [N], strain (n_gauges, n_steps + 1), deflection [m] (impact point first).
+    model : StructureModel, optional
+        The assembled model that ran (reused by ``write_fields``).
+    case_files : tuple of Path
+        The case files read (never overwritten by ``write``).
     """
 
     problem: object
@@ -728,12 +743,18 @@ class PlateResult(_Written):
 class BarResult(_Written):
     """A sphere on the instrumented bar (:func:`impact` on a :class:`Bar`, :func:`run` of a bar case).
 
-    Attributes
+    Parameters
     ----------
     problem : softimpact.workflows.bar_impact.BarImpactProblem
         Every input in SI.
     result : softimpact.workflows.bar_impact.BarImpactResult
         The coupled run (contact force [N], gauge strains, …).
+    plain : BarImpactResult, optional
+        The same run without the end cap.
+    inferred : (numpy.ndarray, numpy.ndarray, str), optional
+        Time [s], force [N] read from the first gauge, and its name.
+    case_files : tuple of Path
+        The case files read.
     """
 
     problem: object
@@ -962,7 +983,7 @@ def _bar_impact(bar: Bar, at, sphere: Sphere, law, solver, gauges, units: str, t
 class Case:
     """A case read and checked (:func:`load`), ready for :func:`run`.
 
-    Attributes
+    Parameters
     ----------
     kind : str
         ``"bar"``, ``"beam"``, ``"plate"`` or ``"impact"`` (:data:`softimpact.cases.KINDS`).
@@ -1086,12 +1107,13 @@ def _kind_of(problem) -> str:
 class CommandResult(_Written):
     """What a command made (:class:`softimpact.app.Outcome`): its files by name and its one line.
 
-    Attributes
+    Parameters
     ----------
     command : str
         The equivalent command line.
     outcome : softimpact.app.Outcome
-        ``files`` (name → text or bytes), ``line``, ``inputs``, ``warnings``, ``gates``.
+        ``files`` (name → text or bytes; numbers in SI with unit-suffixed names), ``line``,
+        ``inputs``, ``warnings``, ``gates``.
     """
 
     command: str
@@ -1422,7 +1444,8 @@ def converge(case, *, levels: int = 3, ratio: int = 2, history: int | None = Non
     Returns
     -------
     CommandResult
-        ``table("convergence.csv")``: per output the observed order, values, extrapolation, GCI.
+        ``table("convergence.csv")``: per output the observed order, values (SI, unit-suffixed
+        names), extrapolation, GCI.
 
     Raises
     ------
@@ -1448,6 +1471,7 @@ def sweep(spec, *, out, workers: int | None = 0, scheduler: str | None = None, f
         A sweep spec file (TOML).
     out : str or Path
         Folder of the checkpoints (``out/checkpoints``): the same call resumes where it stopped.
+        The spec's quantities carry their units; the results are SI.
     workers : int, optional
         Local Dask worker processes; 0 (default here): a plain loop, no Dask; None: the machine's cores.
     scheduler : str, optional
@@ -1477,7 +1501,19 @@ def sweep(spec, *, out, workers: int | None = 0, scheduler: str | None = None, f
 
 @dataclass(frozen=True)
 class Record:
-    """One channel of a lab record: ``time`` [s] (1-D, increasing), ``signal`` in ``unit``, ``metadata``."""
+    """One channel of a lab record (:func:`read_record`).
+
+    Parameters
+    ----------
+    time : numpy.ndarray
+        [s], 1-D, increasing (negative before the trigger).
+    signal : numpy.ndarray
+        Same shape, in ``unit``.
+    unit : str
+        ``"V"``, ``"strain"``, ``"microstrain"`` or the file's own unit text.
+    metadata : dict
+        File, format, channel, sample rate [Hz], trigger, the header's items.
+    """
 
     time: object
     signal: object
