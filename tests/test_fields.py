@@ -6,12 +6,9 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-meshio = pytest.importorskip("meshio")
-from meshio.xdmf import TimeSeriesReader  # noqa: E402
-
-import softimpact as si  # noqa: E402
-from softimpact.cli import main  # noqa: E402
-from softimpact.output.fields import FRAMES, beam_cell_strain, sampled_steps  # noqa: E402
+import softimpact as si
+from softimpact.cli import main
+from softimpact.output.fields import FRAMES, beam_cell_strain, sampled_steps
 
 BEAM = """units = "in-lbf-s"
 [beam]
@@ -55,6 +52,7 @@ duration = "300 us"
 
 def _read(path):
     """(points, cells, [(t, point_data, cell_data)]) of an XDMF time series."""
+    TimeSeriesReader = pytest.importorskip("meshio.xdmf").TimeSeriesReader  # the fields extra
     reader = TimeSeriesReader(str(path))
     points, cells = reader.read_points_cells()
     frames = [reader.read_data(k) for k in range(reader.num_steps)]
@@ -68,6 +66,7 @@ def _node(points, x, y):
 
 
 def _cli(args, out):
+    pytest.importorskip("meshio")  # the fields extra
     result = CliRunner().invoke(main, [*args, "--out", str(out), "--no-figures", "--fields"], catch_exceptions=False)
     assert result.exit_code == 0, result.output
 
@@ -135,6 +134,7 @@ def test_plate_fields_from_the_command_match_the_deflection_output(tmp_path):
 
 def test_impact_fields_match_the_coupled_deflection(tmp_path):
     """`res.write_fields` of a coupled beam impact: the mid-surface displacement under the impact point read back is minus the stepper's deflection (into the target +), and `softimpact impact --fields` writes the same file."""
+    pytest.importorskip("meshio")  # the fields extra
     beam = si.Beam(length="6 in", width="1 in", laminate=si.Laminate("T300/934", "[90/0]5s"), elements=(40, 4))
     res = si.impact(beam, at="3 in", impactor=si.Sphere("steel", "0.5 in", velocity="100 in/s"), time_step="1 us", duration="300 us")
     steps = res.write_fields(tmp_path / "api" / "fields.xdmf")
