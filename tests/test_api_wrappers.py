@@ -73,3 +73,21 @@ def test_read_record_converts_time_and_millivolts(tmp_path):
     np.testing.assert_allclose(rec.signal, mv * 1e-3, rtol=1e-12, atol=1e-15)
     df = rec.to_frame()
     assert df.attrs["units"]["signal"] == "V" and df.index.name == "time_s"
+
+
+def test_law_json_path_equals_the_identified_law_of_a_case(tmp_path):
+    """law= the path of a law.json runs the identified law as `softimpact impact` does with contact.law = "identified"."""
+    from pathlib import Path
+
+    law = Path(__file__).parent / "data" / "law-v-main.json"
+    (tmp_path / "beam.toml").write_text(BEAM)
+    (tmp_path / "impact.toml").write_text(
+        '[target]\ncase = "beam.toml"\n[impactor]\nmaterial = "silicone rubber"\ndiameter = "0.5 in"\nvelocity = "1500 in/s"\n'
+        f'[contact]\nlaw = "identified"\nlaw_file = "{law}"\n[solver]\ntime_step = "1 us"\nduration = "300 us"\n'
+    )
+    cli = json.loads((_cli(["impact", str(tmp_path / "impact.toml")], tmp_path / "out") / "summary.json").read_text())
+    beam = si.Beam(length="6 in", width="1 in", laminate=si.Laminate("T300/934", "[90/0]5s"), elements=(40, 4))
+    ball = si.Sphere("silicone rubber", "0.5 in", velocity="1500 in/s")
+    res = si.impact(beam, at="3 in", impactor=ball, law=law, time_step="1 us", duration="300 us", gauges={"g1": "2 in"})
+    assert res.problem.law_name == "identified"
+    assert res.peak_force == pytest.approx(cli["peak_force_N"], rel=1e-12)

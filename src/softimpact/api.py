@@ -478,7 +478,10 @@ class _Written:
 
 
 def _frame(columns: dict, units_of: dict):
-    """A DataFrame of ``columns`` (``time_s`` first) indexed by time, with ``df.attrs["units"]``."""
+    """A DataFrame of ``columns`` (``time_s`` first) indexed by time, with ``df.attrs["units"]``.
+
+    pandas, not xarray: every history has one dimension (time), which a DataFrame index holds
+    exactly, and pandas is what users of lab data know (the ``table`` extra)."""
     try:
         import pandas as pd
     except ImportError:  # pragma: no cover - depends on the environment
@@ -560,7 +563,9 @@ class ImpactResult(_Written):
         return impact_files(self.problem, self.result, figures, model=self.model)
 
     def to_frame(self):
-        """The histories of history.csv as a pandas DataFrame indexed by time [s]; units in ``df.attrs["units"]``."""
+        """The histories of history.csv as a pandas DataFrame indexed by time [s]; units in ``df.attrs["units"]``.
+
+        pandas rather than xarray: one dimension (time), and users know it (the ``table`` extra)."""
         from .output.impact import impact_columns
 
         cols = impact_columns(self.result)
