@@ -255,3 +255,23 @@ def test_all_is_sorted_out_of_the_heavy_layers():
     for name in si.__all__:
         assert getattr(si, name) is not None
     assert not math.isnan(len(si.__all__))
+
+
+def test_law_object_equals_the_law_name(five_lines):
+    """law= a HertzLaw object built as the reader builds "hertz" (Sun's form with the ply's E3) gives the same run as the name."""
+    from softimpact.models.contact_laws import HertzLaw
+
+    p = five_lines.problem
+    law = HertzLaw.sphere_on_laminate(p.impactor.diameter / 2, p.impactor_material, p.target.beam.stack.ply.E3)
+    beam = si.Beam(length="6 in", width="1 in", laminate=si.Laminate("T300/934", "[90/0]5s"), elements=(200, 6))
+    res = si.impact(
+        beam,
+        at="3 in",
+        impactor=si.Sphere("steel", "0.5 in", velocity="100 in/s"),
+        law=law,
+        time_step="0.5 us",
+        duration="400 us",
+        gauges={"g1": "2 in", "g2": "0.5 in"},
+    )
+    assert res.peak_force == five_lines.peak_force
+    np.testing.assert_array_equal(res.force, five_lines.force)

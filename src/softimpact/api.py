@@ -1118,7 +1118,8 @@ class CommandResult(_Written):
         The equivalent command line.
     outcome : softimpact.app.Outcome
         ``files`` (name → text or bytes; numbers in SI with unit-suffixed names), ``line``,
-        ``inputs``, ``warnings``, ``gates``.
+        ``inputs``, ``warnings``, ``gates``. A failed quality gate does not raise here (the
+        command line exits 3); :meth:`write` marks it ``"status": "failed"`` in manifest.json.
     """
 
     command: str
