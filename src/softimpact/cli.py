@@ -232,12 +232,22 @@ def _accept_poor_option() -> click.Option:
     )
 
 
-def _command(name: str, short_help: str, *, history: str | None = None, figures: bool = True, accept_poor: bool | str = False):
+def _fields_option() -> click.Option:
+    return click.Option(
+        ["--fields"],
+        is_flag=True,
+        default=False,
+        help="Also write fields.xdmf + fields.h5: displacement (beam: and strain) fields over time for ParaView, "
+        "at most 200 evenly sampled steps (needs the fields extra: pip install 'softimpact[fields]').",
+    )
+
+
+def _command(name: str, short_help: str, *, history: str | None = None, figures: bool = True, accept_poor: bool | str = False, fields: bool = False):
     """Register ``softimpact NAME``: the function's own arguments and options (its click
     decorators), then the shared ones in this order: ``--history`` (with that help text, when
-    given), ``--out`` (default ``softimpact-NAME``), ``--figures/--no-figures`` and
+    given), ``--out`` (default ``softimpact-NAME``), ``--figures/--no-figures``,
     ``--accept-poor`` (when asked for; ``accept_poor="before-out"`` lists it before ``--out``,
-    where calibrate has always had it); the function runs under :func:`_guarded`."""
+    where calibrate has always had it) and ``--fields`` (when asked for); the function runs under :func:`_guarded`."""
 
     def decorate(fn):
         command = main.command(name, short_help=short_help)(_guarded(fn))
@@ -249,6 +259,8 @@ def _command(name: str, short_help: str, *, history: str | None = None, figures:
             shared.append(_figures_option())
         if accept_poor is True:
             shared.append(_accept_poor_option())
+        if fields:
+            shared.append(_fields_option())
         command.params.extend(shared)
         return command
 
@@ -278,17 +290,20 @@ def bar_cmd(case, out, figures):
     _run(bar, out, case=case, figures=figures)
 
 
-@_command("beam", "Transverse impact of a laminated beam (Figs 16-22).", history="Row N of the case's [[load.table]] (Tables II/III for the built-ins).")
+@_command(
+    "beam", "Transverse impact of a laminated beam (Figs 16-22).", history="Row N of the case's [[load.table]] (Tables II/III for the built-ins).", fields=True
+)
 @click.argument("case")
-def beam_cmd(case, history, out, figures):
+def beam_cmd(case, history, out, figures, fields):
     """Transverse impact of a laminated beam (CASE: file or built-in name).
 
     Writes history.csv, summary.json and, with figures, fig18-mesh.png,
-    fig20-load-distribution.png, fig21-22-gauge-strains.png, deformed.png.
+    fig20-load-distribution.png, fig21-22-gauge-strains.png, deformed.png; with --fields,
+    fields.xdmf and fields.h5 (ParaView).
     """
     from .app.beam import beam
 
-    _run(beam, out, case=case, history=history, figures=figures)
+    _run(beam, out, case=case, history=history, figures=figures, fields=fields)
 
 
 @_command("converge", "Discretisation error of a case by systematic refinement.", history="Beam cases: row N of the case's [[load.table]].")
@@ -329,17 +344,17 @@ def sweep_cmd(spec, workers, scheduler, out, figures):
     _run(sweep, out, spec=spec, out_dir=out, workers=workers, scheduler=scheduler, figures=figures)
 
 
-@_command("plate", "Transverse impact of a laminated plate (FSDT).", history=HISTORY_HELP)
+@_command("plate", "Transverse impact of a laminated plate (FSDT).", history=HISTORY_HELP, fields=True)
 @click.argument("case")
-def plate_cmd(case, history, out, figures):
+def plate_cmd(case, history, out, figures, fields):
     """Transverse impact of a laminated plate, FSDT MITC9 (or MITC4) elements (CASE: file or built-in name).
 
     Writes history.csv, summary.json and, with figures, plate-mesh.png,
-    deflection.png, histories.png.
+    deflection.png, histories.png; with --fields, fields.xdmf and fields.h5 (ParaView).
     """
     from .app.plate import plate
 
-    _run(plate, out, case=case, history=history, figures=figures)
+    _run(plate, out, case=case, history=history, figures=figures, fields=fields)
 
 
 @_command("reduce", "Bar strain records -> force histories (Fig 7).", accept_poor=True)
@@ -472,18 +487,19 @@ def calibrate_cmd(case, measured, velocity, method, contact_radius, contact_time
     )
 
 
-@_command("impact", "Coupled impact of a rigid impactor on a beam or plate through a contact law.")
+@_command("impact", "Coupled impact of a rigid impactor on a beam or plate through a contact law.", fields=True)
 @click.argument("case")
-def impact_cmd(case, out, figures):
+def impact_cmd(case, out, figures, fields):
     """Coupled impact of a rigid impactor on a beam or plate (CASE: file or built-in name), the
     contact force found each step from a contact law (hertz, hertz-unloading, hunt-crossley, identified).
 
     Writes history.csv, summary.json and, with figures, force-history.png,
-    approach.png, gauge-strains.png, energy.png (and on a plate plate-mesh.png, deflection.png).
+    approach.png, gauge-strains.png, energy.png (and on a plate plate-mesh.png, deflection.png);
+    with --fields, fields.xdmf and fields.h5 (ParaView: the target's displacement over time).
     """
     from .app.impact import impact
 
-    _run(impact, out, case=case, figures=figures)
+    _run(impact, out, case=case, figures=figures, fields=fields)
 
 
 @_command("identify", "A soft projectile's contact law from bar tests (law.json).")

@@ -8,6 +8,7 @@ import numpy as np
 
 from ..input.beam_case import load_beam_case
 from ..output.beam import beam_files
+from ..output.fields import field_files, sampled_steps
 from ..units import display
 from ..workflows.beam_impact import BeamModel
 from . import Outcome, Progress, no_progress
@@ -15,15 +16,19 @@ from . import Outcome, Progress, no_progress
 __all__ = ["beam"]
 
 
-def beam(*, case: str, history: int | None = None, figures: bool = True, progress: Progress = no_progress) -> Outcome:
-    """Run a beam case (file or built-in name), optionally with row ``history`` of its [[load.table]]."""
+def beam(*, case: str, history: int | None = None, figures: bool = True, fields: bool = False, progress: Progress = no_progress) -> Outcome:
+    """Run a beam case (file or built-in name), optionally with row ``history`` of its [[load.table]];
+    ``fields``: also fields.xdmf/.h5, the displacement and strain fields (:mod:`softimpact.output.fields`)."""
     problem, path = load_beam_case(case, history)
     t0 = time.perf_counter()
     model = BeamModel(problem)
     steps = problem.solver.steps
-    result = model.direct(progress=lambda k: progress(k, steps, "stepping"), displacement=figures)
+    result = model.direct(progress=lambda k: progress(k, steps, "stepping"), displacement=figures or fields)
     progress(steps, steps, "stepping")
     files = beam_files(model, result, figures)
+    if fields:
+        kept = sampled_steps(steps)
+        files.update(field_files(model, (kept, result.time[kept], result.displacement[:, kept])))
     su = display(problem.units, "strain")
     peaks = ", ".join(f"{g.name} {eps[np.argmax(np.abs(eps))] * su.factor:.0f} {su.label}" for g, eps in zip(problem.gauges, result.strain))
     line = f"{model.plane.n} DOF, {steps} steps ({time.perf_counter() - t0:.1f} s); peak strains {peaks}"

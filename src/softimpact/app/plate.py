@@ -7,6 +7,7 @@ import time
 import numpy as np
 
 from ..input.plate_case import load_plate_case
+from ..output.fields import field_files, sampled_steps, select_kept
 from ..output.plate import plate_files, snapshot_steps
 from ..units import display
 from ..workflows.plate_impact import PlateModel
@@ -15,15 +16,21 @@ from . import Outcome, Progress, no_progress
 __all__ = ["plate"]
 
 
-def plate(*, case: str, history: int | None = None, figures: bool = True, progress: Progress = no_progress) -> Outcome:
-    """Run a plate case (file or built-in name), optionally with row ``history`` of its [[load.table]]."""
+def plate(*, case: str, history: int | None = None, figures: bool = True, fields: bool = False, progress: Progress = no_progress) -> Outcome:
+    """Run a plate case (file or built-in name), optionally with row ``history`` of its [[load.table]];
+    ``fields``: also fields.xdmf/.h5, the displacement fields (:mod:`softimpact.output.fields`)."""
     problem, path = load_plate_case(case, history)
     t0 = time.perf_counter()
     model = PlateModel(problem)
     steps = problem.solver.steps
-    result = model.direct(progress=lambda k: progress(k, steps, "stepping"), snapshots=snapshot_steps(steps) if figures else ())
+    shown = snapshot_steps(steps) if figures else ()
+    kept = sampled_steps(steps) if fields else ()
+    result = model.direct(progress=lambda k: progress(k, steps, "stepping"), snapshots=np.union1d(shown, kept).astype(int) if fields else shown)
     progress(steps, steps, "stepping")
-    files = plate_files(model, result, figures)
+    files = plate_files(model, select_kept(result, shown) if fields else result, figures)
+    if fields:
+        at = {int(k): i for i, k in enumerate(result.kept)}
+        files.update(field_files(model, (kept, result.time[kept], result.displacement[:, [at[int(k)] for k in kept]])))
     su, lu = display(problem.units, "strain"), display(problem.units, "length")
     peaks = "".join(f", {g.name} {eps[np.argmax(np.abs(eps))] * su.factor:.0f} {su.label}" for g, eps in zip(problem.gauges, result.strain))
     w = result.deflection[0]

@@ -1,0 +1,151 @@
+"""Field output for ParaView: displacement (and, on a beam, strain) over time as an XDMF time series.
+
+``fields.xdmf`` (the light XML: mesh, time values, array names) and ``fields.h5`` (the
+arrays, HDF5) are written through meshio's :class:`meshio.xdmf.TimeSeriesWriter`
+(the ``fields`` extra: ``pip install 'softimpact[fields]'``); ParaView opens the .xdmf
+as a time series of meshes (Warp By Vector on ``displacement`` shows the deformed shape).
+
+A sampled set of steps is written, not every step: every k-th step from 0 with
+k = ⌈(n_steps + 1)/frames⌉, so at most ``frames`` (default :data:`FRAMES` = 200)
+frames (:func:`sampled_steps`). A 1000-step beam run gives 167 frames at k = 6.
+
+Meshes (SI, metres), one layout for every model:
+
+- beam (:class:`softimpact.workflows.beam_impact.BeamModel`): the plane-strain Q4 mesh in
+  the x–y plane of the file (file y = the beam's thickness coordinate z, 0 at the bottom
+  face); point data ``displacement`` (u_x, u_z, 0) [m]; cell data at each element's
+  centre ``strain_xx``, ``strain_zz``, ``shear_strain_xz`` (engineering γ) — exact for the
+  bilinear field at the centre and cheap (no quadrature);
+- plate (:class:`softimpact.workflows.plate_impact.PlateModel`): the mid-surface, the node
+  grid split into quads (an MITC9 element shows as its four sub-quads), z = 0; point
+  data ``displacement`` (u, v, w) [m] (w up +) and ``rotation`` (φ_x, φ_y) [rad].
+  Surface strains of a plate need the shape-function gradients per element and are not
+  written.
+
+Fixed DOFs are zero. The displacement arrays are the model's own numbers (no
+interpolation): node n's u_x is ``model.plane.expand(u)[nodal_dofs[0, n]]``.
+"""
+
+from __future__ import annotations
+
+import math
+import tempfile
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["FRAMES", "sampled_steps", "field_frames", "write_fields", "field_files", "select_kept", "beam_cell_strain"]
+
+FRAMES = 200  # frames at most in a field file: ParaView scrubs them smoothly, and a 200-frame beam file stays a few MB
+
+
+def sampled_steps(steps: int, frames: int = FRAMES) -> np.ndarray:
+    """Step indices 0, k, 2k, … ≤ ``steps`` with k = ⌈(steps + 1)/frames⌉: at most ``frames`` of them."""
+    if not (isinstance(frames, int) and frames >= 1):
+        from ..errors import InputError
+
+        raise InputError(f"frames: expected a positive integer, got {frames!r}")
+    k = max(1, math.ceil((steps + 1) / frames))
+    return np.arange(0, steps + 1, k)
+
+
+def select_kept(result, steps):
+    """``result`` (with ``displacement`` and ``kept``) keeping only the snapshots at ``steps``, for
+    figures drawn from a run that also kept the field frames."""
+    if result.displacement is None or result.kept is None:
+        return result
+    at = {int(k): i for i, k in enumerate(result.kept)}
+    steps = np.asarray([int(s) for s in steps if int(s) in at], int)
+    return replace(result, displacement=result.displacement[:, [at[int(s)] for s in steps]], kept=steps)
+
+
+def beam_cell_strain(points: np.ndarray, cells: np.ndarray, ux: np.ndarray, uz: np.ndarray) -> dict[str, np.ndarray]:
+    """Strain at the centre of each axis-aligned bilinear quad: ε_xx = ∂u_x/∂x, ε_zz = ∂u_z/∂z,
+    γ_xz = ∂u_x/∂z + ∂u_z/∂x. At the centre ∂N_i/∂x = s_i/(2·h_x), s_i = ±1 on the right/left
+    nodes (and so for z). ``points`` (n_nodes, 2) [m], ``cells`` (n_cells, 4) node indices,
+    ``ux``, ``uz`` (n_nodes, n_frames) [m]; returns arrays (n_cells, n_frames)."""
+    x, z = points[cells, 0], points[cells, 1]  # (n_cells, 4)
+    sx = np.sign(x - x.mean(axis=1, keepdims=True))
+    sz = np.sign(z - z.mean(axis=1, keepdims=True))
+    hx = x.max(axis=1) - x.min(axis=1)
+    hz = z.max(axis=1) - z.min(axis=1)
+
+    def d(u, s, h):  # (n_cells, n_frames)
+        return np.einsum("ck,ckf->cf", s, u[cells]) / (2.0 * h)[:, None]
+
+    return {"strain_xx": d(ux, sx, hx), "strain_zz": d(uz, sz, hz), "shear_strain_xz": d(ux, sz, hz) + d(uz, sx, hx)}
+
+
+def field_frames(model, u: np.ndarray):
+    """The mesh and per-frame data of a beam or plate model's reduced displacements ``u`` (n_free, n_frames):
+    (points (n_nodes, 3), cells [("quad", (n_cells, 4))], point data {name: (n_frames, n_nodes, k)},
+    cell data {name: (n_frames, n_cells)})."""
+    u = np.asarray(u, float).reshape(model.size, -1)
+    plane = getattr(model, "plane", None)
+    if plane is not None:  # a beam: the plane-strain Q4 mesh
+        mesh = plane.basis.mesh
+        points = np.column_stack((mesh.p[0], mesh.p[1], np.zeros(mesh.p.shape[1])))
+        cells = np.asarray(mesh.t.T, int)
+        full = plane.expand(u)
+        nd = plane.basis.nodal_dofs
+        ux, uz = full[nd[0]], full[nd[1]]
+        disp = np.stack((ux.T, uz.T, np.zeros_like(ux.T)), axis=-1)
+        strain = beam_cell_strain(points[:, :2], cells, ux, uz)
+        return points, [("quad", cells)], {"displacement": disp}, {k: v.T for k, v in strain.items()}
+    fe = model.fe  # a plate: the mid-surface node grid split into quads
+    from ..fem.plate import PHI_X, PHI_Y, U, V, W
+
+    xy = fe.node_xy()
+    points = np.column_stack((xy[0], xy[1], np.zeros(xy.shape[1])))
+    g = fe.grid_node
+    cells = np.column_stack((g[:-1, :-1].ravel(), g[1:, :-1].ravel(), g[1:, 1:].ravel(), g[:-1, 1:].ravel()))
+    full = fe.expand(u)
+    nd = fe.basis.nodal_dofs
+    disp = np.stack([full[nd[c]].T for c in (U, V, W)], axis=-1)
+    rot = np.stack([full[nd[c]].T for c in (PHI_X, PHI_Y)], axis=-1)
+    return points, [("quad", cells)], {"displacement": disp, "rotation": rot}, {}
+
+
+def write_fields(path, model, frames) -> np.ndarray:
+    """Write ``frames`` = (step indices, times [s], reduced displacements (n_free, n_frames)) of a beam
+    or plate ``model`` as ``path`` (.xdmf) and its .h5 beside it (module docstring); returns the steps."""
+    try:
+        import h5py
+        from meshio.xdmf import TimeSeriesWriter
+    except ImportError:  # pragma: no cover - depends on the environment
+        from ..errors import InputError
+
+        raise InputError("fields: writing XDMF needs meshio and h5py: pip install 'softimpact[fields]'") from None
+
+    class Writer(TimeSeriesWriter):
+        """meshio 5.3 opens the .h5 in the working directory (``filename.stem + ".h5"``); here it
+        goes beside the .xdmf, which names it by its base name, as the reader expects."""
+
+        def __enter__(self):
+            self.h5_filename = str(self.filename.with_suffix(".h5"))
+            self.h5_file = h5py.File(self.h5_filename, "w")
+            return self
+
+    steps, times, u = frames
+    points, cells, point_data, cell_data = field_frames(model, u)
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with Writer(str(path)) as writer:
+        writer.write_points_cells(points, cells)
+        for i, t in enumerate(times):
+            writer.write_data(
+                float(t),
+                point_data={k: v[i] for k, v in point_data.items()},
+                cell_data={k: [v[i]] for k, v in cell_data.items()},
+            )
+    return np.asarray(steps)
+
+
+def field_files(model, frames, name: str = "fields") -> dict[str, bytes]:
+    """The field files as bytes (``name``.xdmf, ``name``.h5), written in a temporary folder, for an
+    outcome's files (so the command line's atomic writer puts them into --out with the rest).
+    The .xdmf names its .h5 relative to itself, so the pair moves together."""
+    with tempfile.TemporaryDirectory(prefix="softimpact-fields-") as tmp:
+        write_fields(Path(tmp) / f"{name}.xdmf", model, frames)
+        return {f"{name}.xdmf": (Path(tmp) / f"{name}.xdmf").read_bytes(), f"{name}.h5": (Path(tmp) / f"{name}.h5").read_bytes()}
