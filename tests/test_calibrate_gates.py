@@ -61,3 +61,18 @@ def test_reversed_polarity_fails_its_gate(tmp_path):
     accepted, out2 = _calibrate(tmp_path, record, "--accept-poor")
     assert accepted.exit_code == 0, accepted.output
     assert json.loads((out2 / "manifest.json").read_text())["status"] == "accepted-poor"
+
+
+@pytest.mark.slow
+def test_a_fit_on_its_bound_exits_3_naming_the_parameter(tmp_path):
+    """First contact given 130 µs late (the record's is at 100 µs): the clock correction the fit needs
+    lies beyond its ±100 µs search, so it ends on that bound; exit 3 naming time_origin, and
+    --accept-poor writes the result as accepted-poor."""
+    result, out = _calibrate(tmp_path, RECORD, "--contact-time", "230 us")
+    assert result.exit_code == 3, result.output
+    assert "bound of time_origin" in result.output
+    gates = json.loads((out / "calibration.json").read_text())["quality"]["gates"]
+    assert any(g["name"].startswith("bounds[") and not g["passed"] for g in gates)
+    result, out = _calibrate(tmp_path, RECORD, "--contact-time", "230 us", "--accept-poor")
+    assert result.exit_code == 0, result.output
+    assert json.loads((out / "manifest.json").read_text())["status"] == "accepted-poor"

@@ -79,7 +79,12 @@ def calibration_entry(item, gauges) -> dict:
             "order_observed": k.order_observed,
             "safety_factor": k.safety,
             "parameter_convergence": {
-                n: {"observed_order": k.parameter_orders.get(n), "uncertainty_95": k.parameter_uncertainty_95.get(n), "status": k.parameter_status.get(n)}
+                n: {
+                    "observed_order": k.parameter_orders.get(n),
+                    "uncertainty_95": k.parameter_uncertainty_95.get(n),
+                    "status": k.parameter_status.get(n),
+                    "safety_factor": k.parameter_safety.get(n),
+                }
                 for n in k.parameter_orders
             },
             "message": k.message,
