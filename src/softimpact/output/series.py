@@ -13,7 +13,7 @@ from ..workflows.scaling import TAIL_DELTA_AIC
 from .files import csv_text, figure_bytes
 from .report import Section, stem
 
-__all__ = ["reduction_files", "scaling_files", "scaling_section", "scaling_text", "tail_shape_spread", "TABLE_I"]
+__all__ = ["reduction_files", "scaling_files", "scaling_section", "scaling_text", "scaling_data", "tail_shape_spread", "TABLE_I"]
 
 
 def reduction_files(series, reduced, figures: bool = True, prefix: str = "") -> dict[str, bytes | str]:
@@ -132,6 +132,11 @@ def tail_shape_spread(shapes) -> dict:
 
 
 def scaling_text(fits) -> str:
+    """The text of scaling.json (:func:`scaling_data`)."""
+    return json_text(scaling_data(fits))
+
+
+def scaling_data(fits) -> dict:
     """scaling.json (:mod:`softimpact.formats.scaling_json`) with, per group, its ``tail_shape`` term:
     the tail families' AICs, the best, those not rejected (ΔAIC < TAIL_DELTA_AIC), each family's α's,
     and per α the half-width added to each side of its 95 % interval, and the widened interval."""
@@ -155,7 +160,7 @@ def scaling_text(fits) -> str:
         if label != "pooled":
             data["groups"][label]["tail_shape"] = term(g)
     data["pooled"]["tail_shape"] = term(fits["pooled"] if "pooled" in fits else next(iter(fits.values())))
-    return json_text(data)
+    return data
 
 
 def _text(items) -> str:
