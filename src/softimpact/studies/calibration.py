@@ -137,7 +137,7 @@ def parameter_convergence(models: ModelLadder, measured, start, cal, contact_tim
     the noise, are the same in all three fits, so their differences are discretisation), then
     Richardson on each parameter (workflows/convergence), with the fits on the coarsest of the
     three refined in mesh only and in time step only, and the steps of its time grid in the
-    fitted rise t_F0: the same rule of the asymptotic range as ``converge`` (Fs = 1.25 only when
+    rise t_F0 fitted on the finest level: the same rule of the asymptotic range as ``converge`` (Fs = 1.25 only when
     the order is near 2, the one-factor refinements agree in sign and the rise has ≥ 10 steps;
     Fs = 3 otherwise). Returns name → (95 % discretisation uncertainty of the value at the level
     used, the convergence record); {} when fewer than three levels exist."""
@@ -161,7 +161,8 @@ def parameter_convergence(models: ModelLadder, measured, start, cal, contact_tim
             sides = []
             break
         sides.append(tuple(getattr(c, n) for n in MAIN))
-    rise_steps = fits[ladder[0]][1] / models(ladder[0]).problem.solver.time_step
+    # the rise as the finest fit sees it (a coarse level's own t_F0 is inflated by its error), in the coarsest level's steps
+    rise_steps = fits[ladder[-1]][1] / models(ladder[0]).problem.solver.time_step
     out = {}
     for i, name in enumerate(MAIN):
         values = [fits[k][i] for k in ladder]
