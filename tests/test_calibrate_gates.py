@@ -61,3 +61,34 @@ def test_reversed_polarity_fails_its_gate(tmp_path):
     accepted, out2 = _calibrate(tmp_path, record, "--accept-poor")
     assert accepted.exit_code == 0, accepted.output
     assert json.loads((out2 / "manifest.json").read_text())["status"] == "accepted-poor"
+
+
+@pytest.mark.slow
+def test_a_fit_on_its_bound_exits_3_naming_the_parameter(tmp_path):
+    """First contact given 130 µs late (the record's is at 100 µs): the clock correction the fit needs
+    lies beyond its ±100 µs search, so it ends on that bound; exit 3 naming time_origin, and
+    --accept-poor writes the result as accepted-poor."""
+    result, out = _calibrate(tmp_path, RECORD, "--contact-time", "230 us")
+    assert result.exit_code == 3, result.output
+    assert "bound of time_origin" in result.output
+    gates = json.loads((out / "calibration.json").read_text())["quality"]["gates"]
+    assert any(g["name"].startswith("bounds[") and not g["passed"] for g in gates)
+    result, out = _calibrate(tmp_path, RECORD, "--contact-time", "230 us", "--accept-poor")
+    assert result.exit_code == 0, result.output
+    assert json.loads((out / "manifest.json").read_text())["status"] == "accepted-poor"
+
+
+@pytest.mark.slow
+def test_short_rise_gets_the_assumed_order_safety_in_t_F0(tmp_path):
+    """Table II's 4026 in/s history rises in 10 µs: on the coarsest level of the parameters' Richardson ladder
+    (the case's 1 µs step coarsened to 2 µs) that is under 10 steps, so t_F0's discretisation term is not called
+    asymptotic: Fs = 3, and its standard error includes that 95 % term (u95/1.96)."""
+    record = RECORD.parent / "long-V4026.csv"
+    out = tmp_path / "out"
+    args = ["calibrate", "paper-long-beam", "--measured", str(record), "--velocity", "4026 in/s", "--no-figures", "--out", str(out), "--accept-poor"]
+    result = CliRunner().invoke(main, args)
+    assert result.exit_code == 0, result.output
+    entry = json.loads((out / "calibration.json").read_text())["tests"][0]
+    conv = entry["model_check"]["parameter_convergence"]["time_of_peak"]
+    assert conv["status"] != "asymptotic" and (conv["status"] != "monotone" or conv["safety_factor"] == 3.0)
+    assert entry["time_of_peak_se_s"] >= conv["uncertainty_95"] / 1.96 * (1 - 1e-9)

@@ -37,7 +37,7 @@ def test_series_fits_need_two_calibrated_tests():
     assert series_fits(SimpleNamespace(projectile="rubber-1/2in"), [_calibrated("V1", 30.0, (4, 1, 0.1))]) is None
 
 
-def _gate_item(residual_to_noise=1.0, time_of_peak=10e-6, duration=100e-6, converged=True):
+def _gate_item(residual_to_noise=1.0, time_of_peak=10e-6, duration=100e-6, converged=True, at_bounds=()):
     cal = SimpleNamespace(
         residual_rms=np.array([0.5, residual_to_noise]) * 1e-6,
         prepared=SimpleNamespace(noise=np.array([1e-6, 1e-6])),
@@ -46,6 +46,7 @@ def _gate_item(residual_to_noise=1.0, time_of_peak=10e-6, duration=100e-6, conve
         converged=converged,
         method="least-squares",
         message="ok" if converged else "max evaluations",
+        at_bounds=at_bounds,
     )
     return CalibratedTest(SimpleNamespace(name="h1"), cal)
 
@@ -57,12 +58,14 @@ def _gate_item(residual_to_noise=1.0, time_of_peak=10e-6, duration=100e-6, conve
         (_gate_item(residual_to_noise=1.5 * MAX_RESIDUAL_TO_NOISE), {"residual[h1]"}),
         (_gate_item(time_of_peak=99e-6), {"pulse-skew[h1]"}),
         (_gate_item(converged=False), {"optimiser[h1]"}),
+        (_gate_item(at_bounds=("time_of_peak",)), {"bounds[h1]"}),
     ],
 )
 def test_calibration_gates(item, failing):
-    """Each calibrated test is held to its worst gauge's residual against the noise, a non-degenerate pulse and the optimiser's status."""
+    """Each calibrated test is held to its worst gauge's residual against the noise, a non-degenerate pulse, the optimiser's status
+    and no parameter on a bound."""
     gates = calibration_gates([item, CalibratedTest(SimpleNamespace(name="h2"), None, error="no fit")])
-    assert {g.name for g in gates} == {"residual[h1]", "pulse-skew[h1]", "optimiser[h1]"}
+    assert {g.name for g in gates} == {"residual[h1]", "pulse-skew[h1]", "optimiser[h1]", "bounds[h1]"}
     assert {g.name for g in gates if not g.passed} == failing
 
 

@@ -7,7 +7,7 @@ import pytest
 from softimpact.cli import main
 
 DRAWING = ["bar", "beam", "converge", "sweep", "plate", "reduce", "fit", "predict", "calibrate", "impact", "identify", "paper"]
-GATED = {"reduce", "fit", "calibrate"}  # the fits whose quality gates can fail (exit 3)
+GATED = {"reduce", "fit", "calibrate", "identify"}  # the fits whose quality gates can fail (exit 3)
 HISTORY = {"beam", "converge", "plate"}  # the cases with a [[load.table]]
 
 

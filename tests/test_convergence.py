@@ -177,3 +177,45 @@ def test_beam_time_step_order_is_two():
     for name in ("g1", "g2"):
         assert s[name].status == "asymptotic"
         assert s[name].order == pytest.approx(2.0, abs=0.25)
+
+
+def _two_factor(h, dt, a, b, f_star=10.0):
+    """A closed-form output with a second-order mesh error a·h² and time error b·dt²."""
+    return f_star + a * h**2 + b * dt**2
+
+
+@pytest.mark.parametrize("a, b, asymptotic", [(3.0, 2.0, True), (3.0, -2.0, False)])
+def test_opposite_mesh_and_step_errors_are_not_called_asymptotic(a, b, asymptotic):
+    """A diagonal ladder whose mesh and step errors have opposite signs (cancelling to a clean
+    second order along the diagonal) is 'monotone' with Fs = 3; with errors of one sign it is asymptotic."""
+    hs = (0.4, 0.2, 0.1)
+    ladder = [_two_factor(h, h, a, b) for h in hs]
+    o = richardson(ladder, 2.0, formal_order=2, space=_two_factor(hs[0] / 2, hs[0], a, b), time=_two_factor(hs[0], hs[0] / 2, a, b))
+    assert math.isclose(o.order, 2.0, rel_tol=1e-9)  # the diagonal alone looks perfect in both cases
+    assert (o.status == "asymptotic") is asymptotic
+    assert o.safety_factor == (1.25 if asymptotic else 3.0)
+    # either way the interval covers the exact limit (10, known in closed form)
+    assert abs(o.finest - 10.0) <= o.gci_fine * abs(o.finest) * (1 + 1e-9)
+
+
+def test_far_from_formal_order_or_coarse_rise_is_not_asymptotic():
+    """An observed order of 3.57 (formal 2), or a coarsest level with 5 steps in the rise, gets Fs = 3."""
+    hs = np.array([0.4, 0.2, 0.1])
+    far = richardson(F_STAR + 0.3 * hs**3.57, 2.0, formal_order=2)
+    assert far.status == "monotone" and far.safety_factor == 3.0
+    clean = F_STAR + 0.3 * hs**2
+    assert richardson(clean, 2.0, formal_order=2, rise_steps=12).status == "asymptotic"
+    coarse = richardson(clean, 2.0, formal_order=2, rise_steps=5)
+    assert coarse.status == "monotone" and coarse.safety_factor == 3.0 and "rise" in coarse.message
+
+
+def test_convergence_study_runs_the_one_factor_refinements():
+    """convergence_study hands the mesh-only and step-only outputs to the rule: cancelling errors are caught."""
+
+    def run(h):
+        return {"f": _two_factor(h, h, 3.0, -2.0)}
+
+    s = convergence_study(
+        run, (0.4, 0.2, 0.1), 2.0, formal_order=2, one_factor=lambda: ({"f": _two_factor(0.2, 0.4, 3.0, -2.0)}, {"f": _two_factor(0.4, 0.2, 3.0, -2.0)})
+    )
+    assert s["f"].status == "monotone" and "opposite" in s["f"].message

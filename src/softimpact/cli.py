@@ -502,18 +502,18 @@ def impact_cmd(case, out, figures, fields):
     _run(impact, out, case=case, figures=figures, fields=fields)
 
 
-@_command("identify", "A soft projectile's contact law from bar tests (law.json).")
+@_command("identify", "A soft projectile's contact law from bar tests (law.json).", accept_poor=True)
 @click.argument("series")
-def identify_cmd(series, out, figures):
+def identify_cmd(series, out, figures, accept_poor):
     """Identify one contact law of a SERIES of bar tests (file or built-in name): reduce the
     records, reconstruct force against approach, fit, then check by coupled bar simulations.
 
-    Writes law.json, closure.csv, approach-<test>.csv per test and, with figures,
-    closure-forces.png and force-approach.png.
+    Writes law.json (with predictive intervals), closure.csv, predictions.csv, approach-<test>.csv
+    per test and, with figures, closure-forces.png and force-approach.png.
     """
     from .app.identify import identify
 
-    _run(identify, out, series_name=series, figures=figures)
+    _run(identify, out, accept_poor, series_name=series, figures=figures)
 
 
 @_command("paper", "The whole paper, end to end, into report.html.")

@@ -5,28 +5,46 @@ from __future__ import annotations
 import numpy as np
 
 from ..fem.bar import Rod
+from ..gates import passed_if
 from ..input.series import load_series
 from ..input.series_records import read_series_records
 from ..output.identify import identify_files
 from ..studies.series import failed_reductions, reduce_series
-from ..workflows.identification import identify_series
+from ..workflows.identification import identify_series, predict_pulses, unfixed_parameters
 from . import Outcome, Progress, no_progress
 
 __all__ = ["identify"]
 
 
-def identify(*, series_name: str, figures: bool = True, progress: Progress = no_progress) -> Outcome:
-    """Identify one contact law from a series (file or built-in name): law.json, closure table and figures."""
+def identify(*, series_name: str, figures: bool = True, points=(), progress: Progress = no_progress) -> Outcome:
+    """Identify one contact law from a series (file or built-in name): law.json (with predictive
+    intervals of F0, t_F0, T, I at the tested impacts and at ``points``, (mass [kg], diameter [m],
+    velocity [m/s]) each), closure table, predictions.csv and figures. The printed summary gives
+    the pulses' intervals, not the parameters' (those the data do not fix are named)."""
     series = load_series(series_name)
     reduced = reduce_series(series, *read_series_records(series), progress=progress)
     warnings = failed_reductions(reduced)
-    tests, law, approaches, cl = identify_series(Rod.of(series.bar), reduced, True, progress)
-    files = identify_files(series, tests, law, approaches, cl, figures)
+    rod = Rod.of(series.bar)
+    tests, law, approaches, cl = identify_series(rod, reduced, True, progress)
+    predictions = predict_pulses(law, tests, rod, cl, points)
+    files = identify_files(series, tests, law, approaches, cl, figures, predictions=predictions)
     err = np.abs(cl.errors)
-    fitted = [(n, v, h) for n, v, h in zip(law.names, law.values, law.half_widths) if h > 0]
-    held = [f"{n} {v:g}" for n, v, h in zip(law.names, law.values, law.half_widths) if not h > 0]
-    pars = "  ".join(f"{n} {v:.4g}±{h:.2g}" for n, v, h in fitted) + (f"  (held: {', '.join(held)})" if held else "")
+    rel = np.array([p.half_widths / np.abs(p.values) for p in predictions if p.tested])
+    unfixed = unfixed_parameters(law)
+    pars = (
+        f"95 % predictive intervals at the tested impacts: F0 ±{rel[:, 0].max():.1%}, t_F0 ±{rel[:, 1].max():.1%}, "
+        f"T ±{rel[:, 2].max():.1%}, I ±{rel[:, 3].max():.1%} at most (predictions.csv)"
+    )
+    if unfixed:
+        warnings = (*warnings, f"parameters the data do not fix (their ± means nothing alone; the predictions hold): {', '.join(unfixed)}")
     worst = int(np.argmax(err.max(axis=1)))
+    gates = (
+        passed_if(
+            "bounds",
+            not law.at_bounds,
+            f"the fit ended on the bound of {', '.join(law.at_bounds)}: the estimate is the edge of the search, not a minimum",
+        ),
+    )
     line = (
         f"{pars} (d_ref {law.d_ref * 1e3:.3g} mm)\n"
         f"closure over {len(tests)} tests: max |error| F0 {err[:, 0].max():.1%}, T {err[:, 1].max():.1%}, I {err[:, 2].max():.1%}, "
@@ -34,4 +52,4 @@ def identify(*, series_name: str, figures: bool = True, progress: Progress = no_
         f"(worst {cl.names[worst]}); law.json"
     )
     inputs = (series.path, *(t.record for t in series.tests))
-    return Outcome(files, line, inputs, tuple(warnings))
+    return Outcome(files, line, inputs, tuple(warnings), gates)

@@ -13,12 +13,11 @@ reported and the others still reduce.
 
 from __future__ import annotations
 
-from ..formats.scaling_json import scaling_summary
 from ..gates import quality
 from ..input.series import load_series
 from ..input.series_records import read_series_records
 from ..output.files import json_text
-from ..output.series import reduction_files, scaling_files
+from ..output.series import reduction_files, scaling_data, scaling_files
 from ..studies.series import failed_reductions, fit_series, reduce_series, reduction_gates
 from ..workflows.scaling import fit_gates
 from . import Outcome, Progress, no_progress
@@ -66,7 +65,7 @@ def fit(*, series_name: str, figures: bool = True, progress: Progress = no_progr
     gates = reduction_gates(reduced) + fit_gates(fits)
     files = reduction_files(series, reduced, figures)
     files.update(scaling_files(fits, series.units, figures))
-    files["scaling.json"] = json_text({**scaling_summary(fits), "quality": quality(gates)})
+    files["scaling.json"] = json_text({**scaling_data(fits), "quality": quality(gates)})
     lonely = [label for label, g in fits.items() if len(g.points) == 1]
     if lonely:
         warnings = (

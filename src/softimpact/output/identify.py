@@ -4,11 +4,62 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..formats.law_json import law_json
+from ..formats._json import json_text
+from ..formats.law_json import law_summary
 from ..units import display
 from .files import csv_text, figure_bytes
 
-__all__ = ["closure_columns", "identify_files", "closure_figure", "force_approach_figure"]
+__all__ = ["closure_columns", "identify_files", "closure_figure", "force_approach_figure", "predictions_summary", "prediction_columns"]
+
+PREDICTION_NOTE = (
+    "95 % predictive intervals of the pulse on the bar: the parameters' covariance carried through coupled bar runs "
+    "(gradient at each diameter's median tested velocity) and, in quadrature, the RMS relative closure error of that "
+    "figure over the tests (what the law cannot reproduce). Read these, not the parameters' ±: parameters listed under "
+    "unfixed_parameters are not determined by the data (95 % half-width above the value, or |correlation| > 0.99) "
+    "although the pulses they predict are."
+)
+
+
+def predictions_summary(law, predictions) -> dict:
+    """law.json's additions: ``covariance`` (names, matrix), ``unfixed_parameters``, ``predictions``
+    (per point m, d, V, tested, and F0, t_F0, T, I each with value, ci95_half_width and its parameter part)."""
+    from ..workflows.identification import FIGURES, unfixed_parameters
+
+    out = {"unfixed_parameters": list(unfixed_parameters(law)), "at_bounds": list(law.at_bounds)}
+    if law.covariance is not None:
+        out["covariance"] = {"names": list(law.names), "matrix": np.asarray(law.covariance).tolist()}
+    if predictions:
+        out["predictions_note"] = PREDICTION_NOTE
+        out["predictions"] = [
+            {
+                "mass_kg": p.mass,
+                "diameter_m": p.diameter,
+                "velocity_m_s": p.velocity,
+                "tested": p.tested,
+                **{
+                    f: {"value": float(v), "ci95_half_width": float(h), "ci95_half_width_parameters": float(hp)}
+                    for f, v, h, hp in zip(FIGURES, p.values, p.half_widths, p.parameter_half_widths)
+                },
+            }
+            for p in predictions
+        ]
+    return out
+
+
+def prediction_columns(predictions) -> dict:
+    """predictions.csv: one row per point, each figure's value and 95 % half-width."""
+    from ..workflows.identification import FIGURES
+
+    cols = {
+        "diameter_m": np.array([p.diameter for p in predictions]),
+        "mass_kg": np.array([p.mass for p in predictions]),
+        "velocity_m_s": np.array([p.velocity for p in predictions]),
+        "tested": np.array([float(p.tested) for p in predictions]),
+    }
+    for j, f in enumerate(FIGURES):
+        cols[f] = np.array([p.values[j] for p in predictions])
+        cols[f"{f}_ci95_half_width"] = np.array([p.half_widths[j] for p in predictions])
+    return cols
 
 
 def closure_columns(tests, closure) -> dict:
@@ -71,12 +122,17 @@ def force_approach_figure(tests, law, approaches, system: str):
     return fig
 
 
-def identify_files(series, tests, law, approaches, closure, figures: bool = True, prefix: str = "") -> dict[str, bytes | str]:
-    """law.json, closure.csv, approach-<test>.csv and (optionally) closure-forces.png, force-approach.png."""
+def identify_files(series, tests, law, approaches, closure, figures: bool = True, prefix: str = "", predictions=()) -> dict[str, bytes | str]:
+    """law.json (with the predictive intervals, :func:`predictions_summary`), closure.csv,
+    predictions.csv, approach-<test>.csv and (optionally) closure-forces.png, force-approach.png."""
+    summary = law_summary(law, [t.name for t in tests], closure, str(series.path))
+    summary.update(predictions_summary(law, predictions))
     files = {
-        prefix + "law.json": law_json(law, [t.name for t in tests], closure, str(series.path)),
+        prefix + "law.json": json_text(summary),
         prefix + "closure.csv": csv_text(closure_columns(tests, closure)),
     }
+    if predictions:
+        files[prefix + "predictions.csv"] = csv_text(prediction_columns(predictions))
     for a, t in zip(approaches, tests):
         files[prefix + f"approach-{t.name}.csv"] = csv_text(
             {

@@ -6,12 +6,14 @@ import math
 
 import numpy as np
 
-from ..formats.scaling_json import scaling_json
+from ..formats._json import json_text
+from ..formats.scaling_json import scaling_summary
 from ..units import display
+from ..workflows.scaling import TAIL_DELTA_AIC
 from .files import csv_text, figure_bytes
 from .report import Section, stem
 
-__all__ = ["reduction_files", "scaling_files", "scaling_section", "TABLE_I"]
+__all__ = ["reduction_files", "scaling_files", "scaling_section", "scaling_text", "scaling_data", "tail_shape_spread", "TABLE_I"]
 
 
 def reduction_files(series, reduced, figures: bool = True, prefix: str = "") -> dict[str, bytes | str]:
@@ -41,6 +43,7 @@ def reduction_files(series, reduced, figures: bool = True, prefix: str = "") -> 
             "whole_record_peak_force_N",
             "whole_record_time_of_peak_s",
             "whole_record_duration_s",
+            *TAIL_COLUMNS,
         )
     }
     reduction_cols = list(cols)[4:]
@@ -98,6 +101,7 @@ def reduction_files(series, reduced, figures: bool = True, prefix: str = "") -> 
             ("whole_record_peak_force_N", r.whole_fit.peak_force if r.whole_fit is not None else math.nan),
             ("whole_record_time_of_peak_s", r.whole_fit.time_of_peak if r.whole_fit is not None else math.nan),
             ("whole_record_duration_s", r.whole_fit.duration if r.whole_fit is not None else math.nan),
+            *tail_shape_spread(getattr(item, "tail_shapes", ())).items(),
         ):
             cols[k].append(v)
         files[f"{prefix}history-{stem(t.name)}.csv"] = csv_text({"time_s": r.time, "force_N": r.force})
@@ -109,6 +113,56 @@ def reduction_files(series, reduced, figures: bool = True, prefix: str = "") -> 
     return files
 
 
+TAIL_COLUMNS = ("tail_best_family", "tail_families_not_rejected", "tail_shape_peak_force_N", "tail_shape_time_of_peak_s", "tail_shape_duration_s")
+
+
+def tail_shape_spread(shapes) -> dict:
+    """One test's tail-shape columns for tests.csv: the best tail family by AIC, those within
+    TAIL_DELTA_AIC of it, and half the range of their F0 [N], t_F0, T [s] (the tail_shape term)."""
+    if not shapes:
+        return {k: ("" if k.startswith("tail_best") or k.startswith("tail_families") else math.nan) for k in TAIL_COLUMNS}
+    best = min(shapes, key=lambda s: s.aic)
+    ok = [s for s in shapes if s.aic - best.aic < TAIL_DELTA_AIC]
+
+    def half_range(key):
+        v = [getattr(s, key) for s in ok]
+        return 0.5 * (max(v) - min(v))
+
+    return dict(zip(TAIL_COLUMNS, (best.family, " ".join(s.family for s in ok), half_range("peak_force"), half_range("time_of_peak"), half_range("duration"))))
+
+
+def scaling_text(fits) -> str:
+    """The text of scaling.json (:func:`scaling_data`)."""
+    return json_text(scaling_data(fits))
+
+
+def scaling_data(fits) -> dict:
+    """scaling.json (:mod:`softimpact.formats.scaling_json`) with, per group, its ``tail_shape`` term:
+    the tail families' AICs, the best, those not rejected (ΔAIC < TAIL_DELTA_AIC), each family's α's,
+    and per α the half-width added to each side of its 95 % interval, and the widened interval."""
+    data = scaling_summary(fits)
+
+    def term(g):
+        t = g.tail_shape
+        if t is None:
+            return None
+        return {
+            "aic": t.aic,
+            "best": t.best,
+            "not_rejected": list(t.accepted),
+            "delta_aic_threshold": TAIL_DELTA_AIC,
+            "alphas": t.alphas,
+            "half_width": t.half_widths,
+            "ci95_with_tail_shape": {n: list(t.interval(n, line)) for n, line in g.origin.items()},
+        }
+
+    for label, g in fits.items():
+        if label != "pooled":
+            data["groups"][label]["tail_shape"] = term(g)
+    data["pooled"]["tail_shape"] = term(fits["pooled"] if "pooled" in fits else next(iter(fits.values())))
+    return data
+
+
 def _text(items) -> str:
     """Sentences joined for one CSV cell (commas would split it)."""
     return "; ".join(items).replace(",", ";")
@@ -117,7 +171,7 @@ def _text(items) -> str:
 def scaling_files(fits, system: str, figures: bool = True, prefix: str = "") -> dict[str, bytes | str]:
     from . import plots
 
-    files: dict[str, bytes | str] = {prefix + "scaling.json": scaling_json(fits)}
+    files: dict[str, bytes | str] = {prefix + "scaling.json": scaling_text(fits)}
     if figures:
         files[prefix + "fig08-peak-force.png"] = figure_bytes(plots.scaling_peak_force(fits, system))
         files[prefix + "fig09-inverse-duration.png"] = figure_bytes(plots.scaling_duration(fits, system))
@@ -138,7 +192,11 @@ def scaling_section(fits, series, reduced, prefix: str, figures: bool) -> Sectio
         for i, name in enumerate(("alpha1", "alpha2", "alpha3", "alpha4")):
             f = g.origin[name]
             ref = "—" if paper is None or paper[i] is None else f"{paper[i]:.3g}"
-            rows.append([label, name, f"{f.slope:.3f}", f"[{f.slope_ci[0]:.3f}, {f.slope_ci[1]:.3f}]", f"{f.r2:.4f}", ref])
+            widened = ""
+            if g.tail_shape is not None:
+                lo, hi = g.tail_shape.interval(name, f)
+                widened = f"[{lo:.3f}, {hi:.3f}]"
+            rows.append([label, name, f"{f.slope:.3f}", f"[{f.slope_ci[0]:.3f}, {f.slope_ci[1]:.3f}]", f"{f.r2:.4f}", ref, widened])
     fu, tu = display(series.units, "force"), display(series.units, "time")
     vu, iu = display(series.units, "velocity"), display(series.units, "impulse")
     trows = []
@@ -175,6 +233,20 @@ def scaling_section(fits, series, reduced, prefix: str, figures: bool) -> Sectio
         "(d'Alembert, exact for the non-dispersive bar), so pulses longer than the reflection return time 2(L−x)/c are handled. "
         "T comes from a least-squares fit of eq (15) to the main pulse; I integrates the whole history, tail included.",
     ]
+    terms = [(label, g.tail_shape) for label, g in fits.items() if g.tail_shape is not None]
+    if terms:
+        paragraphs.append(
+            "The tail's shape is not known, and where the tail ramps in under the falling main pulse it moves T and tF0. Four "
+            "tail families (a knee with an exponential decay; a tail ramping in under the main pulse then decaying "
+            "exponentially, linearly or as a power law) are fitted to every record and ranked by AIC; the families within "
+            f"ΔAIC < {TAIL_DELTA_AIC:g} of the best are not rejected, and the largest distance of their α's from the reported "
+            "ones is added to each side of the 95 % interval (last column; tail_shape in scaling.json, per test in tests.csv): "
+            + "; ".join(
+                f"{label}: best {t.best}, not rejected {', '.join(t.accepted)}, α2 ±{t.half_widths['alpha2']:.3f}, α3 ±{t.half_widths['alpha3']:.3f}"
+                for label, t in terms
+            )
+            + "."
+        )
     if series.synthetic:
         paragraphs.insert(0, "SYNTHETIC DATA: " + series.synthetic + ". The paper's own figure data are not available.")
     return Section(
@@ -184,7 +256,7 @@ def scaling_section(fits, series, reduced, prefix: str, figures: bool) -> Sectio
             (f"Reduced tests ({fu.label}, {tu.label}, {iu.label})", ["test", f"V [{vu.label}]", "F0", "tF0", "T", f"I [{iu.label}]", "flags"], trows),
             (
                 "Table I: scaling constants fitted through the origin, with 95 % intervals, beside the paper's",
-                ["group", "constant", "fitted", "95 % interval", "R²", "paper (Table I)"],
+                ["group", "constant", "fitted", "95 % interval", "R²", "paper (Table I)", "95 % with tail shape"],
                 rows,
             ),
         ],

@@ -89,6 +89,17 @@ class ModelLadder:
             self.models[level] = BeamModel(problem, patch_radius=self.reach, outputs="strain")
         return self.models[level]
 
+    def one_factor(self, level: int) -> tuple[BeamModel, BeamModel]:
+        """Level ``level`` with its mesh only, and with its time step only, refined by ``ratio``
+        (the one-factor refinements that tell whether mesh and step errors cancel along the ladder)."""
+        key = ("one-factor", level)
+        if key not in self.models:
+            base = self(level).problem
+            self.models[key] = tuple(
+                BeamModel(refine_beam(base, self.ratio, space=space, time=not space), patch_radius=self.reach, outputs="strain") for space in (True, False)
+            )
+        return self.models[key]
+
     def engine_seconds(self, level: int) -> float:
         """Predicted cost of level's response engine [s]: its back-substitutions (steps × gauges)
         at SOLVE_RATE; a level above 0 scales level 0's by ratio⁴ (DOFs ratio², band ratio,
@@ -107,7 +118,7 @@ class ModelLadder:
 
     def finest(self) -> BeamModel:
         """The finest level built so far."""
-        return self(max((k for k in self.models if k >= 0), default=0))
+        return self(max((k for k in self.models if isinstance(k, int) and k >= 0), default=0))
 
     def describe(self, level: int) -> dict:
         """Mesh and step of a level (SI)."""
@@ -124,9 +135,12 @@ def parameter_convergence(models: ModelLadder, measured, start, cal, contact_tim
     """How the calibrated parameters themselves converge: the least-squares fits on the level
     used and the two below it (those the check made are reused; cheap engines: the data, and so
     the noise, are the same in all three fits, so their differences are discretisation), then
-    Richardson on each parameter (workflows/convergence). Returns name → (95 % discretisation
-    uncertainty of the value at the level used, the convergence record); {} when fewer than
-    three levels exist."""
+    Richardson on each parameter (workflows/convergence), with the fits on the coarsest of the
+    three refined in mesh only and in time step only, and the steps of its time grid in the
+    rise t_F0 fitted on the finest level: the same rule of the asymptotic range as ``converge`` (Fs = 1.25 only when
+    the order is near 2, the one-factor refinements agree in sign and the rise has ≥ 10 steps;
+    Fs = 3 otherwise). Returns name → (95 % discretisation uncertainty of the value at the level
+    used, the convergence record); {} when fewer than three levels exist."""
     level = cal.check.level
     ladder = (level - 2, level - 1, level) if level >= 1 else (-2, -1, 0)
     fits = dict(cal.check.level_fits)
@@ -139,13 +153,24 @@ def parameter_convergence(models: ModelLadder, measured, start, cal, contact_tim
         except InputError:  # a mesh that cannot be coarsened, or a level too coarse to fit
             return {}
         fits[k] = tuple(getattr(c, n) for n in MAIN)
+    sides = []
+    for m in models.one_factor(ladder[0]):
+        try:
+            c = calibrate(m, measured, cal.pulse, "least-squares", contact_time=contact_time, radius=cal.contact_radius, fit_radius=fit_radius)
+        except InputError:
+            sides = []
+            break
+        sides.append(tuple(getattr(c, n) for n in MAIN))
+    # the rise as the finest fit sees it (a coarse level's own t_F0 is inflated by its error), in the coarsest level's steps
+    rise_steps = fits[ladder[-1]][1] / models(ladder[0]).problem.solver.time_step
     out = {}
     for i, name in enumerate(MAIN):
         values = [fits[k][i] for k in ladder]
-        conv = richardson(values, float(models.ratio), 2.0, name)
+        space, time = (sides[0][i], sides[1][i]) if sides else (None, None)
+        conv = richardson(values, float(models.ratio), 2.0, name, space=space, time=time, rise_steps=rise_steps)
         if conv.status == "converged to round-off":
             u95 = 0.0
-        elif conv.status == "asymptotic":
+        elif conv.status in ("asymptotic", "monotone"):
             u95 = conv.safety_factor * abs(values[-1] - conv.extrapolated)
         else:  # oscillatory, diverging: half the range, with the assumed order's safety
             u95 = ASSUMED_ORDER_SAFETY * 0.5 * (max(values) - min(values))
@@ -170,6 +195,7 @@ def with_parameter_convergence(models, measured, start, cal, contact_time, fit_r
         parameter_orders=orders,
         parameter_uncertainty_95={name: u for name, (u, _) in conv.items()},
         parameter_status={name: c.status for name, (_, c) in conv.items()},
+        parameter_safety={name: c.safety_factor for name, (_, c) in conv.items()},
     )
     return replace(cal, standard_errors=se, check=check)
 
@@ -230,7 +256,8 @@ def calibrate_tests(
 
 def calibration_gates(items: list[CalibratedTest]) -> tuple[Gate, ...]:
     """Quality checks of each calibrated test: residual against the noise, a pulse that is
-    not degenerate (:func:`softimpact.gates.pulse_skew`), the optimiser's own status."""
+    not degenerate (:func:`softimpact.gates.pulse_skew`), the optimiser's own status, and no
+    parameter on a bound of the least-squares search (``bounds[name]``, naming it)."""
     gates = []
     for item in items:
         c, name = item.calibration, item.test.name
@@ -248,6 +275,14 @@ def calibration_gates(items: list[CalibratedTest]) -> tuple[Gate, ...]:
         )
         gates.append(pulse_skew(name, c.time_of_peak, c.duration))
         gates.append(passed_if(f"optimiser[{name}]", c.converged, f"{name}: the {c.method} fit did not converge ({c.message})"))
+        gates.append(
+            passed_if(
+                f"bounds[{name}]",
+                not c.at_bounds,
+                f"{name}: the fit ended on the bound of {', '.join(c.at_bounds)}: the estimate is the edge of the search, not a minimum "
+                "(the data do not fix it; check the velocity, the gauges and the contact time)",
+            )
+        )
     return tuple(gates)
 
 

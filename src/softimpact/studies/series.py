@@ -21,16 +21,27 @@ The series and its tests are read duck-typed (``tests``, ``bar``, ``gauge_positi
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
+from functools import cached_property
 
 from ..errors import InputError
 from ..fem.bar import Rod
 from ..gates import Gate, at_most, pulse_skew
 from ..workflows.conditioning import Conditioned, condition_record
-from ..workflows.reduction import Record, Reduction, reduce_record
-from ..workflows.scaling import ScalingFit, TestPoint, fit_groups
+from ..workflows.reduction import Record, Reduction, fit_tail_shapes, reduce_record
+from ..workflows.scaling import ScalingFit, TestPoint, fit_groups, tail_shape_term
 
-__all__ = ["ReducedTest", "MAX_PULSE_MISFIT", "REJECTING_FLAGS", "condition", "reduce_series", "failed_reductions", "fit_series", "reduction_gates"]
+__all__ = [
+    "ReducedTest",
+    "MAX_PULSE_MISFIT",
+    "REJECTING_FLAGS",
+    "condition",
+    "reduce_series",
+    "failed_reductions",
+    "fit_series",
+    "with_tail_shapes",
+    "reduction_gates",
+]
 
 MAX_PULSE_MISFIT = 0.2  # RMS residual of the eq-15 fit / F0: above, T and tF0 do not describe the pulse
 REJECTING_FLAGS = ("clipped", "double hit", "no pulse")  # conditioning flags that keep a test out of the fit
@@ -60,6 +71,19 @@ class ReducedTest:
     def fitted(self) -> bool:
         """Reduced, and either not flagged or accepted by the user."""
         return self.reduction is not None and (not self.rejected or self.test.accept_flagged)
+
+    @cached_property
+    def tail_shapes(self) -> tuple:
+        """The tail families fitted to the reduced force up to where the record holds it
+        (:func:`softimpact.workflows.reduction.fit_tail_shapes`); () when not reduced."""
+        r = self.reduction
+        if r is None or getattr(r, "time", None) is None:  # no history to fit (a reduction read back without one)
+            return ()
+        keep = r.time <= r.valid_until
+        try:
+            return fit_tail_shapes(r.time[keep], r.force[keep])
+        except (InputError, ValueError):
+            return ()
 
     @property
     def status(self) -> str:
@@ -143,7 +167,29 @@ def fit_series(reduced: Sequence[ReducedTest]) -> dict[str, ScalingFit]:
     ]
     if not points:
         raise InputError("fit: no test of the series could be reduced unflagged (accept_flagged = true in a [[test]] fits a flagged one)")
-    return fit_groups(points)
+    shapes = {r.test.name: r.tail_shapes for r in reduced if r.fitted}
+    return with_tail_shapes(fit_groups(points), shapes)
+
+
+def with_tail_shapes(fits: dict[str, ScalingFit], shapes: dict) -> dict[str, ScalingFit]:
+    """Each group's fit with its tail-shape term (:func:`softimpact.workflows.scaling.tail_shape_term`):
+    ``shapes`` test name → its TailShapeFits (one per family); the group's points refitted with each
+    family's F0, t_F0, T, and the families' AICs summed over the group. Unchanged when a test of the
+    group has no tail fits."""
+    out = {}
+    for label, g in fits.items():
+        per_test = [shapes.get(p.name, ()) for p in g.points]
+        if not all(per_test):
+            out[label] = g
+            continue
+        families = [f.family for f in per_test[0]]
+        family_points = {
+            fam: [replace(p, peak_force=s[k].peak_force, time_of_peak=s[k].time_of_peak, duration=s[k].duration) for p, s in zip(g.points, per_test)]
+            for k, fam in enumerate(families)
+        }
+        aic = {fam: float(sum(s[k].aic for s in per_test)) for k, fam in enumerate(families)}
+        out[label] = replace(g, tail_shape=tail_shape_term(g, family_points, aic))
+    return out
 
 
 def reduction_gates(reduced: Sequence[ReducedTest]) -> tuple[Gate, ...]:

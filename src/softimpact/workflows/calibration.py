@@ -44,12 +44,32 @@ from ..models.noise import white_noise_sigma
 from ..models.pulse_fit import fit_pulse as fit_eq15
 from ..models.pulses import SkewedPulse, TabulatedPulse
 
-__all__ = ["Measured", "Prepared", "Calibration", "ModelCheck", "prepare", "calibrate", "calibrate_checked", "METHODS"]
+__all__ = ["Measured", "Prepared", "Calibration", "ModelCheck", "prepare", "calibrate", "calibrate_checked", "on_bounds", "METHODS", "BOUND_TOLERANCE"]
 
 METHODS = ("least-squares", "paper", "deconvolve")
 WEAK_CORRELATION = 0.9  # |correlation| of two estimates beyond which they are called weakly identifiable
 NOISE_FLOOR = 1e-4  # of a gauge's peak |strain|: the least noise assumed (a 14-bit digitiser's step)
 DEPARTURE_SIGMAS = 6.0  # a gauge "leaves the noise" at this many σ of its pre-impact part
+BOUND_TOLERANCE = 0.01  # a parameter within 1 % of a bound (of the bound's size, or of the range for a bound at 0) sits on it
+
+
+def on_bounds(names, x, lower, upper, active=None) -> tuple[str, ...]:
+    """The names of the parameters ``x`` that sit on a bound: flagged active by the optimiser
+    (``active``, scipy's ``active_mask``), or within BOUND_TOLERANCE of the bound (relative to
+    |bound|, or to the range when the bound is 0). An estimate on its bound is not a minimum
+    of the misfit but the edge of the search: its standard error means nothing."""
+    out = []
+    for i, n in enumerate(names):
+        lo, hi, v = float(lower[i]), float(upper[i]), float(x[i])
+        span = hi - lo if math.isfinite(hi - lo) else math.inf
+        hit = active is not None and active[i] != 0
+        for b in (lo, hi):
+            if math.isfinite(b):
+                scale = abs(b) if b != 0 else (span if math.isfinite(span) else 1.0)
+                hit = hit or abs(v - b) <= BOUND_TOLERANCE * scale
+        if hit:
+            out.append(n)
+    return tuple(out)
 
 
 @dataclass(frozen=True)
@@ -101,7 +121,8 @@ class ModelCheck:
     level_fits: dict = field(default_factory=dict)  # level → (F0, t_F0, T) of its least-squares fit in the check
     parameter_orders: dict = field(default_factory=dict)  # observed order of each parameter's convergence (app)
     parameter_uncertainty_95: dict = field(default_factory=dict)  # its 95 % discretisation uncertainty (app)
-    parameter_status: dict = field(default_factory=dict)  # asymptotic, oscillatory, ... (app)
+    parameter_status: dict = field(default_factory=dict)  # asymptotic, monotone, oscillatory, ... (app)
+    parameter_safety: dict = field(default_factory=dict)  # Roache's factor behind each parameter's uncertainty (1.25 or 3)
 
 
 @dataclass(frozen=True)
@@ -125,6 +146,7 @@ class Calibration:
     check: ModelCheck | None = None  # the discretisation check, when the model was checked
     regularisation: object = None  # deconvolve: the LambdaChoice (λ, rule, curve, reason)
     correlations: dict = field(default_factory=dict)  # least squares: "a~b" → correlation of the estimates, for |r| ≥ 0.5
+    at_bounds: tuple = ()  # least squares: the parameters that ended on (or within BOUND_TOLERANCE of) a bound of the fit
 
     @property
     def weakly_identified(self) -> list[str]:
@@ -403,6 +425,7 @@ def _least_squares(model, prep, start, r0, fit_radius, fit_origin, defect=None):
                     correlations[f"{names[i]}~{names[j]}"] = float(corr[i, j])
     except np.linalg.LinAlgError:
         se = {}
+    at_bounds = on_bounds(names[:n_main], sol.x[:n_main], lo[:n_main], hi[:n_main], sol.active_mask[:n_main])
     F0, tp, T, r, shift, offs = unpack(sol.x)
     pulse = SkewedPulse(F0, tp, T)
     comp = _strains(model, pulse, r) - (0.0 if defect is None else defect)
@@ -422,6 +445,7 @@ def _least_squares(model, prep, start, r0, fit_radius, fit_origin, defect=None):
         start,
         time=tm,
         correlations=correlations,
+        at_bounds=at_bounds,
     )
 
 

@@ -21,6 +21,27 @@ Science and Engineering*, ch. 5; Celik et al. 2008, *J. Fluids Eng.* 130,
 - with only two levels p cannot be observed: the formal order is assumed and
   Fs = 3.
 
+Fs = 1.25 is Roache's factor for a sequence shown to be in the asymptotic range;
+a monotone sequence is not shown so by its diagonal alone. When mesh and time
+step are refined together their errors may have opposite signs and cancel along
+the diagonal, and the "observed order" is then a coincidence (a t_F0 ladder with
+p = 1.89 whose error was 1.3 × its GCI). So a monotone sequence is called
+``asymptotic`` only when
+
+1. the observed order is near the formal one, |p − p_formal| ≤ NEAR_FORMAL·p_formal
+   (when a formal order is given);
+2. the two one-factor refinements of the coarsest of the three finest levels —
+   mesh only (``space``) and time step only (``time``), each by r — move the output
+   the same way: ⟨f_space − f1, f_time − f1⟩ ≥ 0, or the smaller of the two moves is
+   under CANCELLATION of the larger (it cannot cancel the other); skipped when not
+   given (a ladder in one factor only has nothing to cancel);
+3. the coarsest of the three levels resolves the pulse rise with at least
+   MIN_RISE_STEPS time steps (``rise_steps``, when given).
+
+Otherwise the status is ``monotone``: Fs = 3, and the order used in the
+extrapolation and the GCI is min(p, p_formal) (a larger observed order would
+shrink the estimate below what the scheme promises).
+
 The ratio R = ε32/ε21 classifies the sequence (the ``status``):
 
 - ``asymptotic``: 0 < R < 1, monotone convergence;
@@ -54,6 +75,7 @@ __all__ = [
     "OutputConvergence",
     "ConvergenceStudy",
     "richardson",
+    "one_factor_agreement",
     "convergence_study",
     "observed_order",
     "study_case",
@@ -62,9 +84,14 @@ __all__ = [
 SAFETY_THREE_LEVELS = 1.25  # Roache's factor of safety when p is observed from three levels
 SAFETY_TWO_LEVELS = 3.0  # ... and when p is only assumed (two levels)
 ROUNDOFF = 1e-12  # differences below this fraction of the value are round-off, not discretisation error
+NEAR_FORMAL = 0.25  # |p − p_formal| ≤ 0.25·p_formal: observed order "near" the formal one (1.5–2.5 for a second-order scheme)
+CANCELLATION = 0.1  # a one-factor move under 10 % of the other cannot cancel it along the diagonal
+MIN_RISE_STEPS = 10  # fewer time steps in the pulse rise on the coarsest level: not in the asymptotic range
 
 STATUSES = {
-    "asymptotic": "monotone convergence; p observed from the three finest levels",
+    "asymptotic": "monotone convergence, p near the formal order, mesh-only and step-only refinements agree in sign; safety factor 1.25",
+    "monotone": "monotone convergence not shown to be asymptotic (order far from formal, errors of mesh and step of opposite signs, "
+    "or too few steps in the pulse rise); safety factor 3",
     "oscillatory": "differences change sign: extrapolation not trusted, uncertainty = half the range",
     "diverging": "differences do not shrink with refinement",
     "converged to round-off": "differences are at round-off level",
@@ -106,8 +133,9 @@ class OutputConvergence:
 
     @property
     def reliable(self) -> bool:
-        """Whether the extrapolation can be trusted (monotone convergence or round-off)."""
-        return self.status in ("asymptotic", "converged to round-off")
+        """Whether the extrapolation can be trusted (monotone convergence, its GCI with the safety
+        factor its evidence allows, or round-off)."""
+        return self.status in ("asymptotic", "monotone", "converged to round-off")
 
 
 @dataclass(frozen=True)
@@ -143,12 +171,42 @@ def observed_order(coarse, medium, fine, ratio: float) -> float:
     return math.log(na / nb) / math.log(ratio)
 
 
-def richardson(values, ratio: float, formal_order: float | None = None, name: str = "") -> OutputConvergence:
+def one_factor_agreement(base, space, time) -> tuple[bool, str]:
+    """Whether refining the mesh only (``space``) and the time step only (``time``) from
+    ``base`` move the output the same way (module docstring, rule 2); and a sentence.
+    Scalars or histories on a common grid (sign of the inner product)."""
+    b = np.asarray(base, float)
+    ds, dt = np.asarray(space, float) - b, np.asarray(time, float) - b
+    if not (np.all(np.isfinite(ds)) and np.all(np.isfinite(dt))):
+        return False, "a one-factor refinement is not finite"
+    history = b.ndim > 0
+    norm = _rms if history else (lambda x: abs(float(x)))
+    ns, nt = norm(ds), norm(dt)
+    dot = float(np.mean(ds * dt)) if history else float(ds * dt)
+    if dot >= 0 or min(ns, nt) < CANCELLATION * max(ns, nt):
+        return True, f"mesh-only and step-only refinements move it by {ns:.3g} and {nt:.3g}, not against each other"
+    return False, f"mesh-only and step-only refinements move it in opposite directions ({ns:.3g} vs {nt:.3g}): they cancel along the diagonal"
+
+
+def richardson(
+    values,
+    ratio: float,
+    formal_order: float | None = None,
+    name: str = "",
+    *,
+    space=None,
+    time=None,
+    rise_steps: float | None = None,
+) -> OutputConvergence:
     """Observed order, Richardson extrapolation, errors and GCI of a sequence coarse → fine.
 
     ``values``: (n_levels,) scalars or (n_levels, n_t) histories on a common
     grid, n_levels ≥ 2; the three finest levels are used (with two, the
     ``formal_order`` must be given). ``ratio``: the constant refinement ratio r > 1.
+    ``space`` / ``time``: the output of the coarsest of the three finest levels with
+    only its mesh / only its time step refined by r (same shape as a level);
+    ``rise_steps``: time steps in the pulse rise on that level. With them the
+    sequence is called asymptotic only by the rules of the module docstring.
     """
     v = np.asarray(values, dtype=float)
     if v.ndim not in (1, 2):
@@ -252,14 +310,29 @@ def richardson(values, ratio: float, formal_order: float | None = None, name: st
             "oscillatory",
             f"ε32/ε21 = {R:.3g} < 0: oscillatory convergence; finest level kept, uncertainty ±{half_range:.3g} (half the range); |R| would give p = {p:.3g}",
         )
+    doubts = []
+    if formal_order is not None and abs(p - formal_order) > NEAR_FORMAL * formal_order:
+        doubts.append(f"observed order {p:.3g} far from the formal {formal_order:g}")
+    if space is not None and time is not None:
+        agree, why = one_factor_agreement(f1, space, time)
+        if not agree:
+            doubts.append(why)
+    if rise_steps is not None and rise_steps < MIN_RISE_STEPS:
+        doubts.append(f"the coarsest level has {rise_steps:.3g} time steps in the pulse rise (< {MIN_RISE_STEPS})")
+    status = "monotone" if doubts else "asymptotic"
+    if doubts:
+        fs = SAFETY_TWO_LEVELS
+        if formal_order is not None:
+            p_use = min(p, formal_order)
+            rp = ratio**p_use
     ext = f3 + e32 / (rp - 1)
     gci_f = fs * rel(e32) / (rp - 1)
     gci_c = fs * (norm(e21) / (norm(f2) or scale)) / (rp - 1)
     asym = gci_c / (rp * gci_f) if gci_f > 0 else math.nan
     msg = f"observed order {p:.3g}; GCI of the finest level {gci_f:.3g}"
-    if formal_order is not None and abs(p - formal_order) > 0.5 * formal_order:
-        msg += f" (formal order {formal_order:g}: not yet in the asymptotic range?)"
-    return result(p, ext, gci_f, gci_c, asym, fs, "asymptotic", msg)
+    if doubts:
+        msg += f" with safety factor {fs:g}: not shown asymptotic ({'; '.join(doubts)})"
+    return result(p, ext, gci_f, gci_c, asym, fs, status, msg)
 
 
 def convergence_study(
@@ -268,12 +341,20 @@ def convergence_study(
     ratio: float,
     formal_order: float | None = None,
     progress: Callable[[int, object], None] | None = None,
+    *,
+    one_factor: Callable[[], tuple[dict, dict] | None] | None = None,
+    rise_steps: Callable[[dict], float | None] | None = None,
 ) -> ConvergenceStudy:
     """Run each level (coarse → fine) and analyse every output it returns.
 
     ``run(level)`` returns {name: float | (n_t,) array}; every level must return
     the same names and, for a history, the same number of samples (a common
     grid). ``ratio`` is the constant refinement ratio between consecutive levels.
+    ``one_factor()``: the outputs of the coarsest of the three finest levels with its
+    mesh only and its time step only refined by ``ratio`` (two dicts like ``run``'s;
+    None when the run cannot separate them); ``rise_steps(outputs)``: the time steps in
+    the pulse rise on that level, from its outputs. Both feed :func:`richardson`'s
+    test of the asymptotic range.
     """
     levels = tuple(levels)
     if len(levels) < 2:
@@ -287,12 +368,18 @@ def convergence_study(
     for i, o in enumerate(outs[1:], 1):
         if tuple(o) != names:
             raise InputError(f"run: level {levels[i]!r} returned outputs {tuple(o)}, level {levels[0]!r} returned {names}")
+    sides = one_factor() if (one_factor is not None and len(levels) >= 3) else None
+    base = outs[-3] if len(levels) >= 3 else outs[0]
+    steps = rise_steps(base) if (rise_steps is not None and len(levels) >= 3) else None
     results = []
     for name in names:
         rows = [np.asarray(o[name], float) for o in outs]
         if len({r.shape for r in rows}) != 1:
             raise InputError(f"run: output {name!r} has shapes {[r.shape for r in rows]} over the levels (need a common grid)")
-        results.append(richardson(np.stack(rows), ratio, formal_order, name))
+        space, time = (sides[0].get(name), sides[1].get(name)) if sides else (None, None)
+        if space is not None and np.shape(space) != rows[0].shape:
+            space = time = None
+        results.append(richardson(np.stack(rows), ratio, formal_order, name, space=space, time=time, rise_steps=steps))
     return ConvergenceStudy(levels, float(ratio), tuple(results))
 
 
@@ -335,6 +422,44 @@ def study_case(kind, problem, levels: int, ratio: int, progress=None, case_level
         sizes.append({"factor": factors[k], **size, "run_time_s": time.perf_counter() - t0})
         return values
 
-    result = convergence_study(run, range(levels), float(ratio), formal_order=2.0)
+    def one_factor():
+        # From the coarsest of the three finest levels: its mesh refined with its step kept, and
+        # its step refined with its mesh kept (the kind refines both; the solver is swapped back).
+        k = levels - 3
+        base, both = problems[k], problems[k + 1]
+        space, time = _with_solver_of(both, base), _with_solver_of(base, both)
+        if space is None or time is None:
+            return None
+        progress(total, total, "one-factor refinements (mesh only, time step only)")
+        return kind.study(space, factors[k])[0], kind.study(time, factors[k + 1])[0]
+
+    def rise(outputs):
+        t_peak = outputs.get("time_of_peak_s")
+        dt = _time_step(problems[levels - 3])
+        return None if t_peak is None or dt is None or not math.isfinite(float(t_peak)) else float(t_peak) / dt
+
+    result = convergence_study(run, range(levels), float(ratio), formal_order=2.0, one_factor=one_factor, rise_steps=rise)
     progress(total, total, "done")
     return result, sizes
+
+
+def _time_step(problem) -> float | None:
+    solver = getattr(problem, "solver", None)
+    return getattr(solver, "time_step", None)
+
+
+def _with_solver_of(problem, other):
+    """``problem`` with the time step of ``other`` (its ``solver``, and its target's when it has
+    one): a one-factor refinement by duck typing; None when the problem has no solver to swap."""
+    from dataclasses import replace
+
+    try:
+        if hasattr(problem, "target") and hasattr(problem.target, "solver"):
+            out = replace(problem, target=replace(problem.target, solver=other.target.solver))
+        elif hasattr(problem, "solver"):
+            out = replace(problem, solver=other.solver)
+        else:
+            return None
+    except (TypeError, ValueError, AttributeError):  # a derived (property) solver cannot be swapped
+        return None
+    return out

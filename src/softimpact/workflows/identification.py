@@ -34,7 +34,7 @@ m, diameter d and velocity V; and the bar as a :class:`~softimpact.fem.bar.Rod`
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -127,6 +127,8 @@ class IdentifiedLaw:
     rms_per_test: np.ndarray  # rms(F_model − F)/F0 over each main pulse
     cost: float
     identified_on: dict | None = None
+    covariance: np.ndarray | None = None  # (N_PARAMETERS, N_PARAMETERS) of the estimates; zero rows for held parameters
+    at_bounds: tuple = ()  # free parameters that ended on (within 1 % of) a bound of the fit
 
     def law(self, mass: float, diameter: float, velocity: float) -> SoftProjectileLaw | ViscoelasticSoftLaw:
         """The law of one impactor: memoryless when kappa_ref = 0, else with its Maxwell arm."""
@@ -288,8 +290,30 @@ def identify(tests, rod: Rod, d_ref: float | None = None, size_exponent: bool = 
     rms = np.array([math.sqrt(np.mean((f - m) ** 2)) / F0 for f, m, F0 in zip(fits, meas, F0s)])
     v, d = [float(t.velocity) for t in tests], [float(t.diameter) for t in tests]
     ranges = {"velocity_m_s": [min(v), max(v)], "diameter_m": [min(d), max(d)]}
-    law = IdentifiedLaw(PARAMETERS, values, half, d_ref, rms, float(sol.cost), ranges)
+    law = IdentifiedLaw(PARAMETERS, values, half, d_ref, rms, float(sol.cost), ranges, _embed(cov, free), _on_bounds(values, free))
     return law, approaches
+
+
+BOUND_TOLERANCE = 0.01  # a free parameter within 1 % of the bound's size (of the range for a bound at 0) sits on it
+
+
+def _embed(cov: np.ndarray, free) -> np.ndarray:
+    """The free parameters' covariance in the full (N_PARAMETERS, N_PARAMETERS) layout."""
+    out = np.zeros((N_PARAMETERS, N_PARAMETERS))
+    out[np.ix_(free, free)] = cov
+    return out
+
+
+def _on_bounds(values, free) -> tuple[str, ...]:
+    """The free parameters on a bound of LOWER–UPPER: an estimate at the edge of the search."""
+    out = []
+    for i in free:
+        for b in (LOWER[i], UPPER[i]):
+            scale = abs(b) if b != 0 else UPPER[i] - LOWER[i]
+            if abs(values[i] - b) <= BOUND_TOLERANCE * scale:
+                out.append(PARAMETERS[i])
+                break
+    return tuple(out)
 
 
 def pulse_figures(t: np.ndarray, F: np.ndarray) -> tuple[float, float, float]:
@@ -443,7 +467,8 @@ def refine(
     half = np.zeros(N_PARAMETERS)
     half[free] = Z95 * np.sqrt(np.maximum(np.diag(cov), 0.0))
     out = with_values(sol.x)
-    return IdentifiedLaw(PARAMETERS, out.values, half, law.d_ref, law.rms_per_test, 0.5 * float(r @ r), law.identified_on)
+    at_bounds = _on_bounds(out.values, free) if bounded else ()
+    return IdentifiedLaw(PARAMETERS, out.values, half, law.d_ref, law.rms_per_test, 0.5 * float(r @ r), law.identified_on, _embed(cov, free), at_bounds)
 
 
 # --- a reduced bar series as identification tests (reduce → identify → refine → closure) ------------
@@ -489,3 +514,116 @@ def identify_series(rod: Rod, reduced, refined: bool = True, progress=_silent):
     cl = closure(law, tests, rod)
     progress(3, 3, "closure")
     return tests, law, approaches, cl
+
+
+# --- what the data fix: predictive intervals of the pulse, not parameters ± -----------------------
+
+__all__ += ["FIGURES", "PredictedPulse", "unfixed_parameters", "predict_pulses"]
+
+FIGURES = ("peak_force_N", "time_of_peak_s", "duration_s", "impulse_N_s")  # the order of PredictedPulse's arrays
+UNFIXED_HALF_WIDTH = 1.0  # a 95 % half-width beyond the value itself: the data do not fix the parameter
+UNFIXED_CORRELATION = 0.99  # |correlation| beyond which two parameters trade against each other
+
+
+@dataclass(frozen=True)
+class PredictedPulse:
+    """The pulse the identified law predicts on the bar for one impact (m [kg], d [m], V [m/s]).
+
+    ``values`` (4,): F0 [N], t_F0 [s], T [s], I [N·s] (:data:`FIGURES`; as :func:`pulse_shape`).
+    ``half_widths`` (4,): 95 % predictive half-widths, Z95·sqrt(gᵀCg + (s·y)²): g the figure's
+    gradient in the free parameters (forward differences at the diameter's median tested
+    velocity, relative, carried to every velocity of that diameter: the law's scaling), C their
+    covariance, s the RMS relative closure error of that figure over the tests (what the law
+    cannot reproduce). ``parameter_half_widths``: the gᵀCg part alone. ``tested``: a (d, V) of the
+    tests, not an extrapolation.
+    """
+
+    mass: float
+    diameter: float
+    velocity: float
+    tested: bool
+    values: np.ndarray
+    half_widths: np.ndarray
+    parameter_half_widths: np.ndarray
+
+
+def unfixed_parameters(law: IdentifiedLaw) -> tuple[str, ...]:
+    """Free parameters the data do not fix: 95 % half-width above UNFIXED_HALF_WIDTH × |value|, or
+    |correlation| above UNFIXED_CORRELATION with another parameter (they trade against each other;
+    their sum or ratio may be fixed, each alone is not). Each as "name (reason)"."""
+    out = []
+    C = law.covariance
+    sd = np.sqrt(np.maximum(np.diag(C), 0.0)) if C is not None else None
+    for i, (n, v, h) in enumerate(zip(law.names, law.values, law.half_widths)):
+        if not h > 0:
+            continue
+        reasons = []
+        if h > UNFIXED_HALF_WIDTH * abs(v):
+            reasons.append(f"±{h:.2g} on {v:.3g}")
+        if sd is not None and sd[i] > 0:
+            for j in range(len(law.names)):
+                if j != i and sd[j] > 0:
+                    r = C[i, j] / (sd[i] * sd[j])
+                    if abs(r) > UNFIXED_CORRELATION:
+                        reasons.append(f"correlation {r:+.3f} with {law.names[j]}")
+        if reasons:
+            out.append(f"{n} ({'; '.join(reasons)})")
+    return tuple(out)
+
+
+def _point_test(tests, mass: float, diameter: float, velocity: float) -> tuple[BarTest, float]:
+    """A stand-in BarTest for an impact (only m, d, V and the horizon are read) and the expected T:
+    the nearest tested diameter's median test, scaled by the law's d/V."""
+    ref = min(tests, key=lambda t: (abs(t.diameter - diameter), abs(t.velocity - velocity)))
+    scale = (diameter / ref.diameter) * (ref.velocity / velocity)
+    T = pulse_shape(np.asarray(ref.time, float), np.asarray(ref.force, float))[2] * scale
+    horizon = float(ref.time[-1]) * scale
+    return BarTest("point", np.array([0.0, horizon]), np.zeros(2), mass, diameter, velocity), T
+
+
+def _figures(law, test, structure, steps, T) -> np.ndarray:
+    h = _simulate(law, test, structure, steps, T)
+    F0, tp, Td, I = pulse_shape(h.time, h.force)
+    return np.array([F0, tp, Td, I])
+
+
+def predict_pulses(
+    law: IdentifiedLaw, tests, rod: Rod, closure: Closure, points=(), steps_per_pulse: int = REFINE_STEPS_PER_PULSE
+) -> tuple[PredictedPulse, ...]:
+    """F0, t_F0, T, I with 95 % predictive intervals (:class:`PredictedPulse`) at every tested
+    (m, d, V) and at the requested ``points`` ((mass [kg], diameter [m], velocity [m/s]), ...).
+    One coupled bar run per point, plus one per free parameter per diameter for the gradient."""
+    tests = tuple(tests)
+    structure = _rod_structure(rod)
+    C = law.covariance if law.covariance is not None else np.diag((law.half_widths / Z95) ** 2)
+    free = [i for i in range(N_PARAMETERS) if C[i, i] > 0]
+    Cf = C[np.ix_(free, free)]
+    # what the law cannot reproduce, per figure: RMS relative closure error (F0, t_F0, T, I)
+    e = closure.errors
+    tp_err = closure.peak_time_errors if closure.peak_times is not None else np.zeros(len(closure.names))
+    misfit = np.sqrt(np.mean(np.column_stack((e[:, 0], tp_err, e[:, 1], e[:, 2])) ** 2, axis=0))
+    tested = [(t.mass, t.diameter, t.velocity, True) for t in tests]
+    wanted = tested + [(float(m), float(d), float(V), False) for m, d, V in points]
+    gradients: dict[float, np.ndarray] = {}
+    out = []
+    for m, d, V, is_test in wanted:
+        stand_in, T = _point_test(tests, m, d, V)
+        y = _figures(law, stand_in, structure, steps_per_pulse, T)
+        if d not in gradients:
+            # relative gradient at the diameter's median tested velocity (or at this point for a new diameter)
+            same = sorted((t for t in tests if t.diameter == d), key=lambda t: t.velocity)
+            at, T_at = (_point_test(tests, same[len(same) // 2].mass, d, same[len(same) // 2].velocity)) if same else (stand_in, T)
+            y0 = _figures(law, at, structure, steps_per_pulse, T_at)
+            G = np.empty((4, len(free)))
+            for k, i in enumerate(free):
+                step = 1e-3 * max(abs(law.values[i]), 0.1)
+                v = law.values.copy()
+                v[i] += step
+                G[:, k] = (_figures(replace(law, values=v), at, structure, steps_per_pulse, T_at) / y0 - 1.0) / step
+            gradients[d] = G
+        G = gradients[d]
+        rel_par = np.sqrt(np.maximum(np.einsum("ik,kl,il->i", G, Cf, G), 0.0))
+        par = Z95 * rel_par * np.abs(y)
+        total = Z95 * np.sqrt(rel_par**2 + misfit**2) * np.abs(y)
+        out.append(PredictedPulse(m, d, V, is_test, y, total, par))
+    return tuple(out)

@@ -34,10 +34,15 @@ __all__ = [
     "REGRESSORS",
     "MIN_VELOCITY_SPREAD",
     "MAX_RELATIVE_RESIDUAL",
+    "TAIL_DELTA_AIC",
+    "TailShapeTerm",
+    "tail_shape_term",
 ]
 
 MIN_VELOCITY_SPREAD = 0.1  # (V_max − V_min)/mean V of a group: below, a law in V is not determined by its tests
 MAX_RELATIVE_RESIDUAL = 0.3  # RMS residual / RMS response of a law: above, the straight line does not describe the tests
+# tail families within this ΔAIC of the best are not rejected (Burnham & Anderson 2002: beyond 4, "considerably less support")
+TAIL_DELTA_AIC = 4.0
 
 
 @dataclass(frozen=True)
@@ -121,13 +126,38 @@ REGRESSORS = {
 
 
 @dataclass(frozen=True)
+class TailShapeTerm:
+    """What the tail's shape leaves undecided in α1–α4 of a group of tests.
+
+    Each tail family (``aic``: family → AIC summed over the group's tests) gives its own main
+    pulses and so its own α's (``alphas``: family → {α name → value}). The families within
+    TAIL_DELTA_AIC of the best (``accepted``) describe the records about equally well; the
+    ``half_widths`` (α name → half-width) are the largest distance of their α's from the reported
+    one, added to each side of its 95 % interval (a systematic range, not a random error: added
+    linearly, not in quadrature)."""
+
+    aic: dict
+    best: str
+    accepted: tuple[str, ...]
+    alphas: dict
+    half_widths: dict
+
+    def interval(self, name: str, line: LineFit) -> tuple[float, float]:
+        """The 95 % interval of α ``name`` widened by the tail-shape term."""
+        hw = self.half_widths.get(name, 0.0)
+        return (line.slope_ci[0] - hw, line.slope_ci[1] + hw)
+
+
+@dataclass(frozen=True)
 class ScalingFit:
-    """α1–α4 of one group of tests, through the origin and affine."""
+    """α1–α4 of one group of tests, through the origin and affine; ``tail_shape``: the tail-shape
+    ambiguity of its α's (:class:`TailShapeTerm`), when the records were fitted with several tails."""
 
     label: str
     points: tuple[TestPoint, ...]
     origin: dict  # name → LineFit
     affine: dict  # name → LineFit (absent where fewer than 3 tests)
+    tail_shape: TailShapeTerm | None = None
 
     def law(self) -> ScalingLaw:
         """The fitted constants as an empirical model (eqs 4–7)."""
@@ -164,6 +194,17 @@ def fit_groups(points) -> dict[str, ScalingFit]:
     if len(groups) > 1:
         fits["pooled"] = fit_scaling(points, "pooled")
     return fits
+
+
+def tail_shape_term(fit: ScalingFit, family_points: dict, aic: dict) -> TailShapeTerm:
+    """The tail-shape term of ``fit``'s α's (:class:`TailShapeTerm`): ``family_points`` family →
+    the group's TestPoints with that family's F0, t_F0, T (I is the whole record's in all);
+    ``aic`` family → total AIC. The α's of each family are fitted as ``fit``'s (through the origin)."""
+    best = min(aic, key=aic.get)
+    accepted = tuple(f for f in aic if aic[f] - aic[best] < TAIL_DELTA_AIC)
+    alphas = {f: {n: line.slope for n, line in fit_scaling(pts, fit.label).origin.items()} for f, pts in family_points.items()}
+    half = {n: max(abs(alphas[f][n] - fit.origin[n].slope) for f in accepted) for n in fit.origin}
+    return TailShapeTerm(dict(aic), best, accepted, alphas, half)
 
 
 def fit_gates(fits: dict[str, ScalingFit]) -> tuple[Gate, ...]:
