@@ -42,6 +42,7 @@ DIMENSIONS = {
     "force": "[length] * [mass] / [time] ** 2",
     "impulse": "[length] * [mass] / [time]",
     "energy": "[length] ** 2 * [mass] / [time] ** 2",
+    "toughness": "[mass] / [time] ** 2",  # energy per area (fracture toughness G_c)
     "voltage": "[mass] * [length] ** 2 / [time] ** 3 / [current]",
     "frequency": "1 / [time]",
     "dimensionless": "dimensionless",
@@ -217,6 +218,7 @@ SI_UNITS = {
     "force": "N",
     "impulse": "N*s",
     "energy": "J",
+    "toughness": "J/m^2",
     "voltage": "V",
     "frequency": "Hz",
     "dimensionless": "dimensionless",
@@ -232,6 +234,7 @@ _EXAMPLE = {
     "force": "44 lbf",
     "impulse": "0.01 N*s",
     "energy": "1 J",
+    "toughness": "0.5 kJ/m^2",
     "voltage": "5 V",
     "frequency": "1 kHz",
     "dimensionless": "0.3",

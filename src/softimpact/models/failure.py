@@ -24,44 +24,30 @@ proportion to the load: the threshold velocity is where it first reaches 1.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
 from ..errors import InputError
-from .laminate import ply_stiffness, reduced_stiffness
+from .laminate import PLIES, STRENGTH_KEYS, PlyStrength, ply_stiffness, reduced_stiffness
 
-__all__ = ["CRITERIA", "PlyStrength", "STRENGTHS", "ply_stresses", "failure_indices", "davies_zhang_force"]
+__all__ = ["CRITERIA", "PlyStrength", "STRENGTHS", "strength_of", "ply_stresses", "failure_indices", "davies_zhang_force"]
 
 CRITERIA = ("max_strain", "tsai_wu", "hashin")
 
 
-@dataclass(frozen=True)
-class PlyStrength:
-    """Strengths of a ply [Pa]: fibre tension/compression X_t, X_c, transverse Y_t, Y_c,
-    in-plane shear S12, transverse shear S23, and the mode-II toughness G_IIc [J/m²]."""
-
-    Xt: float
-    Xc: float
-    Yt: float
-    Yc: float
-    S12: float
-    S23: float
-    GIIc: float
-    source: str = "user input"
-
-    def __post_init__(self):
-        for k in ("Xt", "Xc", "Yt", "Yc", "S12", "S23", "GIIc"):
-            v = getattr(self, k)
-            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
-                raise InputError(f"{k} must be positive, got {v!r}", k)
+# Catalogue strengths by ply name (the catalogue plies carry them: ``PLIES[name].strength``).
+STRENGTHS = {name: p.strength for name, p in PLIES.items() if p.strength is not None}
 
 
-STRENGTHS = {
-    # T300/5208 of Tsai & Hahn (1980), Table 1.5, the usual stand-in for T300/934 (same fibre,
-    # a 177 °C epoxy); G_IIc of a brittle 934-type epoxy laminate (docs/modelling-notes.md).
-    "T300/934": PlyStrength(1500e6, 1500e6, 40e6, 246e6, 68e6, 68e6, 500.0, "Tsai & Hahn 1980 (T300/5208); G_IIc 0.5 kJ/m² representative"),
-}
+def strength_of(ply, where: str = "ply") -> PlyStrength:
+    """The strengths a damage output needs from ``ply``; an InputError naming the missing keys
+    (``where``: the ply's key in the case) when the ply has none (an inline ply without them)."""
+    if ply.strength is None:
+        raise InputError(
+            f"{where}: damage outputs need the ply's strengths; ply {ply.name!r} has none: give {', '.join(STRENGTH_KEYS)} "
+            f"(stresses with units, G_IIc in J/m^2) in its table, or use a catalogue ply ({', '.join(STRENGTHS)})"
+        )
+    return ply.strength
 
 
 def ply_stresses(ply, angles, midplane_strain, curvature, z) -> tuple[np.ndarray, np.ndarray]:
