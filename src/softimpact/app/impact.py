@@ -7,7 +7,7 @@ import time
 import numpy as np
 
 from ..input.impact_case import load_impact_case
-from ..output.impact import impact_files, snapshot_steps
+from ..output.impact import damage_problem, impact_files, snapshot_steps, split_damage
 from ..units import display
 from ..workflows.coupled import impact_model, run_impact
 from . import Outcome, Progress, no_progress
@@ -18,6 +18,7 @@ __all__ = ["impact"]
 def impact(*, case: str, figures: bool = True, progress: Progress = no_progress) -> Outcome:
     """Run an impact case (file or built-in name) on a beam or plate target."""
     problem, inputs = load_impact_case(case)
+    problem = damage_problem(problem)  # + the pseudo-gauges of the damage indices (a layup with strengths)
     t0 = time.perf_counter()
     steps = problem.solver.steps
     model = impact_model(problem)
@@ -26,6 +27,7 @@ def impact(*, case: str, figures: bool = True, progress: Progress = no_progress)
     model, result = run_impact(problem, model, snapshots=snaps)
     progress(steps, steps, "stepping")
     files = impact_files(problem, result, figures, model=model)
+    problem, result, _ = split_damage(problem, result)
     fu, tu, su = (display(problem.units, k) for k in ("force", "time", "strain"))
     peaks = ", ".join(f"{n} {eps[np.argmax(np.abs(eps))] * su.factor:.0f} {su.label}" for n, eps in zip(result.strain_names, result.strain))
     T = "not separated" if not np.isfinite(result.contact_duration) else f"T {result.contact_duration * tu.factor:.1f} {tu.label}"
