@@ -10,8 +10,7 @@ from click.testing import CliRunner
 
 from softimpact.cli import main
 from softimpact.models.failure import failure_indices, interlaminar_shear, strength_of
-from softimpact.models.laminate import PLIES, PlyStrength, ply_stiffness, reduced_stiffness
-
+from softimpact.models.laminate import PLIES, ply_stiffness, reduced_stiffness
 
 PLY = PLIES["T300/934"]
 X = PLY.strength

@@ -24,7 +24,6 @@ proportion to the load: the threshold velocity is where it first reaches 1.
 from __future__ import annotations
 
 import math
-
 from dataclasses import dataclass
 
 import numpy as np
