@@ -2,17 +2,25 @@
 
 from __future__ import annotations
 
+import json
 import time
 
 import numpy as np
 
 from ..input.impact_case import load_impact_case
+from ..models.validity import Validity, warn
 from ..output.impact import damage_problem, impact_files, snapshot_steps, split_damage
 from ..units import display
 from ..workflows.coupled import impact_model, run_impact
 from . import Outcome, Progress, no_progress
 
 __all__ = ["impact"]
+
+
+def _validity(summary: str) -> tuple[dict, tuple]:
+    """The validity ratios and flags of summary.json's text (computed once, where the summary is)."""
+    v = dict(json.loads(summary)["validity"])
+    return v, tuple(v.pop("flags"))
 
 
 def impact(*, case: str, figures: bool = True, progress: Progress = no_progress) -> Outcome:
@@ -27,6 +35,7 @@ def impact(*, case: str, figures: bool = True, progress: Progress = no_progress)
     model, result = run_impact(problem, model, snapshots=snaps)
     progress(steps, steps, "stepping")
     files = impact_files(problem, result, figures, model=model)
+    warn(Validity(*_validity(files["summary.json"])))
     problem, result, _ = split_damage(problem, result)
     fu, tu, su = (display(problem.units, k) for k in ("force", "time", "strain"))
     peaks = ", ".join(f"{n} {eps[np.argmax(np.abs(eps))] * su.factor:.0f} {su.label}" for n, eps in zip(result.strain_names, result.strain))

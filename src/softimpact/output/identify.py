@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..formats.law_json import law_json
+from ..formats.law_json import law_json, projectile_record
 from ..units import display
 from .files import csv_text, figure_bytes
 
@@ -74,7 +74,7 @@ def force_approach_figure(tests, law, approaches, system: str):
 def identify_files(series, tests, law, approaches, closure, figures: bool = True, prefix: str = "") -> dict[str, bytes | str]:
     """law.json, closure.csv, approach-<test>.csv and (optionally) closure-forces.png, force-approach.png."""
     files = {
-        prefix + "law.json": law_json(law, [t.name for t in tests], closure, str(series.path)),
+        prefix + "law.json": law_json(law, [t.name for t in tests], closure, str(series.path), projectile_record(tests)),
         prefix + "closure.csv": csv_text(closure_columns(tests, closure)),
     }
     for a, t in zip(approaches, tests):

@@ -123,6 +123,23 @@ def impact_damage_summary(problem, result, pseudo: dict) -> dict:
     return dmg.summary()
 
 
+def impact_validity(problem, result, damage: dict | None = None):
+    """The envelopes of a coupled run (:mod:`softimpact.models.validity`): the contact law's approach and
+    contact radius against the impactor's size, the target's deflection against its thickness (linear
+    theory), and with ``damage`` (summary.json's) the strains against the ply allowables."""
+    from ..models.validity import allowable_flags, contact_validity, deflection_validity
+
+    d = problem.impactor.diameter
+    v = contact_validity(problem.law_name, float(np.max(result.approach)), float(np.max(result.contact_radius)), d)
+    if problem.on_plate:
+        v += deflection_validity("linear plate theory (FSDT)", float(np.max(np.abs(result.deflection))), problem.target.plate.stack.thickness)
+    else:
+        v += deflection_validity("linear beam theory", float(np.max(np.abs(result.deflection))), problem.target.beam.thickness)
+    if damage is not None:
+        v += allowable_flags("the target's plies", damage["max_strain"])
+    return v
+
+
 def _contact(c) -> dict:
     return {
         "start_s": c.start,
@@ -157,6 +174,7 @@ def impact_summary(problem, result, model=None) -> dict:
     On a plate (``model`` a PlateModel) also ``target``: the plate model and its deflection under the impact.
     With the damage pseudo-gauges (:func:`damage_problem`) also ``damage`` (:func:`impact_damage_summary`)."""
     problem, result, pseudo = split_damage(problem, result)
+    damage = impact_damage_summary(problem, result, pseudo) if pseudo else None
     plate = getattr(problem, "on_plate", False)
     gauges = {}
     for j, (name, eps) in enumerate(zip(result.strain_names, result.strain)):
@@ -198,7 +216,8 @@ def impact_summary(problem, result, model=None) -> dict:
         "newton_iterations": result.newton_iterations,
         "gauges": gauges,
         **({"target": _plate_target(problem, model, result)} if plate and model is not None else {}),
-        **({"damage": impact_damage_summary(problem, result, pseudo)} if pseudo else {}),
+        **({"damage": damage} if damage is not None else {}),
+        "validity": impact_validity(problem, result, damage).summary(),
         "case_SI": problem,
     }
 
