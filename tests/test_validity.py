@@ -211,3 +211,55 @@ def test_a_thin_plate_past_linear_theory_and_its_allowables_is_warned(tmp_path):
     r = _run("plate", tmp_path / "thick.toml", "--out", tmp_path / "thick", "--no-figures")
     assert r.exit_code == 0, r.output
     assert json.loads((tmp_path / "thick" / "summary.json").read_text())["validity"]["flags"] == []
+
+
+def test_an_empirical_history_far_outside_its_velocities_on_a_beam_is_warned(tmp_path):
+    """The long beam under the empirical history of the 1/2-in ball at 20 000 in/s (4x the 1000-5000 in/s of
+    Table I): warned with the velocity and the range; at 2000 in/s, inside it, not."""
+    from softimpact.input.toml import locate
+
+    beam = locate("paper-long-beam").read_text()
+    for v, warned in ((20000, True), (2000, False)):
+        text = beam.replace(
+            'history = { shape = "skewed", peak_force = "44 lbf", time_of_peak = "30 us", duration = "355 us" }',
+            f'history = {{ shape = "empirical", projectile = "rubber-1/2in", velocity = "{v} in/s" }}',
+        )
+        assert "empirical" in text
+        (tmp_path / f"b{v}.toml").write_text(text.replace('duration = "1000 us"', 'duration = "200 us"'))
+        r = _run("beam", tmp_path / f"b{v}.toml", "--out", tmp_path / f"o{v}", "--no-figures")
+        assert r.exit_code == 0, r.output
+        w = [x for x in _warnings(r.output) if "fitted on" in x]
+        assert bool(w) == warned, r.output
+        if warned:
+            assert "load.history.velocity" in w[0] and "outside" in w[0]
+
+
+def test_predict_with_a_users_scaling_json_far_outside_its_range_warns(tmp_path):
+    """`fit` records the velocities and diameters of its tests in scaling.json; `predict` with that file at
+    20 000 in/s, or for a 2-in ball, warns as the built-in constants do; an old file without them warns that
+    the range cannot be checked."""
+    r = _run("fit", "paper-rubber-series", "--out", tmp_path / "fit", "--no-figures")
+    assert r.exit_code == 0, r.output
+    path = tmp_path / "fit" / "scaling.json"
+    data = json.loads(path.read_text())
+    assert data["pooled"]["fitted_on"]["velocity_m_s"] == pytest.approx([1000 * INCH, 5000 * INCH], rel=1e-6)
+    base = ["predict", "--mass", "1.1 g", "--material", "silicone rubber", "--constants", path]
+    far = _run(*base, "--diameter", "0.5 in", "--velocity", "20000 in/s", "--out", tmp_path / "p1", "--no-figures")
+    assert far.exit_code == 0 and any("outside the range" in x for x in _warnings(far.output)), far.output
+    big = _run(*base, "--diameter", "2 in", "--velocity", "2000 in/s", "--out", tmp_path / "p2", "--no-figures")
+    assert big.exit_code == 0 and any("diameter" in x and "fitted on" in x for x in _warnings(big.output)), big.output
+    inside = _run(*base, "--diameter", "0.5 in", "--velocity", "2000 in/s", "--out", tmp_path / "p3", "--no-figures")
+    assert inside.exit_code == 0 and _warnings(inside.output) == [], inside.output
+    for g in [data["pooled"], *data["groups"].values()]:
+        g.pop("fitted_on")
+    (tmp_path / "old.json").write_text(json.dumps(data))
+    old = _run(*base[:-1], tmp_path / "old.json", "--diameter", "0.5 in", "--velocity", "2000 in/s", "--out", tmp_path / "p4", "--no-figures")
+    assert old.exit_code == 0 and any("cannot be checked" in x for x in _warnings(old.output)), old.output
+
+
+def test_predict_hertz_past_its_envelope_warns_with_the_numbers(tmp_path):
+    """`predict --model hertz` for the 1/2-in rubber ball at 5000 in/s: the approach α_max = (5mV²/4K)^(2/5)
+    is above the ball's diameter; warned with the ratio."""
+    r = _run("predict", "--projectile", "rubber-1/2in", "--velocity", "5000 in/s", "--model", "hertz", "--out", tmp_path / "p", "--no-figures")
+    assert r.exit_code == 0, r.output
+    assert any("approach reaches" in x for x in _warnings(r.output)) and any("projectile's radius" in x for x in _warnings(r.output))

@@ -105,7 +105,11 @@ def read_history(tbl: Table, name: str, base: Path):
         if any(a in h for a in alphas):  # the preset's α's, some replaced (sweeps draw them)
             with naming({a: h.key(a) for a in alphas}):
                 law = ScalingLaw(*(h.number(a, getattr(law, a)) for a in alphas), name=f"{law.name} (alphas replaced)", source=h.path)
-        pulse = law.pulse(P.mass, P.diameter, h.quantity("velocity", "velocity"))
+        velocity = h.quantity("velocity", "velocity")
+        from ..models.validity import warn
+
+        warn(law.envelope(P.diameter, velocity, f"{h.key('velocity')}: the empirical history of {law.name}"))
+        pulse = law.pulse(P.mass, P.diameter, velocity)
     h.done()
     return pulse
 
