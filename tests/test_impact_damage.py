@@ -200,3 +200,17 @@ def test_an_impact_sweep_carries_the_damage_of_single_impact_runs(tmp_path):
         for key in ("tsai_wu", "delamination"):
             assert t[f"damage.{key}"][k] == pytest.approx(s["damage"][key], rel=1e-9)
         assert t["damage.at_g1.hashin"][k] == pytest.approx(s["damage"]["at_g1"]["hashin"], rel=1e-9)
+
+
+def test_a_sweep_asking_damage_of_a_ply_without_strengths_names_the_missing_keys(tmp_path):
+    """A beam-impact sweep asking damage.tsai_wu of an inline ply without strengths: exit 2, one line naming the
+    ply's key and the strengths to give (not "not an output"); the impact's summary says the same in damage_note."""
+    case = _beam_cases(tmp_path, _ply_table(strengths=False))
+    (tmp_path / "spec.toml").write_text(
+        '[sweep]\ncase = "case.toml"\nmethod = "grid"\noutputs = ["damage.tsai_wu"]\n[[sweep.parameter]]\nkey = "impactor.velocity"\nvalues = ["50 in/s", "150 in/s"]\n'
+    )
+    r = CliRunner().invoke(main, ["sweep", str(tmp_path / "spec.toml"), "--out", str(tmp_path / "out"), "--workers", "0", "--no-figures"])
+    assert r.exit_code == 2
+    assert "not an output" not in r.output and "beam.laminate.ply" in r.output and "G_IIc" in r.output
+    _, s = _impact(case, tmp_path / "one")
+    assert "G_IIc" in s["damage_note"]

@@ -101,6 +101,12 @@ def plan_sweep(spec: SweepSpec) -> SweepPlan:
             problem = checked
     known = kind.output_keys(problem)
     for o in spec.outputs:
+        if o not in known and o.startswith("damage."):
+            from ..workflows.damage import damage_refusal
+
+            why = damage_refusal(problem)
+            if why is not None:
+                raise InputError(f"sweep.outputs: {o!r}: {why}")
         if o not in known:
             raise InputError(f"sweep.outputs: {o!r} is not an output of a {kind.name} case (known: {', '.join(known)})")
     groups: dict[str, list[int]] = {}

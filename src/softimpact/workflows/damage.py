@@ -36,6 +36,8 @@ __all__ = [
     "beam_damage",
     "plate_damage",
     "delamination_force",
+    "damage_unavailable",
+    "damage_refusal",
     "PointDamage",
     "ImpactDamage",
     "point_damage",
@@ -150,6 +152,35 @@ def plate_damage(stack, strength: PlyStrength, top: np.ndarray, bottom: np.ndarr
             ply[c][p] = idx[c].max(axis=0)
     pc = delamination_force(stack, strength.GIIc)
     return DamageResult(ply, np.asarray(force, float) / pc, pc)
+
+
+def damage_unavailable(stack, where: str) -> str | None:
+    """Why a laminate gives no damage outputs (one line naming what to give), or None when it does:
+    a smeared ply blend has no stacking, and a ply without strengths needs them
+    (:func:`softimpact.models.failure.strength_of`; ``where``: the ply's key in the case)."""
+    from ..models.failure import strength_of
+
+    if stack is None:
+        return f"{where}: damage outputs need a laminate (an isotropic material has no ply strengths)"
+    if not hasattr(stack, "angles"):
+        return f"{where}: damage outputs need a layup (ply stacking), not ply fractions"
+    try:
+        strength_of(stack.ply, where)
+    except InputError as exc:
+        return str(exc)
+    return None
+
+
+def damage_refusal(problem) -> str | None:
+    """:func:`damage_unavailable` for a beam, plate or impact problem (its target's laminate); None for
+    anything else (a bar has no damage outputs: the sweep's own check names it)."""
+    prefix = ""
+    if hasattr(problem, "target"):
+        problem, prefix = problem.target, "target.case: "
+    for table in ("beam", "plate"):
+        if hasattr(problem, table):
+            return damage_unavailable(getattr(problem, table).stack, f"{prefix}{table}.laminate.ply")
+    return None
 
 
 @functools.lru_cache(maxsize=64)  # pure function of frozen inputs; a sweep asks again for every run
