@@ -214,3 +214,54 @@ def test_a_sweep_asking_damage_of_a_ply_without_strengths_names_the_missing_keys
     assert "not an output" not in r.output and "beam.laminate.ply" in r.output and "G_IIc" in r.output
     _, s = _impact(case, tmp_path / "one")
     assert "G_IIc" in s["damage_note"]
+
+
+PLATE = """units = "in-lbf-s"
+[plate]
+length = "4 in"
+width = "4 in"
+elements = [8, 8]
+support = {{ x0 = "simply-supported", x1 = "simply-supported", y0 = "simply-supported", y1 = "simply-supported" }}
+model = "fsdt"
+[plate.laminate]
+ply = "T300/934"
+layup = "{layup}"
+[load]
+position = ["2 in", "2 in"]
+contact_radius = "0.25 in"
+grow = false
+history = {{ shape = "skewed", peak_force = "{force}", time_of_peak = "20 us", duration = "250 us" }}
+[solver]
+time_step = "2 us"
+duration = "300 us"
+[[gauges]]
+name = "g1"
+position = ["2 in", "2 in"]
+surface = "bottom"
+direction = "x"
+length = "0.031 in"
+"""
+
+
+def test_plate_impact_interlaminar_shear_is_jourawski_under_the_contact_disc(tmp_path):
+    """A steel ball on a coarse [0_20] plate: the largest interlaminar shear is 3q/(2h) with q = F/(2π·max(a, h/2)),
+    the largest over the run of the force and contact radius in history.csv (one ply angle: Jourawski's parabola
+    in every direction); the damage points are the load point and the gauge, and the summary has no pseudo-gauge."""
+    import csv
+
+    (tmp_path / "plate.toml").write_text(PLATE.format(layup="[0_20]", force="10 lbf"))
+    (tmp_path / "case.toml").write_text(
+        'units = "in-lbf-s"\n[target]\ncase = "plate.toml"\n[impactor]\nmaterial = "steel"\ndiameter = "0.5 in"\nvelocity = "100 in/s"\n'
+        '[contact]\nlaw = "hertz"\n[solver]\ntime_step = "1 us"\nduration = "300 us"\n'
+    )
+    r, s = _impact(tmp_path / "case.toml", tmp_path / "out")
+    assert r.exit_code == 0, r.output
+    with open(tmp_path / "out" / "history.csv", newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    F = np.array([float(x["contact_force_N"]) for x in rows])
+    a = np.array([float(x["contact_radius_m"]) for x in rows])
+    h = 20 * PLY.thickness
+    q = np.max(F / (2 * np.pi * np.maximum(a, h / 2)))
+    assert s["damage"]["interlaminar_shear_max_Pa"] == pytest.approx(1.5 * q / h, rel=1e-9)
+    assert s["damage"]["interlaminar_index"] == pytest.approx(1.5 * q / h / X.S12, rel=1e-9)
+    assert set(s["gauges"]) == {"g1"} and {"at_load", "at_g1"} <= set(s["damage"])
