@@ -79,11 +79,13 @@ def damage_keys(problem) -> tuple[str, ...]:
     return tuple(keys + [f"damage.{p}.{c}" for p in points for c in CRITERIA])
 
 
-def _no_damage(problem) -> str:
-    """Why an impact has no damage outputs (the target's laminate: no layup, or no ply strengths)."""
+def _no_damage(problem) -> dict:
+    """``damage_note``: why an impact has no damage outputs, when its target's laminate is the reason
+    (no layup, or a ply without strengths); empty otherwise (the run was not asked for them)."""
     from ..workflows.damage import damage_refusal
 
-    return damage_refusal(problem) or "no damage outputs"
+    why = None if _bar(problem) else damage_refusal(problem)
+    return {} if why is None else {"damage_note": why}
 
 
 def _bar(problem) -> bool:
@@ -223,7 +225,7 @@ def impact_summary(problem, result, model=None) -> dict:
         "newton_iterations": result.newton_iterations,
         "gauges": gauges,
         **({"target": _plate_target(problem, model, result)} if plate and model is not None else {}),
-        **({"damage": damage} if damage is not None else {"damage_note": _no_damage(problem)} if not _bar(problem) else {}),
+        **({"damage": damage} if damage is not None else _no_damage(problem)),
         "validity": impact_validity(problem, result, damage).summary(),
         "case_SI": problem,
     }
