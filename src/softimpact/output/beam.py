@@ -109,9 +109,10 @@ def beam_section(model, result, prefix: str) -> Section:
         if k in moduli
     ]
     if bs:
-        rows.append(["bending stiffness per width, smeared (E·h³/12)", f"{bs['smeared_EI_per_width']:.1f} N·m"])
+        mu = display(p.units, "moment")
+        rows.append(["bending stiffness per width, smeared (E·h³/12)", f"{bs['smeared_EI_per_width'] * mu.factor:.4g} {mu.label}"])
         if "clt_D11" in bs:
-            rows.append(["bending stiffness per width, real stacking (CLT D11)", f"{bs['clt_D11']:.1f} N·m"])
+            rows.append(["bending stiffness per width, real stacking (CLT D11)", f"{bs['clt_D11'] * mu.factor:.4g} {mu.label}"])
     grows = []
     for g, d in summary["gauges"].items():
         z = d["first_zero_crossing_of_bending_strain_s"]

@@ -1,0 +1,51 @@
+"""Figures legible (issue 23 item 6): distinct styles for many curves, axis labels, display units everywhere."""
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import pytest
+
+from softimpact.output.plots import _figure, curve_colors
+from softimpact.units import INCH, POUND_FORCE, display
+
+
+def test_thirteen_curves_on_one_axes_are_pairwise_distinct():
+    """13 curves drawn without a style (the identification's case) get 13 distinct colour–line-style pairs,
+    the first ten solid as before."""
+    fig, ax = _figure()
+    lines = [ax.plot([0, 1], [i, i])[0] for i in range(13)]
+    styles = {(matplotlib.colors.to_hex(ln.get_color()), ln.get_linestyle()) for ln in lines}
+    assert len(styles) == 13
+    assert all(ln.get_linestyle() == "-" for ln in lines[:10])
+
+
+@pytest.mark.parametrize("n", [3, 13, 25])
+def test_curve_colors_are_distinct(n):
+    """Colours for curves whose line style means something (measured solid, model dashed) are all distinct."""
+    assert len({matplotlib.colors.to_hex(c) for c in curve_colors(n)}) == n
+
+
+def test_in_lbf_s_shows_energies_and_moments_in_its_own_units():
+    """in-lbf-s shows energy in in·lbf and a bending stiffness per width in lbf·in (1 N·m = 1/(lbf·in) of them)."""
+    for kind in ("energy", "moment"):
+        u = display("in-lbf-s", kind)
+        assert u.factor == pytest.approx(1 / (POUND_FORCE * INCH), rel=1e-9)
+        assert "lbf" in u.label and "J" not in u.label and "N" not in u.label
+
+
+def test_thresholds_figure_has_both_axis_labels():
+    """thresholds.png labels its x axis (the levels) as well as its y axis (velocity with its unit)."""
+    from softimpact.output.sweep import threshold_figure
+
+    th = [
+        {
+            "levels": "",
+            "index": "damage.tsai_wu",
+            "threshold_velocity_median_m_s": 100.0,
+            "threshold_velocity_p05_m_s": 90.0,
+            "threshold_velocity_p95_m_s": 110.0,
+        }
+    ]
+    ax = threshold_figure(th, "in-lbf-s").axes[0]
+    assert ax.get_xlabel() and "in/s" in ax.get_ylabel()
