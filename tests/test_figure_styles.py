@@ -49,3 +49,23 @@ def test_thresholds_figure_has_both_axis_labels():
     ]
     ax = threshold_figure(th, "in-lbf-s").axes[0]
     assert ax.get_xlabel() and "in/s" in ax.get_ylabel()
+
+
+def test_beam_gauge_table_puts_still_growing_on_the_peak_at_the_window_end():
+    """The long beam run for 60 µs: gauge g2's TENSILE peak sits on the last sample (summary.json says so) and the
+    report's gauge table attaches "still growing?" to that peak, not to the compressive one."""
+    import dataclasses
+
+    from softimpact.input.beam_case import load_beam_case
+    from softimpact.output.beam import beam_section, beam_summary
+    from softimpact.workflows.beam_impact import BeamModel
+
+    p, _ = load_beam_case("paper-long-beam")
+    p = dataclasses.replace(p, solver=dataclasses.replace(p.solver, duration=60e-6))
+    model = BeamModel(p)
+    r = model.direct(energy=False, displacement=False)
+    at_end = {g: d["peak_at_window_end"] for g, d in beam_summary(model, r)["gauges"].items()}
+    assert at_end["g2"] == ["tensile"]
+    rows = {row[0]: row for row in beam_section(model, r, "").tables[1][2]}
+    assert "still growing" in rows["g2"][2] and "still growing" not in rows["g2"][3]
+    assert not any("still growing" in c for c in rows["g1"])

@@ -116,13 +116,14 @@ def beam_section(model, result, prefix: str) -> Section:
     grows = []
     for g, d in summary["gauges"].items():
         z = d["first_zero_crossing_of_bending_strain_s"]
-        edge = " (at the window's end: still growing?)" if d["peak_at_window_end"] else ""
+        # the note goes with the peak that sits on the window's last sample (tensile, compressive or both)
+        edge = {k: " (at the window's end: still growing?)" if k in d["peak_at_window_end"] else "" for k in ("tensile", "compressive")}
         grows.append(
             [
                 g,
                 f"{d['position_m'] * lu.factor:.3g} {lu.label} from the support, {d['surface']} face",
-                f"{d['peak_tensile_strain'] * su.factor:.0f}",
-                f"{d['peak_compressive_strain'] * su.factor:.0f}{edge}",
+                f"{d['peak_tensile_strain'] * su.factor:.0f}{edge['tensile']}",
+                f"{d['peak_compressive_strain'] * su.factor:.0f}{edge['compressive']}",
                 "—" if z is None or z != z else f"{z * tu.factor:.0f}",
             ]
         )
