@@ -263,3 +263,18 @@ def test_predict_hertz_past_its_envelope_warns_with_the_numbers(tmp_path):
     r = _run("predict", "--projectile", "rubber-1/2in", "--velocity", "5000 in/s", "--model", "hertz", "--out", tmp_path / "p", "--no-figures")
     assert r.exit_code == 0, r.output
     assert any("approach reaches" in x for x in _warnings(r.output)) and any("projectile's radius" in x for x in _warnings(r.output))
+
+
+def test_a_hand_edited_law_whose_contact_radius_outgrows_the_ball_is_warned(tmp_path):
+    """A law.json edited to a soft k_ref (0.05): the rubber ball's contact radius sqrt(d·α) passes its own radius;
+    warned with the ratio, which equals sqrt(4·α/d) from summary.json's approach (the law's a = sqrt(d·α))."""
+    data = _law(tmp_path, True)
+    data["parameters"]["k_ref"]["value"] = 0.05
+    (tmp_path / "law.json").write_text(json.dumps(data))
+    (tmp_path / "c.toml").write_text(IMPACT.format(material="silicone rubber").replace('duration = "20 us"', 'duration = "200 us"'))
+    r = _run("impact", tmp_path / "c.toml", "--out", tmp_path / "o", "--no-figures")
+    assert r.exit_code == 0, r.output
+    v = json.loads((tmp_path / "o" / "summary.json").read_text())["validity"]
+    assert v["contact_radius_over_projectile_radius"] > 1
+    assert v["contact_radius_over_projectile_radius"] == pytest.approx(math.sqrt(4 * v["approach_over_diameter"]), rel=1e-9)
+    assert any(f"{v['contact_radius_over_projectile_radius']:.3g} times the projectile's radius" in x for x in _warnings(r.output))
