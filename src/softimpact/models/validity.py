@@ -16,9 +16,10 @@ Limits, each with its reason:
 - contact radius ≤ the projectile's radius (every law): no sphere touches over more than its
   own radius; and on a bar, ≤ the bar's radius (the contact would overhang the bar's end).
 - :data:`DEFLECTION_OVER_THICKNESS` = 0.5. Linear plate (and beam) theory neglects the membrane
-  stretching of the mid-surface; it stiffens the plate as (w/h)², and at w/h = 0.5 a simply
-  supported plate's linear deflection is already about 10 % too large (large-deflection plate
-  theory, Timoshenko & Woinowsky-Krieger 1959, §96–§101).
+  stretching of the mid-surface, which stiffens the plate as (w/h)²: for a clamped circular plate
+  under uniform pressure w + 0.488·w³/h² = q·a⁴/(64D) (Timoshenko & Woinowsky-Krieger 1959, §97),
+  so at w/h = 0.5 the linear deflection is 12 % too large, and it grows fast beyond (a beam
+  whose ends cannot draw in likewise).
 - an identified law or empirical constants used outside the velocities, diameters, masses
   and projectile densities they were fitted on (more than :data:`RANGE_SLACK` beyond the range;
   the density by more than :data:`DENSITY_SLACK`: another material).
@@ -50,7 +51,7 @@ __all__ = [
 
 HERTZ_APPROACH_OVER_DIAMETER = 0.1  # α/d: a/R ≈ 0.45 (module docstring)
 HERTZ_FAMILY = ("hertz", "hertz-unloading", "hunt-crossley")
-DEFLECTION_OVER_THICKNESS = 0.5  # w/h: membrane stiffening about 10 % (module docstring)
+DEFLECTION_OVER_THICKNESS = 0.5  # w/h: membrane stiffening 12 % on a clamped plate (module docstring)
 RANGE_SLACK = 0.10  # beyond ±10 % of a fitted range: an extrapolation
 DENSITY_SLACK = 0.20  # a projectile density more than 20 % off the fitted ones: another material
 
