@@ -272,7 +272,8 @@ def plan_thresholds(plan: SweepPlan, cols: dict) -> list[dict]:
     [] without a velocity level or a damage output."""
     spec = plan.spec
     vkey = _velocity_key(spec)
-    damage = [o for o in spec.outputs if o.startswith("damage.") and o != "damage.threshold_force_N"]
+    # indices only (1 = onset): not the forces and stresses beside them (threshold_force_N, interlaminar_shear_max_Pa)
+    damage = [o for o in spec.outputs if o.startswith("damage.") and not o.endswith(("_N", "_Pa"))]
     if vkey is None or not damage:
         return []
     others = [p.key for p in spec.parameters if isinstance(p, Level) and p.key != vkey]
