@@ -69,3 +69,31 @@ def test_beam_gauge_table_puts_still_growing_on_the_peak_at_the_window_end():
     rows = {row[0]: row for row in beam_section(model, r, "").tables[1][2]}
     assert "still growing" in rows["g2"][2] and "still growing" not in rows["g2"][3]
     assert not any("still growing" in c for c in rows["g1"])
+
+
+@pytest.mark.parametrize("fmt, magic", [("svg", b"<?xml"), ("pdf", b"%PDF")])
+def test_figure_format_writes_vector_figures_under_their_own_names(tmp_path, fmt, magic):
+    """`--figure-format svg|pdf` writes every figure in that format, named for it (no .png left); the default
+    run after it in the same process draws PNG again (the format does not leak between commands)."""
+    from click.testing import CliRunner
+
+    from softimpact.cli import main
+
+    r = CliRunner().invoke(main, ["bar", "paper-calibration", "--figure-format", fmt, "--out", str(tmp_path / "v")])
+    assert r.exit_code == 0, r.output
+    figs = sorted((tmp_path / "v").glob(f"*.{fmt}"))
+    assert len(figs) == 4 and not list((tmp_path / "v").glob("*.png"))
+    assert all(f.read_bytes().startswith(magic) for f in figs)
+    r = CliRunner().invoke(main, ["bar", "paper-calibration", "--out", str(tmp_path / "p")])
+    assert r.exit_code == 0 and all(f.read_bytes()[:4] == b"\x89PNG" for f in (tmp_path / "p").glob("*.png"))
+    assert len(list((tmp_path / "p").glob("*.png"))) == 4
+
+
+def test_with_figure_format_renames_figures_and_their_links_in_reports():
+    """Renaming for svg: figures "x.png" become "x.svg" and an HTML report's links to them follow; text files keep their names."""
+    from softimpact.output.files import with_figure_format
+
+    files = {"a.png": b"<?xml ...", "summary.json": "{}", "report.html": "<img src='a.png'>"}
+    out = with_figure_format(files, "svg")
+    assert set(out) == {"a.svg", "summary.json", "report.html"} and out["report.html"] == "<img src='a.svg'>"
+    assert with_figure_format(files, "png") is files
