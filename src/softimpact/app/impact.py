@@ -17,10 +17,19 @@ from . import Outcome, Progress, no_progress
 __all__ = ["impact"]
 
 
-def _validity(summary: str) -> tuple[dict, tuple]:
-    """The validity ratios and flags of summary.json's text (computed once, where the summary is)."""
-    v = dict(json.loads(summary)["validity"])
+def _validity(summary: dict) -> tuple[dict, tuple]:
+    """The validity ratios and flags of summary.json (computed once, where the summary is)."""
+    v = dict(summary["validity"])
     return v, tuple(v.pop("flags"))
+
+
+def _damage_words(summary: dict) -> str:
+    """The line's damage part: the largest index and Davies–Zhang's ratio (summary.json's ``damage``)."""
+    d = summary.get("damage")
+    if not d:
+        return ""
+    worst = max(("max_strain", "tsai_wu", "hashin", "interlaminar_index"), key=lambda k: d[k])
+    return f"; damage: {worst.replace('_', ' ')} {d[worst]:.2f}, F0/P_c (Davies-Zhang) {d['delamination']:.2f}"
 
 
 def impact(*, case: str, figures: bool = True, progress: Progress = no_progress) -> Outcome:
@@ -35,7 +44,8 @@ def impact(*, case: str, figures: bool = True, progress: Progress = no_progress)
     model, result = run_impact(problem, model, snapshots=snaps)
     progress(steps, steps, "stepping")
     files = impact_files(problem, result, figures, model=model)
-    warn(Validity(*_validity(files["summary.json"])))
+    summary = json.loads(files["summary.json"])
+    warn(Validity(*_validity(summary)))
     problem, result, _ = split_damage(problem, result)
     fu, tu, su = (display(problem.units, k) for k in ("force", "time", "strain"))
     peaks = ", ".join(f"{n} {eps[np.argmax(np.abs(eps))] * su.factor:.0f} {su.label}" for n, eps in zip(result.strain_names, result.strain))
@@ -51,6 +61,6 @@ def impact(*, case: str, figures: bool = True, progress: Progress = no_progress)
     dofs = model.size
     line = (
         f"{problem.law_name}: F0 {result.peak_force * fu.factor:.1f} {fu.label} at {result.time_of_peak * tu.factor:.1f} {tu.label}, {T}, "
-        f"{len(result.contacts)} contact(s); peak strains {peaks} ({dofs} DOF, {steps} steps, {time.perf_counter() - t0:.1f} s)"
+        f"{len(result.contacts)} contact(s); peak strains {peaks}{_damage_words(summary)} ({dofs} DOF, {steps} steps, {time.perf_counter() - t0:.1f} s)"
     )
     return Outcome(files, line, inputs, unfinished)
