@@ -88,6 +88,9 @@ def _guarded(fn):
             else:
                 original(message, category, filename, lineno, file, line)
 
+        from .output.files import figure_format
+
+        token = figure_format.set(ctx.meta.get("softimpact.figure_format", "png") if ctx is not None else "png")
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("always", SoftimpactWarning)
@@ -116,6 +119,8 @@ def _guarded(fn):
                 err=True,
             )
             sys.exit(EXIT_INTERNAL)
+        finally:
+            figure_format.reset(token)
 
     return wrapper
 
@@ -147,7 +152,7 @@ def _finish(outcome, out: str, accept_poor: bool = False) -> None:
     ``accept_poor``, when the status is "accepted-poor" and the exit is 0.
     """
     from .gates import failed, status
-    from .output.files import write_outputs
+    from .output.files import with_figure_format, write_outputs
 
     for w in outcome.warnings:
         click.echo(f"softimpact: warning: {_one_line(w)}", err=True)
@@ -161,7 +166,8 @@ def _finish(outcome, out: str, accept_poor: bool = False) -> None:
         "warnings": [*map(_one_line, outcome.warnings), *(ctx.meta.get("softimpact.warnings", []) if ctx is not None else [])],
         "gates": [g.as_dict() for g in gates],
     }
-    written = write_outputs(out, outcome.files, inputs=outcome.inputs, manifest=manifest, force=_forced())
+    files = with_figure_format(outcome.files, ctx.meta.get("softimpact.figure_format", "png") if ctx is not None else "png")
+    written = write_outputs(out, files, inputs=outcome.inputs, manifest=manifest, force=_forced())
     bad = failed(gates)
     if bad and not accept_poor:
         raise CheckFailed(bad)
@@ -219,7 +225,25 @@ def _out_option(command: str) -> click.Option:
 
 
 def _figures_option() -> click.Option:
-    return click.Option(["--figures/--no-figures"], default=True, show_default=True, help="Draw the PNG figures (the numbers are written either way).")
+    return click.Option(["--figures/--no-figures"], default=True, show_default=True, help="Draw the figures (the numbers are written either way).")
+
+
+def _figure_format_option() -> click.Option:
+    """``--figure-format``: kept in the context (not passed to the command), applied by :func:`_guarded` and :func:`_finish`."""
+
+    def keep(ctx, param, value):
+        ctx.meta["softimpact.figure_format"] = value
+        return value
+
+    return click.Option(
+        ["--figure-format"],
+        type=click.Choice(["png", "svg", "pdf"]),
+        default="png",
+        show_default=True,
+        expose_value=False,
+        callback=keep,
+        help="Figures as PNG (120 dpi) or vector SVG or PDF.",
+    )
 
 
 def _history_option(help: str) -> click.Option:
@@ -256,7 +280,7 @@ def _command(name: str, short_help: str, *, history: str | None = None, figures:
             shared.append(_accept_poor_option())
         shared.append(_out_option(name))
         if figures:
-            shared.append(_figures_option())
+            shared += [_figures_option(), _figure_format_option()]
         if accept_poor is True:
             shared.append(_accept_poor_option())
         if fields:

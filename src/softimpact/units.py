@@ -42,6 +42,8 @@ DIMENSIONS = {
     "force": "[length] * [mass] / [time] ** 2",
     "impulse": "[length] * [mass] / [time]",
     "energy": "[length] ** 2 * [mass] / [time] ** 2",
+    "moment": "[length] ** 2 * [mass] / [time] ** 2",
+    "toughness": "[mass] / [time] ** 2",  # energy per area (fracture toughness G_c)
     "voltage": "[mass] * [length] ** 2 / [time] ** 3 / [current]",
     "frequency": "1 / [time]",
     "dimensionless": "dimensionless",
@@ -217,6 +219,8 @@ SI_UNITS = {
     "force": "N",
     "impulse": "N*s",
     "energy": "J",
+    "moment": "N*m",  # a moment, or a bending stiffness per unit width (N·m²/m)
+    "toughness": "J/m^2",
     "voltage": "V",
     "frequency": "Hz",
     "dimensionless": "dimensionless",
@@ -232,6 +236,8 @@ _EXAMPLE = {
     "force": "44 lbf",
     "impulse": "0.01 N*s",
     "energy": "1 J",
+    "moment": "10 lbf*in",
+    "toughness": "0.5 kJ/m^2",
     "voltage": "5 V",
     "frequency": "1 kHz",
     "dimensionless": "0.3",
@@ -257,7 +263,8 @@ DISPLAY_SYSTEMS = {
         "density": "lb/in^3",
         "force": "lbf",
         "impulse": "lbf*s",
-        "energy": "mJ",
+        "energy": "in*lbf",
+        "moment": "lbf*in",
         "strain": "microstrain",
     },
     "SI": {
@@ -270,11 +277,22 @@ DISPLAY_SYSTEMS = {
         "force": "N",
         "impulse": "N*s",
         "energy": "mJ",
+        "moment": "N*m",
         "strain": "microstrain",
     },
 }
 
-_LABELS = {"us": "µs", "microstrain": "µε", "lbf*s": "lbf·s", "N*s": "N·s", "lb/in^3": "lb/in³", "kg/m^3": "kg/m³"}
+_LABELS = {
+    "in*lbf": "in·lbf",
+    "lbf*in": "lbf·in",
+    "N*m": "N·m",
+    "us": "µs",
+    "microstrain": "µε",
+    "lbf*s": "lbf·s",
+    "N*s": "N·s",
+    "lb/in^3": "lb/in³",
+    "kg/m^3": "kg/m³",
+}
 
 
 @functools.cache

@@ -7,7 +7,8 @@ import time
 import numpy as np
 
 from ..input.bar_case import load_bar_case
-from ..output.bar import bar_files
+from ..models.validity import warn
+from ..output.bar import bar_files, bar_validity
 from ..units import display
 from ..workflows.bar_impact import force_from_gauge, simulate_impact, without_end_cap
 from . import Outcome, Progress, no_progress
@@ -42,6 +43,7 @@ def bar(*, case: str, figures: bool = True, progress: Progress = no_progress) ->
     t0 = time.perf_counter()
     result, plain, inferred = run_bar(problem)
     files = bar_files(result, plain, inferred, figures)
+    warn(bar_validity(result))
     fu, tu = display(problem.units, "force"), display(problem.units, "time")
     line = (
         f"peak force {result.peak_force * fu.factor:.1f} {fu.label} at {result.time_of_peak * tu.factor:.1f} {tu.label}, "

@@ -7,7 +7,7 @@ import time
 import numpy as np
 
 from ..input.beam_case import load_beam_case
-from ..output.beam import beam_files
+from ..output.beam import beam_files, beam_validity
 from ..output.fields import field_files, sampled_steps
 from ..units import display
 from ..workflows.beam_impact import BeamModel
@@ -32,4 +32,4 @@ def beam(*, case: str, history: int | None = None, figures: bool = True, fields:
     su = display(problem.units, "strain")
     peaks = ", ".join(f"{g.name} {eps[np.argmax(np.abs(eps))] * su.factor:.0f} {su.label}" for g, eps in zip(problem.gauges, result.strain))
     line = f"{model.plane.n} DOF, {steps} steps ({time.perf_counter() - t0:.1f} s); peak strains {peaks}"
-    return Outcome(files, line, (path,))
+    return Outcome(files, line, (path,), beam_validity(result).flags)

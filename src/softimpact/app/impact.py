@@ -2,13 +2,15 @@
 
 from __future__ import annotations
 
+import json
 import time
 
 import numpy as np
 
 from ..input.impact_case import load_impact_case
+from ..models.validity import Validity, warn
 from ..output.fields import field_files, sampled_steps, select_kept
-from ..output.impact import impact_files, snapshot_steps
+from ..output.impact import damage_problem, impact_files, snapshot_steps, split_damage
 from ..units import display
 from ..workflows.coupled import impact_model, run_impact
 from . import Outcome, Progress, no_progress
@@ -16,10 +18,26 @@ from . import Outcome, Progress, no_progress
 __all__ = ["impact"]
 
 
+def _validity(summary: dict) -> tuple[dict, tuple]:
+    """The validity ratios and flags of summary.json (computed once, where the summary is)."""
+    v = dict(summary["validity"])
+    return v, tuple(v.pop("flags"))
+
+
+def _damage_words(summary: dict) -> str:
+    """The line's damage part: the largest index and Davies–Zhang's ratio (summary.json's ``damage``)."""
+    d = summary.get("damage")
+    if not d:
+        return ""
+    worst = max(("max_strain", "tsai_wu", "hashin", "interlaminar_index"), key=lambda k: d[k])
+    return f"; damage: {worst.replace('_', ' ')} {d[worst]:.2f}, F0/P_c (Davies-Zhang) {d['delamination']:.2f}"
+
+
 def impact(*, case: str, figures: bool = True, fields: bool = False, progress: Progress = no_progress) -> Outcome:
     """Run an impact case (file or built-in name) on a beam or plate target; ``fields``: also
     fields.xdmf/.h5, the target's displacement fields (:mod:`softimpact.output.fields`)."""
     problem, inputs = load_impact_case(case)
+    problem = damage_problem(problem)  # + the pseudo-gauges of the damage indices (a layup with strengths)
     t0 = time.perf_counter()
     steps = problem.solver.steps
     model = impact_model(problem)
@@ -32,6 +50,9 @@ def impact(*, case: str, figures: bool = True, fields: bool = False, progress: P
     if fields:
         at = {int(k): i for i, k in enumerate(result.kept)}
         files.update(field_files(model, (kept, result.time[kept], result.displacement[:, [at[int(k)] for k in kept]])))
+    summary = json.loads(files["summary.json"])
+    warn(Validity(*_validity(summary)))
+    problem, result, _ = split_damage(problem, result)
     fu, tu, su = (display(problem.units, k) for k in ("force", "time", "strain"))
     peaks = ", ".join(f"{n} {eps[np.argmax(np.abs(eps))] * su.factor:.0f} {su.label}" for n, eps in zip(result.strain_names, result.strain))
     T = "not separated" if not np.isfinite(result.contact_duration) else f"T {result.contact_duration * tu.factor:.1f} {tu.label}"
@@ -46,6 +67,6 @@ def impact(*, case: str, figures: bool = True, fields: bool = False, progress: P
     dofs = model.size
     line = (
         f"{problem.law_name}: F0 {result.peak_force * fu.factor:.1f} {fu.label} at {result.time_of_peak * tu.factor:.1f} {tu.label}, {T}, "
-        f"{len(result.contacts)} contact(s); peak strains {peaks} ({dofs} DOF, {steps} steps, {time.perf_counter() - t0:.1f} s)"
+        f"{len(result.contacts)} contact(s); peak strains {peaks}{_damage_words(summary)} ({dofs} DOF, {steps} steps, {time.perf_counter() - t0:.1f} s)"
     )
     return Outcome(files, line, inputs, unfinished)

@@ -8,7 +8,7 @@ import numpy as np
 
 from ..input.plate_case import load_plate_case
 from ..output.fields import field_files, sampled_steps, select_kept
-from ..output.plate import plate_files, snapshot_steps
+from ..output.plate import plate_files, plate_validity, snapshot_steps
 from ..units import display
 from ..workflows.plate_impact import PlateModel
 from . import Outcome, Progress, no_progress
@@ -35,7 +35,7 @@ def plate(*, case: str, history: int | None = None, figures: bool = True, fields
     peaks = "".join(f", {g.name} {eps[np.argmax(np.abs(eps))] * su.factor:.0f} {su.label}" for g, eps in zip(problem.gauges, result.strain))
     w = result.deflection[0]
     line = f"{model.fe.n} DOF, {steps} steps ({time.perf_counter() - t0:.1f} s); peak deflection {w[np.argmax(np.abs(w))] * lu.factor:.3g} {lu.label}{peaks}"
-    return Outcome(files, line, (path,), _mirrored_loads(problem))
+    return Outcome(files, line, (path,), _mirrored_loads(problem) + plate_validity(result).flags)
 
 
 def _mirrored_loads(problem) -> tuple[str, ...]:

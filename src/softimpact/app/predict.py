@@ -74,6 +74,21 @@ def predict(
             lo, hi = law.velocity_range
             vu = units.display(system, "velocity")
             notes.append(f"velocity {velocity} is outside the range of the constants ({lo * vu.factor:.4g}-{hi * vu.factor:.4g} {vu.label}): extrapolated")
+        dlo, dhi = law.diameter_range
+        if math.isfinite(dhi) and not 0.9 * dlo <= d <= 1.1 * dhi:
+            lu = units.display(system, "length")
+            notes.append(
+                f"diameter {d * lu.factor:.4g} {lu.label} is outside the diameters the constants were fitted on "
+                f"({dlo * lu.factor:.4g}-{dhi * lu.factor:.4g} {lu.label}): extrapolated"
+            )
+        if not math.isfinite(law.velocity_range[1]):
+            notes.append(f"the constants {law.name} do not record the velocities and diameters they were fitted on: the range cannot be checked")
+    if model == "hertz":  # Hertz's own envelope (models.validity): approach and contact radius against the ball
+        from ..models.validity import contact_validity
+
+        hertz = models["hertz"].law(d)
+        alpha_max = hertz.rigid_impact(m, V)[0]
+        notes.extend(contact_validity("hertz", alpha_max, hertz.radius(alpha_max), d).flags)
     chosen = models[model]
     pulse = chosen.pulse(m, d, V, tail=tail) if model == "empirical" else chosen.pulse(m, d, V)
     params = chosen.parameters(m, d, V)

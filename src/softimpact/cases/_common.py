@@ -103,4 +103,8 @@ def expand_ply(data: dict, key: str, where: str) -> None:
         inline.update({k: f"{getattr(p, k)!r} Pa" for k in ("E1", "E2", "E3", "G12", "G13", "G23")})
         inline["density"] = f"{p.density!r} kg/m^3"
         inline["thickness"] = f"{p.thickness!r} m"
+        if p.strength is not None:  # the catalogue ply's strengths stay with it (damage outputs)
+            x = p.strength
+            inline.update({k: f"{v!r} Pa" for k, v in (("Xt", x.Xt), ("Xc", x.Xc), ("Yt", x.Yt), ("Yc", x.Yc), ("S", x.S12), ("S23", x.S23))})
+            inline["G_IIc"] = f"{x.GIIc!r} J/m^2"
         set_dotted(data, where, inline)

@@ -14,9 +14,7 @@ __all__ = ["BeamKind"]
 
 
 def _screenable(stack) -> bool:
-    from ..models.failure import STRENGTHS
-
-    return stack is not None and stack.ply.name in STRENGTHS and hasattr(stack, "angles")
+    return stack is not None and stack.ply.strength is not None and hasattr(stack, "angles")
 
 
 class BeamKind:
@@ -113,12 +111,11 @@ class BeamKind:
 
     def damage(self, problem, result) -> dict:
         """Peak damage indices at the gauge sections and the delamination threshold force."""
-        from ..models.failure import STRENGTHS
         from ..workflows.damage import beam_damage
 
         stack = problem.beam.stack
         other = result.strain - 2 * result.bending
-        dmg = beam_damage(stack, STRENGTHS[stack.ply.name], problem.beam.plane, result.strain, other, [g.surface for g in problem.gauges], result.force)
+        dmg = beam_damage(stack, stack.ply.strength, problem.beam.plane, result.strain, other, [g.surface for g in problem.gauges], result.force)
         return {**dmg.peaks(), "threshold_force_N": dmg.threshold_force}
 
     def output_keys(self, problem):

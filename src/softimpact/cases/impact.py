@@ -162,6 +162,10 @@ class ImpactKind:
         problem = self.problem(data, base)
         if _is_bar(problem):
             return _BAR.run(None, None, base, outputs, problem)
+        if not outputs or any(o.startswith("damage.") for o in outputs):
+            from ..output.impact import damage_problem
+
+            problem = damage_problem(problem)  # + the pseudo-gauges of the damage indices
         model = prepared.get(problem) if isinstance(prepared, SharedModel) else None
         model, result = run_impact(problem, model)
         return self.summary(problem, result, model)
@@ -209,7 +213,9 @@ class ImpactKind:
             keys += [f"gauges.{g.name}.{f}" for f in GAUGE_FIELDS] + [f"gauges.{g.name}.peak_abs_strain"]
         if problem.on_plate:
             keys += ["target.peak_deflection_at_impact_m", "target.time_of_peak_deflection_s"]
-        return tuple(keys)
+        from ..output.impact import damage_keys
+
+        return tuple(keys) + damage_keys(problem)
 
     def expand(self, data, key):
         pass

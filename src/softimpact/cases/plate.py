@@ -27,9 +27,7 @@ def _wants_damage(outputs) -> bool:
 
 
 def _screenable(stack) -> bool:
-    from ..models.failure import STRENGTHS
-
-    return stack is not None and hasattr(stack, "angles") and stack.ply.name in STRENGTHS
+    return stack is not None and hasattr(stack, "angles") and stack.ply.strength is not None
 
 
 class PlateKind:
@@ -130,7 +128,6 @@ class PlateKind:
         return {**plate_scalars(result), **gauge_outputs(result.time, [n for n, _ in real], [e for _, e in real])}
 
     def _damage(self, problem, strains: dict, force: np.ndarray) -> dict:
-        from ..models.failure import STRENGTHS
         from ..workflows.damage import plate_damage, strain_tensor
 
         stack = problem.plate.stack
@@ -139,7 +136,7 @@ class PlateKind:
             face: np.array([strain_tensor(*(strains[f"{DAMAGE_PREFIX}.{p}.{face}.{d}"] for d in DAMAGE_DIRECTIONS)) for p in points])
             for face in ("top", "bottom")
         }
-        dmg = plate_damage(stack, STRENGTHS[stack.ply.name], faces["top"], faces["bottom"], force)
+        dmg = plate_damage(stack, stack.ply.strength, faces["top"], faces["bottom"], force)
         out = {**dmg.peaks(), "threshold_force_N": dmg.threshold_force}
         for i, p in enumerate(points):
             out[p] = {c: float(v[i].max()) for c, v in dmg.ply.items()}

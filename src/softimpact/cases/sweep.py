@@ -101,6 +101,12 @@ def plan_sweep(spec: SweepSpec) -> SweepPlan:
             problem = checked
     known = kind.output_keys(problem)
     for o in spec.outputs:
+        if o not in known and o.startswith("damage."):
+            from ..workflows.damage import damage_refusal
+
+            why = damage_refusal(problem)
+            if why is not None:
+                raise InputError(f"sweep.outputs: {o!r}: {why}")
         if o not in known:
             raise InputError(f"sweep.outputs: {o!r} is not an output of a {kind.name} case (known: {', '.join(known)})")
     groups: dict[str, list[int]] = {}
@@ -266,7 +272,8 @@ def plan_thresholds(plan: SweepPlan, cols: dict) -> list[dict]:
     [] without a velocity level or a damage output."""
     spec = plan.spec
     vkey = _velocity_key(spec)
-    damage = [o for o in spec.outputs if o.startswith("damage.") and o != "damage.threshold_force_N"]
+    # indices only (1 = onset): not the forces and stresses beside them (threshold_force_N, interlaminar_shear_max_Pa)
+    damage = [o for o in spec.outputs if o.startswith("damage.") and not o.endswith(("_N", "_Pa"))]
     if vkey is None or not damage:
         return []
     others = [p.key for p in spec.parameters if isinstance(p, Level) and p.key != vkey]

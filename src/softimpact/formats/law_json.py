@@ -8,6 +8,10 @@ Layout (SI): ``family`` (``"soft-projectile"``), ``form`` (the law in words),
 when the closure was run, ``closure`` per test (measured and simulated F0, T, I, t_F0 and
 their relative errors).
 
+``identified_on`` holds the ranges of the tests: ``velocity_m_s``, ``diameter_m`` and ``projectile``
+(``mass_kg``, ``diameter_m``, ``density_kg_m3``: what the law may be used for; files written before it
+read without it, and a case using them is warned that the projectile cannot be checked).
+
 Older files (the memoryless law, before the Maxwell arm; or before ``q_p``) lack the later
 parameters: they read as 0, i.e. no arm and no size power, the law they were written for.
 """
@@ -24,7 +28,7 @@ from ..errors import InputError
 from ..workflows.identification import PARAMETERS, IdentifiedLaw
 from ._json import json_text
 
-__all__ = ["FAMILY", "law_summary", "law_json", "read_law"]
+__all__ = ["FAMILY", "projectile_record", "law_summary", "law_json", "read_law"]
 
 FAMILY = "soft-projectile"
 FORM = (
@@ -36,8 +40,18 @@ FORM = (
 LATER = ("q_p", "kappa_ref", "theta_ref", "q_kappa", "q_theta")  # parameters older law.json files lack (read as 0)
 
 
-def law_summary(law: IdentifiedLaw, test_names, closure=None, series: str = "") -> dict:
-    """The content of law.json (module docstring)."""
+def projectile_record(tests) -> dict:
+    """The projectiles a law was identified on (``identified_on.projectile`` of law.json): the ranges of
+    mass [kg], diameter [m] and density [kg/m³] (m/(π d³/6), the material as the law sees it) of the
+    bar tests (:class:`softimpact.workflows.identification.BarTest`)."""
+    m = [float(t.mass) for t in tests]
+    d = [float(t.diameter) for t in tests]
+    rho = [mi / (math.pi / 6 * di**3) for mi, di in zip(m, d)]
+    return {"mass_kg": [min(m), max(m)], "diameter_m": [min(d), max(d)], "density_kg_m3": [min(rho), max(rho)]}
+
+
+def law_summary(law: IdentifiedLaw, test_names, closure=None, series: str = "", projectile: dict | None = None) -> dict:
+    """The content of law.json (module docstring); ``projectile``: :func:`projectile_record` of the tests."""
     out = {
         "family": FAMILY,
         "form": FORM,
@@ -48,7 +62,9 @@ def law_summary(law: IdentifiedLaw, test_names, closure=None, series: str = "") 
         "fit": {"cost": law.cost, "rms_over_F0": dict(zip(test_names, map(float, law.rms_per_test)))},
     }
     if law.identified_on is not None:
-        out["identified_on"] = law.identified_on
+        out["identified_on"] = dict(law.identified_on)
+    if projectile is not None:
+        out.setdefault("identified_on", {})["projectile"] = projectile
     if closure is not None:
         keys = ("peak_force_N", "duration_s", "impulse_N_s")
         out["closure"] = {
@@ -67,9 +83,9 @@ def law_summary(law: IdentifiedLaw, test_names, closure=None, series: str = "") 
     return out
 
 
-def law_json(law: IdentifiedLaw, test_names, closure=None, series: str = "") -> str:
+def law_json(law: IdentifiedLaw, test_names, closure=None, series: str = "", projectile: dict | None = None) -> str:
     """The text of law.json."""
-    return json_text(law_summary(law, test_names, closure, series))
+    return json_text(law_summary(law, test_names, closure, series, projectile))
 
 
 def read_law(path, argument: str = "contact.law_file") -> IdentifiedLaw:
@@ -93,7 +109,10 @@ def read_law(path, argument: str = "contact.law_file") -> IdentifiedLaw:
         cost = float(fit.get("cost", math.nan))
         ranges = data.get("identified_on")  # absent from files written before it was recorded
         if ranges is not None:
+            proj = ranges.get("projectile")  # absent from files written before it was recorded
             ranges = {k: [float(x) for x in ranges[k]] for k in ("velocity_m_s", "diameter_m")}
+            if proj is not None:
+                ranges["projectile"] = {k: [float(x) for x in proj[k]] for k in ("mass_kg", "diameter_m", "density_kg_m3")}
     except (KeyError, TypeError, ValueError, AttributeError):
         raise InputError(
             f"{argument}: {path} is not a law.json (needs family, d_ref_m and parameters {', '.join(n for n in names if n not in LATER)})"

@@ -3,13 +3,15 @@
 
 Layout: ``groups`` (one per ball diameter, keyed like ``"0.5 in"``) and
 ``pooled``, each with α1–α4 (``value``, ``ci95``, ``r2``, ``residuals``), the
-names of its ``tests`` and the ``affine`` fits; ``regressors`` says what each
-constant multiplies.
+names of its ``tests``, the ``affine`` fits and ``fitted_on`` (the velocity and diameter
+ranges of its tests: ``predict`` warns outside them; files written before it are not checked);
+``regressors`` says what each constant multiplies.
 """
 
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 
 from ..errors import InputError
@@ -31,6 +33,8 @@ def scaling_summary(fits) -> dict:
     def group(g):
         d = {name: line(f) for name, f in g.origin.items()}
         d["tests"] = [p.name for p in g.points]
+        v, dia = [p.velocity for p in g.points], [p.diameter for p in g.points]
+        d["fitted_on"] = {"velocity_m_s": [min(v), max(v)], "diameter_m": [min(dia), max(dia)]}
         d["affine"] = {name: affine(f) for name, f in g.affine.items()}
         return d
 
@@ -52,8 +56,18 @@ def read_scaling_law(path: Path, group: str = "pooled", argument: str = "--const
         data = json.loads(Path(path).read_text(encoding="utf-8"))
         g = data["pooled"] if group == "pooled" else data["groups"][group]
         values = [float(g[f"alpha{i}"]["value"]) for i in range(1, 5)]
+        fitted = g.get("fitted_on")  # absent from files written before it was recorded: not checked
+        ranges = {}
+        if fitted is not None:
+            ranges = {k: tuple(float(x) for x in fitted[f"{k}_m_s" if k == "velocity" else f"{k}_m"]) for k in ("velocity", "diameter")}
     except OSError as exc:
         raise InputError(f"{argument}: cannot read {path} ({exc.strerror})") from None
     except (KeyError, TypeError, ValueError, UnicodeDecodeError):
         raise InputError(f"{argument}: {path} is not a scaling.json with group {group!r}") from None
-    return ScalingLaw(*values, name=f"{Path(path).name}:{group}", source=str(path))
+    return ScalingLaw(
+        *values,
+        name=f"{Path(path).name}:{group}",
+        source=str(path),
+        velocity_range=ranges.get("velocity", (0.0, math.inf)),
+        diameter_range=ranges.get("diameter", (0.0, math.inf)),
+    )

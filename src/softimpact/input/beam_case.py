@@ -14,7 +14,7 @@ from .. import units
 from ..errors import InputError
 from ..fem.plane import SUPPORTS
 from ..models.empirical import PRESETS, PROJECTILES, ScalingLaw
-from ..models.laminate import PLANES, PLIES, Blend, Ply, Stack, parse_layup
+from ..models.laminate import PLANES, PLIES, STRENGTH_KEYS, Blend, Ply, PlyStrength, Stack, parse_layup
 from ..models.materials import Material
 from ..models.pulses import SkewedPulse, TabulatedPulse
 from ..workflows.beam_impact import LAMINATE_MODELS, BeamGauge, BeamLoad, BeamProblem, BeamSpec, check_problem
@@ -25,6 +25,7 @@ __all__ = [
     "HISTORY_SHAPES",
     "MASS_MATRICES",
     "read_ply",
+    "read_strength",
     "read_history",
     "read_load_history",
     "read_beam_gauges",
@@ -59,9 +60,29 @@ def read_ply(tbl: Table, name: str = "ply"):
         p.quantity("density", "density"),
         p.quantity("thickness", "length"),
         p.string("source", "user input"),
+        read_strength(p),
     )
     p.done()
     return ply
+
+
+def read_strength(p: Table) -> PlyStrength | None:
+    """An inline ply's strengths: Xt, Xc, Yt, Yc, S (stresses), G_IIc (energy per area), optional S23
+    (Hashin's transverse shear strength, default S). None when the table gives none of them; some
+    but not all is an error naming the missing keys. A catalogue ply's name in ``name`` gives no
+    strengths: they belong to the catalogue ply's moduli, not to this table's."""
+    given = [k for k in STRENGTH_KEYS if k in p]
+    if not given:
+        if "S23" in p:
+            raise InputError(f"{p.key('S23')}: given without the other strengths {', '.join(STRENGTH_KEYS)}")
+        return None
+    missing = [k for k in STRENGTH_KEYS if k not in p]
+    if missing:
+        raise InputError(
+            f"{p.path}: strengths {', '.join(given)} given without {', '.join(missing)} (the damage outputs need all of {', '.join(STRENGTH_KEYS)})"
+        )
+    s = {k: p.quantity(k, "stress") for k in ("Xt", "Xc", "Yt", "Yc", "S")}
+    return PlyStrength(s["Xt"], s["Xc"], s["Yt"], s["Yc"], s["S"], p.quantity("S23", "stress", default=s["S"]), p.quantity("G_IIc", "toughness"), "user input")
 
 
 def read_history(tbl: Table, name: str, base: Path):
@@ -84,7 +105,11 @@ def read_history(tbl: Table, name: str, base: Path):
         if any(a in h for a in alphas):  # the preset's α's, some replaced (sweeps draw them)
             with naming({a: h.key(a) for a in alphas}):
                 law = ScalingLaw(*(h.number(a, getattr(law, a)) for a in alphas), name=f"{law.name} (alphas replaced)", source=h.path)
-        pulse = law.pulse(P.mass, P.diameter, h.quantity("velocity", "velocity"))
+        velocity = h.quantity("velocity", "velocity")
+        from ..models.validity import warn
+
+        warn(law.envelope(P.diameter, velocity, f"{h.key('velocity')}: the empirical history of {law.name}"))
+        pulse = law.pulse(P.mass, P.diameter, velocity)
     h.done()
     return pulse
 

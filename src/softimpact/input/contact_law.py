@@ -30,7 +30,7 @@ def read_contact_law(c: Table, name: str, hertz: Callable[[], HertzLaw], mass: f
         file = c.string("law_file")
         path = Path(file) if Path(file).is_absolute() else base / file
         identified = read_law(path, c.key("law_file"))
-        _warn_outside(identified.identified_on, velocity, diameter, path)
+        _warn_outside(identified.identified_on, velocity, diameter, path, mass)
         return identified.law(mass, diameter, velocity), path
     h = hertz()
     if name == "hertz":
@@ -44,21 +44,34 @@ def read_contact_law(c: Table, name: str, hertz: Callable[[], HertzLaw], mass: f
     return HuntCrossleyLaw(h.K, h.R, restitution, velocity, h.exponent, form), None
 
 
-def _warn_outside(ranges: dict | None, velocity: float, diameter: float, path: Path) -> None:
-    """A warning when the impactor's velocity or diameter lies outside those the law was identified
-    on (more than 10 % beyond the range): the law is then an extrapolation."""
+def _warn_outside(ranges: dict | None, velocity: float, diameter: float, path: Path, mass: float | None = None) -> None:
+    """Warnings when the impactor lies outside what the law was identified on (more than 10 % beyond the
+    velocities, diameters or masses of its tests, or 20 % off their projectiles' density m/(π d³/6):
+    another material; :mod:`softimpact.models.validity`): the law is then an extrapolation. A law.json
+    without the record (written before it was kept) is warned as unchecked."""
+    import math
     import warnings
 
     from ..errors import SoftimpactWarning
+    from ..models.validity import range_flags, warn
 
+    what = f"the law of {path.name}"
     if ranges is None:  # a law.json written before the ranges were recorded
+        warnings.warn(
+            f"{what} does not record the tests it was identified on: the impactor's velocity, size and material cannot be checked",
+            SoftimpactWarning,
+            stacklevel=3,
+        )
         return
-    for what, key, value, unit in (("velocity", "velocity_m_s", velocity, "m/s"), ("diameter", "diameter_m", diameter, "m")):
-        lo, hi = ranges[key]
-        if not 0.9 * lo <= value <= 1.1 * hi:
-            warnings.warn(
-                f"the impactor's {what} {value:.4g} {unit} lies outside the {lo:.4g}-{hi:.4g} {unit} the law of {path.name} was "
-                "identified on: its force is an extrapolation",
-                SoftimpactWarning,
-                stacklevel=2,
-            )
+    checks = [("velocity", velocity, ranges["velocity_m_s"], "m/s"), ("diameter", diameter, ranges["diameter_m"], "m")]
+    proj = ranges.get("projectile")
+    if proj is None:
+        warnings.warn(
+            f"{what} does not record the projectile it was identified on (mass, density): the impactor's mass and material cannot be checked",
+            SoftimpactWarning,
+            stacklevel=3,
+        )
+    elif mass is not None:
+        density = mass / (math.pi / 6 * diameter**3)
+        checks += [("mass", mass, proj["mass_kg"], "kg"), ("density", density, proj["density_kg_m3"], "kg/m^3")]
+    warn(range_flags(f"the impactor for {what}", checks))

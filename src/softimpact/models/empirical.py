@@ -46,7 +46,8 @@ def _check(m, d, V):
 
 @dataclass(frozen=True)
 class ScalingLaw:
-    """Eqs (4)–(7): the α's, where they come from, and the velocity range they were fitted on [m/s]."""
+    """Eqs (4)–(7): the α's, where they come from, and the velocity [m/s] and diameter [m] ranges
+    they were fitted on ((0, inf): not known)."""
 
     alpha1: float
     alpha2: float
@@ -55,6 +56,7 @@ class ScalingLaw:
     name: str = "user"
     source: str = "user input"
     velocity_range: tuple[float, float] = (0.0, math.inf)
+    diameter_range: tuple[float, float] = (0.0, math.inf)
 
     def __post_init__(self):
         for k in ("alpha1", "alpha2", "alpha4"):
@@ -82,16 +84,28 @@ class ScalingLaw:
         lo, hi = self.velocity_range
         return lo <= V <= hi
 
+    def envelope(self, d: float, V: float, what: str = ""):
+        """The velocity V [m/s] and diameter d [m] against the ranges the constants were fitted on
+        (:func:`softimpact.models.validity.range_flags`; unknown ranges are not checked)."""
+        from .validity import range_flags
+
+        checks = [
+            (k, x, r, u) for k, x, r, u in (("velocity", V, self.velocity_range, "m/s"), ("diameter", d, self.diameter_range, "m")) if math.isfinite(r[1])
+        ]
+        return range_flags(what or f"the constants {self.name}", checks)
+
 
 TAIL_LEVEL = 0.04  # fraction of F0 where the synthetic tail takes over from eq (15)
 
 _TABLE_I = "Table I of the paper (longitudinal bar tests, 1000-5000 in/s)"
 
 PRESETS = {
-    "silicone-3/8in": ScalingLaw(4.00, 1.03, 0.25, 0.74, "silicone-3/8in", _TABLE_I, (1000 * INCH, 5000 * INCH)),
+    "silicone-3/8in": ScalingLaw(4.00, 1.03, 0.25, 0.74, "silicone-3/8in", _TABLE_I, (1000 * INCH, 5000 * INCH), (0.375 * INCH, 0.375 * INCH)),
     # α3 of the 1/2-in ball did not survive in Table I; the 3/8-in value is used, as
     # the paper finds the trends characteristic of the material, not the size.
-    "silicone-1/2in": ScalingLaw(4.25, 0.93, 0.25, 0.66, "silicone-1/2in", _TABLE_I + "; alpha3 missing, 0.25 (3/8-in value) used", (1000 * INCH, 5000 * INCH)),
+    "silicone-1/2in": ScalingLaw(
+        4.25, 0.93, 0.25, 0.66, "silicone-1/2in", _TABLE_I + "; alpha3 missing, 0.25 (3/8-in value) used", (1000 * INCH, 5000 * INCH), (0.5 * INCH, 0.5 * INCH)
+    ),
 }
 
 

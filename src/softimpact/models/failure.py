@@ -29,39 +29,36 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
-from .laminate import ply_stiffness, reduced_stiffness
+from .laminate import PLIES, STRENGTH_KEYS, PlyStrength, ply_stiffness, reduced_stiffness
 
-__all__ = ["CRITERIA", "PlyStrength", "STRENGTHS", "ply_stresses", "failure_indices", "davies_zhang_force"]
+__all__ = [
+    "CRITERIA",
+    "PlyStrength",
+    "STRENGTHS",
+    "strength_of",
+    "ply_stresses",
+    "failure_indices",
+    "davies_zhang_force",
+    "InterlaminarShear",
+    "interlaminar_shear",
+]
 
 CRITERIA = ("max_strain", "tsai_wu", "hashin")
 
 
-@dataclass(frozen=True)
-class PlyStrength:
-    """Strengths of a ply [Pa]: fibre tension/compression X_t, X_c, transverse Y_t, Y_c,
-    in-plane shear S12, transverse shear S23, and the mode-II toughness G_IIc [J/m²]."""
-
-    Xt: float
-    Xc: float
-    Yt: float
-    Yc: float
-    S12: float
-    S23: float
-    GIIc: float
-    source: str = "user input"
-
-    def __post_init__(self):
-        for k in ("Xt", "Xc", "Yt", "Yc", "S12", "S23", "GIIc"):
-            v = getattr(self, k)
-            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
-                raise InputError(f"{k} must be positive, got {v!r}", k)
+# Catalogue strengths by ply name (the catalogue plies carry them: ``PLIES[name].strength``).
+STRENGTHS = {name: p.strength for name, p in PLIES.items() if p.strength is not None}
 
 
-STRENGTHS = {
-    # T300/5208 of Tsai & Hahn (1980), Table 1.5, the usual stand-in for T300/934 (same fibre,
-    # a 177 °C epoxy); G_IIc of a brittle 934-type epoxy laminate (docs/modelling-notes.md).
-    "T300/934": PlyStrength(1500e6, 1500e6, 40e6, 246e6, 68e6, 68e6, 500.0, "Tsai & Hahn 1980 (T300/5208); G_IIc 0.5 kJ/m² representative"),
-}
+def strength_of(ply, where: str = "ply") -> PlyStrength:
+    """The strengths a damage output needs from ``ply``; an InputError naming the missing keys
+    (``where``: the ply's key in the case) when the ply has none (an inline ply without them)."""
+    if ply.strength is None:
+        raise InputError(
+            f"{where}: damage outputs need the ply's strengths; ply {ply.name!r} has none: give {', '.join(STRENGTH_KEYS)} "
+            f"(stresses with units, G_IIc in J/m^2) in its table, or use a catalogue ply ({', '.join(STRENGTHS)})"
+        )
+    return ply.strength
 
 
 def ply_stresses(ply, angles, midplane_strain, curvature, z) -> tuple[np.ndarray, np.ndarray]:
@@ -128,3 +125,63 @@ def failure_indices(ply, strength: PlyStrength, strain: np.ndarray, stress: np.n
 def davies_zhang_force(E: float, nu: float, thickness: float, GIIc: float) -> float:
     """Delamination threshold force [N], Davies & Zhang (1995): π·sqrt(8·E·h³·G_IIc/(9(1 − ν²)))."""
     return math.pi * math.sqrt(8 * E * thickness**3 * GIIc / (9 * (1 - nu**2)))
+
+
+@dataclass(frozen=True)
+class InterlaminarShear:
+    """Interlaminar shear stresses at the ply interfaces per unit transverse shear resultant.
+
+    ``z`` (n_interfaces,) heights [m] of the interior interfaces (top first); ``tau_xz``,
+    ``tau_yz`` (n_interfaces,) [Pa per N/m] in the axes of the resultant (x along it); ``index``
+    (n_interfaces,) [per N/m] the quadratic delamination-onset index of each interface
+    sqrt((τ13/S13)² + (τ23/S23)²), the worse of the two plies that meet there, with S13 = S12
+    (transversely isotropic ply). Everything is linear in the resultant q [N/m]: multiply by |q|.
+    """
+
+    z: np.ndarray
+    tau_xz: np.ndarray
+    tau_yz: np.ndarray
+    index: np.ndarray
+
+
+def interlaminar_shear(ply, angles, strength: PlyStrength, direction: float = 0.0) -> InterlaminarShear:
+    """Interlaminar shear recovered from the equilibrium equations through the thickness.
+
+    A transverse shear resultant Q_x = dM_x/dx (x at ``direction`` [°] from the laminate's x,
+    ``angles`` top ply first) with the in-plane forces constant: by CLT
+    d(ε0, κ)/dx = (ABD)⁻¹·(0, 0, 0, Q_x, 0, 0), so in ply k dσ/dx = Q̄_k·(dε0/dx + z·dκ/dx), and
+    integrating ∂σ_x/∂x + ∂τ_xz/∂z = 0 and ∂τ_xy/∂x + ∂τ_yz/∂z = 0 up from the free bottom face
+    (τ = 0 at z = −h/2):
+
+        τ_xz(z) = −∫_{−h/2}^{z} dσ_x/dx dζ,   τ_yz(z) = −∫_{−h/2}^{z} dτ_xy/dx dζ.
+
+    For one orthotropic ply angle this is Jourawski's 3Q/(2h) at the mid-plane. Exact per ply (the
+    integrand is linear in ζ within a ply).
+    """
+    from .laminate import abd, rotate
+
+    rel = np.asarray(angles, float) - direction
+    n, t = rel.size, ply.thickness
+    C = ply_stiffness(ply)
+    Qbar = [reduced_stiffness(rotate(C, a)) for a in rel]
+    A, B, D = abd([rotate(C, a) for a in rel], [t] * n)
+    d = np.linalg.solve(np.block([[A, B], [B, D]]), np.array([0, 0, 0, 1.0, 0, 0]))
+    de0, dk = d[:3], d[3:]
+    h = n * t
+    tops = h / 2 - t * np.arange(n)  # ply k spans [tops[k] − t, tops[k]]
+    tau = np.zeros((n + 1, 2))  # at the faces from the bottom up: tau[j] at z = −h/2 + j·t
+    for j, k in enumerate(range(n - 1, -1, -1)):
+        lo, hi = tops[k] - t, tops[k]
+        # ∫ Q̄(dε0 + ζ dκ) dζ over the ply
+        integral = Qbar[k] @ (de0 * (hi - lo) + dk * 0.5 * (hi * hi - lo * lo))
+        tau[j + 1] = tau[j] - integral[[0, 2]]
+    interior = tau[1:-1][::-1]  # top first: the interface below ply k is tops[k] − t, k = 0..n−2
+    z = tops[:-1] - t
+    index = np.zeros(n - 1)
+    for i in range(n - 1):
+        for k in (i, i + 1):  # the plies above and below the interface
+            c, s = math.cos(math.radians(rel[k])), math.sin(math.radians(rel[k]))
+            t13 = c * interior[i, 0] + s * interior[i, 1]
+            t23 = -s * interior[i, 0] + c * interior[i, 1]
+            index[i] = max(index[i], math.hypot(t13 / strength.S12, t23 / strength.S23))
+    return InterlaminarShear(z, interior[:, 0], interior[:, 1], index)

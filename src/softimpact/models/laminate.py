@@ -20,15 +20,56 @@ import numpy as np
 from ..errors import InputError
 from ..units import INCH
 
-__all__ = ["PLANES", "Blend", "Ply", "PLIES", "parse_layup", "ply_stiffness", "rotate", "homogenise", "engineering_constants", "plane_matrix", "abd", "Stack"]
+__all__ = [
+    "PLANES",
+    "Blend",
+    "Ply",
+    "PlyStrength",
+    "STRENGTH_KEYS",
+    "PLIES",
+    "parse_layup",
+    "ply_stiffness",
+    "rotate",
+    "homogenise",
+    "engineering_constants",
+    "plane_matrix",
+    "abd",
+    "Stack",
+]
 
 INPLANE = [0, 1, 5]  # 11, 22, 12
 OUTPLANE = [2, 3, 4]  # 33, 23, 13
 
 
+STRENGTH_KEYS = ("Xt", "Xc", "Yt", "Yc", "S", "G_IIc")  # a ply table's strength keys (S23 optional, default S)
+
+
+@dataclass(frozen=True)
+class PlyStrength:
+    """Strengths of a ply [Pa]: fibre tension/compression X_t, X_c, transverse Y_t, Y_c,
+    in-plane shear S12, transverse shear S23 (Hashin's matrix compression), and the mode-II
+    toughness G_IIc [J/m²] of the Davies–Zhang delamination threshold."""
+
+    Xt: float
+    Xc: float
+    Yt: float
+    Yc: float
+    S12: float
+    S23: float
+    GIIc: float
+    source: str = "user input"
+
+    def __post_init__(self):
+        for k in ("Xt", "Xc", "Yt", "Yc", "S12", "S23", "GIIc"):
+            v = getattr(self, k)
+            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+                raise InputError(f"{k} must be positive, got {v!r}", k)
+
+
 @dataclass(frozen=True)
 class Ply:
-    """A transversely isotropic or orthotropic ply in its material axes."""
+    """A transversely isotropic or orthotropic ply in its material axes; ``strength`` its
+    strengths (None when not given: the damage outputs then refuse it, naming the keys)."""
 
     name: str
     E1: float
@@ -43,6 +84,7 @@ class Ply:
     density: float
     thickness: float
     source: str = "user input"
+    strength: PlyStrength | None = None
 
     def __post_init__(self):
         for k in ("E1", "E2", "E3", "G12", "G13", "G23", "density", "thickness"):
@@ -66,6 +108,16 @@ def ply_stiffness(p: Ply) -> np.ndarray:
     return np.linalg.inv(S)
 
 
+MPA = 1e6  # Pa
+
+
+def _transversely_isotropic(name, E1, E2, G12, nu12, nu23, density, thickness, source, strength) -> Ply:
+    """A ply isotropic in its 2–3 plane (E3 = E2, G13 = G12, ν13 = ν12, G23 = E2/(2(1 + ν23)))."""
+    return Ply(name, E1, E2, E2, G12, G12, E2 / (2 * (1 + nu23)), nu12, nu12, nu23, density, thickness, source, strength)
+
+
+# G_IIc of the catalogue: no table below gives it; the values are representative of each resin
+# (brittle 177 °C epoxies 0.5–0.8 kJ/m², glass/epoxy about 1 kJ/m²) and say so in their source.
 PLIES = {
     "T300/934": Ply(
         "T300/934",
@@ -81,7 +133,65 @@ PLIES = {
         1580.0,
         0.0055 * INCH,
         "representative literature values (docs/modelling-notes.md); the paper's ref 12 is not available",
-    )
+        # T300/5208 of Tsai & Hahn (1980), the usual stand-in for T300/934 (same fibre, a 177 °C epoxy).
+        PlyStrength(1500 * MPA, 1500 * MPA, 40 * MPA, 246 * MPA, 68 * MPA, 68 * MPA, 500.0, "Tsai & Hahn 1980 (T300/5208); G_IIc 0.5 kJ/m² representative"),
+    ),
+    # Tsai & Hahn (1980), Introduction to Composite Materials, Technomic, Table 1.5 (typical unidirectional
+    # ply data: T300/5208); ν23 0.40 assumed (not in the table).
+    "T300/5208": _transversely_isotropic(
+        "T300/5208",
+        181e9,
+        10.3e9,
+        7.17e9,
+        0.28,
+        0.40,
+        1600.0,
+        0.125e-3,
+        "Tsai & Hahn 1980, Table 1.5 (nu23 assumed 0.40)",
+        PlyStrength(1500 * MPA, 1500 * MPA, 40 * MPA, 246 * MPA, 68 * MPA, 68 * MPA, 500.0, "Tsai & Hahn 1980, Table 1.5; G_IIc 0.5 kJ/m² representative"),
+    ),
+    # Daniel & Ishai (2006), Engineering Mechanics of Composite Materials, 2nd ed., Oxford UP, Appendix A
+    # (properties of unidirectional composites: AS4/3501-6 carbon/epoxy).
+    "AS4/3501-6": _transversely_isotropic(
+        "AS4/3501-6",
+        147e9,
+        10.3e9,
+        7.0e9,
+        0.27,
+        0.54,
+        1600.0,
+        0.13e-3,
+        "Daniel & Ishai 2006, Appendix A",
+        PlyStrength(2280 * MPA, 1725 * MPA, 57 * MPA, 228 * MPA, 76 * MPA, 76 * MPA, 550.0, "Daniel & Ishai 2006, Appendix A; G_IIc 0.55 kJ/m² representative"),
+    ),
+    # Camanho, Maimí & Dávila (2007), Compos. Sci. Technol. 67, 2715–2727, Table 1 (IM7/8552; Y_t the
+    # unidirectional, not the in-situ strength; G_IIc 0.788 kJ/m² from the same table); density and cured
+    # ply thickness from Hexcel's HexPly 8552 data sheet; ν23 0.45 assumed.
+    "IM7/8552": _transversely_isotropic(
+        "IM7/8552",
+        171.42e9,
+        9.08e9,
+        5.29e9,
+        0.32,
+        0.45,
+        1570.0,
+        0.131e-3,
+        "Camanho, Maimi & Davila 2007, Table 1; Hexcel 8552 data sheet (density, ply thickness); nu23 assumed 0.45",
+        PlyStrength(2323.5 * MPA, 1200.1 * MPA, 62.3 * MPA, 199.8 * MPA, 92.3 * MPA, 92.3 * MPA, 788.0, "Camanho, Maimi & Davila 2007, Table 1"),
+    ),
+    # Tsai & Hahn (1980), Table 1.5: Scotchply 1002 E-glass/epoxy; ν23 0.40 assumed.
+    "E-glass/epoxy": _transversely_isotropic(
+        "E-glass/epoxy",
+        38.6e9,
+        8.27e9,
+        4.14e9,
+        0.26,
+        0.40,
+        1800.0,
+        0.125e-3,
+        "Tsai & Hahn 1980, Table 1.5 (Scotchply 1002; nu23 assumed 0.40)",
+        PlyStrength(1062 * MPA, 610 * MPA, 31 * MPA, 118 * MPA, 72 * MPA, 72 * MPA, 1000.0, "Tsai & Hahn 1980, Table 1.5; G_IIc 1 kJ/m² representative"),
+    ),
 }
 
 

@@ -10,9 +10,18 @@ from .files import csv_text, figure_bytes, json_text, strain_peaks
 from .impact import impact_columns
 from .report import Section
 
-__all__ = ["bar_summary", "bar_files", "bar_section"]
+__all__ = ["bar_summary", "bar_validity", "bar_files", "bar_section"]
 
 MICROSECOND = 1e-6  # s: the column names of strain-along-bar.csv give the instant in µs (file contract)
+
+
+def bar_validity(result):
+    """The contact law's envelope on the bar (:func:`softimpact.models.validity.contact_validity`): approach
+    against the projectile's diameter, contact radius against the projectile's and the bar's radius."""
+    from ..models.validity import contact_validity
+
+    p = result.problem
+    return contact_validity(p.law_name, float(np.max(result.approach)), float(np.max(result.contact_radius)), p.projectile.diameter, p.bar.diameter / 2)
 
 
 def bar_summary(result) -> dict:
@@ -38,6 +47,7 @@ def bar_summary(result) -> dict:
         "energy_drift_relative": float((e.max() - e.min()) / e[0]),
         "newton_iterations": result.newton_iterations,
         "gauges": gauges,
+        "validity": bar_validity(result).summary(),
         "case_SI": _case(p),
     }
 

@@ -9,7 +9,25 @@ from ..units import display
 from .files import csv_text, energy_balance, figure_bytes, json_text, strain_peaks
 from .report import Section
 
-__all__ = ["beam_summary", "beam_scalars", "beam_files", "beam_section"]
+__all__ = ["beam_validity", "beam_summary", "beam_scalars", "beam_files", "beam_section"]
+
+
+def beam_validity(result):
+    """The envelopes of a beam run (:mod:`softimpact.models.validity`): peak deflection under the load
+    against the thickness (linear theory), and on a layup with strengths the gauge sections' maximum-strain
+    index (:func:`softimpact.workflows.damage.beam_damage`) against 1."""
+    from ..models.validity import allowable_flags, deflection_validity
+
+    p = result.problem
+    v = deflection_validity("linear beam theory", float(np.max(np.abs(result.deflection))), p.beam.thickness)
+    stack = p.beam.stack
+    if stack is not None and hasattr(stack, "angles") and stack.ply.strength is not None and p.gauges and np.all(np.isfinite(result.bending)):
+        from ..workflows.damage import beam_damage
+
+        other = result.strain - 2 * result.bending
+        dmg = beam_damage(stack, stack.ply.strength, p.beam.plane, result.strain, other, [g.surface for g in p.gauges], result.force)
+        v += allowable_flags("the beam's plies at the gauge sections", float(dmg.ply["max_strain"].max()))
+    return v
 
 
 def beam_summary(model, result) -> dict:
@@ -35,6 +53,7 @@ def beam_summary(model, result) -> dict:
         "effective_moduli_Pa": model.moduli(),
         **beam_scalars(result),
         "gauges": gauges,
+        "validity": beam_validity(result).summary(),
         "case_SI": p,
     }
     if result.energy:
@@ -90,19 +109,21 @@ def beam_section(model, result, prefix: str) -> Section:
         if k in moduli
     ]
     if bs:
-        rows.append(["bending stiffness per width, smeared (E·h³/12)", f"{bs['smeared_EI_per_width']:.1f} N·m"])
+        mu = display(p.units, "moment")
+        rows.append(["bending stiffness per width, smeared (E·h³/12)", f"{bs['smeared_EI_per_width'] * mu.factor:.4g} {mu.label}"])
         if "clt_D11" in bs:
-            rows.append(["bending stiffness per width, real stacking (CLT D11)", f"{bs['clt_D11']:.1f} N·m"])
+            rows.append(["bending stiffness per width, real stacking (CLT D11)", f"{bs['clt_D11'] * mu.factor:.4g} {mu.label}"])
     grows = []
     for g, d in summary["gauges"].items():
         z = d["first_zero_crossing_of_bending_strain_s"]
-        edge = " (at the window's end: still growing?)" if d["peak_at_window_end"] else ""
+        # the note goes with the peak that sits on the window's last sample (tensile, compressive or both)
+        edge = {k: " (at the window's end: still growing?)" if k in d["peak_at_window_end"] else "" for k in ("tensile", "compressive")}
         grows.append(
             [
                 g,
                 f"{d['position_m'] * lu.factor:.3g} {lu.label} from the support, {d['surface']} face",
-                f"{d['peak_tensile_strain'] * su.factor:.0f}",
-                f"{d['peak_compressive_strain'] * su.factor:.0f}{edge}",
+                f"{d['peak_tensile_strain'] * su.factor:.0f}{edge['tensile']}",
+                f"{d['peak_compressive_strain'] * su.factor:.0f}{edge['compressive']}",
                 "—" if z is None or z != z else f"{z * tu.factor:.0f}",
             ]
         )

@@ -15,6 +15,7 @@ removed on SIGTERM, and one left by a killed run is removed by the next run.
 
 from __future__ import annotations
 
+import contextvars
 import hashlib
 import io
 import json
@@ -39,6 +40,9 @@ __all__ = [
     "json_text",
     "jsonable",
     "figure_bytes",
+    "FIGURE_FORMATS",
+    "figure_format",
+    "with_figure_format",
     "write_outputs",
     "check_writable",
     "claim_output",
@@ -116,14 +120,35 @@ def _cell(v) -> str:
     return "" if math.isnan(f) else repr(f)
 
 
-def figure_bytes(fig, fmt: str = "png") -> bytes:
-    """Render a matplotlib figure to bytes and close it."""
+FIGURE_FORMATS = ("png", "svg", "pdf")  # raster (120 dpi) or vector
+# The format figures are drawn in for the command being run (``--figure-format``): the CLI sets it
+# around one command and resets it after; the names stay "*.png" until :func:`with_figure_format`.
+figure_format: contextvars.ContextVar[str] = contextvars.ContextVar("softimpact_figure_format", default="png")
+
+
+def figure_bytes(fig, fmt: str | None = None) -> bytes:
+    """Render a matplotlib figure to bytes (``fmt``, default the run's :data:`figure_format`) and close it."""
     import matplotlib.pyplot as plt
 
     buf = io.BytesIO()
-    fig.savefig(buf, format=fmt, dpi=120, bbox_inches="tight")
+    fig.savefig(buf, format=fmt or figure_format.get(), dpi=120, bbox_inches="tight")
     plt.close(fig)
     return buf.getvalue()
+
+
+def with_figure_format(files: dict[str, bytes | str], fmt: str) -> dict[str, bytes | str]:
+    """The outputs with their figures named for ``fmt`` ("x.png" → "x.svg"), and the names
+    rewritten in the HTML reports that link them; unchanged for png."""
+    if fmt == "png":
+        return files
+    renamed = {n: n[: -len(".png")] + "." + fmt for n, v in files.items() if n.endswith(".png") and isinstance(v, bytes)}
+    out = {}
+    for name, value in files.items():
+        if name.endswith(".html") and isinstance(value, str):
+            for old, new in renamed.items():
+                value = value.replace(f"'{old}'", f"'{new}'").replace(f'"{old}"', f'"{new}"')
+        out[renamed.get(name, name)] = value
+    return out
 
 
 def sha256(data: bytes | str) -> str:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..formats._json import json_text
-from ..formats.law_json import law_summary
+from ..formats.law_json import law_summary, projectile_record
 from ..units import display
 from .files import csv_text, figure_bytes
 
@@ -84,12 +84,13 @@ def closure_columns(tests, closure) -> dict:
 
 def closure_figure(tests, closure, system: str, title: str = "Closure: measured force and the identified law on the coupled bar"):
     """Measured force histories (solid) beside the coupled bar simulations with the identified law (dashed)."""
-    from .plots import _figure
+    from .plots import _figure, curve_colors
 
     tu, fu = display(system, "time"), display(system, "force")
     fig, ax = _figure(7.5, 4.8)
+    colors = curve_colors(len(tests))
     for i, (t, cl_t, cl_f) in enumerate(zip(tests, closure.time, closure.force)):
-        c = f"C{i % 10}"
+        c = colors[i]
         T = closure.measured[i, 1]
         keep = t.time <= 1.5 * T
         ax.plot(t.time[keep] * tu.factor, t.force[keep] * fu.factor, color=c, lw=1.2, label=t.name)
@@ -106,12 +107,13 @@ def force_approach_figure(tests, law, approaches, system: str):
     """Measured F against the reconstructed approach α/d (main pulses), and the fitted law on the same α, α̇
     (and, for a law with memory, the same α history)."""
     from ..workflows.identification import fitted_force
-    from .plots import _figure
+    from .plots import _figure, curve_colors
 
     fu = display(system, "force")
     fig, ax = _figure(7.5, 4.8)
+    colors = curve_colors(len(tests))
     for i, (t, a) in enumerate(zip(tests, approaches)):
-        c = f"C{i % 10}"
+        c = colors[i]
         m = a.main_pulse
         ax.plot(a.approach[m] / t.diameter, a.force[m] * fu.factor, color=c, lw=1.0, label=t.name)
         ax.plot(a.approach[m] / t.diameter, fitted_force(law, a, t) * fu.factor, color=c, lw=1.0, ls="--")
@@ -125,7 +127,7 @@ def force_approach_figure(tests, law, approaches, system: str):
 def identify_files(series, tests, law, approaches, closure, figures: bool = True, prefix: str = "", predictions=()) -> dict[str, bytes | str]:
     """law.json (with the predictive intervals, :func:`predictions_summary`), closure.csv,
     predictions.csv, approach-<test>.csv and (optionally) closure-forces.png, force-approach.png."""
-    summary = law_summary(law, [t.name for t in tests], closure, str(series.path))
+    summary = law_summary(law, [t.name for t in tests], closure, str(series.path), projectile_record(tests))
     summary.update(predictions_summary(law, predictions))
     files = {
         prefix + "law.json": json_text(summary),

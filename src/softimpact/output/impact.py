@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -9,7 +10,19 @@ import numpy as np
 from ..units import display
 from .files import csv_text, figure_bytes, json_text, strain_peaks
 
-__all__ = ["impact_summary", "impact_columns", "impact_files", "impact_figures", "snapshot_steps", "SNAPSHOTS"]
+__all__ = [
+    "DAMAGE_PREFIX",
+    "damage_problem",
+    "damage_keys",
+    "split_damage",
+    "impact_damage_summary",
+    "impact_summary",
+    "impact_columns",
+    "impact_files",
+    "impact_figures",
+    "snapshot_steps",
+    "SNAPSHOTS",
+]
 
 SNAPSHOTS = 6  # instants of a plate's deflected-shape figure
 
@@ -18,6 +31,122 @@ def snapshot_steps(steps: int) -> np.ndarray:
     """Step indices of a plate's deflected-shape figure: SNAPSHOTS instants doubling up to the end
     of the run (…, T/4, T/2, T), so the early, local wave and the later whole-plate response both show."""
     return np.unique(np.maximum(np.round(steps / 2.0 ** np.arange(SNAPSHOTS - 1, -1, -1)).astype(int), 1))
+
+
+DAMAGE_PREFIX = "_damage"  # names of the pseudo-gauges that feed the damage indices
+
+
+def _opposite(surface: str) -> str:
+    return "top" if surface == "bottom" else "bottom"
+
+
+def damage_problem(problem):
+    """The impact problem with the pseudo-gauges its damage indices need, when its target is a
+    layup whose ply has strengths (else unchanged): on a beam the load point's two faces and the
+    face opposite each gauge (axial strain over the gauge length); on a plate point strains in x, y
+    and 45° on both faces under the load and at each gauge's centre (the in-plane strain tensor,
+    :func:`softimpact.workflows.damage.strain_tensor`)."""
+    if _bar(problem):
+        return problem
+    target = problem.target
+    stack = target.plate.stack if problem.on_plate else target.beam.stack
+    if stack is None or not hasattr(stack, "angles") or stack.ply.strength is None:
+        return problem
+    if problem.on_plate:
+        from ..workflows.plate_impact import PlateGauge
+
+        spots = {"at_load": tuple(target.load.position), **{f"at_{g.name}": tuple(g.position) for g in target.gauges}}
+        extra = tuple(
+            PlateGauge(f"{DAMAGE_PREFIX}.{n}.{face}.{d}", xy, face, d, 0.0) for n, xy in spots.items() for face in ("top", "bottom") for d in ("x", "y", 45.0)
+        )
+    else:
+        from ..workflows.beam_impact import BeamGauge
+
+        x = target.load.position
+        extra = (BeamGauge(f"{DAMAGE_PREFIX}.at_load.top", x, "top"), BeamGauge(f"{DAMAGE_PREFIX}.at_load.bottom", x, "bottom"))
+        extra += tuple(BeamGauge(f"{DAMAGE_PREFIX}.at_{g.name}.{_opposite(g.surface)}", g.position, _opposite(g.surface), g.length) for g in target.gauges)
+    return dataclasses.replace(problem, target=dataclasses.replace(target, gauges=target.gauges + extra))
+
+
+def damage_keys(problem) -> tuple[str, ...]:
+    """The dotted damage outputs of an impact problem (sweeps): none unless :func:`damage_problem` adds its gauges."""
+    from ..models.failure import CRITERIA
+
+    if _bar(problem) or damage_problem(problem) is problem:
+        return ()
+    points = ["at_load"] + [f"at_{g.name}" for g in problem.target.gauges]
+    keys = [f"damage.{c}" for c in CRITERIA] + [f"damage.{k}" for k in ("delamination", "threshold_force_N", "interlaminar_shear_max_Pa", "interlaminar_index")]
+    return tuple(keys + [f"damage.{p}.{c}" for p in points for c in CRITERIA])
+
+
+def _no_damage(problem) -> dict:
+    """``damage_note``: why an impact has no damage outputs, when its target's laminate is the reason
+    (no layup, or a ply without strengths); empty otherwise (the run was not asked for them)."""
+    from ..workflows.damage import damage_refusal
+
+    why = None if _bar(problem) else damage_refusal(problem)
+    return {} if why is None else {"damage_note": why}
+
+
+def _bar(problem) -> bool:
+    return not hasattr(problem, "target")
+
+
+def split_damage(problem, result):
+    """(problem, result) without the damage pseudo-gauges, and those gauges' strains by name."""
+    keep = [i for i, n in enumerate(result.strain_names) if not n.startswith(DAMAGE_PREFIX + ".")]
+    if len(keep) == len(result.strain_names):
+        return problem, result, {}
+    pseudo = {n: result.strain[i] for i, n in enumerate(result.strain_names) if i not in keep}
+    result = dataclasses.replace(result, strain=result.strain[keep], strain_names=tuple(result.strain_names[i] for i in keep))
+    target = problem.target
+    problem = dataclasses.replace(
+        problem, target=dataclasses.replace(target, gauges=tuple(g for g in target.gauges if not g.name.startswith(DAMAGE_PREFIX + ".")))
+    )
+    return problem, result, pseudo
+
+
+def impact_damage_summary(problem, result, pseudo: dict) -> dict:
+    """summary.json's ``damage`` of a coupled impact (:func:`softimpact.workflows.damage.impact_damage`):
+    indices at the load point and at each gauge, Davies–Zhang against the peak force, interlaminar shear."""
+    from ..workflows.damage import impact_damage, section_strains, strain_tensor
+
+    target = problem.target
+    stack = target.plate.stack if problem.on_plate else target.beam.stack
+    points = {}
+    if problem.on_plate:
+        for name in ["at_load"] + [f"at_{g.name}" for g in target.gauges]:
+            top, bottom = (strain_tensor(*(pseudo[f"{DAMAGE_PREFIX}.{name}.{f}.{d}"] for d in ("x", "y", "45.0"))) for f in ("top", "bottom"))
+            points[name] = (0.5 * (top + bottom), (top - bottom) / stack.thickness)
+        width = None
+    else:
+        plane = target.beam.plane
+        points["at_load"] = section_strains(stack, plane, pseudo[f"{DAMAGE_PREFIX}.at_load.top"], pseudo[f"{DAMAGE_PREFIX}.at_load.bottom"])
+        for j, g in enumerate(target.gauges):
+            other = pseudo[f"{DAMAGE_PREFIX}.at_{g.name}.{_opposite(g.surface)}"]
+            top, bottom = (result.strain[j], other) if g.surface == "top" else (other, result.strain[j])
+            points[f"at_{g.name}"] = section_strains(stack, plane, top, bottom)
+        width = target.beam.width
+    peak = max(c.peak_force for c in result.contacts)  # every contact's refined peak (parabola through the top samples)
+    dmg = impact_damage(stack, stack.ply.strength, points, result.force, result.contact_radius, width, peak)
+    return dmg.summary()
+
+
+def impact_validity(problem, result, damage: dict | None = None):
+    """The envelopes of a coupled run (:mod:`softimpact.models.validity`): the contact law's approach and
+    contact radius against the impactor's size, the target's deflection against its thickness (linear
+    theory), and with ``damage`` (summary.json's) the strains against the ply allowables."""
+    from ..models.validity import allowable_flags, contact_validity, deflection_validity
+
+    d = problem.impactor.diameter
+    v = contact_validity(problem.law_name, float(np.max(result.approach)), float(np.max(result.contact_radius)), d)
+    if problem.on_plate:
+        v += deflection_validity("linear plate theory (FSDT)", float(np.max(np.abs(result.deflection))), problem.target.plate.stack.thickness)
+    else:
+        v += deflection_validity("linear beam theory", float(np.max(np.abs(result.deflection))), problem.target.beam.thickness)
+    if damage is not None:
+        v += allowable_flags("the target's plies", damage["max_strain"])
+    return v
 
 
 def _contact(c) -> dict:
@@ -51,7 +180,10 @@ def _plate_target(problem, model, result) -> dict:
 
 def impact_summary(problem, result, model=None) -> dict:
     """The scalars of a coupled run (first contact), every contact, gauge peaks and the resolved case; SI.
-    On a plate (``model`` a PlateModel) also ``target``: the plate model and its deflection under the impact."""
+    On a plate (``model`` a PlateModel) also ``target``: the plate model and its deflection under the impact.
+    With the damage pseudo-gauges (:func:`damage_problem`) also ``damage`` (:func:`impact_damage_summary`)."""
+    problem, result, pseudo = split_damage(problem, result)
+    damage = impact_damage_summary(problem, result, pseudo) if pseudo else None
     plate = getattr(problem, "on_plate", False)
     gauges = {}
     for j, (name, eps) in enumerate(zip(result.strain_names, result.strain)):
@@ -93,6 +225,8 @@ def impact_summary(problem, result, model=None) -> dict:
         "newton_iterations": result.newton_iterations,
         "gauges": gauges,
         **({"target": _plate_target(problem, model, result)} if plate and model is not None else {}),
+        **({"damage": damage} if damage is not None else _no_damage(problem)),
+        "validity": impact_validity(problem, result, damage).summary(),
         "case_SI": problem,
     }
 
@@ -207,8 +341,11 @@ def plate_impact_figures(problem, model, result, prefix: str = "") -> dict[str, 
 
 def impact_files(problem, result, figures: bool = True, prefix: str = "", model=None) -> dict[str, bytes | str]:
     """history.csv, summary.json and (optionally) the figures; on a plate (``model`` its PlateModel)
-    also the plate's mesh and deflected shapes."""
-    files = {prefix + "history.csv": csv_text(impact_columns(result)), prefix + "summary.json": json_text(impact_summary(problem, result, model))}
+    also the plate's mesh and deflected shapes. The damage pseudo-gauges (:func:`damage_problem`) feed
+    summary.json's ``damage`` only."""
+    summary = json_text(impact_summary(problem, result, model))
+    problem, result, _ = split_damage(problem, result)
+    files = {prefix + "history.csv": csv_text(impact_columns(result)), prefix + "summary.json": summary}
     if figures:
         files.update(impact_figures(problem, result, prefix))
         if getattr(problem, "on_plate", False) and model is not None:

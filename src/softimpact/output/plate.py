@@ -6,7 +6,7 @@ import numpy as np
 
 from .files import csv_text, energy_balance, figure_bytes, json_text, strain_peaks
 
-__all__ = ["plate_summary", "plate_scalars", "plate_files", "SNAPSHOTS"]
+__all__ = ["plate_validity", "plate_summary", "plate_scalars", "plate_files", "SNAPSHOTS"]
 
 SNAPSHOTS = 6  # instants of the deflected-shape figure, spread over the run
 
@@ -14,6 +14,21 @@ SNAPSHOTS = 6  # instants of the deflected-shape figure, spread over the run
 def snapshot_steps(steps: int) -> np.ndarray:
     """Step indices of the deflected-shape figure: SNAPSHOTS instants after t = 0, the last at the end."""
     return np.unique(np.round(np.linspace(0, steps, SNAPSHOTS + 1)[1:]).astype(int))
+
+
+def plate_validity(result):
+    """The envelopes of a plate run (:mod:`softimpact.models.validity`): peak deflection under the load against
+    the thickness (linear FSDT), and with ply strengths each gauge's peak strain against the most a face strain
+    reaches before the ply fails (:func:`softimpact.models.validity.surface_strain_bound`)."""
+    from ..models.validity import deflection_validity, gauge_allowable_flags
+
+    p = result.problem
+    stack = p.plate.stack
+    v = deflection_validity("linear plate theory (FSDT)", float(np.max(np.abs(result.deflection[0]))), stack.thickness)
+    if stack.ply.strength is not None and len(p.gauges):
+        k = int(np.argmax([np.max(np.abs(e)) for e in result.strain]))
+        v += gauge_allowable_flags(f"gauge {p.gauges[k].name}", stack.ply, float(np.max(np.abs(result.strain[k]))))
+    return v
 
 
 def plate_summary(model, result) -> dict:
@@ -42,6 +57,7 @@ def plate_summary(model, result) -> dict:
         "natural_frequencies_Hz": [float(f) for f in model.frequencies(min(5, model.fe.n - 2))],
         **plate_scalars(result),
         "gauges": gauges,
+        "validity": plate_validity(result).summary(),
         "case_SI": p,
     }
     if result.energy:

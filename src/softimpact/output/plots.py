@@ -9,18 +9,37 @@ import numpy as np
 
 from ..units import display
 
-__all__ = ["bar_gauge_strain", "bar_contact_force", "bar_strain_profiles", "bar_energy"]
+__all__ = ["LINESTYLES", "curve_colors", "bar_gauge_strain", "bar_contact_force", "bar_strain_profiles", "bar_energy"]
+
+
+LINESTYLES = ("-", "--", ":", "-.")  # after the colours of the cycle (ten by default): 40 distinct curves
 
 
 def _figure(width=6.4, height=4.0):
+    """A figure and its axes; curves not given a style cycle colour × line style (the ten colours solid,
+    then dashed, dotted, dash-dotted), so up to 40 curves stay distinct."""
     import matplotlib
 
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
+    from cycler import cycler
 
     fig, ax = plt.subplots(figsize=(width, height), layout="constrained")
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]  # C0…C9 as values (a cycle cannot hold "C0")
+    ax.set_prop_cycle(cycler(linestyle=LINESTYLES) * cycler(color=colors))
     ax.grid(True, alpha=0.3)
     return fig, ax
+
+
+def curve_colors(n: int) -> list:
+    """n distinct colours for curves whose line style already carries a meaning (measured solid, model
+    dashed): the ten of the cycle up to 10, tab20 up to 20, evenly spaced on viridis beyond."""
+    import matplotlib
+
+    if n <= 10:
+        return [f"C{i}" for i in range(n)]
+    cmap = matplotlib.colormaps["tab20" if n <= 20 else "viridis"]
+    return [cmap(i if n <= 20 else i / (n - 1)) for i in range(n)]
 
 
 def bar_gauge_strain(result, system: str):

@@ -43,10 +43,16 @@ def render_report(title: str, sections: list[Section], notes: list[str] = (), fi
             out += ["<tr>" + "".join(f"<td>{esc(str(c))}</td>" for c in row) + "</tr>" for row in rows]
             out.append("</table>")
         for path, caption in s.figures:
-            src = path
+            src, mime = path, "image/png"
             if files is not None and isinstance(files.get(path), bytes):
-                src = "data:image/png;base64," + base64.b64encode(files[path]).decode("ascii")
-            out.append(f"<figure><img src='{src if src != path else esc(path)}' alt='{esc(caption)}'><figcaption>{esc(caption)}</figcaption></figure>")
+                data = files[path]
+                mime = "application/pdf" if data[:4] == b"%PDF" else "image/svg+xml" if data.lstrip()[:5] in (b"<?xml", b"<svg ") else "image/png"
+                src = f"data:{mime};base64," + base64.b64encode(data).decode("ascii")
+            shown = src if src != path else esc(path)
+            if mime == "application/pdf":  # --figure-format pdf: browsers show a PDF in an embed, not an img
+                out.append(f"<figure><embed src='{shown}' type='application/pdf' width='100%' height='480'><figcaption>{esc(caption)}</figcaption></figure>")
+            else:
+                out.append(f"<figure><img src='{shown}' alt='{esc(caption)}'><figcaption>{esc(caption)}</figcaption></figure>")
     if notes:
         out.append("<h2>Assumptions and errata</h2><ul>" + "".join(f"<li>{esc(n)}</li>" for n in notes) + "</ul>")
     out.append("</body></html>")

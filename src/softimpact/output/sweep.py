@@ -86,6 +86,7 @@ def threshold_figure(th: list[dict], system: str, title: str = "Threshold veloci
                 ax.annotate("not reached", (x, 0.02), xycoords=("data", "axes fraction"), rotation=90, fontsize=7, ha="center")
     ax.set_xlim(-0.5, len(labels) - 0.5)
     ax.set_xticks(range(len(labels)), [lab or "all runs" for lab in labels], fontsize=8)
+    ax.set_xlabel("levels of the swept parameters (besides velocity)")
     ax.set_ylabel(f"threshold velocity [{vu.label}]")
     ax.set_title(title, fontsize=10)
     ax.legend(fontsize=8)

@@ -24,10 +24,25 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
-from ..models.failure import CRITERIA, PlyStrength, davies_zhang_force, failure_indices, ply_stresses
+from ..models.failure import CRITERIA, PlyStrength, davies_zhang_force, failure_indices, interlaminar_shear, ply_stresses
 from ..models.laminate import abd, engineering_constants
 
-__all__ = ["DamageResult", "section_strains", "extreme_faces", "ply_faces", "strain_tensor", "beam_damage", "plate_damage", "delamination_force"]
+__all__ = [
+    "DamageResult",
+    "section_strains",
+    "extreme_faces",
+    "ply_faces",
+    "strain_tensor",
+    "beam_damage",
+    "plate_damage",
+    "delamination_force",
+    "damage_unavailable",
+    "damage_refusal",
+    "PointDamage",
+    "ImpactDamage",
+    "point_damage",
+    "impact_damage",
+]
 
 
 @dataclass(frozen=True)
@@ -139,8 +154,129 @@ def plate_damage(stack, strength: PlyStrength, top: np.ndarray, bottom: np.ndarr
     return DamageResult(ply, np.asarray(force, float) / pc, pc)
 
 
+def damage_unavailable(stack, where: str) -> str | None:
+    """Why a laminate gives no damage outputs (one line naming what to give), or None when it does:
+    a smeared ply blend has no stacking, and a ply without strengths needs them
+    (:func:`softimpact.models.failure.strength_of`; ``where``: the ply's key in the case)."""
+    from ..models.failure import strength_of
+
+    if stack is None:
+        return f"{where}: damage outputs need a laminate (an isotropic material has no ply strengths)"
+    if not hasattr(stack, "angles"):
+        return f"{where}: damage outputs need a layup (ply stacking), not ply fractions"
+    try:
+        strength_of(stack.ply, where)
+    except InputError as exc:
+        return str(exc)
+    return None
+
+
+def damage_refusal(problem) -> str | None:
+    """:func:`damage_unavailable` for a beam, plate or impact problem (its target's laminate); None for
+    anything else (a bar has no damage outputs: the sweep's own check names it)."""
+    prefix = ""
+    if hasattr(problem, "target"):
+        problem, prefix = problem.target, "target.case: "
+    for table in ("beam", "plate"):
+        if hasattr(problem, table):
+            return damage_unavailable(getattr(problem, table).stack, f"{prefix}{table}.laminate.ply")
+    return None
+
+
 @functools.lru_cache(maxsize=64)  # pure function of frozen inputs; a sweep asks again for every run
 def delamination_force(stack, GIIc: float) -> float:
     """Davies–Zhang threshold [N] of the laminate, with its smeared in-plane E1 and ν12."""
     ec = engineering_constants(stack.effective())
     return davies_zhang_force(ec["E1"], ec["nu12"], stack.thickness, GIIc)
+
+
+@dataclass(frozen=True)
+class PointDamage:
+    """Peak indices at one point (load point or gauge) over both faces of every ply and the run:
+    ``peak[criterion]``, and where it was reached, ``ply[criterion]`` (1 = the top ply) and
+    ``face[criterion]`` ("top" or "bottom" face of that ply)."""
+
+    peak: dict
+    ply: dict
+    face: dict
+
+
+@dataclass(frozen=True)
+class ImpactDamage:
+    """Damage of a coupled impact: first-ply failure by point, the Davies–Zhang threshold
+    force P_c [N] against the peak contact force [N], and the interlaminar shear under the load
+    (largest stress [Pa] over the interfaces and the run, its quadratic delamination-onset index,
+    the interface's height [m] from the mid-plane)."""
+
+    points: dict  # name → PointDamage
+    threshold_force: float
+    peak_force: float
+    interlaminar_shear_max: float
+    interlaminar_index_max: float
+    interlaminar_z: float
+
+    def summary(self) -> dict:
+        """summary.json's ``damage``: the worst over the points per criterion, then each point, SI."""
+        out = {c: max(p.peak[c] for p in self.points.values()) for c in CRITERIA}
+        out.update(
+            delamination=self.peak_force / self.threshold_force,
+            threshold_force_N=self.threshold_force,
+            interlaminar_shear_max_Pa=self.interlaminar_shear_max,
+            interlaminar_index=self.interlaminar_index_max,
+            interlaminar_interface_z_m=self.interlaminar_z,
+        )
+        for name, p in self.points.items():
+            out[name] = {**p.peak, "worst_ply": {c: {"ply": p.ply[c], "face": p.face[c]} for c in CRITERIA}}
+        return out
+
+
+def point_damage(stack, strength: PlyStrength, e0: np.ndarray, k: np.ndarray) -> PointDamage:
+    """Indices at both faces of every ply from mid-plane strains and curvatures (3, n_t)."""
+    z, angles = ply_faces(stack)
+    strain, stress = ply_stresses(stack.ply, angles, e0, k, z)
+    idx = failure_indices(stack.ply, strength, strain, stress)
+    peak, ply, face = {}, {}, {}
+    for c in CRITERIA:
+        v = idx[c].max(axis=-1) if idx[c].ndim > 1 else idx[c]  # (2·n_plies,): over the run
+        j = int(np.argmax(v))
+        peak[c], ply[c], face[c] = float(v[j]), j // 2 + 1, ("top", "bottom")[j % 2]
+    return PointDamage(peak, ply, face)
+
+
+# Directions [°] of the radial shear resultant checked under a plate's load (the largest is kept).
+RADIAL_DIRECTIONS = (0.0, 45.0, 90.0, 135.0)
+
+
+def impact_damage(
+    stack, strength: PlyStrength, points: dict, force: np.ndarray, contact_radius: np.ndarray, width: float | None, peak_force: float | None = None
+) -> ImpactDamage:
+    """Damage of a coupled impact.
+
+    ``points``: name → (mid-plane strains, curvatures), each (3, n_t) (:func:`section_strains`
+    for a beam section, the faces' mean and difference over h on a plate); ``force`` (n_t,) [N];
+    ``contact_radius`` (n_t,) [m]; ``width`` [m] of a beam, None on a plate; ``peak_force`` [N] the
+    peak set against the Davies–Zhang threshold (default the largest sample of ``force``).
+
+    Interlaminar shear under the load (:func:`softimpact.models.failure.interlaminar_shear`) from
+    the transverse shear resultant beside the load: on a beam q = F/(2b), the load shared by the
+    two sides (the impact regime: flexural waves leave both ways; a load at an end sends all of F
+    one way); on a plate q = F/(2π·a) at the edge of the contact disc of radius a (axisymmetric
+    equilibrium), a no less than h/2 (Saint-Venant: the shear spreads over about the thickness),
+    taken along :data:`RADIAL_DIRECTIONS`.
+    """
+    force = np.asarray(force, float)
+    out = {name: point_damage(stack, strength, e0, k) for name, (e0, k) in points.items()}
+    if width is not None:
+        q, dirs = np.max(np.abs(force)) / (2 * width), (0.0,)
+    else:
+        a = np.maximum(np.asarray(contact_radius, float), stack.thickness / 2)
+        q, dirs = float(np.max(np.abs(force) / (2 * np.pi * a))), RADIAL_DIRECTIONS
+    best = (0.0, 0.0, 0.0)
+    for d in dirs:
+        ils = interlaminar_shear(stack.ply, stack.angles, strength, d)
+        if ils.z.size == 0:
+            continue
+        tau = np.hypot(ils.tau_xz, ils.tau_yz) * q
+        j = int(np.argmax(ils.index))
+        best = max(best, (float(ils.index[j] * q), float(tau.max()), float(ils.z[j])))
+    return ImpactDamage(out, delamination_force(stack, strength.GIIc), float(np.max(force) if peak_force is None else peak_force), best[1], best[0], best[2])

@@ -161,9 +161,9 @@ class ScalingFit:
 
     def law(self) -> ScalingLaw:
         """The fitted constants as an empirical model (eqs 4–7)."""
-        v = [p.velocity for p in self.points]
+        v, d = [p.velocity for p in self.points], [p.diameter for p in self.points]
         a = {k: f.slope for k, f in self.origin.items()}
-        return ScalingLaw(a["alpha1"], a["alpha2"], a["alpha3"], a["alpha4"], self.label, "fitted", (min(v), max(v)))
+        return ScalingLaw(a["alpha1"], a["alpha2"], a["alpha3"], a["alpha4"], self.label, "fitted", (min(v), max(v)), (min(d), max(d)))
 
 
 def fit_scaling(points, label: str = "pooled") -> ScalingFit:

@@ -1,0 +1,165 @@
+"""Validity envelopes: where a model a result rests on stops being trustworthy, with the numbers.
+
+Each check returns ratios (the quantity over its limit's scale) and flags (one sentence each,
+with the numbers and the limit's reason); :func:`warn` turns flags into
+:class:`~softimpact.errors.SoftimpactWarning` s (``softimpact: warning:`` lines), and
+:meth:`Validity.summary` is summary.json's ``"validity"``: the ratios and the flags.
+
+Limits, each with its reason:
+
+- :data:`HERTZ_APPROACH_OVER_DIAMETER` = 0.1. Hertz replaces the sphere by a paraboloid and the
+  bodies by half-spaces, which holds for a contact radius a ≪ R. For a sphere on a flat
+  α = a²/R, so α/d = (a/R)²/2: α/d = 0.1 is a/R ≈ 0.45, where the paraboloid's gap is already
+  5 % short of the sphere's ((a/R)²/4) and the half-space assumption strained. For the Hertz
+  family only (hertz, hertz-unloading, hunt-crossley); a soft projectile's identified law is
+  fitted to its own flattening.
+- contact radius ≤ the projectile's radius (every law): no sphere touches over more than its
+  own radius; and on a bar, ≤ the bar's radius (the contact would overhang the bar's end).
+- :data:`DEFLECTION_OVER_THICKNESS` = 0.5. Linear plate (and beam) theory neglects the membrane
+  stretching of the mid-surface, which stiffens the plate as (w/h)²: for a clamped circular plate
+  under uniform pressure w + 0.488·w³/h² = q·a⁴/(64D) (Timoshenko & Woinowsky-Krieger 1959, §97),
+  so at w/h = 0.5 the linear deflection is 12 % too large, and it grows fast beyond (a beam
+  whose ends cannot draw in likewise).
+- an identified law or empirical constants used outside the velocities, diameters, masses
+  and projectile densities they were fitted on (more than :data:`RANGE_SLACK` beyond the range;
+  the density by more than :data:`DENSITY_SLACK`: another material).
+- strains past the ply allowables: a maximum-strain index above 1 (first-ply failure: the
+  linear elastic answer past it is not the structure's).
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass
+
+__all__ = [
+    "HERTZ_APPROACH_OVER_DIAMETER",
+    "HERTZ_FAMILY",
+    "DEFLECTION_OVER_THICKNESS",
+    "RANGE_SLACK",
+    "DENSITY_SLACK",
+    "Validity",
+    "contact_validity",
+    "deflection_validity",
+    "range_flags",
+    "allowable_flags",
+    "surface_strain_bound",
+    "gauge_allowable_flags",
+    "warn",
+]
+
+HERTZ_APPROACH_OVER_DIAMETER = 0.1  # α/d: a/R ≈ 0.45 (module docstring)
+HERTZ_FAMILY = ("hertz", "hertz-unloading", "hunt-crossley")
+DEFLECTION_OVER_THICKNESS = 0.5  # w/h: membrane stiffening 12 % on a clamped plate (module docstring)
+RANGE_SLACK = 0.10  # beyond ±10 % of a fitted range: an extrapolation
+DENSITY_SLACK = 0.20  # a projectile density more than 20 % off the fitted ones: another material
+
+
+@dataclass(frozen=True)
+class Validity:
+    """Ratios of a run against its models' limits (name → number) and the flags they raise."""
+
+    values: dict
+    flags: tuple[str, ...] = ()
+
+    def __add__(self, other: Validity) -> Validity:
+        return Validity({**self.values, **other.values}, self.flags + other.flags)
+
+    def summary(self) -> dict:
+        """summary.json's ``"validity"``: the ratios, then ``flags`` (a list of sentences, empty when all hold)."""
+        return {**{k: float(v) for k, v in self.values.items()}, "flags": list(self.flags)}
+
+
+def contact_validity(law_name: str, max_approach: float, max_radius: float, diameter: float, bar_radius: float | None = None) -> Validity:
+    """Approach [m] and contact radius [m] of a contact law against the projectile's diameter [m]
+    (and the bar's radius [m] on a bar)."""
+    v = {"approach_over_diameter": max_approach / diameter, "contact_radius_over_projectile_radius": max_radius / (diameter / 2)}
+    flags = []
+    if law_name in HERTZ_FAMILY and v["approach_over_diameter"] > HERTZ_APPROACH_OVER_DIAMETER:
+        flags.append(
+            f"{law_name}: the approach reaches {v['approach_over_diameter']:.3g} of the projectile's diameter ({max_approach:.4g} m of "
+            f"{diameter:.4g} m), past the {HERTZ_APPROACH_OVER_DIAMETER:g} where Hertz's small-contact assumption (a << R) holds"
+        )
+    if v["contact_radius_over_projectile_radius"] > 1.0:
+        flags.append(
+            f"{law_name}: the contact radius reaches {v['contact_radius_over_projectile_radius']:.3g} times the projectile's radius "
+            f"({max_radius:.4g} m against {diameter / 2:.4g} m): no sphere touches over more than its own radius"
+        )
+    if bar_radius is not None:
+        v["contact_radius_over_bar_radius"] = max_radius / bar_radius
+        if max_radius > bar_radius:
+            flags.append(f"{law_name}: the contact radius {max_radius:.4g} m exceeds the bar's radius {bar_radius:.4g} m (the contact overhangs the bar's end)")
+    return Validity(v, tuple(flags))
+
+
+def deflection_validity(what: str, max_deflection: float, thickness: float) -> Validity:
+    """Peak deflection [m] of a linear plate or beam model against its thickness [m]."""
+    r = abs(max_deflection) / thickness
+    flags = ()
+    if r > DEFLECTION_OVER_THICKNESS:
+        flags = (
+            f"{what}: the deflection reaches {r:.3g} times the thickness ({abs(max_deflection):.4g} m, h {thickness:.4g} m), past the "
+            f"{DEFLECTION_OVER_THICKNESS:g} where linear theory holds (membrane stretching stiffens it as (w/h)^2)",
+        )
+    return Validity({"deflection_over_thickness": r}, flags)
+
+
+def range_flags(what: str, checks) -> Validity:
+    """``checks``: (quantity, value, (lo, hi), unit) tuples of a fitted model; a flag for each value more
+    than :data:`RANGE_SLACK` outside its range (:data:`DENSITY_SLACK` for a density)."""
+    values, flags = {}, []
+    for name, value, (lo, hi), unit in checks:
+        slack = DENSITY_SLACK if name == "density" else RANGE_SLACK
+        key = name.replace(" ", "_")
+        values[f"{key}_over_fitted_min"], values[f"{key}_over_fitted_max"] = value / lo, value / hi
+        if not (1 - slack) * lo <= value <= (1 + slack) * hi:
+            flags.append(f"{what}: {name} {value:.4g} {unit} lies outside the {lo:.4g}-{hi:.4g} {unit} it was fitted on: an extrapolation")
+    return Validity(values, tuple(flags))
+
+
+def allowable_flags(where: str, max_strain_index: float) -> Validity:
+    """A maximum-strain index (strain over the ply's allowable; 1 = first-ply failure) at ``where``."""
+    flags = ()
+    if math.isfinite(max_strain_index) and max_strain_index > 1.0:
+        flags = (
+            f"{where}: strains reach {max_strain_index:.3g} times the ply allowables (maximum-strain index): the ply has failed "
+            "and the linear elastic answer past that is not the structure's",
+        )
+    return Validity({"max_strain_index": max_strain_index}, flags)
+
+
+def surface_strain_bound(ply) -> float:
+    """A normal strain in any direction on a ply's face past which the ply has surely failed by maximum
+    strain: ε_θ = ε1 cos²θ + ε2 sin²θ + γ12 sinθ cosθ is at most max(ε1a, ε2a) + γ12a/2 in magnitude
+    while every index is ≤ 1 (ε1a = max(X_t, X_c)/E1, ε2a = max(Y_t, Y_c)/E2, γ12a = S/G12, the
+    allowables of :func:`softimpact.models.failure.failure_indices`). For a gauge of unknown ply state."""
+    import numpy as np
+
+    from .laminate import ply_stiffness, reduced_stiffness
+
+    X = ply.strength
+    Q = reduced_stiffness(ply_stiffness(ply))
+    S = np.linalg.inv(Q)
+    return max(max(X.Xt, X.Xc) * S[0, 0], max(X.Yt, X.Yc) * S[1, 1]) + X.S12 / Q[2, 2] / 2
+
+
+def gauge_allowable_flags(where: str, ply, peak_strain: float) -> Validity:
+    """A gauge's peak |strain| against :func:`surface_strain_bound` of the ply (a flag: the ply has failed there)."""
+    bound = surface_strain_bound(ply)
+    r = abs(peak_strain) / bound
+    flags = ()
+    if r > 1.0:
+        flags = (
+            f"{where}: a strain of {abs(peak_strain):.4g} is past the ply allowables ({bound:.4g} is the most any direction reaches "
+            "before a maximum-strain index passes 1): the ply has failed and the linear elastic answer past that is not the structure's",
+        )
+    return Validity({"gauge_strain_over_allowable_bound": r}, flags)
+
+
+def warn(validity: Validity) -> None:
+    """Each flag as a :class:`~softimpact.errors.SoftimpactWarning`."""
+    from ..errors import SoftimpactWarning
+
+    for f in validity.flags:
+        warnings.warn(f, SoftimpactWarning, stacklevel=2)
