@@ -140,6 +140,8 @@ _INLINE_PLY = {
     "density": "1600 kg/m^3",
     "thickness": "0.1 mm",
     "source": "test",
+    **{k: "100 MPa" for k in ("Xt", "Xc", "Yt", "Yc", "S", "S23")},  # strengths: the damage outputs need them
+    "G_IIc": "500 J/m^2",
 }
 
 
