@@ -551,7 +551,10 @@ class ImpactResult(_Written):
     @property
     def strain(self) -> dict:
         """Gauge strain histories by gauge name, each (n_steps + 1,), tension +."""
-        return dict(zip(self.result.strain_names, self.result.strain))
+        from .output.impact import split_damage
+
+        _, result, _ = split_damage(self.problem, self.result)  # the damage indices' pseudo-gauges are not gauges
+        return dict(zip(result.strain_names, result.strain))
 
     def inputs(self):
         return tuple(self.case_files)
@@ -566,9 +569,9 @@ class ImpactResult(_Written):
         """The histories of history.csv as a pandas DataFrame indexed by time [s]; units in ``df.attrs["units"]``.
 
         pandas rather than xarray: one dimension (time), and users know it (the ``table`` extra)."""
-        from .output.impact import impact_columns
+        from .output.impact import impact_columns, split_damage
 
-        cols = impact_columns(self.result)
+        cols = impact_columns(split_damage(self.problem, self.result)[1])
         return _frame(cols, {k: _unit_of(k) for k in cols})
 
     def plot(self, ax=None):
@@ -1073,9 +1076,10 @@ def run(problem, *, figures: bool = True):
     if case.kind == "impact" and hasattr(p, "projectile"):  # an impact case on a bar target runs as the bar
         case = Case("bar", p, files)
     if case.kind == "impact":
-        from .output.impact import snapshot_steps
+        from .output.impact import damage_problem, snapshot_steps
         from .workflows.coupled import impact_model, run_impact
 
+        p = damage_problem(p)  # as the command: + the pseudo-gauges of the damage indices (a layup with strengths)
         model = impact_model(p)
         snaps = snapshot_steps(p.solver.steps) if figures and p.on_plate else ()
         model, result = run_impact(p, model, snapshots=snaps)
