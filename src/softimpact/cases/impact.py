@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import hashlib
 from pathlib import Path
 
 import numpy as np
@@ -10,7 +11,7 @@ import numpy as np
 from ._common import GAUGE_FIELDS, magnitude_and_history, without
 from .bar import BarKind
 
-__all__ = ["ImpactKind", "SharedModel", "bar_target"]
+__all__ = ["ImpactKind", "SharedModel", "bar_target", "KERNEL_MIN_RUNS"]
 
 _BAR = BarKind()  # a bar target runs as the bar case with the impact case's impactor and law
 
@@ -20,15 +21,28 @@ _BAR = BarKind()  # a bar target runs as the bar case with the impact case's imp
 NOT_STRUCTURE = ("impactor.velocity", "impactor.mass", "impactor.material", "contact", "title", "units")
 
 
+# A group of at least this many runs builds the target's contact kernels once (about 1.5-4 direct
+# runs' cost) and runs each impact on them in milliseconds; a smaller group steps each run directly.
+KERNEL_MIN_RUNS = 4
+# Outputs that need the structure's own state (its energies): a group asking for one steps directly.
+NEEDS_STRUCTURE = ("energy_balance_relative", "energy_error_after_first_contact_relative")
+
+
 class SharedModel:
     """The target's model shared by the runs of a sweep group, built on first use where the runs
-    are (in a Dask worker, or in the plain loop) and never pickled: a factorisation does not travel."""
+    are (in a Dask worker, or in the plain loop) and never pickled: a factorisation does not travel.
 
-    def __init__(self, data: dict, base: str):
-        self.data, self.base, self.model = data, base, None
+    With ``kernels``, also the target's contact kernels (:func:`softimpact.workflows.coupled.impact_kernels`),
+    built on first use and kept by a hash of the structure (the case without the keys that leave it
+    unchanged: mesh, laminate, supports, impact point, impactor diameter, step and duration stay in it),
+    so each run of the group is a kernel run."""
+
+    def __init__(self, data: dict, base: str, kernels: bool = False):
+        self.data, self.base, self.model, self.use_kernels = data, base, None, kernels
+        self._kernels: dict[str, object] = {}
 
     def __getstate__(self):
-        return {"data": self.data, "base": self.base, "model": None}
+        return {"data": self.data, "base": self.base, "model": None, "use_kernels": self.use_kernels, "_kernels": {}}
 
     def get(self, problem):
         from ..workflows.coupled import impact_model
@@ -36,6 +50,16 @@ class SharedModel:
         if self.model is None:
             self.model = impact_model(problem)
         return self.model
+
+    def kernels(self, problem, data: dict):
+        """The contact kernels of ``problem``'s structure (``data``: its case), built once per structure hash."""
+        from ..workflows.coupled import impact_kernels
+
+        key = hashlib.sha256(without(data, NOT_STRUCTURE).encode()).hexdigest()
+        if key not in self._kernels:
+            self._kernels.clear()  # one structure per group: keep the last only
+            self._kernels[key] = impact_kernels(problem, self.get(problem))
+        return self._kernels[key]
 
 
 def bar_target(data: dict, base: Path):
@@ -154,7 +178,10 @@ class ImpactKind:
         return without(data, NOT_STRUCTURE)
 
     def prepare(self, data, base, runs, outputs=()):
-        return SharedModel(data, str(base))
+        """The group's shared model; contact kernels when the group has :data:`KERNEL_MIN_RUNS` runs or
+        more and none of ``outputs`` needs the structure's energies (kernel runs have none)."""
+        kernels = runs >= KERNEL_MIN_RUNS and not any(o in NEEDS_STRUCTURE for o in outputs)
+        return SharedModel(data, str(base), kernels)
 
     def run(self, prepared, data, base, outputs=()):
         from ..workflows.coupled import run_impact
@@ -162,8 +189,12 @@ class ImpactKind:
         problem = self.problem(data, base)
         if _is_bar(problem):
             return _BAR.run(None, None, base, outputs, problem)
-        model = prepared.get(problem) if isinstance(prepared, SharedModel) else None
-        model, result = run_impact(problem, model)
+        shared = isinstance(prepared, SharedModel)
+        model = prepared.get(problem) if shared else None
+        if shared and prepared.use_kernels:
+            model, result = run_impact(problem, model, energy=False, method="kernels", kernels=prepared.kernels(problem, data))
+        else:
+            model, result = run_impact(problem, model, method="direct")
         return self.summary(problem, result, model)
 
     def summary(self, problem, result, model=None):

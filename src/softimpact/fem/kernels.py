@@ -212,14 +212,19 @@ class ContactKernels:
     def output_names(self) -> tuple[str, ...]:
         return tuple(self.structure.output_names)
 
-    def _free_response(self, Q: np.ndarray, first: int, upto: int) -> np.ndarray:
-        """Σ_{first ≤ j ≤ upto} g_{m−j}·q_j for every step m (shape (steps + 1,)): the approach row's
-        response to one contact's loads, by one product with the kernel's cached spectrum."""
+    def _convolve(self, Q: np.ndarray, first: int, upto: int, rows) -> np.ndarray:
+        """y_m = Σ_{first ≤ j ≤ upto} K_{m−j}·q_j for every step m ≥ first (shape (len(rows), steps + 1)),
+        K the kernels of ``rows`` (0: the approach row, 1…q: the outputs), by one product with their
+        cached spectra over the patch nodes ever loaded only (a small contact loads a few of them)."""
         Hk, nfft = self.engine._spectrum()
-        w = np.zeros(self.steps + 1)
-        spec = np.einsum("pk,pk->k", Hk[0], np.fft.rfft(Q[first : upto + 1].T, nfft, axis=-1))
-        w[first:] = np.fft.irfft(spec, nfft)[: self.steps + 1 - first]  # w[first + i] = Σ_l g_{i − l}·q_{first + l}
-        return w
+        loads = Q[first : upto + 1]
+        used = np.flatnonzero(np.any(loads != 0.0, axis=0))
+        y = np.zeros((Hk[rows].shape[0], self.steps + 1))
+        if used.size == 0:
+            return y
+        spec = np.einsum("qpk,pk->qk", Hk[rows][:, used], np.fft.rfft(loads[:, used].T, nfft, axis=-1))
+        y[:, first:] = np.fft.irfft(spec, nfft, axis=-1)[:, : self.steps + 1 - first]  # y[first + i] = Σ_l K_{i − l}·q_{first + l}
+        return y
 
     def run(self, law, mass: float, velocity: float, stop_after: float | None = None) -> ImpactHistory:
         """The coupled impact of a rigid impactor (``mass`` [kg], ``velocity`` [m/s] > 0 toward the
@@ -310,7 +315,7 @@ class ContactKernels:
                 if start is None:
                     start = k + 1
             elif start is not None:  # contact ended: the free response to its loads, once
-                fresh = self._free_response(Qr[::-1], start, k)
+                fresh = self._convolve(Qr[::-1], start, k, slice(0, 1))[0]
                 old = (np.asarray(old) + fresh).tolist()
                 start = None
             x[k + 1] = x_pred - hm * f
@@ -338,7 +343,7 @@ class ContactKernels:
                 if left_at is not None and k * dt - left_at >= stop_after:
                     last = k
                     break
-        y = self.engine.respond(Qr[::-1].T)  # (1 + q, N + 1): approach row, then the outputs
+        y = self._convolve(Qr[::-1], 1, N, slice(None))  # (1 + q, N + 1): approach row, then the outputs
         sl = slice(0, last + 1)
         nan = np.full(last + 1, np.nan)
         t = np.arange(N + 1) * dt
