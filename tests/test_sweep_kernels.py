@@ -179,3 +179,29 @@ def test_law_parameters_out_of_range_are_one_line(tmp_path):
     (tmp_path / "impact.toml").write_text(PLATE_CASE.format(material="silicone rubber", law="identified", velocity="2000 in/s", contact=contact))
     with pytest.raises(InputError, match="contact.parameters"):
         impact_problem(load_toml(tmp_path / "impact.toml"), tmp_path)
+
+
+@pytest.mark.parametrize("target", ["beam", "plate"])
+def test_impactors_of_several_diameters_share_one_kernel_build(tmp_path, kernel_builds, target):
+    """Diameters 3/8 and 1/2 in crossed with two velocities form one group: the kernels are built once
+    (for the widest contact), and each run equals `softimpact impact` alone (direct stepping) to 1e-9."""
+    if target == "beam":
+        text = BEAM_CASE
+    else:
+        _coarse_plate(tmp_path)
+        text = PLATE_CASE.replace("{material}", "steel").replace("{law}", "Hertz").replace("{contact}", 'law = "hertz"')
+    case = lambda v, d: text.format(velocity=f"{v} in/s").replace('diameter = "0.5 in"', f'diameter = "{d} in"')  # noqa: E731
+    (tmp_path / "impact.toml").write_text(case(100, 0.5))
+    spec = SPEC.format(method="grid", runs="", values='["60 in/s", "140 in/s"]')
+    spec += '[[sweep.parameter]]\nkey = "impactor.diameter"\nvalues = ["0.375 in", "0.5 in"]\n'
+    (tmp_path / "spec.toml").write_text(spec)
+    r = CliRunner().invoke(main, ["sweep", str(tmp_path / "spec.toml"), "--out", str(tmp_path / "out"), "--workers", "0", "--no-figures"])
+    assert r.exit_code == 0, r.output
+    assert len(kernel_builds) == 1
+    t = _table(tmp_path / "out")
+    assert t["error"] == [""] * 4
+    for k in range(4):
+        v, d = round(t["impactor.velocity"][k] / INCH), t["impactor.diameter"][k] / INCH
+        s = _single(tmp_path, case(v, f"{d:g}"), f"{target}-{k}")
+        assert t["peak_force_N"][k] == pytest.approx(s["peak_force_N"], rel=1e-9)
+        assert t["gauges.g1.peak_tensile_strain"][k] == pytest.approx(s["gauges"]["g1"]["peak_tensile_strain"], rel=1e-9)

@@ -16,9 +16,9 @@ __all__ = ["ImpactKind", "SharedModel", "bar_target", "KERNEL_MIN_RUNS"]
 _BAR = BarKind()  # a bar target runs as the bar case with the impact case's impactor and law
 
 # Keys of an impact case that leave the target's model (mesh, step, factorisation) unchanged: the
-# impactor's velocity, mass and material and the contact law. Its diameter stays in the key: it
-# sets a plate's patch radius and reach.
-NOT_STRUCTURE = ("impactor.velocity", "impactor.mass", "impactor.material", "contact", "title", "units")
+# impactor's velocity, mass, material and diameter and the contact law. The diameter sets only the
+# contact's reach (the loadable nodes, per run): a group's kernels load the widest of its runs'.
+NOT_STRUCTURE = ("impactor.velocity", "impactor.mass", "impactor.material", "impactor.diameter", "contact", "title", "units")
 
 
 # A group of at least this many runs builds the target's contact kernels once (about 1.5-4 direct
@@ -39,10 +39,24 @@ class SharedModel:
 
     def __init__(self, data: dict, base: str, kernels: bool = False):
         self.data, self.base, self.model, self.use_kernels = data, base, None, kernels
+        self.widest = 0.0  # the largest impactor diameter [m] of the group's runs: the kernels' reach
         self._kernels: dict[str, object] = {}
 
     def __getstate__(self):
-        return {"data": self.data, "base": self.base, "model": None, "use_kernels": self.use_kernels, "_kernels": {}}
+        return {"data": self.data, "base": self.base, "model": None, "use_kernels": self.use_kernels, "widest": self.widest, "_kernels": {}}
+
+    def widen(self, cases) -> None:
+        """Note the impactor diameters of the group's ``cases`` (case dicts; unreadable ones are left to
+        their runs), so the kernels are built once for the widest contact."""
+        from .. import units
+        from ..errors import InputError
+
+        for data in cases:
+            d = data.get("impactor", {}).get("diameter") if isinstance(data.get("impactor"), dict) else None
+            try:
+                self.widest = max(self.widest, units.parse(d, "length", "impactor.diameter"))
+            except (InputError, TypeError, ValueError):
+                continue
 
     def get(self, problem):
         from ..workflows.coupled import impact_model
@@ -56,10 +70,13 @@ class SharedModel:
         from ..workflows.coupled import impact_kernels
 
         key = hashlib.sha256(without(data, NOT_STRUCTURE).encode()).hexdigest()
-        if key not in self._kernels:
+        widest = max(self.widest, problem.impactor.diameter)
+        built = self._kernels.get(key)
+        if built is None or built[0] < widest:
             self._kernels.clear()  # one structure per group: keep the last only
-            self._kernels[key] = impact_kernels(problem, self.get(problem))
-        return self._kernels[key]
+            wide = dataclasses.replace(problem, impactor=dataclasses.replace(problem.impactor, diameter=widest))
+            self._kernels[key] = (widest, impact_kernels(wide, self.get(problem)))
+        return self._kernels[key][1]
 
 
 def bar_target(data: dict, base: Path):

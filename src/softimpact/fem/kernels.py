@@ -126,6 +126,24 @@ class _ShareCompliance:
         out[:] = f * self.patch.shares(r)[0]
 
 
+class _Mapped:
+    """A smaller structure's compliance on the kernels' patch columns ``index`` (its surface DOFs among
+    the kernels'): h_s from its own patch, its loads written into those columns."""
+
+    def __init__(self, comp, index: np.ndarray, width: int):
+        self.comp, self.index, self.half_spacing, self.patch = comp, index, comp.half_spacing, comp.patch
+        self._row = np.zeros(width)
+
+    def __call__(self, r: float) -> tuple[float, float]:
+        return self.comp(r)
+
+    def load(self, r: float, f: float, out: np.ndarray) -> None:
+        row = self._row
+        row[:] = 0.0
+        self.comp.load(r, f, row)
+        out[self.index] = row[: self.index.size]
+
+
 def _compliance(patch, cG: np.ndarray):
     """The patch's h_s(r) = c·G·s(r) evaluator (chosen once per kernel build, not per step)."""
     if isinstance(patch, ContactPatch):
@@ -205,6 +223,8 @@ class ContactKernels:
         self.outputs = self.engine.kernel[1:]  # (q, p, steps)
         self._lagged = np.ascontiguousarray(self.approach.T)  # (steps, p): row i is g_i
         self._compliance = _compliance(self.patch, self._lagged[0])
+        self._column = {int(d): i for i, d in enumerate(dofs)}
+        self._mapped: tuple | None = None  # (surface DOFs, compliance) of the last smaller structure run
         self.engine._spectrum()  # the kernels' spectra: part of the build, not of the first run
         self.solves = st.nsolve
 
@@ -226,11 +246,34 @@ class ContactKernels:
         y[:, first:] = np.fft.irfft(spec, nfft, axis=-1)[:, : self.steps + 1 - first]  # y[first + i] = Σ_l K_{i − l}·q_{first + l}
         return y
 
-    def run(self, law, mass: float, velocity: float, stop_after: float | None = None) -> ImpactHistory:
+    def compliance_for(self, structure: ContactStructure | None):
+        """The patch compliance of ``structure``: the kernels' own (None, or the same surface DOFs), or that
+        of a structure on the same matrices whose loadable DOFs are among the kernels' (a smaller impactor's
+        contact disc), mapped onto the kernels' columns (its own patch and shares: the run equals its direct run)."""
+        if structure is None or structure is self.structure:
+            return self._compliance
+        dofs = np.asarray(structure.surface_dofs, int)
+        if self._mapped is not None and np.array_equal(self._mapped[0], dofs):
+            return self._mapped[1]
+        own = np.asarray(self.structure.surface_dofs, int)
+        if np.array_equal(dofs, own) and structure.patch is None and self.structure.patch is None:
+            return self._compliance
+        try:
+            index = np.array([self._column[int(d)] for d in dofs], int)
+        except KeyError:
+            raise InputError("structure: its loadable surface DOFs are not all among the kernels' (build kernels for the wider contact)") from None
+        patch = ContactPatch(structure.surface_x, structure.center) if structure.patch is None else structure.patch
+        comp = _Mapped(_compliance(patch, self._lagged[0][index]), index, dofs.size)
+        self._mapped = (dofs, comp)
+        return comp
+
+    def run(self, law, mass: float, velocity: float, stop_after: float | None = None, structure: ContactStructure | None = None) -> ImpactHistory:
         """The coupled impact of a rigid impactor (``mass`` [kg], ``velocity`` [m/s] > 0 toward the
         structure) through contact ``law`` (a ContactLaw or HistoryLaw): the histories of
         :func:`softimpact.fem.impact.integrate_impact` for the same structure, step and run length,
         structure energies NaN. ``stop_after``: stop this long [s] after the impactor has left for good.
+        ``structure``: the same target struck at the same point with a smaller contact reach (another
+        impactor diameter, :meth:`compliance_for`); None: the kernels' own.
 
         The scalar state is plain Python floats; while apart, the next contact is found by one
         vectorised test of the ballistic impactor against the structure's free response.
@@ -241,7 +284,7 @@ class ContactKernels:
         if hasattr(law, "for_time_step"):
             law = law.for_time_step(dt)
         beta, gamma = self.newmark.beta, self.newmark.gamma
-        comp = self._compliance
+        comp = self.compliance_for(structure)
         g = self._lagged
         p = g.shape[1]
         hm = beta * dt * dt / mass

@@ -104,14 +104,18 @@ def _whole_plate(result: CoupledResult, share: float) -> CoupledResult:
 def impact_kernels(problem: ImpactProblem, model: StructureModel | None = None):
     """The contact kernels (:class:`softimpact.fem.kernels.ContactKernels`) of the problem's target
     struck at its impact point, for its time step and duration: built once (about 1.5–4 direct runs),
-    then every coupled run on this structure (another velocity, mass, law) costs milliseconds.
+    then every coupled run on this structure (another velocity, mass, law, or a diameter up to the
+    problem's: its contact disc is among the loadable nodes) costs milliseconds.
     ``model``: the target's model to reuse (its factorised stepper)."""
     from ..fem.kernels import ContactKernels
 
     model = model or impact_model(problem)
-    structure = model.contact_structure(problem.position, model.contact_reach(problem.position, problem.impactor.diameter))
+    reach = model.contact_reach(problem.position, problem.impactor.diameter)
+    structure = model.contact_structure(problem.position, reach)
     solver = problem.solver
-    return ContactKernels(structure, solver.time_step, solver.steps, solver.newmark, stepper=model.stepper)
+    kernels = ContactKernels(structure, solver.time_step, solver.steps, solver.newmark, stepper=model.stepper)
+    kernels.reach = reach  # the widest contact they load: smaller impactors run on them too (run_impact)
+    return kernels
 
 
 def run_impact(
@@ -152,13 +156,15 @@ def run_impact(
             raise InputError(
                 f"kernels: built for {kernels.steps} steps of {kernels.dt:.6g} s, the problem runs {problem.solver.steps} of {problem.solver.time_step:.6g} s"
             )
-        structure = kernels.structure
+        reach = model.contact_reach(problem.position, problem.impactor.diameter)
+        own = reach == getattr(kernels, "reach", None)
+        structure = kernels.structure if own else model.contact_structure(problem.position, reach)
     else:
         structure = model.contact_structure(problem.position, model.contact_reach(problem.position, problem.impactor.diameter))
     try:
         if use_kernels:
             imp = problem.impactor
-            history = kernels.run(problem.law, imp.mass, imp.velocity, stop_after=stop_after)
+            history = kernels.run(problem.law, imp.mass, imp.velocity, stop_after=stop_after, structure=None if own else structure)
             result = coupled_result(history, imp, tuple(structure.output_names))
         else:
             result = simulate_coupled(structure, problem.law, problem.impactor, problem.solver, energy, model.stepper, stop_after, snapshots)
