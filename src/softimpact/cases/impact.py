@@ -43,7 +43,22 @@ class SharedModel:
         self._kernels: dict[str, object] = {}
 
     def __getstate__(self):
-        return {"data": self.data, "base": self.base, "model": None, "use_kernels": self.use_kernels, "widest": self.widest, "_kernels": {}}
+        # the kernels travel (their spectra, not the factorisation); the model is rebuilt where the runs are
+        return {"data": self.data, "base": self.base, "model": None, "use_kernels": self.use_kernels, "widest": self.widest, "_kernels": self._kernels}
+
+    def build(self) -> None:
+        """Build the kernels now (where the group is prepared, once), so that they travel to the workers
+        instead of each building its own. A base case that does not parse leaves it to the runs."""
+        from ..errors import InputError
+
+        if not self.use_kernels:
+            return
+        try:
+            problem = ImpactKind().problem(self.data, self.base)
+        except InputError:
+            return
+        if not _is_bar(problem):
+            self.kernels(problem, self.data)
 
     def widen(self, cases) -> None:
         """Note the impactor diameters of the group's ``cases`` (case dicts; unreadable ones are left to

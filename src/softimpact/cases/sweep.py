@@ -136,6 +136,7 @@ def prepare_group(kind: str, candidates, base: str, runs: int, outputs=()):
             prepared = KINDS[kind].prepare(data, Path(base), runs, tuple(outputs))
             if hasattr(prepared, "widen"):  # a shared part that covers every run of the group (impact: the widest contact)
                 prepared.widen(candidates)
+                prepared.build()
             return prepared
         except Exception as exc:  # a drawn structure can be invalid: its runs fail, the sweep goes on
             first = first or _Failed(_one_line(exc))

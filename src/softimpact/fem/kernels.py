@@ -33,8 +33,10 @@ work are.
 
 from __future__ import annotations
 
+import copy
 import math
 from bisect import bisect_left, bisect_right
+from types import SimpleNamespace
 
 import numpy as np
 
@@ -144,6 +146,17 @@ class _Mapped:
         out[self.index] = row[: self.index.size]
 
 
+def _light(patch):
+    """The patch without its mesh (a plate's disc keeps its tables and share; the mesh stays behind)."""
+    inner = getattr(patch, "patch", None)
+    if inner is None or getattr(inner, "fe", None) is None:
+        return patch
+    light = copy.copy(patch)
+    light.patch = copy.copy(inner)
+    light.patch.fe = None
+    return light
+
+
 def _compliance(patch, cG: np.ndarray):
     """The patch's h_s(r) = c·G·s(r) evaluator (chosen once per kernel build, not per step)."""
     if isinstance(patch, ContactPatch):
@@ -225,18 +238,44 @@ class ContactKernels:
         self._compliance = _compliance(self.patch, self._lagged[0])
         self._column = {int(d): i for i, d in enumerate(dofs)}
         self._mapped: tuple | None = None  # (surface DOFs, compliance) of the last smaller structure run
-        self.engine._spectrum()  # the kernels' spectra: part of the build, not of the first run
+        self._Hk, self._nfft = self.engine._spectrum()  # the kernels' spectra: part of the build, not of the first run
         self.solves = st.nsolve
 
     @property
     def output_names(self) -> tuple[str, ...]:
         return tuple(self.structure.output_names)
 
+    def __getstate__(self):
+        """Kernels travel (to a Dask worker) without the engine's factorised stepper, the structure's
+        matrices or the mesh: what a run needs, the kernels, their spectra and the patch's tables."""
+        state = self.__dict__.copy()
+        s = self.structure
+        patch = _light(self.patch)
+        state.update(
+            engine=None,
+            structure=SimpleNamespace(
+                surface_x=s.surface_x,
+                surface_dofs=s.surface_dofs,
+                load_sign=s.load_sign,
+                center=s.center,
+                output_names=s.output_names,
+                patch=None if s.patch is None else patch,
+            ),
+            patch=patch,
+            _compliance=None,
+            _mapped=None,
+        )
+        return state
+
+    def __setstate__(self, state):
+        self.__dict__.update(state)
+        self._compliance = _compliance(self.patch, self._lagged[0])
+
     def _convolve(self, Q: np.ndarray, first: int, upto: int, rows) -> np.ndarray:
         """y_m = Σ_{first ≤ j ≤ upto} K_{m−j}·q_j for every step m ≥ first (shape (len(rows), steps + 1)),
         K the kernels of ``rows`` (0: the approach row, 1…q: the outputs), by one product with their
         cached spectra over the patch nodes ever loaded only (a small contact loads a few of them)."""
-        Hk, nfft = self.engine._spectrum()
+        Hk, nfft = self._Hk, self._nfft
         loads = Q[first : upto + 1]
         used = np.flatnonzero(np.any(loads != 0.0, axis=0))
         y = np.zeros((Hk[rows].shape[0], self.steps + 1))
