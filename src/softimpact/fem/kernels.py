@@ -264,6 +264,7 @@ class ContactKernels:
             patch=patch,
             _compliance=None,
             _mapped=None,
+            _structures={},
         )
         return state
 

@@ -158,7 +158,14 @@ def run_impact(
             )
         reach = model.contact_reach(problem.position, problem.impactor.diameter)
         own = reach == getattr(kernels, "reach", None)
-        structure = kernels.structure if own else model.contact_structure(problem.position, reach)
+        if own:
+            structure = kernels.structure
+        else:  # a smaller impactor: its own contact disc, kept with the kernels for the next run of that diameter
+            cache = kernels.__dict__.setdefault("_structures", {})
+            if reach not in cache:
+                cache.clear()
+                cache[reach] = model.contact_structure(problem.position, reach)
+            structure = cache[reach]
     else:
         structure = model.contact_structure(problem.position, model.contact_reach(problem.position, problem.impactor.diameter))
     try:
