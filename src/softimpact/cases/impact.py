@@ -139,9 +139,10 @@ def _is_bar(problem) -> bool:
 
 
 class ImpactKind:
-    """Impact cases. A coupled run is nonlinear in the velocity, so sweep runs share only the
-    target's model (mesh, matrices, the factorised Newmark step): runs that differ only in the
-    impactor's velocity, mass or material or in the contact law form one group.
+    """Impact cases. Runs that differ only in the impactor's velocity, mass, material or diameter or
+    in the contact law form one sweep group, sharing the target's model (mesh, matrices, the factorised
+    Newmark step) and, in a group of :data:`KERNEL_MIN_RUNS` runs or more, its contact kernels (built
+    once for the widest contact; each run a kernel run, equal to direct stepping to round-off).
 
     A bar case as the target (:func:`bar_target`) runs as that bar case with the impact case's
     impactor and law: its problem, checks, refinement, study and outputs are the bar kind's."""

@@ -20,11 +20,21 @@ round-off (the sums are taken in another order). The approach's rate and
 acceleration follow from Newmark's rule applied to α itself (x and c·u each obey
 it, so their difference does), which needs no structural state.
 
-Cost: while in contact, the history sum runs over the current contact's steps
-only (the earlier history is a precomputed "old" response); while apart, no load
-is added, so the structure's free response to the whole history so far is one
-FFT product with the kernel's cached spectrum, after which each step is a few
-scalar operations. The outputs are one FFT convolution at the end.
+Cost (the build: one Newmark run with 1 + q right-hand sides, about 1.5–2.5 direct coupled runs;
+a run: milliseconds, see BENCHMARKS.md). The scalar state is plain Python floats. In the Newton
+iteration the patch enters only through h_s(a) = c·G·s(a) and dh_s/da, evaluated exactly without
+forming s: over the nodes the disc reaches (the cosine line patch) or as the interpolation of the
+table's c·G·s_k computed once (a plate's disc, whose shares interpolate a table); s itself is formed
+once per step, at the root. While in contact, the history sum runs over the current contact's steps
+only (one contiguous dot product; the earlier contacts are a precomputed "old" response). While
+apart, no load is added: the structure's response to the last contact is one FFT product with the
+kernels' cached spectra, the impactor flies at constant speed, and the next contact is found by one
+vectorised test; the steps between carry only the scalar recursions of α̇, α̈ (and a law's memory).
+The outputs are one FFT convolution at the end, over the patch nodes ever loaded.
+
+A smaller impactor (a smaller contact reach, its loadable nodes among the kernels') runs on the same
+kernels with its own patch (:meth:`ContactKernels.compliance_for`). Kernels pickle without the
+factorised stepper and the mesh (to a Dask worker).
 
 The structure's own energies (kinetic, strain, the work on the patch nodes) need
 its state and are not computed here (NaN); the impactor's energy and the contact
@@ -53,11 +63,18 @@ __all__ = ["ContactKernels"]
 
 class _LineCompliance:
     """h_s(r) = c·G·s(r) [m/N] and dh_s/dr [1/N] of the cosine line patch (:class:`ContactPatch`) as
-    plain floats: the exact shares summed over the nodes whose segment meets (−r, r) only."""
+    plain floats, exact. Over the nodes i0 … i1 − 1 the disc of radius r reaches, the outer ends are
+    clipped to ±r (sin = ±1) and each inner segment end m_j is shared by two nodes, so
+
+        h_s = ½·[c_{i0} + c_{i1−1} + Σ_j (c_j − c_{j+1})·sin(π·m_j/(2r))],
+
+    one sine (and one cosine for the derivative) per reached node."""
 
     def __init__(self, patch: ContactPatch, cG: np.ndarray):
         self.patch, self.half_spacing = patch, float(patch.half_spacing)
-        self.lo, self.hi, self.c = patch.lo.tolist(), patch.hi.tolist(), np.asarray(cG, float).tolist()
+        c = np.asarray(cG, float)
+        self.lo, self.hi, self.c = patch.lo.tolist(), patch.hi.tolist(), c.tolist()
+        self.dc = (c[:-1] - c[1:]).tolist()  # c_j − c_{j+1}: the weight of the end shared by nodes j and j + 1
         self.point = self.c[patch.nearest]
         self.extent = patch.extent
 
@@ -66,14 +83,15 @@ class _LineCompliance:
             return self.point, 0.0
         if -r < self.extent[0] - 1e-12 * r or r > self.extent[1] + 1e-12 * r:
             raise InputError(f"contact radius {r:.4g} m runs past the loadable surface nodes")
-        lo, hi, c = self.lo, self.hi, self.c
+        hi, dc, sin, cos = self.hi, self.dc, math.sin, math.cos
+        i0, i1 = bisect_right(hi, -r), bisect_left(self.lo, r)
         w = math.pi / (2.0 * r)
-        h = dh = 0.0
-        for i in range(bisect_right(hi, -r), bisect_left(lo, r)):  # the nodes the disc of radius r reaches
-            a = min(max(lo[i], -r), r)
-            b = min(max(hi[i], -r), r)
-            h += c[i] * (math.sin(w * b) - math.sin(w * a))
-            dh += c[i] * (math.cos(w * a) * w * a - math.cos(w * b) * w * b)
+        h = self.c[i0] + self.c[i1 - 1]
+        dh = 0.0
+        for j in range(i0, i1 - 1):  # the inner segment ends the disc covers
+            x = w * hi[j]
+            h += dc[j] * sin(x)
+            dh -= dc[j] * cos(x) * x
         return 0.5 * h, 0.5 * dh / r
 
     def load(self, r: float, f: float, out: np.ndarray) -> None:
