@@ -110,13 +110,19 @@ class _LineCompliance:
 class _TableCompliance:
     """h_s(r) and dh_s/dr of a plate's contact disc (:class:`DiscShares`): its shares are the linear
     interpolation of a table in r, so c·G·s(r) is the same interpolation of the table's c·G·s_k
-    (computed once), exact to round-off."""
+    (each computed once, when first reached), exact to round-off."""
 
     def __init__(self, patch: DiscShares, cG: np.ndarray):
-        self.patch, self.half_spacing = patch, float(patch.half_spacing)
-        h = patch.table @ np.asarray(cG, float)
-        self.h, self.slope = h.tolist(), (np.diff(h) / patch.step).tolist()
-        self.step, self.last, self.radius = patch.step, h.size - 1, patch.patch.radius
+        self.patch, self.half_spacing, self.cG = patch, float(patch.half_spacing), np.asarray(cG, float)
+        self.step, self.radius = patch.step, patch.patch.radius
+        self.last = int(round(self.radius / self.step))  # TABLE − 1
+        self.h: list = [None] * (self.last + 1)
+
+    def _h(self, k: int) -> float:
+        h = self.h[k]
+        if h is None:
+            h = self.h[k] = float(self.patch.row(k) @ self.cG)
+        return h
 
     def __call__(self, r: float) -> tuple[float, float]:
         if r > self.radius * (1 + 1e-12):
@@ -124,7 +130,8 @@ class _TableCompliance:
         pos = min(max(r / self.step, 0.0), self.last)
         k = min(int(pos), self.last - 1)
         frac = pos - k
-        return self.h[k] * (1 - frac) + self.h[k + 1] * frac, self.slope[k]
+        h0, h1 = self._h(k), self._h(k + 1)
+        return h0 * (1 - frac) + h1 * frac, (h1 - h0) / self.step
 
     def load(self, r: float, f: float, out: np.ndarray) -> None:
         """out ← f·s(r): the nodal loads of the converged step."""
@@ -169,6 +176,8 @@ def _light(patch):
     inner = getattr(patch, "patch", None)
     if inner is None or getattr(inner, "fe", None) is None:
         return patch
+    if hasattr(patch, "row"):  # every tabulated row now, while the mesh is at hand
+        patch.table  # noqa: B018
     light = copy.copy(patch)
     light.patch = copy.copy(inner)
     light.patch.fe = None
