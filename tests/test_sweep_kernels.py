@@ -205,3 +205,39 @@ def test_impactors_of_several_diameters_share_one_kernel_build(tmp_path, kernel_
         s = _single(tmp_path, case(v, f"{d:g}"), f"{target}-{k}")
         assert t["peak_force_N"][k] == pytest.approx(s["peak_force_N"], rel=1e-9)
         assert t["gauges.g1.peak_tensile_strain"][k] == pytest.approx(s["gauges"]["g1"]["peak_tensile_strain"], rel=1e-9)
+
+
+@pytest.mark.parametrize("with_covariance", [False, True])
+def test_law_parameter_draws_follow_the_law_json(tmp_path, with_covariance):
+    """Draws of a law.json's parameters have its values as mean and, per parameter, σ = half-width/1.96 (no
+    covariance given) or the file's covariance (correlation included), within sampling error of 4000 draws."""
+    from softimpact.input.sweep_spec import LawDraw, read_sweep_spec
+
+    law = json.loads(LAW.read_text())
+    pars = law["parameters"]
+    names = [n for n, v in pars.items() if v["ci95_half_width"] > 0]
+    sd = np.array([pars[n]["ci95_half_width"] / 1.96 for n in names])
+    corr = np.eye(len(names))
+    if with_covariance:
+        corr[0, 1] = corr[1, 0] = 0.6  # k_ref and p correlated
+        law["covariance"] = {"names": names, "matrix": (corr * np.outer(sd, sd)).tolist()}
+    (tmp_path / "law.json").write_text(json.dumps(law))
+    (tmp_path / "impact.toml").write_text(BEAM_CASE.format(velocity="100 in/s"))
+    spec = {
+        "sweep": {
+            "case": "impact.toml",
+            "method": "monte-carlo",
+            "runs": 4000,
+            "outputs": ["peak_force_N"],
+            "parameter": [{"key": "contact", "from": "law.json"}],
+        }
+    }
+    s = read_sweep_spec(spec, tmp_path)
+    (p,) = s.parameters
+    assert isinstance(p, LawDraw) and p.names == tuple(names)
+    x = np.array([[r.row[c] for c in p.columns] for r in s.runs()])
+    mean = np.array([pars[n]["value"] for n in names])
+    assert np.all(np.abs(x.mean(axis=0) - mean) < 4 * sd / np.sqrt(4000))
+    assert np.allclose(x.std(axis=0), sd, rtol=4 / np.sqrt(2 * 4000))
+    rho = np.corrcoef(x[:, 0], x[:, 1])[0, 1]
+    assert abs(rho - corr[0, 1]) < 4 * (1 - corr[0, 1] ** 2) / np.sqrt(4000)
