@@ -30,7 +30,8 @@ NEEDS_STRUCTURE = ("energy_balance_relative", "energy_error_after_first_contact_
 
 class SharedModel:
     """The target's model shared by the runs of a sweep group, built on first use where the runs
-    are (in a Dask worker, or in the plain loop) and never pickled: a factorisation does not travel.
+    are (in a Dask worker, or in the plain loop) and never pickled: a factorisation does not travel
+    (the kernels do: their spectra and the patch's tables, :class:`softimpact.fem.kernels.ContactKernels`).
 
     With ``kernels``, also the target's contact kernels (:func:`softimpact.workflows.coupled.impact_kernels`),
     built on first use and kept by a hash of the structure (the case without the keys that leave it
@@ -55,10 +56,10 @@ class SharedModel:
             return
         try:
             problem = ImpactKind().problem(self.data, self.base)
-        except InputError:
+            if not _is_bar(problem):
+                self.kernels(problem, self.data)
+        except InputError:  # the runs meet it again and record it, one by one
             return
-        if not _is_bar(problem):
-            self.kernels(problem, self.data)
 
     def widen(self, cases) -> None:
         """Note the impactor diameters of the group's ``cases`` (case dicts; unreadable ones are left to
