@@ -366,6 +366,7 @@ class ContactKernels:
         xa = ala = 0.0
         memory = isinstance(law, HistoryLaw)  # (a protocol check: once, not per step)
         state = law.initial_state() if memory else None
+        branch = law.branch(state) if memory else law
         old = [0.0] * (N + 1)  # response to the loads of the earlier contacts
         start = None  # first step of the current contact
         iterations, last, left_at = 0, N, None
@@ -390,7 +391,8 @@ class ContactKernels:
                     x[i + 1], xv[i + 1], al[i + 1], ald[i + 1], cwork[i + 1] = pred[i - k], v, a_new, ald1, cwork[i]
                     if memory:
                         state = law.advance(state, a_new, ald1)
-                        cen[i + 1] = law.branch(state).energy(a_new)
+                        branch = law.branch(state)
+                        cen[i + 1] = branch.energy(a_new)
                     # a law without memory stores nothing while apart (α ≤ 0): cen stays 0
                     if stop_after is not None:
                         away = a_new < 0.0 and ald1 < 0.0
@@ -406,7 +408,7 @@ class ContactKernels:
                 k = j
                 if k >= N:
                     break
-            branch = law.branch(state) if memory else law
+            # a law with memory: the branch of the state the last step left (built there, for its energy)
             x_pred = x[k] + dt * xv[k] + c2 * xa
             w_hist = old[k + 1]
             if start is not None:  # the current contact's loads, lags 1 … k + 1 − start
@@ -438,7 +440,8 @@ class ContactKernels:
             cwork[k + 1] = cwork[k] + 0.5 * (F[k] + f) * (a_new - al[k])
             if memory:
                 state = law.advance(state, a_new, ald[k + 1])
-                cen[k + 1] = law.branch(state).energy(a_new)
+                branch = law.branch(state)
+                cen[k + 1] = branch.energy(a_new)
             else:
                 cen[k + 1] = float(branch.energy(a_new))
             xa = xa1
