@@ -133,3 +133,37 @@ def test_kernels_refuse_a_velocity_away_from_the_structure(structures):
     _, _, hertz, mass, _ = cases["bar"]
     with pytest.raises(InputError, match="velocity"):
         kernels["bar"].run(hertz, mass, -1.6)
+
+
+@pytest.mark.parametrize("target", ["beam", "plate"])
+def test_kernels_travel_without_the_factorisation(structures, target):
+    """Pickled (as to a Dask worker: no stepper, no mesh) and read back, the kernels give the same run to the last bit."""
+    import pickle
+
+    cases, kernels = structures
+    s, solver, hertz, mass, velocity = cases[target]
+    blob = pickle.dumps(kernels[target])
+    back = pickle.loads(blob)
+    assert back.engine is None
+    a, b = kernels[target].run(hertz, mass, velocity), back.run(hertz, mass, velocity)
+    assert np.array_equal(a.force, b.force) and np.array_equal(a.outputs, b.outputs)
+
+
+@pytest.mark.parametrize("target", ["beam", "plate"])
+def test_patch_compliance_equals_the_shares_dot_product(structures, target):
+    """h_s(r) = c·G·s(r) and dh_s/dr, evaluated without forming s, equal the patch's own shares (and their
+    derivative) dotted with c·G, to round-off, for contact radii across the patch."""
+    from softimpact.fem.kernels import _compliance
+
+    _, kernels = structures
+    k = kernels[target]
+    cG = k._lagged[0]
+    comp = _compliance(k.patch, cG)
+    top = k.patch.extent[1] if target == "beam" else k.patch.patch.radius
+    scale = np.max(np.abs(cG))
+    for r in np.linspace(0.0, 0.999 * top, 57)[1:]:
+        s, ds = k.patch.shares(r)
+        h, dh = comp(r)
+        assert abs(h - cG @ s) <= 1e-12 * scale
+        if target == "beam":  # the disc's table slope is piecewise constant: compare inside an interval
+            assert abs(dh - cG @ ds) <= 1e-9 * scale / r

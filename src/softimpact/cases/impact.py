@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import hashlib
 from pathlib import Path
 
 import numpy as np
@@ -10,25 +11,85 @@ import numpy as np
 from ._common import GAUGE_FIELDS, magnitude_and_history, without
 from .bar import BarKind
 
-__all__ = ["ImpactKind", "SharedModel", "bar_target"]
+__all__ = ["ImpactKind", "SharedModel", "bar_target", "KERNEL_MIN_RUNS"]
 
 _BAR = BarKind()  # a bar target runs as the bar case with the impact case's impactor and law
 
 # Keys of an impact case that leave the target's model (mesh, step, factorisation) unchanged: the
-# impactor's velocity, mass and material and the contact law. Its diameter stays in the key: it
-# sets a plate's patch radius and reach.
-NOT_STRUCTURE = ("impactor.velocity", "impactor.mass", "impactor.material", "contact", "title", "units")
+# impactor's velocity, mass, material and diameter and the contact law. The diameter sets only the
+# contact's reach (the loadable nodes, per run): a group's kernels load the widest of its runs'.
+NOT_STRUCTURE = ("impactor.velocity", "impactor.mass", "impactor.material", "impactor.diameter", "contact", "title", "units")
+
+
+# A group of at least this many runs builds the target's contact kernels once (about 1.5-4 direct
+# runs' cost) and runs each impact on them in milliseconds; a smaller group steps each run directly.
+KERNEL_MIN_RUNS = 4
+# Outputs that need the structure's own state (its energies): a group asking for one steps directly.
+NEEDS_STRUCTURE = ("energy_balance_relative", "energy_error_after_first_contact_relative")
+
+
+def _wants_damage(outputs) -> bool:
+    """Whether a run must carry the damage indices' pseudo-gauges: no outputs named (all of them), or a ``damage.*`` one."""
+    return not outputs or any(o.startswith("damage.") for o in outputs)
 
 
 class SharedModel:
     """The target's model shared by the runs of a sweep group, built on first use where the runs
-    are (in a Dask worker, or in the plain loop) and never pickled: a factorisation does not travel."""
+    are (in a Dask worker, or in the plain loop) and never pickled: a factorisation does not travel
+    (the kernels do: their spectra and the patch's tables, :class:`softimpact.fem.kernels.ContactKernels`).
 
-    def __init__(self, data: dict, base: str):
-        self.data, self.base, self.model = data, base, None
+    With ``kernels``, also the target's contact kernels (:func:`softimpact.workflows.coupled.impact_kernels`),
+    built on first use and kept by a hash of the structure (the case without the keys that leave it
+    unchanged: mesh, laminate, supports, impact point, impactor diameter, step and duration stay in it),
+    so each run of the group is a kernel run."""
+
+    def __init__(self, data: dict, base: str, kernels: bool = False, damage: bool = True):
+        self.data, self.base, self.model, self.use_kernels, self.damage = data, base, None, kernels, damage
+        self.widest = 0.0  # the largest impactor diameter [m] of the group's runs: the kernels' reach
+        self._kernels: dict[str, object] = {}
 
     def __getstate__(self):
-        return {"data": self.data, "base": self.base, "model": None}
+        # the kernels travel (their spectra, not the factorisation); the model is rebuilt where the runs are
+        return {
+            "data": self.data,
+            "base": self.base,
+            "model": None,
+            "use_kernels": self.use_kernels,
+            "damage": self.damage,
+            "widest": self.widest,
+            "_kernels": self._kernels,
+        }
+
+    def build(self) -> None:
+        """Build the kernels now (where the group is prepared, once), so that they travel to the workers
+        instead of each building its own. A base case that does not parse leaves it to the runs."""
+        from ..errors import InputError
+
+        if not self.use_kernels:
+            return
+        try:
+            problem = ImpactKind().problem(self.data, self.base)
+            if not _is_bar(problem):
+                if self.damage:  # the runs carry the damage indices' pseudo-gauges: so must the kernels' outputs
+                    from ..output.impact import damage_problem
+
+                    problem = damage_problem(problem)
+                self.kernels(problem, self.data)
+        except InputError:  # the runs meet it again and record it, one by one
+            return
+
+    def widen(self, cases) -> None:
+        """Note the impactor diameters of the group's ``cases`` (case dicts; unreadable ones are left to
+        their runs), so the kernels are built once for the widest contact."""
+        from .. import units
+        from ..errors import InputError
+
+        for data in cases:
+            d = data.get("impactor", {}).get("diameter") if isinstance(data.get("impactor"), dict) else None
+            try:
+                self.widest = max(self.widest, units.parse(d, "length", "impactor.diameter"))
+            except (InputError, TypeError, ValueError):
+                continue
 
     def get(self, problem):
         from ..workflows.coupled import impact_model
@@ -36,6 +97,19 @@ class SharedModel:
         if self.model is None:
             self.model = impact_model(problem)
         return self.model
+
+    def kernels(self, problem, data: dict):
+        """The contact kernels of ``problem``'s structure (``data``: its case), built once per structure hash."""
+        from ..workflows.coupled import impact_kernels
+
+        key = hashlib.sha256(without(data, NOT_STRUCTURE).encode()).hexdigest()
+        widest = max(self.widest, problem.impactor.diameter)
+        built = self._kernels.get(key)
+        if built is None or built[0] < widest:
+            self._kernels.clear()  # one structure per group: keep the last only
+            wide = dataclasses.replace(problem, impactor=dataclasses.replace(problem.impactor, diameter=widest))
+            self._kernels[key] = (widest, impact_kernels(wide, self.get(problem)))
+        return self._kernels[key][1]
 
 
 def bar_target(data: dict, base: Path):
@@ -83,9 +157,10 @@ def _is_bar(problem) -> bool:
 
 
 class ImpactKind:
-    """Impact cases. A coupled run is nonlinear in the velocity, so sweep runs share only the
-    target's model (mesh, matrices, the factorised Newmark step): runs that differ only in the
-    impactor's velocity, mass or material or in the contact law form one group.
+    """Impact cases. Runs that differ only in the impactor's velocity, mass, material or diameter or
+    in the contact law form one sweep group, sharing the target's model (mesh, matrices, the factorised
+    Newmark step) and, in a group of :data:`KERNEL_MIN_RUNS` runs or more, its contact kernels (built
+    once for the widest contact; each run a kernel run, equal to direct stepping to round-off).
 
     A bar case as the target (:func:`bar_target`) runs as that bar case with the impact case's
     impactor and law: its problem, checks, refinement, study and outputs are the bar kind's."""
@@ -154,7 +229,10 @@ class ImpactKind:
         return without(data, NOT_STRUCTURE)
 
     def prepare(self, data, base, runs, outputs=()):
-        return SharedModel(data, str(base))
+        """The group's shared model; contact kernels when the group has :data:`KERNEL_MIN_RUNS` runs or
+        more and none of ``outputs`` needs the structure's energies (kernel runs have none)."""
+        kernels = runs >= KERNEL_MIN_RUNS and not any(o in NEEDS_STRUCTURE for o in outputs)
+        return SharedModel(data, str(base), kernels, damage=_wants_damage(outputs))
 
     def run(self, prepared, data, base, outputs=()):
         from ..workflows.coupled import run_impact
@@ -162,12 +240,16 @@ class ImpactKind:
         problem = self.problem(data, base)
         if _is_bar(problem):
             return _BAR.run(None, None, base, outputs, problem)
-        if not outputs or any(o.startswith("damage.") for o in outputs):
+        if _wants_damage(outputs):
             from ..output.impact import damage_problem
 
-            problem = damage_problem(problem)  # + the pseudo-gauges of the damage indices
-        model = prepared.get(problem) if isinstance(prepared, SharedModel) else None
-        model, result = run_impact(problem, model)
+            problem = damage_problem(problem)  # + the pseudo-gauges of the damage indices (the kernels' outputs too)
+        shared = isinstance(prepared, SharedModel)
+        model = prepared.get(problem) if shared else None
+        if shared and prepared.use_kernels:
+            model, result = run_impact(problem, model, energy=False, method="kernels", kernels=prepared.kernels(problem, data))
+        else:
+            model, result = run_impact(problem, model, method="direct")
         return self.summary(problem, result, model)
 
     def summary(self, problem, result, model=None):

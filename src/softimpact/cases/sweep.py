@@ -139,7 +139,11 @@ def prepare_group(kind: str, candidates, base: str, runs: int, outputs=()):
     first = None
     for data in candidates:
         try:
-            return KINDS[kind].prepare(data, Path(base), runs, tuple(outputs))
+            prepared = KINDS[kind].prepare(data, Path(base), runs, tuple(outputs))
+            if hasattr(prepared, "widen"):  # a shared part that covers every run of the group (impact: the widest contact)
+                prepared.widen(candidates)
+                prepared.build()
+            return prepared
         except Exception as exc:  # a drawn structure can be invalid: its runs fail, the sweep goes on
             first = first or _Failed(_one_line(exc))
             if runs == 1:
@@ -219,7 +223,7 @@ def execute(plan: SweepPlan, out: Path | None, workers: int = 0, scheduler: str 
         by_group.setdefault(c.group, []).append(c)
     if workers == 0 and not scheduler:
         for chunks in by_group.values():
-            prepared = prepare_group(kind, [d for _, d in chunks[0].items], base, chunks[0].group_size, spec.outputs)
+            prepared = prepare_group(kind, [d for c in chunks for _, d in c.items], base, chunks[0].group_size, spec.outputs)
             for c in chunks:
                 finish(c, run_chunk(kind, prepared, c.items, base, spec.outputs))
         return rows, sum(len(c.items) for c in pending)
@@ -234,7 +238,8 @@ def execute(plan: SweepPlan, out: Path | None, workers: int = 0, scheduler: str 
                 f = client.submit(group_chunk, kind, base, first.group_size, first.items, spec.outputs, pure=False)
                 futures[f] = first
                 continue
-            prepared = client.submit(prepare_group, kind, [d for _, d in first.items], base, first.group_size, spec.outputs, pure=False)
+            group = [d for c in chunks for _, d in c.items]
+            prepared = client.submit(prepare_group, kind, group, base, first.group_size, spec.outputs, pure=False)
             for c in chunks:
                 futures[client.submit(run_chunk, kind, prepared, c.items, base, spec.outputs, pure=False)] = c
         for f in as_completed(list(futures)):

@@ -75,6 +75,7 @@ __all__ = [
     "refine_peak",
     "contact_intervals",
     "simulate_coupled",
+    "coupled_result",
 ]
 
 NEWTON_TOL = 1e-12  # relative tolerance on α (and on R) in the contact iteration
@@ -524,6 +525,13 @@ def simulate_coupled(
         stop_after=stop_after,
         snapshots=snapshots,
     )
+    return coupled_result(h, impactor, tuple(structure.output_names))
+
+
+def coupled_result(h: ImpactHistory, impactor: Impactor, strain_names: tuple[str, ...]) -> CoupledResult:
+    """The :class:`CoupledResult` of histories ``h`` (direct stepping, :func:`integrate_impact`, or
+    contact kernels, :class:`softimpact.fem.kernels.ContactKernels`): contact intervals (one
+    separation rule), first-contact scalars and the energy terms."""
     t, F, al = h.time, h.force, h.approach
     contacts = contact_intervals(t, F, al)
     first = contacts[0]
@@ -552,7 +560,7 @@ def simulate_coupled(
         contact_radius=h.contact_radius,
         deflection=h.target_displacement,
         strain=h.outputs,
-        strain_names=tuple(structure.output_names),
+        strain_names=tuple(strain_names),
         energies=energies,
         contacts=contacts,
         peak_force=first.peak_force,

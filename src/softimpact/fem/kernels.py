@@ -20,11 +20,21 @@ round-off (the sums are taken in another order). The approach's rate and
 acceleration follow from Newmark's rule applied to α itself (x and c·u each obey
 it, so their difference does), which needs no structural state.
 
-Cost: while in contact, the history sum runs over the current contact's steps
-only (the earlier history is a precomputed "old" response); while apart, no load
-is added, so the structure's free response to the whole history so far is one
-FFT product with the kernel's cached spectrum, after which each step is a few
-scalar operations. The outputs are one FFT convolution at the end.
+Cost (the build: one Newmark run with 1 + q right-hand sides, about 1.5–2.5 direct coupled runs;
+a run: milliseconds, see BENCHMARKS.md). The scalar state is plain Python floats. In the Newton
+iteration the patch enters only through h_s(a) = c·G·s(a) and dh_s/da, evaluated exactly without
+forming s: over the nodes the disc reaches (the cosine line patch) or as the interpolation of the
+table's c·G·s_k computed once (a plate's disc, whose shares interpolate a table); s itself is formed
+once per step, at the root. While in contact, the history sum runs over the current contact's steps
+only (one contiguous dot product; the earlier contacts are a precomputed "old" response). While
+apart, no load is added: the structure's response to the last contact is one FFT product with the
+kernels' cached spectra, the impactor flies at constant speed, and the next contact is found by one
+vectorised test; the steps between carry only the scalar recursions of α̇, α̈ (and a law's memory).
+The outputs are one FFT convolution at the end, over the patch nodes ever loaded.
+
+A smaller impactor (a smaller contact reach, its loadable nodes among the kernels') runs on the same
+kernels with its own patch (:meth:`ContactKernels.compliance_for`). Kernels pickle without the
+factorised stepper and the mesh (to a Dask worker).
 
 The structure's own energies (kinetic, strain, the work on the patch nodes) need
 its state and are not computed here (NaN); the impactor's energy and the contact
@@ -33,18 +43,197 @@ work are.
 
 from __future__ import annotations
 
+import copy
 import math
+from bisect import bisect_left, bisect_right
+from types import SimpleNamespace
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, SolverFailed
 from ..models.protocols import HistoryLaw
 from ..models.specimens import Impactor
-from .impact import ContactPatch, ContactStructure, ImpactHistory, _solve_contact
+from .impact import NEWTON_MAXITER, NEWTON_TOL, RADIUS_STEP, ContactPatch, ContactStructure, ImpactHistory
 from .newmark import NewmarkParameters, NewmarkStepper
+from .plate_loads import DiscShares
 from .response import ImpulseResponse
 
 __all__ = ["ContactKernels"]
+
+
+class _LineCompliance:
+    """h_s(r) = c·G·s(r) [m/N] and dh_s/dr [1/N] of the cosine line patch (:class:`ContactPatch`) as
+    plain floats, exact. Over the nodes i0 … i1 − 1 the disc of radius r reaches, the outer ends are
+    clipped to ±r (sin = ±1) and each inner segment end m_j is shared by two nodes, so
+
+        h_s = ½·[c_{i0} + c_{i1−1} + Σ_j (c_j − c_{j+1})·sin(π·m_j/(2r))],
+
+    one sine (and one cosine for the derivative) per reached node."""
+
+    def __init__(self, patch: ContactPatch, cG: np.ndarray):
+        self.patch, self.half_spacing = patch, float(patch.half_spacing)
+        c = np.asarray(cG, float)
+        self.lo, self.hi, self.c = patch.lo.tolist(), patch.hi.tolist(), c.tolist()
+        self.dc = (c[:-1] - c[1:]).tolist()  # c_j − c_{j+1}: the weight of the end shared by nodes j and j + 1
+        self.point = self.c[patch.nearest]
+        self.extent = patch.extent
+
+    def __call__(self, r: float) -> tuple[float, float]:
+        if r < self.half_spacing:
+            return self.point, 0.0
+        if -r < self.extent[0] - 1e-12 * r or r > self.extent[1] + 1e-12 * r:
+            raise InputError(f"contact radius {r:.4g} m runs past the loadable surface nodes")
+        hi, dc, sin, cos = self.hi, self.dc, math.sin, math.cos
+        i0, i1 = bisect_right(hi, -r), bisect_left(self.lo, r)
+        w = math.pi / (2.0 * r)
+        h = self.c[i0] + self.c[i1 - 1]
+        dh = 0.0
+        for j in range(i0, i1 - 1):  # the inner segment ends the disc covers
+            x = w * hi[j]
+            h += dc[j] * sin(x)
+            dh -= dc[j] * cos(x) * x
+        return 0.5 * h, 0.5 * dh / r
+
+    def load(self, r: float, f: float, out: np.ndarray) -> None:
+        """out ← f·s(r) (out zero on entry): the nodal loads of the converged step."""
+        if r < self.half_spacing:
+            out[self.patch.nearest] = f
+            return
+        lo, hi = self.lo, self.hi
+        w = math.pi / (2.0 * r)
+        i0, i1 = bisect_right(hi, -r), bisect_left(lo, r)
+        a = np.clip(self.patch.lo[i0:i1], -r, r)
+        b = np.clip(self.patch.hi[i0:i1], -r, r)
+        out[i0:i1] = (0.5 * f) * (np.sin(w * b) - np.sin(w * a))
+
+
+class _TableCompliance:
+    """h_s(r) and dh_s/dr of a plate's contact disc (:class:`DiscShares`): its shares are the linear
+    interpolation of a table in r, so c·G·s(r) is the same interpolation of the table's c·G·s_k
+    (each computed once, when first reached), exact to round-off."""
+
+    def __init__(self, patch: DiscShares, cG: np.ndarray):
+        self.patch, self.half_spacing, self.cG = patch, float(patch.half_spacing), np.asarray(cG, float)
+        self.step, self.radius = patch.step, patch.patch.radius
+        self.last = int(round(self.radius / self.step))  # TABLE − 1
+        self.h: list = [None] * (self.last + 1)
+
+    def _h(self, k: int) -> float:
+        h = self.h[k]
+        if h is None:
+            h = self.h[k] = float(self.patch.row(k) @ self.cG)
+        return h
+
+    def __call__(self, r: float) -> tuple[float, float]:
+        if r > self.radius * (1 + 1e-12):
+            raise InputError(f"contact radius {r:.4g} m runs past the loadable disc ({self.radius:.4g} m)")
+        pos = min(max(r / self.step, 0.0), self.last)
+        k = min(int(pos), self.last - 1)
+        frac = pos - k
+        h0, h1 = self._h(k), self._h(k + 1)
+        return h0 * (1 - frac) + h1 * frac, (h1 - h0) / self.step
+
+    def load(self, r: float, f: float, out: np.ndarray) -> None:
+        """out ← f·s(r): the nodal loads of the converged step."""
+        out[:] = f * self.patch.shares(r)[0]
+
+
+class _ShareCompliance:
+    """h_s(r) and dh_s/dr of any other patch (``shares(r) -> (s, ds/dr)``), by two dot products."""
+
+    def __init__(self, patch, cG: np.ndarray):
+        self.patch, self.half_spacing, self.cG = patch, float(patch.half_spacing), np.asarray(cG, float)
+
+    def __call__(self, r: float) -> tuple[float, float]:
+        s, ds = self.patch.shares(r)
+        return float(self.cG @ s), float(self.cG @ ds)
+
+    def load(self, r: float, f: float, out: np.ndarray) -> None:
+        """out ← f·s(r): the nodal loads of the converged step."""
+        out[:] = f * self.patch.shares(r)[0]
+
+
+class _Mapped:
+    """A smaller structure's compliance on the kernels' patch columns ``index`` (its surface DOFs among
+    the kernels'): h_s from its own patch, its loads written into those columns."""
+
+    def __init__(self, comp, index: np.ndarray, width: int):
+        self.comp, self.index, self.half_spacing, self.patch = comp, index, comp.half_spacing, comp.patch
+        self._row = np.zeros(width)
+
+    def __call__(self, r: float) -> tuple[float, float]:
+        return self.comp(r)
+
+    def load(self, r: float, f: float, out: np.ndarray) -> None:
+        row = self._row
+        row[:] = 0.0
+        self.comp.load(r, f, row)
+        out[self.index] = row[: self.index.size]
+
+
+def _light(patch):
+    """The patch without its mesh (a plate's disc keeps its tables and share; the mesh stays behind)."""
+    inner = getattr(patch, "patch", None)
+    if inner is None or getattr(inner, "fe", None) is None:
+        return patch
+    if hasattr(patch, "row"):  # every tabulated row now, while the mesh is at hand
+        patch.table  # noqa: B018
+    light = copy.copy(patch)
+    light.patch = copy.copy(inner)
+    light.patch.fe = None
+    return light
+
+
+def _compliance(patch, cG: np.ndarray):
+    """The patch's h_s(r) = c·G·s(r) evaluator (chosen once per kernel build, not per step)."""
+    if isinstance(patch, ContactPatch):
+        return _LineCompliance(patch, cG)
+    if isinstance(patch, DiscShares):
+        return _TableCompliance(patch, cG)
+    return _ShareCompliance(patch, cG)
+
+
+def _newton(law, comp, hm: float, kappa: float, q: float, target: float, guess: float, index: int, dt: float):
+    """Root of R(α) = α − α̃ + F(α, κα + q)·(β·dt²/m + h_s(a(α))) in (0, α̃]: the iteration of
+    :func:`softimpact.fem.impact._solve_contact` (Newton safeguarded by bisection, the same tolerances)
+    on plain floats, h_s from ``comp``. Returns (α, F, contact radius, iterations)."""
+    lo, hi = 0.0, target
+    a = guess if 0.0 < guess < target else target
+    half = comp.half_spacing
+    its = 0
+    R = math.nan
+    for its in range(1, NEWTON_MAXITER + 1):  # noqa: B007 (the count is returned after the loop)
+        rate = kappa * a + q
+        f = law.force(a, rate)
+        r = law.radius(a)
+        hs, dhs = comp(r)
+        h = hm + hs
+        R = a - target + f * h
+        if R > 0.0:
+            hi = a
+        else:
+            lo = a
+        dR = 1.0 + (law.stiffness(a, rate) + kappa * law.damping(a, rate)) * h
+        if f != 0.0 and r >= half:
+            da = RADIUS_STEP * a
+            dR += f * dhs * (law.radius(a + da) - law.radius(a - da)) / (2.0 * da)
+        step = R / dR
+        if abs(step) <= NEWTON_TOL * target:
+            a -= step
+            break
+        a_next = a - step
+        if not lo < a_next < hi:
+            a_next = 0.5 * (lo + hi)  # bisection safeguard
+            if hi - lo <= NEWTON_TOL * target:
+                a = a_next
+                break
+        a = a_next
+    else:
+        raise SolverFailed(
+            f"the contact Newton iteration did not converge at t = {index * dt:.6g} s (step {index}) in {NEWTON_MAXITER} iterations: "
+            f"residual {R:.3g} m, approach bracket [{lo:.6g}, {hi:.6g}] m"
+        )
+    return a, float(law.force(a, kappa * a + q)), law.radius(a), its
 
 
 class ContactKernels:
@@ -73,71 +262,173 @@ class ContactKernels:
         self.approach = self.engine.kernel[0]  # (p, steps)
         self.outputs = self.engine.kernel[1:]  # (q, p, steps)
         self._lagged = np.ascontiguousarray(self.approach.T)  # (steps, p): row i is g_i
+        self._compliance = _compliance(self.patch, self._lagged[0])
+        self._column = {int(d): i for i, d in enumerate(dofs)}
+        self._mapped: tuple | None = None  # (surface DOFs, compliance) of the last smaller structure run
+        self._Hk, self._nfft = self.engine._spectrum()  # the kernels' spectra: part of the build, not of the first run
         self.solves = st.nsolve
 
     @property
     def output_names(self) -> tuple[str, ...]:
         return tuple(self.structure.output_names)
 
-    def _free_response(self, Q: np.ndarray, upto: int) -> np.ndarray:
-        """w_m = Σ_{j ≤ upto} g_{m−j}·q_j for every step m (shape (steps + 1,)): the approach row's
-        response to the loads so far, by one product with the kernel's cached spectrum."""
-        Hk, nfft = self.engine._spectrum()
-        loads = np.zeros((Q.shape[1], self.steps))
-        loads[:, :upto] = Q[1 : upto + 1].T
-        w = np.zeros(self.steps + 1)
-        w[1:] = np.fft.irfft(np.einsum("pk,pk->k", Hk[0], np.fft.rfft(loads, nfft, axis=-1)), nfft)[: self.steps]
-        return w
+    def __getstate__(self):
+        """Kernels travel (to a Dask worker) without the engine's factorised stepper, the structure's
+        matrices or the mesh: what a run needs, the kernels, their spectra and the patch's tables."""
+        state = self.__dict__.copy()
+        s = self.structure
+        patch = _light(self.patch)
+        state.update(
+            engine=None,
+            structure=SimpleNamespace(
+                surface_x=s.surface_x,
+                surface_dofs=s.surface_dofs,
+                load_sign=s.load_sign,
+                center=s.center,
+                output_names=s.output_names,
+                patch=None if s.patch is None else patch,
+            ),
+            patch=patch,
+            _compliance=None,
+            _mapped=None,
+            _structures={},
+        )
+        return state
 
-    def run(self, law, mass: float, velocity: float, stop_after: float | None = None) -> ImpactHistory:
+    def __setstate__(self, state):
+        self.__dict__.update(state)
+        self._compliance = _compliance(self.patch, self._lagged[0])
+
+    def _convolve(self, Q: np.ndarray, first: int, upto: int, rows) -> np.ndarray:
+        """y_m = Σ_{first ≤ j ≤ upto} K_{m−j}·q_j for every step m ≥ first (shape (len(rows), steps + 1)),
+        K the kernels of ``rows`` (0: the approach row, 1…q: the outputs), by one product with their
+        cached spectra over the patch nodes ever loaded only (a small contact loads a few of them)."""
+        Hk, nfft = self._Hk, self._nfft
+        loads = Q[first : upto + 1]
+        used = np.flatnonzero(np.any(loads != 0.0, axis=0))
+        y = np.zeros((Hk[rows].shape[0], self.steps + 1))
+        if used.size == 0:
+            return y
+        spec = np.einsum("qpk,pk->qk", Hk[rows][:, used], np.fft.rfft(loads[:, used].T, nfft, axis=-1))
+        y[:, first:] = np.fft.irfft(spec, nfft, axis=-1)[:, : self.steps + 1 - first]  # y[first + i] = Σ_l K_{i − l}·q_{first + l}
+        return y
+
+    def compliance_for(self, structure: ContactStructure | None):
+        """The patch compliance of ``structure``: the kernels' own (None, or the same surface DOFs), or that
+        of a structure on the same matrices whose loadable DOFs are among the kernels' (a smaller impactor's
+        contact disc), mapped onto the kernels' columns (its own patch and shares: the run equals its direct run)."""
+        if structure is None or structure is self.structure:
+            return self._compliance
+        dofs = np.asarray(structure.surface_dofs, int)
+        if self._mapped is not None and np.array_equal(self._mapped[0], dofs):
+            return self._mapped[1]
+        own = np.asarray(self.structure.surface_dofs, int)
+        if np.array_equal(dofs, own) and structure.patch is None and self.structure.patch is None:
+            return self._compliance
+        try:
+            index = np.array([self._column[int(d)] for d in dofs], int)
+        except KeyError:
+            raise InputError("structure: its loadable surface DOFs are not all among the kernels' (build kernels for the wider contact)") from None
+        patch = ContactPatch(structure.surface_x, structure.center) if structure.patch is None else structure.patch
+        comp = _Mapped(_compliance(patch, self._lagged[0][index]), index, dofs.size)
+        self._mapped = (dofs, comp)
+        return comp
+
+    def run(self, law, mass: float, velocity: float, stop_after: float | None = None, structure: ContactStructure | None = None) -> ImpactHistory:
         """The coupled impact of a rigid impactor (``mass`` [kg], ``velocity`` [m/s] > 0 toward the
         structure) through contact ``law`` (a ContactLaw or HistoryLaw): the histories of
         :func:`softimpact.fem.impact.integrate_impact` for the same structure, step and run length,
-        structure energies NaN. ``stop_after``: stop this long [s] after the impactor has left for good."""
+        structure energies NaN. ``stop_after``: stop this long [s] after the impactor has left for good.
+        ``structure``: the same target struck at the same point with a smaller contact reach (another
+        impactor diameter, :meth:`compliance_for`); None: the kernels' own.
+
+        The scalar state is plain Python floats; while apart, the next contact is found by one
+        vectorised test of the ballistic impactor against the structure's free response.
+        """
         Impactor(mass, 1.0, velocity)  # validates mass and velocity (> 0, toward the structure): the direct path's rule
         dt, N = self.dt, self.steps
+        mass, velocity = float(mass), float(velocity)
         if hasattr(law, "for_time_step"):
             law = law.for_time_step(dt)
         beta, gamma = self.newmark.beta, self.newmark.gamma
-        patch = self.patch
+        comp = self.compliance_for(structure)
         g = self._lagged
-        cG = g[0]
+        p = g.shape[1]
         hm = beta * dt * dt / mass
         kappa = gamma / (beta * dt)
         r1, r2 = 1.0 - gamma / beta, dt * (1.0 - gamma / (2.0 * beta))
         bdt2 = beta * dt * dt
+        c2 = dt * dt * (0.5 - beta)
 
-        t = np.arange(N + 1) * dt
-        F, al, ald, rad, x, xv = (np.zeros(N + 1) for _ in range(6))
-        cwork, cen = np.zeros(N + 1), np.zeros(N + 1)
-        Q = np.zeros((N + 1, cG.size))  # q_j = F_j·s_j, row j
+        F, al, ald, rad, x, xv, cwork, cen = ([0.0] * (N + 1) for _ in range(8))
+        Qr = np.zeros((N + 1, p))  # Qr[N − j] = q_j = F_j·s_j: a contact's loads newest first, contiguous
         xv[0] = ald[0] = velocity
         xa = ala = 0.0
-        state = law.initial_state() if isinstance(law, HistoryLaw) else None  # (a protocol check: once, not per step)
-        old = np.zeros(N + 1)  # response to the loads before the current contact (or all, while apart)
+        memory = isinstance(law, HistoryLaw)  # (a protocol check: once, not per step)
+        state = law.initial_state() if memory else None
+        branch = law.branch(state) if memory else law
+        old = [0.0] * (N + 1)  # response to the loads of the earlier contacts
         start = None  # first step of the current contact
         iterations, last, left_at = 0, N, None
-        for k in range(N):
-            branch = law if state is None else law.branch(state)
-            x_pred = x[k] + dt * xv[k] + dt * dt * (0.5 - beta) * xa
+        k = 0
+        while k < N:
+            if start is None and k > 0 and F[k] == 0.0 and al[k] <= 0.0:
+                # apart (no force now or before: the impactor flies at constant speed): the next contact is
+                # the first step whose predicted approach is positive, found at once; the steps between
+                # only carry the scalar recursions of α̇, α̈ (and the law's memory).
+                v = xv[k]
+                ks = np.arange(k, N)
+                pred = x[k] + (ks - k + 1) * (dt * v)
+                tgt = pred - np.asarray(old[k + 1 : N + 1])
+                hit = np.flatnonzero(tgt > 0.0)
+                j = k + int(hit[0]) if hit.size else N
+                tgt, pred = tgt.tolist(), pred.tolist()
+                for i in range(k, j):
+                    a_new = tgt[i - k]
+                    q = r1 * ald[i] + r2 * ala - kappa * al[i]
+                    ald1 = kappa * a_new + q
+                    ala = (a_new - al[i] - dt * ald[i] - c2 * ala) / bdt2
+                    x[i + 1], xv[i + 1], al[i + 1], ald[i + 1], cwork[i + 1] = pred[i - k], v, a_new, ald1, cwork[i]
+                    if memory:
+                        state = law.advance(state, a_new, ald1)
+                        branch = law.branch(state)
+                        cen[i + 1] = branch.energy(a_new)
+                    # a law without memory stores nothing while apart (α ≤ 0): cen stays 0
+                    if stop_after is not None:
+                        away = a_new < 0.0 and ald1 < 0.0
+                        if away and left_at is None:
+                            left_at = (i + 1) * dt
+                        elif not away:
+                            left_at = None
+                        if left_at is not None and (i + 1) * dt - left_at >= stop_after:
+                            last = i + 1
+                            break
+                if last < N:
+                    break
+                k = j
+                if k >= N:
+                    break
+            # a law with memory: the branch of the state the last step left (built there, for its energy)
+            x_pred = x[k] + dt * xv[k] + c2 * xa
             w_hist = old[k + 1]
-            if start is not None and k >= start:  # the current contact's loads, lags 1 … k + 1 − start
-                w_hist += float(np.einsum("ij,ij->", g[1 : k + 2 - start], Q[start : k + 1][::-1]))
+            if start is not None:  # the current contact's loads, lags 1 … k + 1 − start
+                L = k + 1 - start
+                w_hist += float(np.dot(g[1 : L + 1].ravel(), Qr[N - k : N - k + L].ravel()))
             target = x_pred - w_hist
             q = r1 * ald[k] + r2 * ala - kappa * al[k]
             if target > 0.0:
                 guess = 2.0 * al[k] - al[k - 1] if k >= 1 else target
-                a_new, f, sh, its = _solve_contact(branch, patch, cG, hm, kappa, q, target, guess, k + 1, dt)
+                a_new, f, r, its = _newton(branch, comp, hm, kappa, q, target, guess, k + 1, dt)
                 iterations += its
-                r = branch.radius(a_new)
             else:
-                a_new, f, sh, r = target, 0.0, None, 0.0
+                a_new, f, r = target, 0.0, 0.0
             if f != 0.0:
-                Q[k + 1] = f * sh
+                comp.load(r, f, Qr[N - k - 1])
                 if start is None:
                     start = k + 1
-            elif start is not None:  # contact ended: the free response to everything so far, once
-                old = self._free_response(Q, k)
+            elif start is not None:  # contact ended: the free response to its loads, once
+                fresh = self._convolve(Qr[::-1], start, k, slice(0, 1))[0]
+                old = (np.asarray(old) + fresh).tolist()
                 start = None
             x[k + 1] = x_pred - hm * f
             xa1 = -f / mass
@@ -145,43 +436,49 @@ class ContactKernels:
             F[k + 1], al[k + 1], rad[k + 1] = f, a_new, r
             ald[k + 1] = kappa * a_new + q
             # Newmark's displacement rule on α = x − c·u gives α̈ without the structure's state
-            ala = (a_new - al[k] - dt * ald[k] - dt * dt * (0.5 - beta) * ala) / bdt2
-            mid = 0.5 * (F[k] + f)
-            cwork[k + 1] = cwork[k] + mid * (a_new - al[k])
-            if state is not None:
+            ala = (a_new - al[k] - dt * ald[k] - c2 * ala) / bdt2
+            cwork[k + 1] = cwork[k] + 0.5 * (F[k] + f) * (a_new - al[k])
+            if memory:
                 state = law.advance(state, a_new, ald[k + 1])
-                cen[k + 1] = law.branch(state).energy(a_new)
-            else:
+                branch = law.branch(state)
                 cen[k + 1] = branch.energy(a_new)
+            else:
+                cen[k + 1] = float(branch.energy(a_new))
             xa = xa1
+            k += 1
             if stop_after is not None:
                 # moving apart: the impactor slower than the target point, ẋ < ẇ = ẋ − α̇
-                away = f == 0.0 and a_new < 0.0 and ald[k + 1] < 0.0
+                away = f == 0.0 and a_new < 0.0 and ald[k] < 0.0
                 if away and left_at is None:
-                    left_at = t[k + 1]
+                    left_at = k * dt
                 elif not away:
                     left_at = None
-                if left_at is not None and t[k + 1] - left_at >= stop_after:
-                    last = k + 1
+                if left_at is not None and k * dt - left_at >= stop_after:
+                    last = k
                     break
-        y = self.engine.respond(Q.T)  # (1 + q, N + 1): approach row, then the outputs
+        y = self._convolve(Qr[::-1], 1, N, slice(None))  # (1 + q, N + 1): approach row, then the outputs
         sl = slice(0, last + 1)
         nan = np.full(last + 1, np.nan)
+        t = np.arange(N + 1) * dt
+
+        def arr(v):
+            return np.array(v[: last + 1])
+
         return ImpactHistory(
             time=t[sl],
-            force=F[sl],
-            approach=al[sl],
-            approach_rate=ald[sl],
-            contact_radius=rad[sl],
-            impactor_displacement=x[sl],
-            impactor_velocity=xv[sl],
+            force=arr(F),
+            approach=arr(al),
+            approach_rate=arr(ald),
+            contact_radius=arr(rad),
+            impactor_displacement=arr(x),
+            impactor_velocity=arr(xv),
             target_displacement=y[0, sl],
             outputs=y[1:, sl],
             structure_kinetic=nan,
             structure_strain=nan.copy(),
             structure_work=nan.copy(),
-            contact_work=cwork[sl],
-            contact_energy=cen[sl],
+            contact_work=arr(cwork),
+            contact_energy=arr(cen),
             surface_mismatch=nan.copy(),
             newton_iterations=iterations,
             solves=0,

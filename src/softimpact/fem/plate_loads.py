@@ -184,10 +184,22 @@ class DiscShares:
         if not patch.grow:
             raise InputError("contact shares need a patch tabulated for a growing radius (grow=True)")
         self.patch = patch
-        self.table = patch.table()
-        self.n = self.table.shape[1]
+        self._rows: dict[int, np.ndarray] = {}  # tabulated distributions, each computed when first needed (a run reaches few)
         self.step = patch.radius / (TABLE - 1)
-        self._point = self.table[0]
+        self._point = self.row(0)
+        self.n = self._point.size
+
+    def row(self, k: int) -> np.ndarray:
+        """The distribution at the k-th tabulated radius (shape (n_nodes,)), as the patch's table has it."""
+        out = self._rows.get(k)
+        if out is None:
+            out = self._rows[k] = self.patch.table()[k] if self.patch._table is not None else self.patch._distribution(self.patch._table_r[k])
+        return out
+
+    @property
+    def table(self) -> np.ndarray:
+        """All the tabulated distributions, shape (TABLE, n_nodes)."""
+        return np.array([self.row(k) for k in range(TABLE)])
 
     def shares(self, a: float) -> tuple[np.ndarray, np.ndarray]:
         """(s, ds/da), each of shape (n_nodes,)."""
@@ -196,5 +208,6 @@ class DiscShares:
         pos = min(max(a / self.step, 0.0), TABLE - 1)
         k = min(int(pos), TABLE - 2)
         frac = pos - k
-        slope = (self.table[k + 1] - self.table[k]) / self.step
-        return self.table[k] * (1 - frac) + self.table[k + 1] * frac, slope
+        lo, hi = self.row(k), self.row(k + 1)
+        slope = (hi - lo) / self.step
+        return lo * (1 - frac) + hi * frac, slope

@@ -3,7 +3,9 @@
 ``law`` = ``hertz`` | ``hertz-unloading`` (``critical_indentation``, default
 0.08 mm, Yang & Sun's graphite/epoxy value) | ``hunt-crossley`` (``restitution``
 required, ``form`` lankarani-nikravesh | hunt-crossley) | ``identified``
-(``law_file``: a law.json of ``softimpact identify``, relative to the case file).
+(``law_file``: a law.json of ``softimpact identify``, relative to the case file; optional
+``parameters``, a table of the law's parameters by name replacing the file's values: a sweep's
+draws from the law's covariance, :class:`softimpact.input.sweep_spec.LawDraw`).
 The Hertz constant comes from the caller (a laminate, a flat, the bar's end).
 """
 
@@ -29,7 +31,7 @@ def read_contact_law(c: Table, name: str, hertz: Callable[[], HertzLaw], mass: f
     if name == "identified":
         file = c.string("law_file")
         path = Path(file) if Path(file).is_absolute() else base / file
-        identified = read_law(path, c.key("law_file"))
+        identified = _with_parameters(read_law(path, c.key("law_file")), c)
         _warn_outside(identified.identified_on, velocity, diameter, path, mass)
         return identified.law(mass, diameter, velocity), path
     h = hertz()
@@ -42,6 +44,30 @@ def read_contact_law(c: Table, name: str, hertz: Callable[[], HertzLaw], mass: f
         raise InputError(f"{c.key('restitution')}: must be in (0, 1], got {restitution!r}")
     form = c.string("form", HUNT_CROSSLEY_FORMS[0], choices=HUNT_CROSSLEY_FORMS)
     return HuntCrossleyLaw(h.K, h.R, restitution, velocity, h.exponent, form), None
+
+
+def _with_parameters(law, c: Table):
+    """``law`` with the values of table ``contact.parameters`` (by name) in place of the file's, checked
+    as the file's are (k_ref > 0, p > 0, c_ref >= 0, kappa_ref >= 0, theta_ref > 0)."""
+    import dataclasses
+    import math
+
+    given = c.raw("parameters", None)
+    if given is None:
+        return law
+    if not isinstance(given, dict):
+        raise InputError(f"{c.key('parameters')}: expected a table of the law's parameters, got {given!r}")
+    values = law.values.copy()
+    for name, v in given.items():
+        if name not in law.names:
+            raise InputError(f"{c.key('parameters')}.{name}: not a parameter of the law (known: {', '.join(law.names)})")
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+            raise InputError(f"{c.key('parameters')}.{name}: expected a finite number, got {v!r}")
+        values[law.names.index(name)] = float(v)
+    k, p, cr, ka, th = (values[law.names.index(n)] for n in ("k_ref", "p", "c_ref", "kappa_ref", "theta_ref"))
+    if not (k > 0 and p > 0 and cr >= 0 and ka >= 0 and (ka == 0 or th > 0)):
+        raise InputError(f"{c.key('parameters')}: out of range (k_ref > 0, p > 0, c_ref >= 0, kappa_ref >= 0 with theta_ref > 0), got {given!r}")
+    return dataclasses.replace(law, values=values)
 
 
 def _warn_outside(ranges: dict | None, velocity: float, diameter: float, path: Path, mass: float | None = None) -> None:

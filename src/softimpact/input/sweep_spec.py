@@ -18,6 +18,9 @@ and the parameters to vary, each by the dotted path of a case key::
     [[sweep.parameter]]
     key = "load.history"                # the α's of a scaling.json, with their covariance
     from = "out/fit/scaling.json"
+    [[sweep.parameter]]
+    key = "contact"                     # an identified law's parameters (law.json), with their covariance
+    from = "out/identify/law.json"
 
 ``values`` and ``range = [lo, hi, n]`` are levels: crossed as a grid with each
 other and, in the random methods, with the draws (every level combination gets
@@ -51,6 +54,7 @@ __all__ = [
     "Level",
     "Drawn",
     "Scaling",
+    "LawDraw",
     "Fixed",
     "SweepSpec",
     "Run",
@@ -181,6 +185,39 @@ class Scaling:
 
 
 @dataclass(frozen=True)
+class LawDraw:
+    """The parameters of an identified contact law (a law.json) as a joint normal, set as
+    ``key``.parameters.<name> (the impact case's ``[contact]`` with ``law = "identified"``).
+
+    Mean: the file's values. Covariance: the file's ``covariance`` (``names`` and ``matrix``) when
+    it has one, else diagonal from the 95 % half-widths, σ = half-width/1.96 (the fit's linearised
+    intervals, ±1.96·sqrt(diag(s²(JᵀJ)⁻¹)), :mod:`softimpact.workflows.identification`). Parameters
+    with no spread (held at zero in the fit) are not drawn."""
+
+    key: str
+    names: tuple[str, ...]
+    mean: tuple
+    covariance: tuple
+    source: str
+
+    @property
+    def dims(self) -> int:
+        return len(self.names)
+
+    @property
+    def columns(self):
+        return tuple(f"{self.key}.parameters.{n}" for n in self.names)
+
+    def transform(self, u: np.ndarray) -> np.ndarray:
+        """Uniforms (n, dims) → correlated normal draws (n, dims) through the Cholesky factor."""
+        from scipy.stats import norm
+
+        C = np.asarray(self.covariance, float)
+        L = np.linalg.cholesky(C + 1e-300 * np.eye(self.dims))
+        return np.asarray(self.mean) + norm.ppf(u) @ L.T
+
+
+@dataclass(frozen=True)
 class Run:
     """One run: its number, the case keys it sets (in order) and its row of varied values (SI)."""
 
@@ -208,7 +245,7 @@ class SweepSpec:
     def runs(self, central: bool = False) -> list[Run]:
         """The runs; with ``central``, one per level combination with every draw at its median."""
         levels = [p for p in self.parameters if isinstance(p, Level)]
-        random = [p for p in self.parameters if isinstance(p, (Drawn, Scaling))]
+        random = [p for p in self.parameters if isinstance(p, (Drawn, Scaling, LawDraw))]
         draws = self._draws(random, central)
         out = []
         combos = list(itertools.product(*[range(len(p.values)) for p in levels]))
@@ -230,10 +267,10 @@ class SweepSpec:
                         sets.append((p.key, _written(x, p.unit)))
                         row[p.key] = x
                     else:
-                        for name, x in zip(p.columns, draws[d, col : col + 4]):
+                        for name, x in zip(p.columns, draws[d, col : col + p.dims]):
                             sets.append((name, float(x)))
                             row[name] = float(x)
-                        col += 4
+                        col += p.dims
                 out.append(Run(len(out), tuple(sets), row, d))
         return out
 
@@ -365,6 +402,38 @@ def _scaling(path: Path, group: str, where: str) -> tuple[tuple, tuple, str]:
     return mean, cov, f"{path}:{group}"
 
 
+def _law_draw(path: Path, key: str, where: str) -> LawDraw:
+    """A law.json's parameters as a :class:`LawDraw` (the ones with a spread)."""
+    try:
+        data = json.loads(Path(path).read_text(encoding="utf-8"))
+        pars = data["parameters"]
+        names = [n for n, v in pars.items() if float(v.get("ci95_half_width", 0.0)) > 0.0]
+        mean = [float(pars[n]["value"]) for n in names]
+        if "covariance" in data:
+            order = list(data["covariance"]["names"])
+            full = np.asarray(data["covariance"]["matrix"], float)
+            idx = [order.index(n) for n in names]
+            cov = full[np.ix_(idx, idx)]
+        else:
+            cov = np.diag([(float(pars[n]["ci95_half_width"]) / 1.96) ** 2 for n in names])
+    except OSError as exc:
+        raise InputError(f"{where}: cannot read {path} ({exc.strerror})") from None
+    except (KeyError, TypeError, ValueError, IndexError, AttributeError, UnicodeDecodeError):
+        raise InputError(f"{where}: {path} is not a law.json with parameters (value, ci95_half_width)") from None
+    if not names:
+        raise InputError(f"{where}: {path}: no parameter has a spread (ci95_half_width > 0): nothing to draw")
+    if cov.shape != (len(names), len(names)) or not np.all(np.isfinite(cov)) or np.any(np.linalg.eigvalsh(0.5 * (cov + cov.T)) < 0):
+        raise InputError(f"{where}: {path}: the covariance is not a symmetric positive semi-definite matrix")
+    return LawDraw(key, tuple(names), tuple(mean), tuple(map(tuple, cov)), str(path))
+
+
+def _is_law_json(path: Path) -> bool:
+    try:
+        return "family" in json.loads(Path(path).read_text(encoding="utf-8"))
+    except (OSError, ValueError, UnicodeDecodeError, TypeError):
+        return False
+
+
 def _parameter(p: Table, base: Path):
     key = p.string("key")
     if not key or any(not part for part in key.split(".")):
@@ -381,15 +450,18 @@ def _parameter(p: Table, base: Path):
         out = _drawn(p, key)
     else:
         src = base / p.string("from")
-        group = p.string("group", "pooled")
-        out = Scaling(key, *_scaling(src, group, p.key("from")))
+        if _is_law_json(src):
+            out = _law_draw(src, key, p.key("from"))
+        else:
+            group = p.string("group", "pooled")
+            out = Scaling(key, *_scaling(src, group, p.key("from")))
     p.done()
     return out
 
 
 def _sets(p) -> tuple[str, ...]:
     """The case keys a parameter sets (a scaling.json's: its table's alpha1..4)."""
-    return p.columns if isinstance(p, Scaling) else (p.key,)
+    return p.columns if isinstance(p, (Scaling, LawDraw)) else (p.key,)
 
 
 def _check_overlaps(params) -> None:
@@ -437,18 +509,18 @@ def read_sweep_spec(data: dict, base: Path, path: Path | None = None, text: byte
         raise InputError("sweep.outputs: keys must be unique")
     params = tuple(_parameter(p, base) for p in s.tables("parameter"))
     _check_overlaps(params)
-    if method == "grid" and any(isinstance(p, (Drawn, Scaling)) for p in params):
-        bad = next(i for i, p in enumerate(params) if isinstance(p, (Drawn, Scaling)))
+    if method == "grid" and any(isinstance(p, (Drawn, Scaling, LawDraw)) for p in params):
+        bad = next(i for i, p in enumerate(params) if isinstance(p, (Drawn, Scaling, LawDraw)))
         raise InputError(f"sweep.parameter[{bad}]: draws need method = 'monte-carlo' or 'latin-hypercube' (method is 'grid')")
     if method == "grid" and "runs" in s.data:
         raise InputError("sweep.runs: only for the random methods (the grid's size is its levels')")
-    if not any(isinstance(p, (Level, Drawn, Scaling)) for p in params):
+    if not any(isinstance(p, (Level, Drawn, Scaling, LawDraw)) for p in params):
         raise InputError("sweep.parameter: nothing varies (give values, range, distribution or from)")
     s.done()
     top.done()
     h = hashlib.sha256(text or json.dumps(data, sort_keys=True, default=str).encode())
     h.update(case_path.read_bytes())
     for p in params:
-        if isinstance(p, Scaling):
+        if isinstance(p, (Scaling, LawDraw)):
             h.update(repr(p.mean + p.covariance).encode())
     return SweepSpec(path or base / "spec", case_path, load_toml(case_path), method, draws, seed, tuple(outputs), params, chunk, h.hexdigest()[:16])

@@ -21,10 +21,11 @@ re-contact); the scalars of the result are those of the FIRST contact.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 
 from ..errors import InputError
-from ..fem.impact import ContactInterval, CoupledResult, contact_intervals, simulate_coupled
+from ..fem.impact import ContactInterval, CoupledResult, contact_intervals, coupled_result, simulate_coupled
 from ..fem.newmark import SolverSpec
 from ..models.materials import Material
 from ..models.protocols import StructureModel
@@ -39,7 +40,11 @@ __all__ = [
     "contact_intervals",
     "run_impact",
     "impact_model",
+    "impact_kernels",
+    "METHODS",
 ]
+
+METHODS = ("auto", "kernels", "direct")  # run_impact's ways to step a coupled impact
 
 
 @dataclass(frozen=True)
@@ -96,22 +101,80 @@ def _whole_plate(result: CoupledResult, share: float) -> CoupledResult:
     return replace(result, energies=energies)
 
 
+def impact_kernels(problem: ImpactProblem, model: StructureModel | None = None):
+    """The contact kernels (:class:`softimpact.fem.kernels.ContactKernels`) of the problem's target
+    struck at its impact point, for its time step and duration: built once (about 1.5–4 direct runs),
+    then every coupled run on this structure (another velocity, mass, law, or a diameter up to the
+    problem's: its contact disc is among the loadable nodes) costs milliseconds.
+    ``model``: the target's model to reuse (its factorised stepper)."""
+    from ..fem.kernels import ContactKernels
+
+    model = model or impact_model(problem)
+    reach = model.contact_reach(problem.position, problem.impactor.diameter)
+    structure = model.contact_structure(problem.position, reach)
+    solver = problem.solver
+    kernels = ContactKernels(structure, solver.time_step, solver.steps, solver.newmark, stepper=model.stepper)
+    kernels.reach = reach  # the widest contact they load: smaller impactors run on them too (run_impact)
+    return kernels
+
+
 def run_impact(
-    problem: ImpactProblem, model: StructureModel | None = None, energy: bool = True, stop_after: float | None = None, snapshots=()
+    problem: ImpactProblem,
+    model: StructureModel | None = None,
+    energy: bool = True,
+    stop_after: float | None = None,
+    snapshots=(),
+    *,
+    method: str = "auto",
+    kernels=None,
 ) -> tuple[StructureModel, CoupledResult]:
     """The coupled run of an impact problem on a beam or plate; ``model``: a BeamModel or PlateModel
     of the same structure and step to reuse; ``energy``: keep the energy histories; ``stop_after``:
     end the run this long [s] after the impactor has left for good; ``snapshots``: step indices at
     which to keep the structure's displacement.
 
+    ``method``: "direct" steps the whole structure with the impactor (:func:`simulate_coupled`, the
+    reference; energies and snapshots need it); "kernels" steps only the scalar contact equation
+    against the structure's impulse responses (``kernels`` from :func:`impact_kernels`, built here if
+    None; equal to direct stepping to round-off, the structure's energies NaN); "auto": the kernels
+    when they are given and neither energies nor snapshots are asked for, else direct stepping (a
+    single run costs less stepped directly than building kernels).
+
     Loadable nodes reach one impactor diameter from the impact point: a Hertz radius
     sqrt(R·α) and a flattened sphere's sqrt(d·α) stay within it while α < d (on a plate,
     cut by the edges: ``model.contact_reach``).
     """
+    if method not in METHODS:
+        raise InputError(f"method must be one of {', '.join(METHODS)}, got {method!r}")
+    if method == "kernels" and (energy or len(snapshots)):
+        raise InputError("method 'kernels' gives no structure energies or snapshots: pass energy=False and no snapshots, or use method 'direct'")
+    use_kernels = method == "kernels" or (method == "auto" and kernels is not None and not energy and not len(snapshots))
     model = model or impact_model(problem)
-    structure = model.contact_structure(problem.position, model.contact_reach(problem.position, problem.impactor.diameter))
+    if use_kernels:
+        kernels = kernels or impact_kernels(problem, model)
+        if kernels.steps != problem.solver.steps or not math.isclose(kernels.dt, problem.solver.time_step, rel_tol=1e-12):
+            raise InputError(
+                f"kernels: built for {kernels.steps} steps of {kernels.dt:.6g} s, the problem runs {problem.solver.steps} of {problem.solver.time_step:.6g} s"
+            )
+        reach = model.contact_reach(problem.position, problem.impactor.diameter)
+        own = reach == getattr(kernels, "reach", None)
+        if own:
+            structure = kernels.structure
+        else:  # a smaller impactor: its own contact disc, kept with the kernels for the next run of that diameter
+            cache = kernels.__dict__.setdefault("_structures", {})
+            if reach not in cache:
+                cache.clear()
+                cache[reach] = model.contact_structure(problem.position, reach)
+            structure = cache[reach]
+    else:
+        structure = model.contact_structure(problem.position, model.contact_reach(problem.position, problem.impactor.diameter))
     try:
-        result = simulate_coupled(structure, problem.law, problem.impactor, problem.solver, energy, model.stepper, stop_after, snapshots)
+        if use_kernels:
+            imp = problem.impactor
+            history = kernels.run(problem.law, imp.mass, imp.velocity, stop_after=stop_after, structure=None if own else structure)
+            result = coupled_result(history, imp, tuple(structure.output_names))
+        else:
+            result = simulate_coupled(structure, problem.law, problem.impactor, problem.solver, energy, model.stepper, stop_after, snapshots)
     except InputError as exc:
         if "runs past" not in str(exc):
             raise
