@@ -158,6 +158,7 @@ def _variants() -> dict[str, list]:
         {"law": "hertz-unloading", "critical_indentation": "0.1 mm", "target_modulus": "8 GPa"},
         {"law": "hunt-crossley", "restitution": 0.8, "form": "hunt-crossley"},
         {"law": "identified", "law_file": "law.json"},
+        {"law": "identified", "law_file": "law.json", "parameters": {"k_ref": 4.0}},
     ]
     history = [
         {"shape": "skewed", "peak_force": "100 lbf", "time_of_peak": "50 us", "duration": "200 us"},
@@ -251,6 +252,7 @@ RAW_VALUES = {
     "constants": "a scaling.json path (of `softimpact fit`) or a preset name",
     "outputs": "a list of output keys (`peak_force_N`, `strain_<g>.peak`, `damage.<index>`, …)",
     "value": "any value the key takes (a whole table replaces the table)",
+    "parameters": "a table of the identified law's parameters by name (`k_ref`, `p`, `kappa_ref`, …): numbers used in place of law.json's (a sweep draws them)",
     "values": "a list of levels (quantities or values)",
     "range": "`[low, high, n]`: n levels evenly spaced",
     "distribution": "`{ uniform = [lo, hi] }`, `{ normal = [mean, sd] }` or `{ lognormal = [median, sigma of ln] }`",

@@ -31,7 +31,8 @@ def read_contact_law(c: Table, name: str, hertz: Callable[[], HertzLaw], mass: f
     if name == "identified":
         file = c.string("law_file")
         path = Path(file) if Path(file).is_absolute() else base / file
-        identified = _with_parameters(read_law(path, c.key("law_file")), c)
+        given = c.raw("parameters", None)  # read before the file, so a case's keys are all known even when the file is not
+        identified = _with_parameters(read_law(path, c.key("law_file")), c, given)
         _warn_outside(identified.identified_on, velocity, diameter, path, mass)
         return identified.law(mass, diameter, velocity), path
     h = hertz()
@@ -46,13 +47,12 @@ def read_contact_law(c: Table, name: str, hertz: Callable[[], HertzLaw], mass: f
     return HuntCrossleyLaw(h.K, h.R, restitution, velocity, h.exponent, form), None
 
 
-def _with_parameters(law, c: Table):
+def _with_parameters(law, c: Table, given):
     """``law`` with the values of table ``contact.parameters`` (by name) in place of the file's, checked
     as the file's are (k_ref > 0, p > 0, c_ref >= 0, kappa_ref >= 0, theta_ref > 0)."""
     import dataclasses
     import math
 
-    given = c.raw("parameters", None)
     if given is None:
         return law
     if not isinstance(given, dict):
