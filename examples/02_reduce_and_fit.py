@@ -3,45 +3,40 @@ Reduce a lab-file series and fit the scaling law
 ================================================
 
 The built-in series ``paper-rubber-series`` holds bar strain records of rubber balls
-(synthetic: made by the bar FE from the paper's Table I constants, with noise). ``fit``
+(synthetic: made by the bar FE from the paper's Table I constants, with noise). ``si.fit``
 reduces each record to a force history (incident wave separated from its reflections) and
-fits the scaling constants α1–α4 of eqs (4)–(7).
+fits the scaling constants α1–α4 of eqs (4)–(7) (``softimpact fit paper-rubber-series``).
 
 Checked against the paper: α1 of the 3/8-in ball is 4.00 in Table I; the fit recovers it
 within 2 %.
 """
 
 # %%
-import csv
-import json
-import tempfile
-from pathlib import Path
-
 import matplotlib.pyplot as plt
-from click.testing import CliRunner
 
-from softimpact.cli import main
+import softimpact as si
 
-out = Path(tempfile.mkdtemp()) / "fit"
-run = CliRunner().invoke(main, ["fit", "paper-rubber-series", "--out", str(out), "--no-figures"])
-assert run.exit_code == 0, run.output
-print(run.output)
+res = si.fit("paper-rubber-series", figures=False)
+print(res.line)
 
 # %%
-# ``scaling.json`` holds the constants per ball size and pooled, with 95 % intervals.
-scaling = json.loads((out / "scaling.json").read_text())
+# ``scaling.json`` holds the constants per ball size and pooled, with 95 % intervals; the
+# result reads the command's files without writing them (``res.write(dir)`` does).
+scaling = res.json("scaling.json")
 for group, fit in scaling["groups"].items():
     print(group, {a: round(fit[a]["value"], 3) for a in ("alpha1", "alpha2", "alpha3", "alpha4")})
 
 # %%
 # Eq (4): each test's F0 against mV²/(2d), and the fitted line of slope α1 per ball size.
-tests = [r for r in csv.DictReader((out / "tests.csv").open()) if r["status"] == "ok"]
+# ``res.table("tests.csv")`` is the per-test table as a pandas DataFrame (SI columns).
+tests = res.table("tests.csv")
+tests = tests[tests["status"] == "ok"]
 fig, ax = plt.subplots()
 for group, fit in scaling["groups"].items():
-    rows = [r for r in tests if abs(float(r["diameter_m"]) / 0.0254 - float(group.split()[0])) < 1e-6]
-    x = [float(r["mass_kg"]) * float(r["velocity_m_s"]) ** 2 / (2 * float(r["diameter_m"])) for r in rows]
-    ax.plot(x, [float(r["peak_force_N"]) for r in rows], "o", label=f"{group} ball")
-    ax.plot([0, max(x)], [0, fit["alpha1"]["value"] * max(x)], "-", color=ax.lines[-1].get_color())
+    rows = tests[abs(tests["diameter_m"] / 0.0254 - float(group.split()[0])) < 1e-6]
+    x = rows["mass_kg"] * rows["velocity_m_s"] ** 2 / (2 * rows["diameter_m"])
+    ax.plot(x, rows["peak_force_N"], "o", label=f"{group} ball")
+    ax.plot([0, x.max()], [0, fit["alpha1"]["value"] * x.max()], "-", color=ax.lines[-1].get_color())
 ax.set_xlabel("mV²/(2d) [N]")
 ax.set_ylabel("F0 [N]")
 ax.legend()
