@@ -28,7 +28,8 @@ print(f"peak force {res.peak_force:.1f} N at {res.time_of_peak * 1e6:.1f} us, co
 # ``res.problem`` holds every input in SI.
 E, A = res.problem.bar.material.youngs_modulus, res.problem.bar.area
 strain = res.strain["midpoint"]
-ax = res.plot()
+ax = res.plot()  # the contact force [N] against time [µs]
+ax.lines[0].set_label("contact force [N]")
 ax.plot(res.time * 1e6, -strain * E * A, "--", label="−EA·ε at midpoint [N]")
 ax.legend()
 

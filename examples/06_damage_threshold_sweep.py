@@ -15,8 +15,9 @@ sampled at the time step).
 """
 
 # %%
-# A sweep is described by a spec file (the API takes its path, as ``softimpact sweep`` does:
-# there is no dict form of a spec). ``out`` holds the checkpoints, so the same call resumes.
+# A sweep is described by a spec file: the API takes its path, as ``softimpact sweep spec.toml
+# --workers 0 --out out`` does (there is no dict form of a spec). ``out`` holds the
+# checkpoints, so the same call resumes.
 import tempfile
 from pathlib import Path
 
