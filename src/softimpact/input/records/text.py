@@ -17,6 +17,9 @@ __all__ = ["channels", "read"]
 
 _NUMBER = re.compile(r"^[+-]?(\d+([.,]\d*)?|[.,]\d+)([eE][+-]?\d+)?$")
 _UNIT_IN_NAME = re.compile(r"^(.*?)[\s_]*[\(\[]\s*([^\)\]]*)\s*[\)\]]\s*$")
+# softimpact's own record columns carry their unit in the name (input/records/softimpact_csv.py)
+_OWN_COLUMNS = {"time_s": ("time", "s"), "time_ms": ("time", "ms"), "time_us": ("time", "us"), "strain": ("strain", "strain")}
+_OWN_COLUMNS |= {"microstrain": ("strain", "microstrain"), "voltage_V": ("voltage", "V")}
 _DT_KEYS = ("sample interval", "sampling interval", "sample period", "horizontal interval", "xincr", "dt", "time interval")
 _T0_KEYS = ("horizontal offset", "trigger offset", "xzero", "t0", "start time", "time offset")
 _DATE_KEYS = ("date", "trigger date", "time stamp", "timestamp", "trigtime", "date/time", "created")
@@ -107,6 +110,8 @@ def _text_table(path):
         if m and units[j] is None:
             units[j] = m.group(2).strip() or None
             n = m.group(1).strip() or n
+        elif units[j] is None and n.strip() in _OWN_COLUMNS:
+            n, units[j] = _OWN_COLUMNS[n.strip()]
         clean.append(n or f"column {j + 1}")
     # Rows shorter than the header are unequal lengths, not blanks.
     for i, r in enumerate(data):
