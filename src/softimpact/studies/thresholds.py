@@ -27,10 +27,10 @@ Bands (:func:`threshold_map`) combine three sources, stated in each row:
     factor (F_i ∝ 1/S, F_ij ∝ 1/S²), the delamination index F/P_c too, so I(V; s) = I(V; 1)/s and
     V*(s) solves I(V; 1) = s: with the local power I ∝ V^β at V* (β from two runs at V*·(1 ± 2 %)),
     V*(s) = V*·s^(1/β);
-(c) the discretisation error: a second mesh (every element count × 2) gives V*₂ at the law's
-    mean, and the two-mesh GCI of the coarse (map) mesh, Fs·|V*₂ − V*₁|·r^p/(r^p − 1) with Fs = 3
-    (Roache's factor for two meshes), r = 2 and the formal order p = 2, widens the band on both
-    sides.
+(c) the discretisation error: the map is computed on the finer of two meshes (element counts
+    and step both refined by r = 2); the coarser gives V*_c at the law's mean, and the two-mesh
+    GCI of the fine value, Fs·|V*_f − V*_c|/(r^p − 1) with Fs = 3 (Roache's factor for two
+    meshes) and the formal order p = 2, widens the band on both sides.
 
 The 5–95 % band is that of the law draws × strength factors (each law draw paired with every one
 of ``strength_quantiles`` equally spaced normal quantiles of s), widened by (c). The median is
@@ -54,7 +54,7 @@ from ..output.impact import damage_problem, split_damage
 from ..workflows.coupled import ImpactProblem, impact_kernels, impact_model, run_impact
 from ..workflows.damage import delamination_force, impact_damage, section_strains, strain_tensor
 
-__all__ = ["INDICES", "ThresholdStructure", "MapRow", "structure", "damage_index", "threshold_velocity", "threshold_map", "law_draws"]
+__all__ = ["INDICES", "ThresholdStructure", "MapRow", "structure", "damage_index", "threshold_velocity", "threshold_map", "law_draws", "gci_two_meshes"]
 
 INDICES = ("tsai_wu", "delamination")  # the damage indices thresholded
 
@@ -65,7 +65,7 @@ class MapRow:
     velocity [m/s] at the law's mean (``nominal``), median and 5–95 % of the combined band
     (``p05``, ``p95``, widened by ``gci``); ``law_p05``/``law_p95`` the law's draws alone,
     ``beta`` the local power of I in V at the threshold, ``gci`` [m/s] the discretisation
-    error, ``fine`` [m/s] the threshold on the refined mesh; ``draws`` and ``reached`` the law
+    error, ``coarse`` [m/s] the threshold on the coarser mesh; ``draws`` and ``reached`` the law
     draws and how many reached 1 within the velocity range (NaN thresholds otherwise)."""
 
     structure: str
@@ -80,7 +80,7 @@ class MapRow:
     law_p95: float
     beta: float
     gci: float
-    fine: float
+    coarse: float
     draws: int
     reached: int
 
@@ -98,7 +98,7 @@ class MapRow:
             "law_p95_m_s": self.law_p95,
             "index_power_beta": self.beta,
             "discretisation_error_m_s": self.gci,
-            "threshold_velocity_fine_mesh_m_s": self.fine,
+            "threshold_velocity_coarse_mesh_m_s": self.coarse,
             "draws": self.draws,
             "draws_reaching_1": self.reached,
         }
@@ -254,11 +254,11 @@ def law_draws(law, draws: int, seed: int = 1) -> list:
     return out
 
 
-def _gci(coarse: float, fine: float, r: float = 2.0, p: float = 2.0, fs: float = 3.0) -> float:
-    """Two-mesh GCI [same unit] of the COARSE value: Fs·|fine − coarse|·r^p/(r^p − 1)."""
+def gci_two_meshes(fine: float, coarse: float, r: float = 2.0, p: float = 2.0, fs: float = 3.0) -> float:
+    """Two-mesh GCI [same unit] of the FINE value (Roache): Fs·|fine − coarse|/(r^p − 1); NaN if either is."""
     if not (math.isfinite(coarse) and math.isfinite(fine)):
         return math.nan
-    return fs * abs(fine - coarse) * r**p / (r**p - 1.0)
+    return fs * abs(fine - coarse) / (r**p - 1.0)
 
 
 def threshold_map(
@@ -270,13 +270,13 @@ def threshold_map(
     draws: int = 8,
     strength_cov: float = 0.10,
     strength_quantiles: int = 9,
-    fine: ThresholdStructure | None = None,
+    coarse: ThresholdStructure | None = None,
     indices=INDICES,
     seed: int = 1,
 ) -> list[MapRow]:
     """The threshold map of structure ``s`` (module docstring): one :class:`MapRow` per index and
-    diameter [m], velocity range [``lo``, ``hi``] m/s; ``fine``: the same structure on the refined
-    mesh for the discretisation error (None: no error estimate, ``gci`` NaN)."""
+    diameter [m], velocity range [``lo``, ``hi``] m/s; ``coarse``: the same structure on the mesh
+    (and step) coarser by 2, for the discretisation error (None: no estimate, ``gci`` NaN)."""
     from scipy.stats import norm
 
     drawn = law_draws(law, draws, seed)
@@ -293,8 +293,8 @@ def threshold_map(
                 beta = math.log(i2 / i1) / math.log(1.02 / 0.98)
             vs = np.array([threshold_velocity(s, lw, d, index, lo, hi, guess=nominal, beta=beta) for lw in drawn] or [nominal], float)
             ok = vs[np.isfinite(vs)]
-            fine_v = threshold_velocity(fine, law, d, index, lo, hi, guess=nominal, beta=beta) if fine is not None else math.nan
-            gci = _gci(nominal, fine_v)
+            coarse_v = threshold_velocity(coarse, law, d, index, lo, hi, guess=nominal, beta=beta) if coarse is not None else math.nan
+            gci = gci_two_meshes(nominal, coarse_v)
             if ok.size and math.isfinite(beta) and beta > 0:
                 combined = (ok[:, None] * factors[None, :] ** (1.0 / beta)).ravel()
                 lo_b, hi_b = np.percentile(combined, [5, 95])
@@ -304,5 +304,5 @@ def threshold_map(
                 law_lo, law_hi = (float(x) for x in np.percentile(ok, [5, 95]))
             else:
                 p05 = p95 = med = law_lo = law_hi = math.nan
-            rows.append(MapRow(s.name, index, d, mass, nominal, med, p05, p95, law_lo, law_hi, beta, gci, fine_v, len(vs), int(ok.size)))
+            rows.append(MapRow(s.name, index, d, mass, nominal, med, p05, p95, law_lo, law_hi, beta, gci, coarse_v, len(vs), int(ok.size)))
     return rows
