@@ -229,7 +229,7 @@ def threshold_velocity(
 def law_draws(law, draws: int, seed: int = 1) -> list:
     """``draws`` copies of the identified ``law`` with its spread parameters drawn (Latin hypercube,
     ``seed``) from its covariance, or its 95 % half-widths /1.96 when it has none; draws outside the
-    law's admissible range (k_ref, p > 0; c_ref, kappa_ref ≥ 0) are clipped to it."""
+    law's admissible range (k_ref, p, theta_ref > 0; c_ref, kappa_ref ≥ 0) are clipped to it."""
     from scipy.stats import norm, qmc
 
     names = list(law.names)
@@ -247,7 +247,7 @@ def law_draws(law, draws: int, seed: int = 1) -> list:
     for row in z:
         v = np.array(law.values, float)
         v[spread] += row
-        for n, floor in (("k_ref", 1e-12), ("p", 1e-3), ("c_ref", 0.0), ("kappa_ref", 0.0)):
+        for n, floor in (("k_ref", 1e-12), ("p", 1e-3), ("c_ref", 0.0), ("kappa_ref", 0.0), ("theta_ref", 1e-9)):
             if n in names:
                 v[names.index(n)] = max(v[names.index(n)], floor)
         out.append(dataclasses.replace(law, values=v))
