@@ -98,3 +98,11 @@ def test_the_report_shows_threshold_maps_that_differ_between_the_structures(pape
     assert min(np.diff(tw)) > gci
     de = [float(half[(s, "delamination")]["threshold_velocity_median_m_s"]) for s in ("long beam", "short beam", "8-in plate")]
     assert max(de) / min(de) - 1 < 0.05
+
+
+def test_the_threshold_on_kernels_equals_the_threshold_on_direct_stepping(beam):
+    """The Tsai–Wu threshold of the 1/2-in ball found over kernel runs equals the one found over direct coupled stepping within 0.5 %."""
+    s, law = beam
+    v_k = T.threshold_velocity(s, law, 0.5 * INCH, "tsai_wu", 500 * INCH, 30000 * INCH)
+    v_d = T.threshold_velocity(s, law, 0.5 * INCH, "tsai_wu", 500 * INCH, 30000 * INCH, method="direct")
+    assert v_d == pytest.approx(v_k, rel=5e-3)

@@ -185,7 +185,16 @@ def index_at(s: ThresholdStructure, law, diameter: float, velocity: float, index
 
 
 def threshold_velocity(
-    s: ThresholdStructure, law, diameter: float, index: str, lo: float, hi: float, rtol: float = 2e-4, guess: float | None = None, beta: float | None = None
+    s: ThresholdStructure,
+    law,
+    diameter: float,
+    index: str,
+    lo: float,
+    hi: float,
+    rtol: float = 2e-4,
+    guess: float | None = None,
+    beta: float | None = None,
+    method: str = "kernels",
 ) -> float:
     """The velocity V* [m/s] in [``lo``, ``hi``] at which ``index`` first reaches 1 (kernel runs):
     a geometric scan (ratio 1.5) for the first level where I ≥ 1, then Brent's method on
@@ -195,11 +204,12 @@ def threshold_velocity(
     ``beta`` of I in V there, secant steps on ln I against ln V from it first (two or three runs);
     the scan when they leave [lo, hi] or do not converge in 8 runs. A draw whose I crosses 1
     more than once in the range may then give a crossing other than the first: the
-    indices here grow monotonically with V over the ranges used (they follow the peak force)."""
+    indices here grow monotonically with V over the ranges used (they follow the peak force).
+    ``method``: "kernels" (the runs of a map) or "direct" (each run stepped directly: the reference)."""
     from scipy.optimize import brentq
 
     def g(lnv):
-        return math.log(max(index_at(s, law, diameter, math.exp(lnv), index), 1e-300))
+        return math.log(max(index_at(s, law, diameter, math.exp(lnv), index, method), 1e-300))
 
     if guess is not None and beta is not None and math.isfinite(guess) and beta > 0:
         x0, g0 = math.log(guess), g(math.log(guess))
