@@ -16,7 +16,7 @@ import numpy as np
 
 from .files import csv_text, figure_bytes, json_text, write_outputs
 
-__all__ = ["sweep_files", "threshold_figure", "threshold_csv", "save_checkpoint", "load_checkpoint", "parquet_bytes"]
+__all__ = ["sweep_files", "threshold_figure", "threshold_map_figure", "threshold_csv", "save_checkpoint", "load_checkpoint", "parquet_bytes"]
 
 
 def save_checkpoint(folder: Path, name: str, rows: list[dict]) -> None:
@@ -47,8 +47,9 @@ def parquet_bytes(cols: dict) -> bytes:
 
 
 def threshold_csv(th: list[dict]) -> str:
-    """Threshold rows (:func:`softimpact.workflows.sweep_stats.thresholds`) as CSV text."""
-    return csv_text({k: np.array([t[k] for t in th], dtype=object if k in ("levels", "index") else float) for k in th[0]})
+    """Threshold rows (:func:`softimpact.workflows.sweep_stats.thresholds`, or a threshold map's rows,
+    :meth:`softimpact.studies.thresholds.MapRow.as_dict`) as CSV text."""
+    return csv_text({k: np.array([t[k] for t in th], dtype=object if k in ("levels", "index", "structure") else float) for k in th[0]})
 
 
 def sweep_files(cols: dict, summary: dict, th: list[dict], figures: bool, system: str = "in-lbf-s") -> dict:
@@ -90,5 +91,51 @@ def threshold_figure(th: list[dict], system: str, title: str = "Threshold veloci
     ax.set_ylabel(f"threshold velocity [{vu.label}]")
     ax.set_title(title, fontsize=10)
     ax.legend(fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
+def threshold_map_figure(rows: list[dict], prescribed: list[dict], system: str, title: str):
+    """Threshold velocity against impactor diameter, one panel per structure: each index's median
+    (line) and 5–95 % band (shaded) from a threshold map (:meth:`softimpact.studies.thresholds.MapRow.as_dict`
+    rows), and beside it the carried-over prescribed-force thresholds (``prescribed``: rows with
+    ``structure``, ``index``, ``diameter_m`` and the median, p05 and p95 velocities) as points with their band."""
+    import matplotlib.pyplot as plt
+
+    from ..units import display
+
+    vu, lu = display(system, "velocity"), display(system, "length")
+    structures = list(dict.fromkeys(r["structure"] for r in rows))
+    indices = list(dict.fromkeys(r["index"] for r in rows))
+    fig, axes = plt.subplots(1, len(structures), figsize=(4.2 * len(structures), 4), sharey=True, squeeze=False)
+    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for ax, name in zip(axes[0], structures):
+        for j, index in enumerate(indices):
+            mine = sorted((r for r in rows if r["structure"] == name and r["index"] == index), key=lambda r: r["diameter_m"])
+            d = np.array([r["diameter_m"] for r in mine]) * lu.factor
+            med, lo, hi = (np.array([r[f"threshold_velocity_{q}_m_s"] for r in mine]) * vu.factor for q in ("median", "p05", "p95"))
+            c = colours[j % len(colours)]
+            ax.plot(d, med, "-o", color=c, ms=4, label=f"{index}: coupled, identified law")
+            ax.fill_between(d, lo, hi, color=c, alpha=0.2)
+            old = sorted((p for p in prescribed if p["structure"] == name and p["index"] == index), key=lambda p: p["diameter_m"])
+            if old:
+                x = np.array([p["diameter_m"] for p in old]) * lu.factor * 1.01
+                y, plo, phi = (np.array([p[f"threshold_velocity_{q}_m_s"] for p in old]) * vu.factor for q in ("median", "p05", "p95"))
+                ax.errorbar(
+                    x,
+                    y,
+                    yerr=[np.nan_to_num(y - plo), np.nan_to_num(phi - y)],
+                    fmt="s",
+                    mfc="none",
+                    color=c,
+                    capsize=3,
+                    label=f"{index}: prescribed force (Table I law)",
+                )
+        ax.set_title(name, fontsize=9)
+        ax.set_xlabel(f"impactor diameter [{lu.label}]")
+        ax.grid(alpha=0.3)
+    axes[0][0].set_ylabel(f"threshold velocity [{vu.label}]")
+    axes[0][0].legend(fontsize=7)
+    fig.suptitle(title, fontsize=10)
     fig.tight_layout()
     return fig

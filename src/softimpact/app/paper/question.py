@@ -6,12 +6,10 @@ from dataclasses import replace
 
 import numpy as np
 
-from ...fem.bar import Rod
 from ...fem.newmark import SolverSpec
 from ...input.beam_case import load_beam_case
 from ...input.scaling_constants import start_pulse
 from ...input.series import load_calibration_series, load_series
-from ...input.series_records import read_series_records
 from ...models.empirical import PROJECTILES
 from ...models.materials import lookup
 from ...models.pulses import SkewedPulse
@@ -19,11 +17,11 @@ from ...output.files import figure_bytes
 from ...output.identify import identify_files
 from ...output.plots import _figure
 from ...output.report import Section
-from ...studies.series import reduce_series
 from ...units import INCH, display
 from ...workflows.beam_impact import BeamLoad, BeamModel
 from ...workflows.coupled import Impactor, ImpactProblem, run_impact
-from ...workflows.identification import identify_series, predict_pulses, pulse_figures, unfixed_parameters
+from ...workflows.identification import predict_pulses, pulse_figures, unfixed_parameters
+from .thresholds import paper_identification
 
 __all__ = ["question_section"]
 
@@ -81,8 +79,7 @@ def _identified_law(figures: bool, files: dict, prefix: str):
     law from the same data), its closure and predictive intervals; identify's files added under
     ``prefix``. Returns (law, bar tests, closure, predictions)."""
     series = load_series("paper-rubber-series")
-    rod = Rod.of(series.bar)
-    tests, law, approaches, cl = identify_series(rod, reduce_series(series, *read_series_records(series)))
+    rod, tests, law, approaches, cl = paper_identification()  # computed once, shared with the threshold maps
     predictions = predict_pulses(law, tests, rod, cl)
     files.update(identify_files(series, tests, law, approaches, cl, figures, prefix, predictions=predictions))
     return law, tests, cl, predictions

@@ -1,0 +1,318 @@
+"""Threshold maps: the impact velocity at which a damage index first reaches 1, against the
+impactor's diameter, per structure, from COUPLED impact with an identified contact law.
+
+For one structure (a beam or plate case, its contact point and its mesh) the contact kernels
+(:class:`softimpact.fem.kernels.ContactKernels`) are built once, for the widest impactor; each
+coupled run on them then costs milliseconds, so the threshold velocity V* of every diameter is
+found by root-finding on the velocity (Brent's method on ln I(V) against ln V, bracketed by a
+geometric scan): I(V*) = 1, with I
+
+- Tsai–Wu at the load point (the largest 1/R over both faces of every ply and the run,
+  :func:`softimpact.workflows.damage.point_damage`), or
+- Davies–Zhang delamination, the coupled peak force over the laminate's threshold force
+  P_c = π·sqrt(8·E·h³·G_IIc/(9(1−ν²))) (:func:`softimpact.workflows.damage.delamination_force`).
+
+The impactor is a ball of the identified law's projectile: mass m = ρ·π·d³/6 (the law's tests'
+density), diameter d; the law is :meth:`IdentifiedLaw.law(m, d, V)` of each velocity (its
+parameters scaled by d/d_ref, its velocity scaling in V).
+
+Bands (:func:`threshold_map`) combine three sources, stated in each row:
+
+(a) the law's uncertainty: V* again for each of ``draws`` parameter vectors drawn (Latin
+    hypercube, fixed seed) from the law's covariance (its 95 % half-widths /1.96 on the diagonal
+    when it has none), as a sweep's ``contact.parameters`` draws are
+    (:class:`softimpact.input.sweep_spec.LawDraw`);
+(b) material scatter: every strength of the ply (and √G_IIc, hence P_c) scaled by a common factor
+    s ~ N(1, ``strength_cov``²). Tsai–Wu's 1/R is homogeneous of degree −1 in a common strength
+    factor (F_i ∝ 1/S, F_ij ∝ 1/S²), the delamination index F/P_c too, so I(V; s) = I(V; 1)/s and
+    V*(s) solves I(V; 1) = s: with the local power I ∝ V^β at V* (β from two runs at V*·(1 ± 2 %)),
+    V*(s) = V*·s^(1/β);
+(c) the discretisation error: the map is computed on the finer of two meshes (element counts
+    and step both refined by r = 2); the coarser gives V*_c at the law's mean, and the two-mesh
+    GCI of the fine value, Fs·|V*_f − V*_c|/(r^p − 1) with Fs = 3 (Roache's factor for two
+    meshes) and the formal order p = 2, widens the band on both sides.
+
+The 5–95 % band is that of the law draws × strength factors (each law draw paired with every one
+of ``strength_quantiles`` equally spaced normal quantiles of s), widened by (c). The median is
+that of the law draws at s = 1.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import InputError
+from ..fem.newmark import SolverSpec
+from ..models.materials import Material
+from ..models.specimens import Impactor
+from ..output.impact import DAMAGE_PREFIX as _PREFIX
+from ..output.impact import damage_problem, split_damage
+from ..workflows.coupled import ImpactProblem, impact_kernels, impact_model, run_impact
+from ..workflows.damage import delamination_force, impact_damage, section_strains, strain_tensor
+
+__all__ = ["INDICES", "ThresholdStructure", "MapRow", "structure", "damage_index", "threshold_velocity", "threshold_map", "law_draws", "gci_two_meshes"]
+
+INDICES = ("tsai_wu", "delamination")  # the damage indices thresholded
+
+
+@dataclass(frozen=True)
+class MapRow:
+    """One point of a threshold map: structure, index, diameter d [m], mass m [kg]; the threshold
+    velocity [m/s] at the law's mean (``nominal``), median and 5–95 % of the combined band
+    (``p05``, ``p95``, widened by ``gci``); ``law_p05``/``law_p95`` the law's draws alone,
+    ``beta`` the local power of I in V at the threshold, ``gci`` [m/s] the discretisation
+    error, ``coarse`` [m/s] the threshold on the coarser mesh; ``draws`` and ``reached`` the law
+    draws and how many reached 1 within the velocity range (NaN thresholds otherwise)."""
+
+    structure: str
+    index: str
+    diameter: float
+    mass: float
+    nominal: float
+    median: float
+    p05: float
+    p95: float
+    law_p05: float
+    law_p95: float
+    beta: float
+    gci: float
+    coarse: float
+    draws: int
+    reached: int
+
+    def as_dict(self) -> dict:
+        return {
+            "structure": self.structure,
+            "index": self.index,
+            "diameter_m": self.diameter,
+            "mass_kg": self.mass,
+            "threshold_velocity_nominal_m_s": self.nominal,
+            "threshold_velocity_median_m_s": self.median,
+            "threshold_velocity_p05_m_s": self.p05,
+            "threshold_velocity_p95_m_s": self.p95,
+            "law_p05_m_s": self.law_p05,
+            "law_p95_m_s": self.law_p95,
+            "index_power_beta": self.beta,
+            "discretisation_error_m_s": self.gci,
+            "threshold_velocity_coarse_mesh_m_s": self.coarse,
+            "draws": self.draws,
+            "draws_reaching_1": self.reached,
+        }
+
+
+@dataclass
+class ThresholdStructure:
+    """A structure ready for threshold runs: its impact problem (with the damage pseudo-gauges),
+    its model and its contact kernels (built once, for the widest diameter). Not frozen: the
+    kernels keep a cache of the smaller impactors' contact discs."""
+
+    name: str
+    problem: ImpactProblem
+    model: object
+    kernels: object
+    density: float  # kg/m³ of the impactor
+
+    def problem_at(self, law, diameter: float, velocity: float) -> ImpactProblem:
+        """The problem for a ball of ``diameter`` [m] at ``velocity`` [m/s] under the identified ``law`` (an IdentifiedLaw)."""
+        mass = self.density * math.pi / 6.0 * diameter**3
+        imp = Impactor(mass, diameter, velocity)
+        return dataclasses.replace(self.problem, impactor=imp, law=law.law(mass, diameter, velocity))
+
+
+def structure(name: str, target, widest: float, density: float, time_step: float, duration: float, law) -> ThresholdStructure:
+    """A :class:`ThresholdStructure` from a resolved beam or plate problem ``target`` (its load
+    position and contact radius used; its force history dropped), for balls up to ``widest`` [m]
+    of ``density`` [kg/m³], stepped at ``time_step`` [s] for ``duration`` [s]; ``law``: the
+    identified law (its mean; any law serves for the build, the kernels hold none)."""
+    from ..workflows.beam_impact import BeamLoad
+    from ..workflows.plate_impact import PlateLoad
+
+    plate = hasattr(target, "plate")
+    if plate:
+        load = PlateLoad(target.load.position, target.load.contact_radius, None, grow=True)
+    else:
+        load = BeamLoad(target.load.position, target.load.contact_radius, None)
+    solver = SolverSpec(time_step, duration)
+    resolved = dataclasses.replace(target, load=load, solver=solver, gauges=())
+    rubber = Material("ball", 5.0e6, 0.49, density, "threshold-map impactor (the law carries the contact)")
+    mass = density * math.pi / 6.0 * widest**3
+    problem = ImpactProblem(resolved, name, Impactor(mass, widest, 1.0), rubber, "identified", law.law(mass, widest, 1.0), name)
+    problem = damage_problem(problem)
+    if problem.target.gauges == ():
+        raise InputError(f"{name}: no damage outputs (the laminate needs a layup and a ply with strengths)")
+    model = impact_model(problem)
+    kernels = impact_kernels(problem, model)
+    return ThresholdStructure(name, problem, model, kernels, density)
+
+
+def damage_index(problem: ImpactProblem, result, index: str, scale: float = 1.0) -> float:
+    """The damage ``index`` of a coupled run (:data:`INDICES`): Tsai–Wu at the load point or the
+    Davies–Zhang delamination index (peak force / P_c); ``scale`` multiplies every strength
+    (and P_c): the index is divided by it (homogeneous of degree −1)."""
+    problem, result, pseudo = split_damage(problem, result)
+    target = problem.target
+    stack = target.plate.stack if problem.on_plate else target.beam.stack
+    if index == "delamination":
+        peak = max(c.peak_force for c in result.contacts)
+        return peak / delamination_force(stack, stack.ply.strength.GIIc) / scale
+    if problem.on_plate:
+        top, bottom = (strain_tensor(*(pseudo[f"{_PREFIX}.at_load.{f}.{d}"] for d in ("x", "y", "45.0"))) for f in ("top", "bottom"))
+        points = {"at_load": (0.5 * (top + bottom), (top - bottom) / stack.thickness)}
+        width = None
+    else:
+        points = {"at_load": section_strains(stack, target.beam.plane, pseudo[f"{_PREFIX}.at_load.top"], pseudo[f"{_PREFIX}.at_load.bottom"])}
+        width = target.beam.width
+    dmg = impact_damage(stack, stack.ply.strength, points, result.force, result.contact_radius, width)
+    return dmg.points["at_load"].peak[index] / scale
+
+
+def _run(s: ThresholdStructure, law, diameter: float, velocity: float, method: str = "kernels"):
+    problem = s.problem_at(law, diameter, velocity)
+    if method == "kernels":
+        _, result = run_impact(problem, s.model, energy=False, method="kernels", kernels=s.kernels)
+    else:
+        _, result = run_impact(problem, s.model, energy=False, method="direct")
+    return problem, result
+
+
+def index_at(s: ThresholdStructure, law, diameter: float, velocity: float, index: str, method: str = "kernels") -> float:
+    """The damage ``index`` of one coupled run: ball of ``diameter`` [m] at ``velocity`` [m/s]; ``method`` "kernels" or "direct"."""
+    return damage_index(*_run(s, law, diameter, velocity, method), index)
+
+
+def threshold_velocity(
+    s: ThresholdStructure,
+    law,
+    diameter: float,
+    index: str,
+    lo: float,
+    hi: float,
+    rtol: float = 2e-4,
+    guess: float | None = None,
+    beta: float | None = None,
+    method: str = "kernels",
+) -> float:
+    """The velocity V* [m/s] in [``lo``, ``hi``] at which ``index`` first reaches 1 (kernel runs):
+    a geometric scan (ratio 1.5) for the first level where I ≥ 1, then Brent's method on
+    ln I(V) in ln V to relative tolerance ``rtol``. NaN when I < 1 up to ``hi``; ``lo`` when I ≥ 1 there.
+
+    With a ``guess`` (a nearby threshold: the law's mean for one of its draws) and the local power
+    ``beta`` of I in V there, secant steps on ln I against ln V from it first (two or three runs);
+    the scan when they leave [lo, hi] or do not converge in 8 runs. A draw whose I crosses 1
+    more than once in the range may then give a crossing other than the first: the
+    indices here grow monotonically with V over the ranges used (they follow the peak force).
+    ``method``: "kernels" (the runs of a map) or "direct" (each run stepped directly: the reference)."""
+    from scipy.optimize import brentq
+
+    def g(lnv):
+        return math.log(max(index_at(s, law, diameter, math.exp(lnv), index, method), 1e-300))
+
+    if guess is not None and beta is not None and math.isfinite(guess) and beta > 0:
+        x0, g0 = math.log(guess), g(math.log(guess))
+        x1 = x0 - g0 / beta
+        for _ in range(7):
+            if not math.log(lo) < x1 < math.log(hi):
+                break
+            if abs(x1 - x0) < rtol / 4:
+                return math.exp(x1)
+            g1 = g(x1)
+            if g1 == g0:
+                break
+            x0, x1, g0 = x1, x1 - g1 * (x1 - x0) / (g1 - g0), g1
+
+    a, ga = math.log(lo), g(math.log(lo))
+    if ga >= 0:
+        return lo
+    while a < math.log(hi):
+        b = min(a + math.log(1.5), math.log(hi))
+        gb = g(b)
+        if gb >= 0:
+            return math.exp(brentq(g, a, b, xtol=rtol / 4, rtol=rtol / 4))
+        a = b
+    return math.nan
+
+
+def law_draws(law, draws: int, seed: int = 1) -> list:
+    """``draws`` copies of the identified ``law`` with its spread parameters drawn (Latin hypercube,
+    ``seed``) from its covariance, or its 95 % half-widths /1.96 when it has none; draws outside the
+    law's admissible range (k_ref, p, theta_ref > 0; c_ref, kappa_ref ≥ 0) are clipped to it."""
+    from scipy.stats import norm, qmc
+
+    names = list(law.names)
+    spread = [i for i, h in enumerate(law.half_widths) if h > 0]
+    if not spread or draws < 1:
+        return []
+    if law.covariance is not None:
+        C = np.asarray(law.covariance, float)[np.ix_(spread, spread)]
+    else:
+        C = np.diag((np.asarray(law.half_widths, float)[spread] / 1.96) ** 2)
+    L = np.linalg.cholesky(0.5 * (C + C.T) + 1e-30 * np.eye(len(spread)))
+    u = qmc.LatinHypercube(d=len(spread), seed=seed).random(draws)
+    z = norm.ppf(u) @ L.T
+    out = []
+    for row in z:
+        v = np.array(law.values, float)
+        v[spread] += row
+        for n, floor in (("k_ref", 1e-12), ("p", 1e-3), ("c_ref", 0.0), ("kappa_ref", 0.0), ("theta_ref", 1e-9)):
+            if n in names:
+                v[names.index(n)] = max(v[names.index(n)], floor)
+        out.append(dataclasses.replace(law, values=v))
+    return out
+
+
+def gci_two_meshes(fine: float, coarse: float, r: float = 2.0, p: float = 2.0, fs: float = 3.0) -> float:
+    """Two-mesh GCI [same unit] of the FINE value (Roache): Fs·|fine − coarse|/(r^p − 1); NaN if either is."""
+    if not (math.isfinite(coarse) and math.isfinite(fine)):
+        return math.nan
+    return fs * abs(fine - coarse) / (r**p - 1.0)
+
+
+def threshold_map(
+    s: ThresholdStructure,
+    law,
+    diameters,
+    lo: float,
+    hi: float,
+    draws: int = 8,
+    strength_cov: float = 0.10,
+    strength_quantiles: int = 9,
+    coarse: ThresholdStructure | None = None,
+    indices=INDICES,
+    seed: int = 1,
+) -> list[MapRow]:
+    """The threshold map of structure ``s`` (module docstring): one :class:`MapRow` per index and
+    diameter [m], velocity range [``lo``, ``hi``] m/s; ``coarse``: the same structure on the mesh
+    (and step) coarser by 2, for the discretisation error (None: no estimate, ``gci`` NaN)."""
+    from scipy.stats import norm
+
+    drawn = law_draws(law, draws, seed)
+    q = norm.ppf((np.arange(strength_quantiles) + 0.5) / strength_quantiles)
+    factors = np.maximum(1.0 + strength_cov * q, 0.05)
+    rows = []
+    for index in indices:
+        for d in diameters:
+            mass = s.density * math.pi / 6.0 * d**3
+            nominal = threshold_velocity(s, law, d, index, lo, hi)
+            beta = math.nan
+            if math.isfinite(nominal):
+                i1, i2 = (index_at(s, law, d, nominal * f, index) for f in (0.98, 1.02))
+                beta = math.log(i2 / i1) / math.log(1.02 / 0.98)
+            vs = np.array([threshold_velocity(s, lw, d, index, lo, hi, guess=nominal, beta=beta) for lw in drawn] or [nominal], float)
+            ok = vs[np.isfinite(vs)]
+            coarse_v = threshold_velocity(coarse, law, d, index, lo, hi, guess=nominal, beta=beta) if coarse is not None else math.nan
+            gci = gci_two_meshes(nominal, coarse_v)
+            if ok.size and math.isfinite(beta) and beta > 0:
+                combined = (ok[:, None] * factors[None, :] ** (1.0 / beta)).ravel()
+                lo_b, hi_b = np.percentile(combined, [5, 95])
+                widen = gci if math.isfinite(gci) else 0.0
+                p05, p95 = float(lo_b - widen), float(hi_b + widen)
+                med = float(np.median(ok))
+                law_lo, law_hi = (float(x) for x in np.percentile(ok, [5, 95]))
+            else:
+                p05 = p95 = med = law_lo = law_hi = math.nan
+            rows.append(MapRow(s.name, index, d, mass, nominal, med, p05, p95, law_lo, law_hi, beta, gci, coarse_v, len(vs), int(ok.size)))
+    return rows
