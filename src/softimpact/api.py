@@ -551,7 +551,7 @@ class ImpactResult(_Written):
     @property
     def strain(self) -> dict:
         """Gauge strain histories by gauge name, each (n_steps + 1,), tension +."""
-        from .output.impact import split_damage
+        from .studies.damage import split_damage
 
         _, result, _ = split_damage(self.problem, self.result)  # the damage indices' pseudo-gauges are not gauges
         return dict(zip(result.strain_names, result.strain))
@@ -569,7 +569,8 @@ class ImpactResult(_Written):
         """The histories of history.csv as a pandas DataFrame indexed by time [s]; units in ``df.attrs["units"]``.
 
         pandas rather than xarray: one dimension (time), and users know it (the ``table`` extra)."""
-        from .output.impact import impact_columns, split_damage
+        from .output.impact import impact_columns
+        from .studies.damage import split_damage
 
         cols = impact_columns(split_damage(self.problem, self.result)[1])
         return _frame(cols, {k: _unit_of(k) for k in cols})
@@ -1076,7 +1077,8 @@ def run(problem, *, figures: bool = True):
     if case.kind == "impact" and hasattr(p, "projectile"):  # an impact case on a bar target runs as the bar
         case = Case("bar", p, files)
     if case.kind == "impact":
-        from .output.impact import damage_problem, snapshot_steps
+        from .output.impact import snapshot_steps
+        from .studies.damage import damage_problem
         from .workflows.coupled import impact_model, run_impact
 
         p = damage_problem(p)  # as the command: + the pseudo-gauges of the damage indices (a layup with strengths)

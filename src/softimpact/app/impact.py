@@ -10,7 +10,8 @@ import numpy as np
 from ..input.impact_case import load_impact_case
 from ..models.validity import Validity, warn
 from ..output.fields import field_files, sampled_steps, select_kept
-from ..output.impact import damage_problem, impact_files, snapshot_steps, split_damage
+from ..output.impact import impact_files, snapshot_steps
+from ..studies.damage import damage_problem, split_damage
 from ..units import display
 from ..workflows.coupled import impact_model, run_impact
 from . import Outcome, Progress, no_progress

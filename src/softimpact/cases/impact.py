@@ -71,7 +71,7 @@ class SharedModel:
             problem = ImpactKind().problem(self.data, self.base)
             if not _is_bar(problem):
                 if self.damage:  # the runs carry the damage indices' pseudo-gauges: so must the kernels' outputs
-                    from ..output.impact import damage_problem
+                    from ..studies.damage import damage_problem
 
                     problem = damage_problem(problem)
                 self.kernels(problem, self.data)
@@ -241,7 +241,7 @@ class ImpactKind:
         if _is_bar(problem):
             return _BAR.run(None, None, base, outputs, problem)
         if _wants_damage(outputs):
-            from ..output.impact import damage_problem
+            from ..studies.damage import damage_problem
 
             problem = damage_problem(problem)  # + the pseudo-gauges of the damage indices (the kernels' outputs too)
         shared = isinstance(prepared, SharedModel)

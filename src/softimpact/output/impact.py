@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 import numpy as np
 
+from ..studies.damage import DAMAGE_PREFIX, _bar, _opposite, damage_problem, split_damage
 from ..units import display
 from .files import csv_text, figure_bytes, json_text, strain_peaks
 
@@ -33,41 +33,6 @@ def snapshot_steps(steps: int) -> np.ndarray:
     return np.unique(np.maximum(np.round(steps / 2.0 ** np.arange(SNAPSHOTS - 1, -1, -1)).astype(int), 1))
 
 
-DAMAGE_PREFIX = "_damage"  # names of the pseudo-gauges that feed the damage indices
-
-
-def _opposite(surface: str) -> str:
-    return "top" if surface == "bottom" else "bottom"
-
-
-def damage_problem(problem):
-    """The impact problem with the pseudo-gauges its damage indices need, when its target is a
-    layup whose ply has strengths (else unchanged): on a beam the load point's two faces and the
-    face opposite each gauge (axial strain over the gauge length); on a plate point strains in x, y
-    and 45° on both faces under the load and at each gauge's centre (the in-plane strain tensor,
-    :func:`softimpact.workflows.damage.strain_tensor`)."""
-    if _bar(problem):
-        return problem
-    target = problem.target
-    stack = target.plate.stack if problem.on_plate else target.beam.stack
-    if stack is None or not hasattr(stack, "angles") or stack.ply.strength is None:
-        return problem
-    if problem.on_plate:
-        from ..workflows.plate_impact import PlateGauge
-
-        spots = {"at_load": tuple(target.load.position), **{f"at_{g.name}": tuple(g.position) for g in target.gauges}}
-        extra = tuple(
-            PlateGauge(f"{DAMAGE_PREFIX}.{n}.{face}.{d}", xy, face, d, 0.0) for n, xy in spots.items() for face in ("top", "bottom") for d in ("x", "y", 45.0)
-        )
-    else:
-        from ..workflows.beam_impact import BeamGauge
-
-        x = target.load.position
-        extra = (BeamGauge(f"{DAMAGE_PREFIX}.at_load.top", x, "top"), BeamGauge(f"{DAMAGE_PREFIX}.at_load.bottom", x, "bottom"))
-        extra += tuple(BeamGauge(f"{DAMAGE_PREFIX}.at_{g.name}.{_opposite(g.surface)}", g.position, _opposite(g.surface), g.length) for g in target.gauges)
-    return dataclasses.replace(problem, target=dataclasses.replace(target, gauges=target.gauges + extra))
-
-
 def damage_keys(problem) -> tuple[str, ...]:
     """The dotted damage outputs of an impact problem (sweeps): none unless :func:`damage_problem` adds its gauges."""
     from ..models.failure import CRITERIA
@@ -86,24 +51,6 @@ def _no_damage(problem) -> dict:
 
     why = None if _bar(problem) else damage_refusal(problem)
     return {} if why is None else {"damage_note": why}
-
-
-def _bar(problem) -> bool:
-    return not hasattr(problem, "target")
-
-
-def split_damage(problem, result):
-    """(problem, result) without the damage pseudo-gauges, and those gauges' strains by name."""
-    keep = [i for i, n in enumerate(result.strain_names) if not n.startswith(DAMAGE_PREFIX + ".")]
-    if len(keep) == len(result.strain_names):
-        return problem, result, {}
-    pseudo = {n: result.strain[i] for i, n in enumerate(result.strain_names) if i not in keep}
-    result = dataclasses.replace(result, strain=result.strain[keep], strain_names=tuple(result.strain_names[i] for i in keep))
-    target = problem.target
-    problem = dataclasses.replace(
-        problem, target=dataclasses.replace(target, gauges=tuple(g for g in target.gauges if not g.name.startswith(DAMAGE_PREFIX + ".")))
-    )
-    return problem, result, pseudo
 
 
 def impact_damage_summary(problem, result, pseudo: dict) -> dict:

@@ -49,10 +49,10 @@ from ..errors import InputError
 from ..fem.newmark import SolverSpec
 from ..models.materials import Material
 from ..models.specimens import Impactor
-from ..output.impact import DAMAGE_PREFIX as _PREFIX
-from ..output.impact import damage_problem, split_damage
 from ..workflows.coupled import ImpactProblem, impact_kernels, impact_model, run_impact
 from ..workflows.damage import delamination_force, impact_damage, section_strains, strain_tensor
+from .damage import DAMAGE_PREFIX as _PREFIX
+from .damage import damage_problem, split_damage
 
 __all__ = ["INDICES", "ThresholdStructure", "MapRow", "structure", "damage_index", "threshold_velocity", "threshold_map", "law_draws", "gci_two_meshes"]
 
