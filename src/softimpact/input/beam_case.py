@@ -238,7 +238,12 @@ def beam_problem(data: dict, base: Path = Path("."), history: int | None = None)
 
 def load_beam_case(case: str, history: int | None = None):
     path = locate(case)
-    problem = beam_problem(load_toml(path), path.parent, history)
+    data = load_toml(path)
+    if "beam" not in data:
+        other = "a bar case" if "projectile" in data else "a plate case" if "plate" in data else "an impact case" if "target" in data else None
+        if other:
+            raise InputError(f"{path.name} is {other}: a beam case (one with a [beam] table) is expected here")
+    problem = beam_problem(data, path.parent, history)
     with naming({"elements": "beam.elements"}):
         check_problem(problem)
     return problem, path

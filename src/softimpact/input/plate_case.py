@@ -9,6 +9,7 @@ beam cases), ``[solver]`` and ``[[gauges]]``; see README.md and
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 from .. import units
@@ -62,6 +63,8 @@ def read_plate_gauges(top: Table) -> tuple[PlateGauge, ...]:
             raise InputError(f"{g.key('direction')}: expected 'x', 'y' or an angle in degrees from x, got {direction!r}")
         if isinstance(direction, str) and direction not in ("x", "y"):
             raise InputError(f"{g.key('direction')}: {direction!r} is not 'x', 'y' or an angle in degrees from x")
+        if not isinstance(direction, str) and not math.isfinite(direction):
+            raise InputError(f"{g.key('direction')}: {direction!r} is not a finite angle (expected 'x', 'y' or degrees from x)")
         with naming({None: g.path}):
             gauges.append(
                 PlateGauge(
