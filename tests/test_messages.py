@@ -99,3 +99,28 @@ def test_no_message_in_the_sources_puts_a_before_a_vowel_kind():
     root = pathlib.Path(softimpact.__file__).parent
     bad = [f"{p.name}: {m.group(0)}" for p in root.rglob("*.py") for m in re.finditer(r"\ba (impact|identified|isotropic|inline|orthotropic)\b", p.read_text())]
     assert not bad, bad
+
+
+def test_an_impact_sweep_asking_an_unknown_output_says_an_impact_case(tmp_path):
+    """A sweep of an impact case asking an output it has not: "not an output of an impact case" (the article follows the kind)."""
+    (tmp_path / "spec.toml").write_text(
+        '[sweep]\ncase = "plate-ss-8in-impact"\nmethod = "grid"\noutputs = ["no_such_output"]\n'
+        '[[sweep.parameter]]\nkey = "impactor.velocity"\nvalues = ["50 in/s", "150 in/s"]\n'
+    )
+    line = error_line(invoke("sweep", tmp_path / "spec.toml", "--out", tmp_path / "out", "--workers", "0", "--no-figures"))
+    assert "no_such_output" in line and "an impact case" in line and "a impact" not in line
+
+
+def test_a_unitless_energy_or_impulse_gets_an():
+    """A number without its unit where an energy is expected: "(expected an energy, ...)", the article by the kind's first letter."""
+    import pytest
+
+    from softimpact import units
+    from softimpact.errors import InputError
+
+    with pytest.raises(InputError, match=r"expected an energy"):
+        units.parse(3.0, "energy", "x")
+    with pytest.raises(InputError, match=r"expected an impulse"):
+        units.parse(3.0, "impulse", "x")
+    with pytest.raises(InputError, match=r"expected a length"):
+        units.parse(3.0, "length", "x")
