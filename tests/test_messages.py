@@ -2,6 +2,7 @@
 
 import re
 
+import numpy as np
 from click.testing import CliRunner
 
 from softimpact.cli import main
@@ -124,3 +125,57 @@ def test_a_unitless_energy_or_impulse_gets_an():
         units.parse(3.0, "impulse", "x")
     with pytest.raises(InputError, match=r"expected a length"):
         units.parse(3.0, "length", "x")
+
+
+def test_converge_with_two_levels_says_the_order_is_assumed(tmp_path):
+    """With two levels no order can be observed (three are needed): the result line says "assumed order 2", not "observed order 2.00"."""
+    r = invoke("converge", "paper-calibration", "--levels", "2", "--out", tmp_path / "o", "--no-figures")
+    assert r.exit_code == 0, r.output
+    assert "assumed order 2" in r.output and "observed order" not in r.output
+
+
+def _study(status: str, order: float, errors):
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    out = SimpleNamespace(
+        name="strain_g1_history", kind="history", status=status, order=order, errors=np.asarray(errors, float), gci_fine=np.nan, safety_factor=np.nan
+    )
+    return SimpleNamespace(outputs=[out], levels=[0, 1, 2], ratio=2.0)
+
+
+def test_a_diverging_output_shows_a_dash_and_its_reason_not_nan_percent():
+    """A convergence table row without errors (a diverging output, as the short beam's zero crossings): a dash and "not converging", never "nan %"."""
+    from softimpact.output.converge import converge_section
+
+    sizes = [{"elements": [10], "time_step_s": 1e-6}] * 3
+    section = converge_section(_study("diverging", float("nan"), [np.nan] * 3), sizes, "t", "", False)
+    row = section.tables[0][2][0]
+    text = " ".join(map(str, row))
+    assert "nan" not in text.lower() and "not converging" in text and "–" in text
+
+
+def test_output_labels_are_words_with_display_units():
+    """Legends read "g1: strain history [µε]" and "peak deflection under load [in]", not raw variable names."""
+    from softimpact.output.converge import output_label
+
+    assert output_label("strain_g1_history", "in-lbf-s") == "g1: strain history [µε]"
+    assert output_label("peak_deflection_under_load_m", "in-lbf-s") == "peak deflection under load [in]"
+    assert output_label("peak_force_N", "SI") == "peak force [N]"
+    assert output_label("impulse_N_s", "in-lbf-s") == "impulse [lbf·s]"
+
+
+def test_the_error_figure_labels_at_least_two_decades():
+    """Errors spanning less than a decade (0.2–0.6 %) still get two labelled decades on the log axis."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from softimpact.output.converge import _error_figure
+
+    fig = _error_figure(_study("monotone", 1.6, [0.006, 0.004, 0.002]), "t", 0, "SI")
+    fig.canvas.draw()
+    ax = fig.axes[0]
+    lo, hi = ax.get_ylim()
+    labelled = [t for t in ax.get_yticklabels() if t.get_text() and lo <= t.get_position()[1] <= hi]
+    assert len(labelled) >= 2, [t.get_text() for t in ax.get_yticklabels()]
