@@ -179,3 +179,12 @@ def test_the_error_figure_labels_at_least_two_decades():
     lo, hi = ax.get_ylim()
     labelled = [t for t in ax.get_yticklabels() if t.get_text() and lo <= t.get_position()[1] <= hi]
     assert len(labelled) >= 2, [t.get_text() for t in ax.get_yticklabels()]
+
+
+def test_converge_refused_at_its_default_levels_names_the_levels_that_fit(tmp_path):
+    """``converge plate-ss-8in`` (the README's) refused at 3 levels names the largest --levels that fits and the level that does not."""
+    line = error_line(invoke("converge", "plate-ss-8in", "--out", tmp_path / "o", "--no-figures"))
+    m = re.search(r"--levels (\d+) \(×1 … ×(\d+)\) is the most that fits", line)
+    assert m and int(m.group(1)) < 3 and int(m.group(2)) == 2 ** (int(m.group(1)) - 1), line
+    assert "level 3 of 3 (×4)" in line and "--ignore-limits" in line
+    assert not (tmp_path / "o").exists()
