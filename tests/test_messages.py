@@ -188,3 +188,15 @@ def test_converge_refused_at_its_default_levels_names_the_levels_that_fit(tmp_pa
     assert m and int(m.group(1)) < 3 and int(m.group(2)) == 2 ** (int(m.group(1)) - 1), line
     assert "level 3 of 3 (×4)" in line and "--ignore-limits" in line
     assert not (tmp_path / "o").exists()
+
+
+def test_calibrates_result_line_says_how_the_fit_ended_in_plain_words(tmp_path):
+    """calibrate's result line says "converged after N model runs" in our words, never scipy's termination text."""
+    from importlib import resources
+
+    record = resources.files("softimpact") / "data" / "series" / "paper-long-calibration" / "long-V1166.csv"
+    r = invoke("calibrate", "paper-long-beam", "--measured", record, "--velocity", "1166 in/s", "--no-figures", "--out", tmp_path / "o")
+    assert r.exit_code == 0, r.output
+    assert re.search(r"converged after \d+ model runs", r.output), r.output
+    for scipy_text in ("`ftol`", "`xtol`", "`gtol`", "termination condition", "satisfied"):
+        assert scipy_text not in r.output
