@@ -200,3 +200,22 @@ def test_calibrates_result_line_says_how_the_fit_ended_in_plain_words(tmp_path):
     assert re.search(r"converged after \d+ model runs", r.output), r.output
     for scipy_text in ("`ftol`", "`xtol`", "`gtol`", "termination condition", "satisfied"):
         assert scipy_text not in r.output
+
+
+def test_the_error_figure_gives_each_of_many_outputs_its_own_colour():
+    """Thirteen outputs (more than the ten-colour cycle): thirteen distinct curve colours on the error figure."""
+    from types import SimpleNamespace
+
+    import matplotlib
+    from matplotlib.colors import to_rgba
+
+    matplotlib.use("Agg")
+    from softimpact.output.converge import _error_figure
+
+    outs = [
+        SimpleNamespace(name=f"strain_g{i}_peak_magnitude", kind="scalar", status="monotone", order=2.0, errors=np.array([0.01, 0.0025, 0.0006]) * (1 + i))
+        for i in range(13)
+    ]
+    fig = _error_figure(SimpleNamespace(outputs=outs, levels=[0, 1, 2], ratio=2.0), "t", 0, "SI")
+    colors = {to_rgba(line.get_color()) for line in fig.axes[0].get_lines() if not line.get_label().startswith("slope")}
+    assert len(colors) == 13

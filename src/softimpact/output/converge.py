@@ -148,15 +148,16 @@ def _decades(ax, values) -> None:
 def _error_figure(result, title: str, case_level: int = 0, system: str | None = None):
     from fractions import Fraction
 
-    from .plots import _figure
+    from .plots import _figure, curve_colors
 
     fig, ax = _figure(7.0, 4.6)
     h = result.ratio ** (case_level - np.arange(len(result.levels), dtype=float))
-    for o in result.outputs:
+    shown = [o for o in result.outputs if (np.isfinite(np.asarray(o.errors, float)) & (np.asarray(o.errors, float) > 0)).sum() >= 2]
+    for o, color in zip(shown, curve_colors(len(shown))):  # a colour of its own for each output, however many
         e = np.asarray(o.errors, float)
         ok = np.isfinite(e) & (e > 0)
-        if ok.sum() >= 2:
-            ax.loglog(h[ok], 100 * e[ok], "o-" if o.kind == "history" else ".--", lw=1.6 if o.kind == "history" else 1, label=output_label(o.name, system))
+        history = o.kind == "history"
+        ax.loglog(h[ok], 100 * e[ok], "o-" if history else ".--", color=color, lw=1.6 if history else 1, label=output_label(o.name, system))
     finite = [100 * e for o in result.outputs for e in o.errors if np.isfinite(e) and e > 0]
     if finite:
         top = max(finite)
