@@ -3,6 +3,7 @@
 import re
 
 import numpy as np
+import pytest
 from click.testing import CliRunner
 
 from softimpact.cli import main
@@ -219,3 +220,18 @@ def test_the_error_figure_gives_each_of_many_outputs_its_own_colour():
     fig = _error_figure(SimpleNamespace(outputs=outs, levels=[0, 1, 2], ratio=2.0), "t", 0, "SI")
     colors = {to_rgba(line.get_color()) for line in fig.axes[0].get_lines() if not line.get_label().startswith("slope")}
     assert len(colors) == 13
+
+
+@pytest.mark.parametrize(
+    "command, case, given, expected",
+    [
+        ("plate", "paper-long-beam", "a beam case", "a plate case"),
+        ("bar", "plate-ss-8in-impact", "an impact case", "a bar case"),
+        ("impact", "plate-ss-8in", "a plate case", "an impact case"),
+        ("beam", "paper-calibration", "a bar case", "a beam case"),
+    ],
+)
+def test_a_case_of_another_kind_names_what_was_given_and_what_is_expected(tmp_path, command, case, given, expected):
+    """Every case command given a case of another kind: one line naming both kinds, never "<table>: missing"."""
+    line = error_line(invoke(command, case, "--out", tmp_path / "o", "--no-figures"))
+    assert f"is {given}: {expected}" in line and "missing" not in line

@@ -19,7 +19,7 @@ from ..models.materials import Material
 from ..models.pulses import SkewedPulse, TabulatedPulse
 from ..workflows.beam_impact import LAMINATE_MODELS, BeamGauge, BeamLoad, BeamProblem, BeamSpec, check_problem
 from .records import read_columns
-from .toml import Table, load_toml, locate, naming, read_material, read_solver, read_units
+from .toml import Table, load_case_toml, load_toml, locate, naming, read_material, read_solver, read_units
 
 __all__ = [
     "HISTORY_SHAPES",
@@ -238,12 +238,7 @@ def beam_problem(data: dict, base: Path = Path("."), history: int | None = None)
 
 def load_beam_case(case: str, history: int | None = None):
     path = locate(case)
-    data = load_toml(path)
-    if "beam" not in data:
-        other = "a bar case" if "projectile" in data else "a plate case" if "plate" in data else "an impact case" if "target" in data else None
-        if other:
-            raise InputError(f"{path.name} is {other}: a beam case (one with a [beam] table) is expected here")
-    problem = beam_problem(data, path.parent, history)
+    problem = beam_problem(load_case_toml(path, "beam"), path.parent, history)
     with naming({"elements": "beam.elements"}):
         check_problem(problem)
     return problem, path
