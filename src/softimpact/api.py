@@ -71,7 +71,7 @@ def _si(value, kind: str, name: str) -> float:
         try:
             si = float(value.to(units.SI_UNITS[kind]).magnitude)
         except Exception:  # pint's DimensionalityError and friends
-            raise InputError(f"{name}: {value!r} is not a {kind}") from None
+            raise InputError(f"{name}: {value!r} is not {units.a_or_an(kind)}") from None
         if not math.isfinite(si):
             raise InputError(f"{name}: {value!r} is not a finite {kind}")
         return si

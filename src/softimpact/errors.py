@@ -15,7 +15,7 @@ command line turns the error into a one-line message and an exit code:
   mesh, an ignored column): one ``softimpact: warning:`` line, exit unchanged.
 """
 
-__all__ = ["InputError", "CheckFailed", "SolverFailed", "SoftimpactWarning", "EXIT_INPUT", "EXIT_CHECK", "EXIT_INTERNAL"]
+__all__ = ["InputError", "TooLarge", "CheckFailed", "SolverFailed", "SoftimpactWarning", "EXIT_INPUT", "EXIT_CHECK", "EXIT_INTERNAL"]
 
 EXIT_INPUT = 2  # bad input: a one-line reason, nothing written
 EXIT_CHECK = 3  # ran, but the answer failed its checks (diagnostics written, marked failed)
@@ -32,6 +32,11 @@ class InputError(ValueError):
     def __init__(self, message: str, argument: str | None = None):
         super().__init__(message)
         self.argument = argument
+
+
+class TooLarge(InputError):
+    """A problem the memory/time guard refuses (:func:`softimpact.guards.require_resources`): still
+    bad input (exit 2), told apart so that a study can say which smaller study fits."""
 
 
 class CheckFailed(RuntimeError):

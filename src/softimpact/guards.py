@@ -18,7 +18,7 @@ import math
 import os
 import warnings
 
-from .errors import InputError, SoftimpactWarning
+from .errors import InputError, SoftimpactWarning, TooLarge
 
 __all__ = ["IGNORE_LIMITS_ENV", "MEMORY_SHARE", "TIME_LIMIT", "FLOP_RATE", "available_memory", "require_resources", "require_resolution", "describe_bytes"]
 
@@ -68,10 +68,10 @@ def require_resources(what: str, memory: float, flops: float = 0.0) -> None:
     avail = available_memory()
     if not math.isfinite(memory) or (avail is not None and memory > MEMORY_SHARE * avail):
         have = "unknown" if avail is None else describe_bytes(avail)
-        raise InputError(f"{what} needs about {describe_bytes(memory)} of memory, {have} available: {hint}")
+        raise TooLarge(f"{what} needs about {describe_bytes(memory)} of memory, {have} available: {hint}")
     seconds = flops / FLOP_RATE
     if not math.isfinite(seconds) or seconds > TIME_LIMIT:
-        raise InputError(f"{what} would take about {seconds / 3600:.3g} h (limit {TIME_LIMIT / 3600:g} h): {hint}")
+        raise TooLarge(f"{what} would take about {seconds / 3600:.3g} h (limit {TIME_LIMIT / 3600:g} h): {hint}")
 
 
 def require_resolution(measure: str, value: float, floor: float, comfortable: float, remedy: str, argument: str | None = None) -> None:

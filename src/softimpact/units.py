@@ -161,6 +161,11 @@ _POWER = r"(\^|\*\*)[+-]?\d"
 _UNIT = re.compile(rf"^{_NAME}({_POWER})?(\s*[*/]\s*{_NAME}({_POWER})?)*$")
 
 
+def a_or_an(word: str) -> str:
+    """``word`` with its indefinite article: "an energy", "a length" (by its first letter)."""
+    return f"{'an' if word[:1].lower() in 'aeiou' else 'a'} {word}"
+
+
 def parse(value, kind: str, key: str) -> float:
     """Parse ``value`` (a number and a unit, ``"0.5 in"``) as a quantity of ``kind``; return SI.
 
@@ -172,7 +177,7 @@ def parse(value, kind: str, key: str) -> float:
         raise ValueError(f"unknown kind of quantity {kind!r}")
     if isinstance(value, bool) or not isinstance(value, (str, int, float)):
         raise InputError(f"{key}: expected a quantity with a unit, got {value!r}")
-    example = f'(expected a {kind}, e.g. "{_EXAMPLE[kind]}")'
+    example = f'(expected {a_or_an(kind)}, e.g. "{_EXAMPLE[kind]}")'
     if isinstance(value, (int, float)):
         if kind != "dimensionless":
             raise InputError(f"{key}: missing unit in {value!r} {example}")
@@ -200,7 +205,7 @@ def parse(value, kind: str, key: str) -> float:
         except Exception:  # pint raises several unrelated types for unknown names
             raise InputError(f"{key}: unknown unit {m['unit']!r} in {value!r} {example}") from None
         if q.dimensionality != ureg.Quantity(1, SI_UNITS[kind]).dimensionality:
-            raise InputError(f"{key}: {value!r} is not a {kind} (its dimension is {q.dimensionality})")
+            raise InputError(f"{key}: {value!r} is not {a_or_an(kind)} (its dimension is {q.dimensionality})")
         return float(q.to(SI_UNITS[kind]).magnitude)
 
     si = number * _FACTORS.factor(kind, unit, to_si)

@@ -14,7 +14,7 @@ import time
 
 from ..cases import case_kind
 from ..errors import InputError
-from ..output.converge import converge_files
+from ..output.converge import converge_files, order_phrase
 from ..workflows.convergence import study_case
 from . import Outcome, Progress, no_progress
 
@@ -39,7 +39,7 @@ def converge(*, case: str, levels: int = 3, ratio: int = 2, history: int | None 
     unreliable = [o.name for o in result.outputs if not o.reliable]
     line = (
         f"{levels} levels (×1 … ×{ratio ** (levels - 1)}, {time.perf_counter() - t0:.1f} s); the case's own discretisation is "
-        f"{100 * worst.errors[0]:.2g} % from converged on {worst.name} (observed order {worst.order:.2f})"
+        f"{100 * worst.errors[0]:.2g} % from converged on {worst.name} ({order_phrase(worst)})"
     )
     warnings = ()
     if unreliable:

@@ -108,7 +108,9 @@ def plan_sweep(spec: SweepSpec) -> SweepPlan:
             if why is not None:
                 raise InputError(f"sweep.outputs: {o!r}: {why}")
         if o not in known:
-            raise InputError(f"sweep.outputs: {o!r} is not an output of a {kind.name} case (known: {', '.join(known)})")
+            raise InputError(
+                f"sweep.outputs: {o!r} is not an output of {'an' if kind.name[:1] in 'aeiou' else 'a'} {kind.name} case (known: {', '.join(known)})"
+            )
     groups: dict[str, list[int]] = {}
     for r, data in zip(runs, cases):
         groups.setdefault(kind.structure_key(data), []).append(r.index)

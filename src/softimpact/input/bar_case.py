@@ -18,7 +18,7 @@ from ..models.materials import sphere_mass
 from ..models.specimens import BarSpec, EndCap, Gauge, Projectile
 from ..workflows.bar_impact import BarImpactProblem, check_problem
 from .contact_law import CONTACT_LAWS, read_contact_law
-from .toml import Table, load_toml, locate, naming, read_material, read_solver, read_units
+from .toml import Table, load_case_toml, locate, naming, read_material, read_solver, read_units
 
 __all__ = ["read_bar", "read_gauges", "bar_problem", "load_bar_case"]
 
@@ -103,7 +103,7 @@ def bar_problem(data: dict, base: Path = Path(".")) -> BarImpactProblem:
 def load_bar_case(case: str) -> tuple[BarImpactProblem, Path]:
     """Read a bar case by path or built-in name; returns the problem and its file."""
     path = locate(case)
-    problem = bar_problem(load_toml(path), path.parent)
+    problem = bar_problem(load_case_toml(path, "bar"), path.parent)
     with naming({"elements": "bar.elements", "time_step": "solver.time_step"}):
         check_problem(problem)
     return problem, path

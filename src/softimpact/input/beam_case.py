@@ -19,7 +19,7 @@ from ..models.materials import Material
 from ..models.pulses import SkewedPulse, TabulatedPulse
 from ..workflows.beam_impact import LAMINATE_MODELS, BeamGauge, BeamLoad, BeamProblem, BeamSpec, check_problem
 from .records import read_columns
-from .toml import Table, load_toml, locate, naming, read_material, read_solver, read_units
+from .toml import Table, load_case_toml, load_toml, locate, naming, read_material, read_solver, read_units
 
 __all__ = [
     "HISTORY_SHAPES",
@@ -238,7 +238,7 @@ def beam_problem(data: dict, base: Path = Path("."), history: int | None = None)
 
 def load_beam_case(case: str, history: int | None = None):
     path = locate(case)
-    problem = beam_problem(load_toml(path), path.parent, history)
+    problem = beam_problem(load_case_toml(path, "beam"), path.parent, history)
     with naming({"elements": "beam.elements"}):
         check_problem(problem)
     return problem, path

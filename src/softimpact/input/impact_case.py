@@ -27,7 +27,7 @@ from ..workflows.plate_impact import PlateLoad, PlateProblem
 from .beam_case import beam_problem, read_beam_gauges
 from .contact_law import CONTACT_LAWS, read_contact_law
 from .plate_case import plate_problem, read_plate_gauges
-from .toml import Table, load_toml, locate, naming, read_material, read_solver, read_units
+from .toml import Table, load_case_toml, load_toml, locate, naming, read_material, read_solver, read_units
 
 __all__ = ["CONTACT_LAWS", "ImpactProblem", "impact_problem", "load_impact_case"]
 
@@ -107,5 +107,5 @@ def impact_problem(data: dict, base: Path = Path(".")) -> tuple[ImpactProblem, t
 def load_impact_case(case: str) -> tuple[ImpactProblem, tuple[Path, ...]]:
     """Read an impact case by path or built-in name; returns the problem and every file it read (case first)."""
     path = locate(case)
-    problem, files = impact_problem(load_toml(path), path.parent)
+    problem, files = impact_problem(load_case_toml(path, "impact"), path.parent)
     return problem, (path, *files)

@@ -9,6 +9,7 @@ beam cases), ``[solver]`` and ``[[gauges]]``; see README.md and
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 from .. import units
@@ -18,7 +19,7 @@ from ..models.laminate import Stack, parse_layup
 from ..models.specimens import GAUGE_LENGTH
 from ..workflows.plate_impact import PlateGauge, PlateLoad, PlateProblem, PlateSpec, check_problem
 from .beam_case import read_load_history, read_ply
-from .toml import Table, load_toml, locate, naming, read_solver, read_units
+from .toml import Table, load_case_toml, locate, naming, read_solver, read_units
 
 __all__ = ["PLATE_SUPPORTS", "PLATE_MODELS", "plate_problem", "read_plate_gauges", "load_plate_case"]
 
@@ -62,6 +63,8 @@ def read_plate_gauges(top: Table) -> tuple[PlateGauge, ...]:
             raise InputError(f"{g.key('direction')}: expected 'x', 'y' or an angle in degrees from x, got {direction!r}")
         if isinstance(direction, str) and direction not in ("x", "y"):
             raise InputError(f"{g.key('direction')}: {direction!r} is not 'x', 'y' or an angle in degrees from x")
+        if not isinstance(direction, str) and not math.isfinite(direction):
+            raise InputError(f"{g.key('direction')}: {direction!r} is not a finite angle (expected 'x', 'y' or degrees from x)")
         with naming({None: g.path}):
             gauges.append(
                 PlateGauge(
@@ -121,4 +124,4 @@ def plate_problem(data: dict, base: Path = Path("."), history: int | None = None
 
 def load_plate_case(case: str, history: int | None = None) -> tuple[PlateProblem, Path]:
     path = locate(case)
-    return plate_problem(load_toml(path), path.parent, history), path
+    return plate_problem(load_case_toml(path, "plate"), path.parent, history), path

@@ -129,6 +129,24 @@ def locate(case: str) -> Path:
     raise InputError(f"CASE: {case!r} is neither a file nor a built-in case (built-ins: {', '.join(known)})")
 
 
+# The top table that marks each kind of case file (a bar case may also be known by its [projectile]).
+_CASE_TABLES = {"bar": ("bar", "projectile"), "beam": ("beam",), "plate": ("plate",), "impact": ("target",)}
+
+
+def load_case_toml(path: Path, kind: str) -> dict:
+    """:func:`load_toml` of a case expected to be of ``kind`` (bar, beam, plate, impact); a case of
+    another kind is refused naming both ("x.toml is a bar case: a beam case is expected here")."""
+    data = load_toml(path)
+    if not any(t in data for t in _CASE_TABLES[kind]):
+        other = next((k for k, tables in _CASE_TABLES.items() if k != kind and any(t in data for t in tables)), None)
+        if other is not None:
+            art = "an" if other == "impact" else "a"
+            raise InputError(
+                f"{path.name} is {art} {other} case: {'an' if kind == 'impact' else 'a'} {kind} case (one with a [{_CASE_TABLES[kind][0]}] table) is expected here"
+            )
+    return data
+
+
 def load_toml(path: Path) -> dict:
     try:
         with open(path, "rb") as fh:

@@ -15,7 +15,15 @@ from ..workflows.convergence import STATUSES
 from .files import csv_text, figure_bytes, json_text
 from .report import Section
 
-__all__ = ["converge_files", "converge_section", "quantity_kind"]
+__all__ = ["converge_files", "converge_section", "order_phrase", "order_text", "output_label", "quantity_kind"]
+
+_UNIT_SUFFIXES = ("_N_s", "_N", "_m", "_s")
+# Why a level's error has no value, by status (the table shows a dash and this reason, never "nan %").
+_NO_ERROR = {
+    "diverging": "not converging",
+    "oscillatory": "oscillating",
+    "undefined": "undefined at some level",
+}
 
 
 def quantity_kind(name: str) -> str:
@@ -31,6 +39,46 @@ def quantity_kind(name: str) -> str:
     if name.endswith("_m"):
         return "length"
     return ""
+
+
+def output_label(name: str, system: str | None = None) -> str:
+    """A readable label of an output name with its display unit: ``strain_g1_history`` → "g1: strain history [µε]",
+    ``peak_deflection_under_load_m`` → "peak deflection under load [in]" (``system``: the case's units; None: no unit)."""
+    q = quantity_kind(name)
+    stem = name
+    for suffix in _UNIT_SUFFIXES:
+        if stem.endswith(suffix) and stem != suffix:
+            stem = stem[: -len(suffix)]
+            break
+    words = stem.split("_")
+    if words[0] == "strain" and len(words) > 2:  # strain_<gauge>_<what>: the gauge first
+        text = f"{words[1]}: strain {' '.join(words[2:])}"
+    else:
+        text = " ".join(words)
+    if system is not None and q:
+        text += f" [{display(system, q).label}]"
+    return text
+
+
+def order_text(o) -> str:
+    """The order of an output as a report shows it: observed ("1.94"), assumed with two levels ("2 (assumed)") or a dash."""
+    if o.status == "two levels":
+        return f"{o.order:g} (assumed)"
+    return f"{o.order:.2f}" if np.isfinite(o.order) else "–"
+
+
+def order_phrase(o) -> str:
+    """The order in words for a result line: "observed order 1.94", "assumed order 2" (two levels) or "no order observed"."""
+    if o.status == "two levels":
+        return f"assumed order {o.order:g}"
+    return f"observed order {o.order:.2f}" if np.isfinite(o.order) else "no order observed"
+
+
+def _percent(x: float, fmt: str, status: str) -> str:
+    """``x`` (a fraction) as a percentage, or a dash with the reason when it has no value."""
+    if np.isfinite(x):
+        return f"{100 * x:{fmt}} %"
+    return f"– ({_NO_ERROR.get(status, status)})"
 
 
 def _rows(result) -> dict[str, list]:
@@ -84,22 +132,37 @@ def _summary(result, sizes, problem, kind: str) -> dict:
     }
 
 
-def _error_figure(result, title: str, case_level: int = 0):
+def _decades(ax, values) -> None:
+    """Log y-axis limits widened to whole decades, so at least two decades carry a label; plain-number labels."""
+    from matplotlib.ticker import FuncFormatter, LogLocator
+
+    lo, hi = min(values), max(values)
+    lo_d, hi_d = np.floor(np.log10(lo)), np.ceil(np.log10(hi))
+    if hi_d == lo_d:
+        lo_d -= 1
+    ax.set_ylim(10.0**lo_d, 10.0**hi_d)
+    ax.yaxis.set_major_locator(LogLocator(base=10.0, numticks=12))
+    ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+
+
+def _error_figure(result, title: str, case_level: int = 0, system: str | None = None):
     from fractions import Fraction
 
-    from .plots import _figure
+    from .plots import _figure, curve_colors
 
     fig, ax = _figure(7.0, 4.6)
     h = result.ratio ** (case_level - np.arange(len(result.levels), dtype=float))
-    for o in result.outputs:
+    shown = [o for o in result.outputs if (np.isfinite(np.asarray(o.errors, float)) & (np.asarray(o.errors, float) > 0)).sum() >= 2]
+    for o, color in zip(shown, curve_colors(len(shown))):  # a colour of its own for each output, however many
         e = np.asarray(o.errors, float)
         ok = np.isfinite(e) & (e > 0)
-        if ok.sum() >= 2:
-            ax.loglog(h[ok], 100 * e[ok], "o-" if o.kind == "history" else ".--", lw=1.6 if o.kind == "history" else 1, label=o.name)
+        history = o.kind == "history"
+        ax.loglog(h[ok], 100 * e[ok], "o-" if history else ".--", color=color, lw=1.6 if history else 1, label=output_label(o.name, system))
     finite = [100 * e for o in result.outputs for e in o.errors if np.isfinite(e) and e > 0]
     if finite:
         top = max(finite)
         ax.loglog(h, top * (h / h[0]) ** 2, "k:", lw=1, label="slope 2 (formal order)")
+        _decades(ax, finite + list(top * (h / h[0]) ** 2))
     ax.set_xlabel("h / h of the case (mesh and time step refined together)")
     ax.set_ylabel("error against the extrapolated value [%]")
     ax.set_title(title)
@@ -125,7 +188,7 @@ def _history_figure(result, time: np.ndarray, system: str, title: str):
         for i, y in enumerate(o.values):
             axis.plot(time * tu.factor, y * f, lw=1, label=f"level {i + 1} (×{round(result.ratio**i)})")
         axis.plot(time * tu.factor, np.asarray(o.extrapolated) * f, "k--", lw=1, label="Richardson extrapolation")
-        axis.set_ylabel(f"{o.name}" + (f" [{du.label}]" if du else ""), fontsize=8)
+        axis.set_ylabel(output_label(o.name, system), fontsize=8)
         axis.grid(True, alpha=0.3)
     axes[0].set_title(title)
     axes[0].legend(fontsize=7, loc="upper right")
@@ -139,7 +202,7 @@ def converge_files(result, sizes, problem, kind: str, figures: bool = True, pref
     files = {prefix + "convergence.csv": csv_text(_rows(result)), prefix + "summary.json": json_text(_summary(result, sizes, problem, kind))}
     if figures:
         title = getattr(problem, "title", "") or kind
-        files[prefix + "convergence.png"] = figure_bytes(_error_figure(result, f"Discretisation error: {title}", case_level))
+        files[prefix + "convergence.png"] = figure_bytes(_error_figure(result, f"Discretisation error: {title}", case_level, getattr(problem, "units", None)))
         if any(o.kind == "history" for o in result.outputs):
             time = problem.solver.times()
             files[prefix + "histories.png"] = figure_bytes(_history_figure(result, time, problem.units, f"Histories at each level: {title}"))
@@ -154,9 +217,9 @@ def converge_section(result, sizes, title: str, prefix: str, figures: bool, case
             [
                 o.name,
                 o.status,
-                f"{o.order:.2f}",
-                f"{100 * o.errors[case_level]:.3g} %",
-                f"{100 * o.errors[-1]:.2g} %",
+                order_text(o),
+                _percent(o.errors[case_level], ".3g", o.status),
+                _percent(o.errors[-1], ".2g", o.status),
                 f"{100 * o.gci_fine:.2g} %" if np.isfinite(o.gci_fine) else "",
                 f"{o.safety_factor:g}" if np.isfinite(o.safety_factor) else "",
             ]
@@ -165,7 +228,7 @@ def converge_section(result, sizes, title: str, prefix: str, figures: bool, case
     header = [
         "output",
         "status",
-        "observed order p",
+        "order p (observed, or assumed)",
         f"error of the case's mesh (level {case_level + 1})",
         f"error of level {len(sizes)}",
         "GCI of the finest",

@@ -438,7 +438,7 @@ def _least_squares(model, prep, start, r0, fit_radius, fit_origin, defect=None):
         se,
         int(sol.nfev),
         bool(sol.success),
-        sol.message,
+        fit_outcome(sol.status, sol.nfev),
         _residual_rms(model, prep, comp),
         comp,
         prep,
@@ -671,3 +671,21 @@ def calibrate_checked(
         return replace(cal, standard_errors=total, check=check)
     other = calibrate(model, measured, start, method, contact_time=cal.prepared.contact_time, radius=cal.contact_radius, error_to_noise=error_to_noise)
     return replace(other, check=check)
+
+
+# scipy.optimize.least_squares's status → (how the fit ended, why), plain phrases of ours.
+_LSQ_OUTCOMES = {
+    1: ("converged", "the misfit's gradient vanished"),
+    2: ("converged", "the misfit no longer decreasing"),
+    3: ("converged", "the parameters no longer changing"),
+    4: ("converged", "the misfit and the parameters no longer changing"),
+    0: ("not converged", "stopped at the limit of evaluations"),
+    -1: ("not converged", "the fit could not start"),
+}
+
+
+def fit_outcome(status: int, evaluations: int) -> str:
+    """How a least-squares fit ended, in our words (``status``: scipy's least_squares status;
+    ``evaluations``: model runs), e.g. "converged after 6 model runs, the misfit no longer decreasing"."""
+    head, why = _LSQ_OUTCOMES.get(int(status), ("ended", f"status {int(status)}"))
+    return f"{head} after {int(evaluations)} model runs, {why}"

@@ -399,7 +399,7 @@ def study_case(kind, problem, levels: int, ratio: int, progress=None, case_level
     import time
     import warnings
 
-    from ..errors import SoftimpactWarning
+    from ..errors import SoftimpactWarning, TooLarge
 
     progress = progress or (lambda done, total, label: None)
     factors = [ratio**k for k in range(levels)]
@@ -408,7 +408,17 @@ def study_case(kind, problem, levels: int, ratio: int, progress=None, case_level
         with warnings.catch_warnings():
             if k < case_level:
                 warnings.simplefilter("ignore", SoftimpactWarning)
-            kind.check(p)
+            try:
+                kind.check(p)
+            except TooLarge as exc:
+                if k == 0:
+                    raise
+                fits = (
+                    f"--levels {k} (×1 … ×{factors[k - 1]}) is the most that fits this machine at --ratio {ratio}"
+                    if k >= 2
+                    else f"not even two levels fit this machine at --ratio {ratio}: coarsen the case"
+                )
+                raise TooLarge(f"{fits}; level {k + 1} of {levels} (×{factors[k]}): {exc}") from None
     work = [p.solver.steps for p in problems]
     total = sum(work)
     sizes = []

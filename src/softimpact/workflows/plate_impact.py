@@ -122,6 +122,8 @@ class PlateGauge:
             raise InputError(f"gauge {self.name}: surface {self.surface!r} is not 'top' or 'bottom'")
         if isinstance(self.direction, str) and self.direction not in ("x", "y"):
             raise InputError(f"gauge {self.name}: direction {self.direction!r} is not 'x', 'y' or an angle in degrees")
+        if not isinstance(self.direction, str) and not math.isfinite(self.direction):
+            raise InputError(f"gauge {self.name}: direction {self.direction!r} is not a finite angle in degrees")
         if not (math.isfinite(self.length) and self.length >= 0):
             raise InputError(f"gauge {self.name}: length must be non-negative, got {self.length!r} m")
 
