@@ -202,9 +202,14 @@ def _newton(law, comp, hm: float, kappa: float, q: float, target: float, guess: 
     half = comp.half_spacing
     its = 0
     R = math.nan
+    response = getattr(law, "response", None)  # (F, ∂F/∂α, ∂F/∂α̇) at once, where the law offers it
     for its in range(1, NEWTON_MAXITER + 1):  # noqa: B007 (the count is returned after the loop)
         rate = kappa * a + q
-        f = law.force(a, rate)
+        if response is not None:
+            f, stiff, damp = response(a, rate)
+        else:
+            f = law.force(a, rate)
+            stiff, damp = law.stiffness(a, rate), law.damping(a, rate)
         r = law.radius(a)
         hs, dhs = comp(r)
         h = hm + hs
@@ -213,7 +218,7 @@ def _newton(law, comp, hm: float, kappa: float, q: float, target: float, guess: 
             hi = a
         else:
             lo = a
-        dR = 1.0 + (law.stiffness(a, rate) + kappa * law.damping(a, rate)) * h
+        dR = 1.0 + (stiff + kappa * damp) * h
         if f != 0.0 and r >= half:
             da = RADIUS_STEP * a
             dR += f * dhs * (law.radius(a + da) - law.radius(a - da)) / (2.0 * da)
