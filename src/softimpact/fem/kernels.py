@@ -202,6 +202,7 @@ def _newton(law, comp, hm: float, kappa: float, q: float, target: float, guess: 
     half = comp.half_spacing
     its = 0
     R = math.nan
+    top = False  # α̃ evaluated
     response = getattr(law, "response", None)  # (F, ∂F/∂α, ∂F/∂α̇) at once, where the law offers it
     for its in range(1, NEWTON_MAXITER + 1):  # noqa: B007 (the count is returned after the loop)
         rate = kappa * a + q
@@ -226,8 +227,11 @@ def _newton(law, comp, hm: float, kappa: float, q: float, target: float, guess: 
         if abs(step) <= NEWTON_TOL * target:
             a -= step
             break
+        top = top or a == target
         a_next = a - step
-        if not lo < a_next < hi:
+        # a step onto α̃ itself (an iterate where the force is clipped to zero steps there: R = α − α̃)
+        # tries that bracket end once, where the root lies when the clipped force is zero there
+        if not (lo < a_next < hi or (a_next == target and not top and lo < a_next)):
             a_next = 0.5 * (lo + hi)  # bisection safeguard
             if hi - lo <= NEWTON_TOL * target:
                 a = a_next
