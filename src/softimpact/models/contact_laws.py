@@ -535,8 +535,9 @@ class ViscoelasticSoftLaw:
         return MaxwellBranch(self, state.strain, state.stress * E, g)
 
     def advance(self, state: MaxwellState, alpha: float, rate: float) -> MaxwellState:
-        b = self.branch(state)
-        return MaxwellState(max(alpha, 0.0) / self.base.diameter, b.stress(alpha))
+        E, g = self._decay()
+        strain = max(alpha, 0.0) / self.base.diameter
+        return MaxwellState(strain, state.stress * E + g * (strain - state.strain))  # MaxwellBranch.stress(alpha)
 
 
 # The contact laws by name (case files' ``contact.law``), each with the class it builds: one table,
