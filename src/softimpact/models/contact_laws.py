@@ -445,11 +445,15 @@ class MaxwellBranch:
     gain: float
 
     def __post_init__(self):
-        b = self.law.base
-        scale = b.scale
-        # (m·V²/d)·k, d, p, c, V, m·V²/d, (m·V²/d)·g/d: the factors of force, stiffness and damping
-        const = (scale * b.k, b.diameter, b.p, b.c, b.velocity, scale, scale * self.gain / b.diameter)
-        object.__setattr__(self, "_const", const)
+        law = self.law
+        base = law.__dict__.get("_branch_const")
+        if base is None:
+            b = law.base
+            scale = b.scale
+            # (m·V²/d)·k, d, p, c, V, m·V²/d, ½·(m·V²/d)·d, κ: the factors of force, stiffness, damping, energy
+            base = (scale * b.k, b.diameter, b.p, b.c, b.velocity, scale, 0.5 * scale * b.diameter, law.kappa)
+            object.__setattr__(law, "_branch_const", base)
+        object.__setattr__(self, "_const", (*base, base[5] * self.gain / base[1]))  # last: (m·V²/d)·g/d
 
     def stress(self, alpha: float) -> float:
         """σ at the end of the step if the approach there is ``alpha`` [m]."""
@@ -460,7 +464,7 @@ class MaxwellBranch:
         what one iteration of the contact solve needs, for one evaluation of the power law."""
         if alpha <= 0.0:
             return 0.0, 0.0, 0.0
-        sk, d, p, c, v, scale, kg = self._const
+        sk, d, p, c, v, scale, _, _, kg = self._const
         elastic = sk * (alpha / d) ** p
         unclipped = elastic * (1.0 + c * rate / v)
         f = unclipped + scale * (self.stress_start + self.gain * (alpha / d - self.strain_start))
@@ -482,8 +486,9 @@ class MaxwellBranch:
 
     def energy(self, alpha: float) -> float:
         """Elastic energy of the equilibrium part plus the arm spring's, ½·(mV²/d)·d·σ²/κ [J]."""
-        b = self.law.base
-        return b.energy(alpha) + 0.5 * b.scale * b.diameter * self.stress(alpha) ** 2 / self.law.kappa
+        sk, d, p, _, _, _, half_sd, kappa, _ = self._const
+        elastic = sk * (alpha / d) ** p * alpha / (p + 1.0) if alpha > 0.0 else 0.0  # SoftProjectileLaw.energy
+        return elastic + half_sd * self.stress(alpha) ** 2 / kappa
 
 
 @dataclass(frozen=True)
