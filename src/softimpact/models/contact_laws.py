@@ -402,6 +402,15 @@ class SoftProjectileLaw:
             return 0.0
         return max(self.force_unclipped(alpha, rate), 0.0)
 
+    def response(self, alpha: float, rate: float = 0.0) -> tuple[float, float, float]:
+        """(:meth:`force` [N], :meth:`stiffness` [N/m], :meth:`damping` [N·s/m]) at once, the same values,
+        for one evaluation of the power law (the contact iteration's need)."""
+        g = 1.0 + self.c * rate / self.velocity
+        if alpha <= 0.0 or g <= 0.0:
+            return 0.0, 0.0, 0.0
+        elastic = self._elastic(alpha)
+        return elastic * g, self.p * elastic / alpha * g, elastic * self.c / self.velocity
+
     def stiffness(self, alpha: float, rate: float = 0.0) -> float:
         g = 1.0 + self.c * rate / self.velocity
         if alpha <= 0.0 or g <= 0.0:
