@@ -152,6 +152,32 @@ def test_branch_tangents_by_differences():
     assert br.force(-1e-4, r) == 0.0 and br.force(a, -1e3) == 0.0  # no tension
 
 
+@pytest.mark.parametrize("rate", [-1e3, -40.0, 0.0, 15.0])
+def test_response_is_force_and_central_difference_tangents(rate):
+    """The one-call (F, ∂F/∂α, ∂F/∂α̇) of a Maxwell branch and of the plain soft law: F as the arithmetic of
+    the module docstring's law, the tangents as central differences, all zero where the force is clipped."""
+    law = _law().for_time_step(2e-6)
+    state = law.advance(law.initial_state(), 1e-3, 20.0)
+    br = law.branch(state)
+    E = math.exp(-2e-6 / (THETA * D / V))
+    sigma = 0.0 * E + KAPPA * (-math.expm1(-2e-6 / (THETA * D / V))) / (2e-6 / (THETA * D / V)) * (1e-3 / D)
+    for model, arm in ((br, True), (law.base, False)):
+        for a in (-1e-4, 2e-4, 1.2e-3):
+            f, k, c = model.response(a, rate)
+            expect = 0.0
+            if a > 0.0:
+                s = sigma * E + KAPPA * (-math.expm1(-2e-6 / (THETA * D / V))) / (2e-6 / (THETA * D / V)) * (a / D - 1e-3 / D) if arm else 0.0
+                expect = max(M * V**2 / D * (K * (a / D) ** P * (1.0 + C * rate / V) + s), 0.0)
+            assert f == pytest.approx(expect, rel=1e-12, abs=1e-12)
+            if f == 0.0:
+                assert k == 0.0 and c == 0.0
+                continue
+            h_a, h_r = 1e-9 * a, 1e-6 * max(abs(rate), 1.0)
+            assert k == pytest.approx((model.force(a + h_a, rate) - model.force(a - h_a, rate)) / (2 * h_a), rel=1e-6)
+            assert c == pytest.approx((model.force(a, rate + h_r) - model.force(a, rate - h_r)) / (2 * h_r), rel=1e-6)
+            assert (f, k, c) == (model.force(a, rate), model.stiffness(a, rate), model.damping(a, rate))
+
+
 def test_unbound_law_and_bad_parameters_are_refused():
     """Without the time step the law refuses to step; κ and θ must be positive."""
     with pytest.raises(ValueError, match="time step"):

@@ -402,6 +402,15 @@ class SoftProjectileLaw:
             return 0.0
         return max(self.force_unclipped(alpha, rate), 0.0)
 
+    def response(self, alpha: float, rate: float = 0.0) -> tuple[float, float, float]:
+        """(:meth:`force` [N], :meth:`stiffness` [N/m], :meth:`damping` [N·s/m]) at once, the same values,
+        for one evaluation of the power law (the contact iteration's need)."""
+        g = 1.0 + self.c * rate / self.velocity
+        if alpha <= 0.0 or g <= 0.0:
+            return 0.0, 0.0, 0.0
+        elastic = self._elastic(alpha)
+        return elastic * g, self.p * elastic / alpha * g, elastic * self.c / self.velocity
+
     def stiffness(self, alpha: float, rate: float = 0.0) -> float:
         g = 1.0 + self.c * rate / self.velocity
         if alpha <= 0.0 or g <= 0.0:
@@ -435,6 +444,8 @@ class MaxwellBranch:
 
     ``stress_start`` = σ_k·E, ``gain`` g = κ·θ·(1 − E)/Δτ, E = exp(−Δτ/θ), Δτ = Δt·V/d: the exact
     update of σ̇ = κ·ε̇ − σ/θ for a strain rate constant over the step (module docstring).
+    The base law's constants are copied once per branch (plain floats: the contact iteration calls
+    :meth:`response` thousands of times per run); every result is the same arithmetic as the base law's.
     """
 
     law: ViscoelasticSoftLaw
@@ -442,34 +453,51 @@ class MaxwellBranch:
     stress_start: float
     gain: float
 
+    def __post_init__(self):
+        law = self.law
+        base = law.__dict__.get("_branch_const")
+        if base is None:
+            b = law.base
+            scale = b.scale
+            # (m·V²/d)·k, d, p, c, V, m·V²/d, ½·(m·V²/d)·d, κ: the factors of force, stiffness, damping, energy
+            base = (scale * b.k, b.diameter, b.p, b.c, b.velocity, scale, 0.5 * scale * b.diameter, law.kappa)
+            object.__setattr__(law, "_branch_const", base)
+        object.__setattr__(self, "_const", (*base, base[5] * self.gain / base[1]))  # last: (m·V²/d)·g/d
+
     def stress(self, alpha: float) -> float:
         """σ at the end of the step if the approach there is ``alpha`` [m]."""
-        return self.stress_start + self.gain * (max(alpha, 0.0) / self.law.base.diameter - self.strain_start)
+        return self.stress_start + self.gain * (max(alpha, 0.0) / self._const[1] - self.strain_start)
+
+    def response(self, alpha: float, rate: float = 0.0) -> tuple[float, float, float]:
+        """(:meth:`force` [N], :meth:`stiffness` [N/m], :meth:`damping` [N·s/m]) at once, the same values:
+        what one iteration of the contact solve needs, for one evaluation of the power law."""
+        if alpha <= 0.0:
+            return 0.0, 0.0, 0.0
+        sk, d, p, c, v, scale, _, _, kg = self._const
+        elastic = sk * (alpha / d) ** p
+        unclipped = elastic * (1.0 + c * rate / v)
+        f = unclipped + scale * (self.stress_start + self.gain * (alpha / d - self.strain_start))
+        if f <= 0.0:
+            return 0.0, 0.0, 0.0
+        return f, p * unclipped / alpha + kg, elastic * c / v
 
     def force(self, alpha: float, rate: float = 0.0) -> float:
-        if alpha <= 0.0:
-            return 0.0
-        return max(self.law.base.force_unclipped(alpha, rate) + self.law.base.scale * self.stress(alpha), 0.0)
+        return self.response(alpha, rate)[0]
 
     def stiffness(self, alpha: float, rate: float = 0.0) -> float:
-        if self.force(alpha, rate) <= 0.0:
-            return 0.0
-        b = self.law.base
-        return b.p * b.force_unclipped(alpha, rate) / alpha + b.scale * self.gain / b.diameter
+        return self.response(alpha, rate)[1]
 
     def damping(self, alpha: float, rate: float = 0.0) -> float:
-        if self.force(alpha, rate) <= 0.0:
-            return 0.0
-        b = self.law.base
-        return b._elastic(alpha) * b.c / b.velocity
+        return self.response(alpha, rate)[2]
 
     def radius(self, alpha: float) -> float:
-        return self.law.base.radius(alpha)
+        return math.sqrt(self._const[1] * alpha) if alpha > 0.0 else 0.0
 
     def energy(self, alpha: float) -> float:
         """Elastic energy of the equilibrium part plus the arm spring's, ½·(mV²/d)·d·σ²/κ [J]."""
-        b = self.law.base
-        return b.energy(alpha) + 0.5 * b.scale * b.diameter * self.stress(alpha) ** 2 / self.law.kappa
+        sk, d, p, _, _, _, half_sd, kappa, _ = self._const
+        elastic = sk * (alpha / d) ** p * alpha / (p + 1.0) if alpha > 0.0 else 0.0  # SoftProjectileLaw.energy
+        return elastic + half_sd * self.stress(alpha) ** 2 / kappa
 
 
 @dataclass(frozen=True)
@@ -503,12 +531,15 @@ class ViscoelasticSoftLaw:
         return self.theta * self.base.diameter / self.base.velocity
 
     def _decay(self) -> tuple[float, float]:
-        """(E, g) of one step (:class:`MaxwellBranch`)."""
-        if self.time_step is None:
-            raise ValueError("ViscoelasticSoftLaw: bind the time step first (for_time_step)")
-        x = self.time_step / self.relaxation_time
-        E = math.exp(-x)
-        return E, self.kappa * (-math.expm1(-x)) / x
+        """(E, g) of one step (:class:`MaxwellBranch`), computed once per bound law."""
+        decay = self.__dict__.get("_decay_cache")
+        if decay is None:
+            if self.time_step is None:
+                raise ValueError("ViscoelasticSoftLaw: bind the time step first (for_time_step)")
+            x = self.time_step / self.relaxation_time
+            decay = (math.exp(-x), self.kappa * (-math.expm1(-x)) / x)
+            object.__setattr__(self, "_decay_cache", decay)
+        return decay
 
     def initial_state(self) -> MaxwellState:
         return MaxwellState()
@@ -518,8 +549,9 @@ class ViscoelasticSoftLaw:
         return MaxwellBranch(self, state.strain, state.stress * E, g)
 
     def advance(self, state: MaxwellState, alpha: float, rate: float) -> MaxwellState:
-        b = self.branch(state)
-        return MaxwellState(max(alpha, 0.0) / self.base.diameter, b.stress(alpha))
+        E, g = self._decay()
+        strain = max(alpha, 0.0) / self.base.diameter
+        return MaxwellState(strain, state.stress * E + g * (strain - state.strain))  # MaxwellBranch.stress(alpha)
 
 
 # The contact laws by name (case files' ``contact.law``), each with the class it builds: one table,
