@@ -606,15 +606,14 @@ class ImpactResult(_Written):
         return write_fields(path, self.model, self._snapshots(frames))
 
     def _snapshots(self, frames: int):
-        from .output.fields import sampled_steps
+        from .output.fields import keeps, kept_frames, sampled_steps
         from .workflows.coupled import run_impact
 
         steps = sampled_steps(self.problem.solver.steps, frames)
         r = self.result
-        if r.kept is None or not set(steps.tolist()) <= set(r.kept.tolist()):
+        if not keeps(r, steps):
             _, r = run_impact(self.problem, self.model, energy=False, snapshots=steps)
-        keep = {int(k): i for i, k in enumerate(r.kept)}
-        return steps, r.time[steps], r.displacement[:, [keep[int(k)] for k in steps]]
+        return kept_frames(r, steps)
 
 
 @dataclass(frozen=True)
@@ -736,16 +735,11 @@ class PlateResult(_Written):
 
     def write_fields(self, path, *, frames: int = 200):
         """Displacement fields over time as XDMF for ParaView; see :meth:`ImpactResult.write_fields`."""
-        from .output.fields import sampled_steps, write_fields
+        from .output.fields import keeps, kept_frames, sampled_steps, write_fields
 
         steps = sampled_steps(self.problem.solver.steps, frames)
-        kept = self.result.kept
-        if kept is None or not set(steps.tolist()) <= set(kept.tolist()):
-            r = self.model.direct(energy=False, snapshots=steps)
-        else:
-            r = self.result
-        at = {int(k): i for i, k in enumerate(r.kept)}
-        return write_fields(path, self.model, (steps, r.time[steps], r.displacement[:, [at[int(k)] for k in steps]]))
+        r = self.result if keeps(self.result, steps) else self.model.direct(energy=False, snapshots=steps)
+        return write_fields(path, self.model, kept_frames(r, steps))
 
 
 @dataclass(frozen=True)

@@ -9,7 +9,7 @@ import numpy as np
 
 from ..input.impact_case import load_impact_case
 from ..models.validity import Validity, warn
-from ..output.fields import field_files, sampled_steps, select_kept
+from ..output.fields import field_files, kept_frames, sampled_steps, select_kept
 from ..output.impact import impact_files, snapshot_steps
 from ..studies.damage import damage_problem, split_damage
 from ..units import display
@@ -49,8 +49,7 @@ def impact(*, case: str, figures: bool = True, fields: bool = False, progress: P
     progress(steps, steps, "stepping")
     files = impact_files(problem, select_kept(result, snaps) if fields else result, figures, model=model)
     if fields:
-        at = {int(k): i for i, k in enumerate(result.kept)}
-        files.update(field_files(model, (kept, result.time[kept], result.displacement[:, [at[int(k)] for k in kept]])))
+        files.update(field_files(model, kept_frames(result, kept)))
     summary = json.loads(files["summary.json"])
     warn(Validity(*_validity(summary)))
     problem, result, _ = split_damage(problem, result)

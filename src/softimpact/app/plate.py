@@ -7,7 +7,7 @@ import time
 import numpy as np
 
 from ..input.plate_case import load_plate_case
-from ..output.fields import field_files, sampled_steps, select_kept
+from ..output.fields import field_files, kept_frames, sampled_steps, select_kept
 from ..output.plate import plate_files, plate_validity, snapshot_steps
 from ..units import display
 from ..workflows.plate_impact import PlateModel
@@ -29,8 +29,7 @@ def plate(*, case: str, history: int | None = None, figures: bool = True, fields
     progress(steps, steps, "stepping")
     files = plate_files(model, select_kept(result, shown) if fields else result, figures)
     if fields:
-        at = {int(k): i for i, k in enumerate(result.kept)}
-        files.update(field_files(model, (kept, result.time[kept], result.displacement[:, [at[int(k)] for k in kept]])))
+        files.update(field_files(model, kept_frames(result, kept)))
     su, lu = display(problem.units, "strain"), display(problem.units, "length")
     peaks = "".join(f", {g.name} {eps[np.argmax(np.abs(eps))] * su.factor:.0f} {su.label}" for g, eps in zip(problem.gauges, result.strain))
     w = result.deflection[0]

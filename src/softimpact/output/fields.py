@@ -50,14 +50,32 @@ def sampled_steps(steps: int, frames: int = FRAMES) -> np.ndarray:
     return np.arange(0, steps + 1, k)
 
 
+def _columns(result, steps) -> list[int]:
+    """The columns of ``result.displacement`` holding the snapshots at ``steps`` (all of them kept)."""
+    at = {int(k): i for i, k in enumerate(result.kept)}
+    return [at[int(s)] for s in steps]
+
+
+def kept_frames(result, steps) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The frames ``(steps, time [s], displacement (n_dofs, n_frames) [m])`` of :func:`write_fields` from a
+    run (with ``time``, ``displacement`` and ``kept``) that kept the snapshots at ``steps``."""
+    steps = np.asarray(steps, int)
+    return steps, result.time[steps], result.displacement[:, _columns(result, steps)]
+
+
+def keeps(result, steps) -> bool:
+    """Whether ``result`` kept the snapshots at every one of ``steps``."""
+    return result.kept is not None and set(np.asarray(steps, int).tolist()) <= set(np.asarray(result.kept, int).tolist())
+
+
 def select_kept(result, steps):
     """``result`` (with ``displacement`` and ``kept``) keeping only the snapshots at ``steps``, for
     figures drawn from a run that also kept the field frames."""
     if result.displacement is None or result.kept is None:
         return result
-    at = {int(k): i for i, k in enumerate(result.kept)}
-    steps = np.asarray([int(s) for s in steps if int(s) in at], int)
-    return replace(result, displacement=result.displacement[:, [at[int(s)] for s in steps]], kept=steps)
+    kept = {int(k) for k in result.kept}
+    steps = np.asarray([int(s) for s in steps if int(s) in kept], int)
+    return replace(result, displacement=result.displacement[:, _columns(result, steps)], kept=steps)
 
 
 def beam_cell_strain(points: np.ndarray, cells: np.ndarray, ux: np.ndarray, uz: np.ndarray) -> dict[str, np.ndarray]:
