@@ -617,7 +617,28 @@ class ImpactResult(_Written):
 
 
 @dataclass(frozen=True)
-class BeamResult(_Written):
+class _Prescribed(_Written):
+    """What a beam and a plate result share: a structure under a prescribed force history."""
+
+    problem: object
+    result: object
+    model: object = field(repr=False, compare=False, default=None)
+    case_files: tuple = field(repr=False, default=())
+
+    time = property(lambda self: self.result.time, doc="Time [s], (n_steps + 1,).")
+    force = property(lambda self: self.result.force, doc="Applied force [N], (n_steps + 1,).")
+
+    @property
+    def strain(self) -> dict:
+        """Gauge strain histories by gauge name, each (n_steps + 1,), tension +."""
+        return {g.name: eps for g, eps in zip(self.problem.gauges, self.result.strain)}
+
+    def inputs(self):
+        return tuple(self.case_files)
+
+
+@dataclass(frozen=True)
+class BeamResult(_Prescribed):
     """A beam under a prescribed force history (:func:`run` of a beam case; ``softimpact beam``).
 
     Parameters
@@ -632,22 +653,7 @@ class BeamResult(_Written):
         The case files read (never overwritten by ``write``).
     """
 
-    problem: object
-    result: object
-    model: object = field(repr=False, compare=False, default=None)
-    case_files: tuple = field(repr=False, default=())
     command = "softimpact beam"
-
-    time = property(lambda self: self.result.time, doc="Time [s], (n_steps + 1,).")
-    force = property(lambda self: self.result.force, doc="Applied force [N], (n_steps + 1,).")
-
-    @property
-    def strain(self) -> dict:
-        """Gauge strain histories by gauge name, each (n_steps + 1,), tension +."""
-        return {g.name: eps for g, eps in zip(self.problem.gauges, self.result.strain)}
-
-    def inputs(self):
-        return tuple(self.case_files)
 
     def files(self, figures: bool = True):
         """The files of ``softimpact beam``, by name."""
@@ -682,7 +688,7 @@ class BeamResult(_Written):
 
 
 @dataclass(frozen=True)
-class PlateResult(_Written):
+class PlateResult(_Prescribed):
     """A plate under a prescribed force history (:func:`run` of a plate case; ``softimpact plate``).
 
     Parameters
@@ -697,22 +703,7 @@ class PlateResult(_Written):
         The case files read (never overwritten by ``write``).
     """
 
-    problem: object
-    result: object
-    model: object = field(repr=False, compare=False, default=None)
-    case_files: tuple = field(repr=False, default=())
     command = "softimpact plate"
-
-    time = property(lambda self: self.result.time, doc="Time [s], (n_steps + 1,).")
-    force = property(lambda self: self.result.force, doc="Applied force [N], (n_steps + 1,).")
-
-    @property
-    def strain(self) -> dict:
-        """Gauge strain histories by gauge name, each (n_steps + 1,), tension +."""
-        return {g.name: eps for g, eps in zip(self.problem.gauges, self.result.strain)}
-
-    def inputs(self):
-        return tuple(self.case_files)
 
     def files(self, figures: bool = True):
         """The files of ``softimpact plate``, by name."""
