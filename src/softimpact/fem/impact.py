@@ -65,6 +65,8 @@ from .energies import Energies
 from .newmark import NewmarkParameters, NewmarkStepper, SolverSpec
 
 __all__ = [
+    "PatchCompliance",
+    "newton_contact",
     "ContactStructure",
     "ContactPatch",
     "ImpactHistory",
@@ -345,38 +347,67 @@ def integrate_impact(
     )
 
 
-def _solve_contact(law, patch: ContactPatch, cG, hm, kappa, q, target, guess, index: int, dt: float):
-    """Root of R(α) = α − α̃ + F(α, κα + q)·h(a(α)) in (0, α̃] (module docstring), at step ``index``.
+class PatchCompliance:
+    """h_s(r) = c·G·s(r) and dh_s/dr of a patch (``shares(r) -> (s, ds/dr)``, ``half_spacing``), by two
+    dot products with the structure's response c·G to unit loads on the patch nodes."""
 
-    Starts from ``guess`` (the linear extrapolation of α) when it lies in the bracket, else α̃.
-    Returns (α, F, shares s(a), iterations); :class:`SolverFailed` (time, step, residual and
-    bracket) after :data:`NEWTON_MAXITER` iterations.
-    """
+    def __init__(self, patch, cG: np.ndarray):
+        self.patch, self.half_spacing, self.cG = patch, float(patch.half_spacing), np.asarray(cG, float)
+
+    def __call__(self, r: float) -> tuple[float, float]:
+        s, ds = self.patch.shares(r)
+        return float(self.cG @ s), float(self.cG @ ds)
+
+
+def newton_contact(law, comp, hm: float, kappa: float, q: float, target: float, guess: float, index: int, dt: float, *, try_top: bool = False):
+    """Root of R(α) = α − α̃ + F(α, κα + q)·(β·dt²/m + h_s(a(α))) in (0, α̃] (module docstring), at step
+    ``index``: Newton safeguarded by bisection on plain floats, the one contact iteration of direct
+    stepping and of the contact kernels.
+
+    ``comp(r) -> (h_s, dh_s/dr)``: the patch compliance c·G·s(r) and its derivative, with
+    ``comp.half_spacing`` (:class:`PatchCompliance`, or the kernels' exact evaluators). Starts from
+    ``guess`` (the linear extrapolation of α) when it lies in the bracket, else α̃. ``try_top``: a
+    Newton step landing exactly on α̃ is tried once (an iterate where the force is clipped to zero
+    steps there, and the root is there when the clipped force stays zero) instead of bisecting
+    (the kernels take it; direct stepping keeps the plain bracket test, so its iteration counts in
+    summary.json do not move). Returns (α, F, contact radius, iterations); :class:`SolverFailed`
+    (time, step, residual and bracket) after :data:`NEWTON_MAXITER` iterations."""
     lo, hi = 0.0, target
     a = guess if 0.0 < guess < target else target
+    half = comp.half_spacing
     its = 0
+    R = math.nan
+    top = False  # α̃ evaluated
+    response = getattr(law, "response", None)  # (F, ∂F/∂α, ∂F/∂α̇) at once, where the law offers it
     for its in range(1, NEWTON_MAXITER + 1):  # noqa: B007 (the count is returned after the loop)
         rate = kappa * a + q
-        f = law.force(a, rate)
+        if response is not None:
+            f, stiff, damp = response(a, rate)
+        else:
+            f = law.force(a, rate)
+            stiff, damp = law.stiffness(a, rate), law.damping(a, rate)
         r = law.radius(a)
-        s, ds = patch.shares(r)
-        h = hm + float(cG @ s)
+        hs, dhs = comp(r)
+        h = hm + hs
         R = a - target + f * h
         if R > 0.0:
             hi = a
         else:
             lo = a
-        dR = 1.0 + (law.stiffness(a, rate) + kappa * law.damping(a, rate)) * h
-        if f != 0.0 and r >= patch.half_spacing:
+        dR = 1.0 + (stiff + kappa * damp) * h
+        if f != 0.0 and r >= half:
             da = RADIUS_STEP * a
             dr = (law.radius(a + da) - law.radius(a - da)) / (2.0 * da)
-            dR += f * float(cG @ ds) * dr
+            dR += f * dhs * dr
         step = R / dR
         if abs(step) <= NEWTON_TOL * target:
             a -= step
             break
+        top = top or a == target
         a_next = a - step
-        if not lo < a_next < hi:
+        # a step onto α̃ itself (an iterate where the force is clipped to zero steps there: R = α − α̃)
+        # tries that bracket end once, where the root lies when the clipped force is zero there
+        if not (lo < a_next < hi or (try_top and a_next == target and not top and lo < a_next)):
             a_next = 0.5 * (lo + hi)  # bisection safeguard
             if hi - lo <= NEWTON_TOL * target:
                 a = a_next
@@ -387,9 +418,13 @@ def _solve_contact(law, patch: ContactPatch, cG, hm, kappa, q, target, guess, in
             f"the contact Newton iteration did not converge at t = {index * dt:.6g} s (step {index}) in {NEWTON_MAXITER} iterations: "
             f"residual {R:.3g} m, approach bracket [{lo:.6g}, {hi:.6g}] m"
         )
-    rate = kappa * a + q
-    f = law.force(a, rate)
-    s, _ = patch.shares(law.radius(a))
+    return a, float(law.force(a, kappa * a + q)), law.radius(a), its
+
+
+def _solve_contact(law, patch: ContactPatch, cG, hm, kappa, q, target, guess, index: int, dt: float):
+    """:func:`newton_contact` on ``patch``'s shares; returns (α, F, shares s(a), iterations)."""
+    a, f, r, its = newton_contact(law, PatchCompliance(patch, cG), hm, kappa, q, target, guess, index, dt)
+    s, _ = patch.shares(r)
     return a, f, s, its
 
 

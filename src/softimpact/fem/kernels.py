@@ -50,10 +50,10 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from ..errors import InputError, SolverFailed
+from ..errors import InputError
 from ..models.protocols import HistoryLaw
 from ..models.specimens import Impactor
-from .impact import NEWTON_MAXITER, NEWTON_TOL, RADIUS_STEP, ContactPatch, ContactStructure, ImpactHistory
+from .impact import ContactPatch, ContactStructure, ImpactHistory, PatchCompliance, newton_contact
 from .newmark import NewmarkParameters, NewmarkStepper
 from .plate_loads import DiscShares
 from .response import ImpulseResponse
@@ -138,15 +138,8 @@ class _TableCompliance:
         out[:] = f * self.patch.shares(r)[0]
 
 
-class _ShareCompliance:
-    """h_s(r) and dh_s/dr of any other patch (``shares(r) -> (s, ds/dr)``), by two dot products."""
-
-    def __init__(self, patch, cG: np.ndarray):
-        self.patch, self.half_spacing, self.cG = patch, float(patch.half_spacing), np.asarray(cG, float)
-
-    def __call__(self, r: float) -> tuple[float, float]:
-        s, ds = self.patch.shares(r)
-        return float(self.cG @ s), float(self.cG @ ds)
+class _ShareCompliance(PatchCompliance):
+    """:class:`softimpact.fem.impact.PatchCompliance` of any other patch, with the loads of a converged step."""
 
     def load(self, r: float, f: float, out: np.ndarray) -> None:
         """out ← f·s(r): the nodal loads of the converged step."""
@@ -191,58 +184,6 @@ def _compliance(patch, cG: np.ndarray):
     if isinstance(patch, DiscShares):
         return _TableCompliance(patch, cG)
     return _ShareCompliance(patch, cG)
-
-
-def _newton(law, comp, hm: float, kappa: float, q: float, target: float, guess: float, index: int, dt: float):
-    """Root of R(α) = α − α̃ + F(α, κα + q)·(β·dt²/m + h_s(a(α))) in (0, α̃]: the iteration of
-    :func:`softimpact.fem.impact._solve_contact` (Newton safeguarded by bisection, the same tolerances)
-    on plain floats, h_s from ``comp``. Returns (α, F, contact radius, iterations)."""
-    lo, hi = 0.0, target
-    a = guess if 0.0 < guess < target else target
-    half = comp.half_spacing
-    its = 0
-    R = math.nan
-    top = False  # α̃ evaluated
-    response = getattr(law, "response", None)  # (F, ∂F/∂α, ∂F/∂α̇) at once, where the law offers it
-    for its in range(1, NEWTON_MAXITER + 1):  # noqa: B007 (the count is returned after the loop)
-        rate = kappa * a + q
-        if response is not None:
-            f, stiff, damp = response(a, rate)
-        else:
-            f = law.force(a, rate)
-            stiff, damp = law.stiffness(a, rate), law.damping(a, rate)
-        r = law.radius(a)
-        hs, dhs = comp(r)
-        h = hm + hs
-        R = a - target + f * h
-        if R > 0.0:
-            hi = a
-        else:
-            lo = a
-        dR = 1.0 + (stiff + kappa * damp) * h
-        if f != 0.0 and r >= half:
-            da = RADIUS_STEP * a
-            dR += f * dhs * (law.radius(a + da) - law.radius(a - da)) / (2.0 * da)
-        step = R / dR
-        if abs(step) <= NEWTON_TOL * target:
-            a -= step
-            break
-        top = top or a == target
-        a_next = a - step
-        # a step onto α̃ itself (an iterate where the force is clipped to zero steps there: R = α − α̃)
-        # tries that bracket end once, where the root lies when the clipped force is zero there
-        if not (lo < a_next < hi or (a_next == target and not top and lo < a_next)):
-            a_next = 0.5 * (lo + hi)  # bisection safeguard
-            if hi - lo <= NEWTON_TOL * target:
-                a = a_next
-                break
-        a = a_next
-    else:
-        raise SolverFailed(
-            f"the contact Newton iteration did not converge at t = {index * dt:.6g} s (step {index}) in {NEWTON_MAXITER} iterations: "
-            f"residual {R:.3g} m, approach bracket [{lo:.6g}, {hi:.6g}] m"
-        )
-    return a, float(law.force(a, kappa * a + q)), law.radius(a), its
 
 
 class ContactKernels:
@@ -427,7 +368,7 @@ class ContactKernels:
             q = r1 * ald[k] + r2 * ala - kappa * al[k]
             if target > 0.0:
                 guess = 2.0 * al[k] - al[k - 1] if k >= 1 else target
-                a_new, f, r, its = _newton(branch, comp, hm, kappa, q, target, guess, k + 1, dt)
+                a_new, f, r, its = newton_contact(branch, comp, hm, kappa, q, target, guess, k + 1, dt, try_top=True)
                 iterations += its
             else:
                 a_new, f, r = target, 0.0, 0.0
