@@ -12,6 +12,8 @@ from softimpact.cli import main
 from softimpact.models.failure import failure_indices, interlaminar_shear, strength_of
 from softimpact.models.laminate import PLIES, ply_stiffness, reduced_stiffness
 
+from _support.problems import PLATE
+
 PLY = PLIES["T300/934"]
 X = PLY.strength
 
@@ -214,33 +216,6 @@ def test_a_sweep_asking_damage_of_a_ply_without_strengths_names_the_missing_keys
     assert "not an output" not in r.output and "beam.laminate.ply" in r.output and "G_IIc" in r.output
     _, s = _impact(case, tmp_path / "one")
     assert "G_IIc" in s["damage_note"]
-
-
-PLATE = """units = "in-lbf-s"
-[plate]
-length = "4 in"
-width = "4 in"
-elements = [8, 8]
-support = {{ x0 = "simply-supported", x1 = "simply-supported", y0 = "simply-supported", y1 = "simply-supported" }}
-model = "fsdt"
-[plate.laminate]
-ply = "T300/934"
-layup = "{layup}"
-[load]
-position = ["2 in", "2 in"]
-contact_radius = "0.25 in"
-grow = false
-history = {{ shape = "skewed", peak_force = "{force}", time_of_peak = "20 us", duration = "250 us" }}
-[solver]
-time_step = "2 us"
-duration = "300 us"
-[[gauges]]
-name = "g1"
-position = ["2 in", "2 in"]
-surface = "bottom"
-direction = "x"
-length = "0.031 in"
-"""
 
 
 def test_plate_impact_interlaminar_shear_is_jourawski_under_the_contact_disc(tmp_path):

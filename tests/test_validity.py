@@ -12,6 +12,7 @@ from softimpact.cli import main
 from softimpact.models.validity import HERTZ_APPROACH_OVER_DIAMETER, contact_validity, deflection_validity, surface_strain_bound
 
 from _support.constants import INCH
+from _support.problems import PLATE
 
 
 def _run(*args):
@@ -165,33 +166,6 @@ def test_an_old_law_json_without_the_projectile_is_warned_as_unchecked(tmp_path)
     r = _run("impact", tmp_path / "steel.toml", "--out", tmp_path / "s", "--no-figures")
     assert r.exit_code == 0, r.output
     assert any("cannot be checked" in x for x in _warnings(r.output))
-
-
-PLATE = """units = "in-lbf-s"
-[plate]
-length = "4 in"
-width = "4 in"
-elements = [8, 8]
-support = {{ x0 = "simply-supported", x1 = "simply-supported", y0 = "simply-supported", y1 = "simply-supported" }}
-model = "fsdt"
-[plate.laminate]
-ply = "T300/934"
-layup = "{layup}"
-[load]
-position = ["2 in", "2 in"]
-contact_radius = "0.25 in"
-grow = false
-history = {{ shape = "skewed", peak_force = "{force}", time_of_peak = "20 us", duration = "250 us" }}
-[solver]
-time_step = "2 us"
-duration = "300 us"
-[[gauges]]
-name = "g1"
-position = ["2 in", "2 in"]
-surface = "bottom"
-direction = "x"
-length = "0.031 in"
-"""
 
 
 def test_a_thin_plate_past_linear_theory_and_its_allowables_is_warned(tmp_path):

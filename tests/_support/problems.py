@@ -32,3 +32,32 @@ def table_i_pulse(diameter: float, velocity: float) -> tuple[float, float, float
     m = BALL_MASS[key]
     T = a2 * diameter / velocity
     return a1 * m * velocity**2 / (2 * diameter), a3 * T, T, a4 * 2 * m * velocity
+
+
+# A small simply supported 4 × 4 in plate case (8 × 8 elements, 2 µs) with one gauge under the load, for
+# the damage and validity tests: ``PLATE.format(layup=..., force=...)``.
+PLATE = """units = "in-lbf-s"
+[plate]
+length = "4 in"
+width = "4 in"
+elements = [8, 8]
+support = {{ x0 = "simply-supported", x1 = "simply-supported", y0 = "simply-supported", y1 = "simply-supported" }}
+model = "fsdt"
+[plate.laminate]
+ply = "T300/934"
+layup = "{layup}"
+[load]
+position = ["2 in", "2 in"]
+contact_radius = "0.25 in"
+grow = false
+history = {{ shape = "skewed", peak_force = "{force}", time_of_peak = "20 us", duration = "250 us" }}
+[solver]
+time_step = "2 us"
+duration = "300 us"
+[[gauges]]
+name = "g1"
+position = ["2 in", "2 in"]
+surface = "bottom"
+direction = "x"
+length = "0.031 in"
+"""
