@@ -14,6 +14,8 @@ from click.testing import CliRunner
 
 from softimpact.cli import main
 
+from _support.problems import LONG_BEAM_IMPACT
+
 INCH = 0.0254
 
 # A coarse long beam (quick to build) under the empirical law; same physics as paper-long-beam.
@@ -487,22 +489,7 @@ def test_a_full_disk_while_checkpointing_is_exit_2_and_leaves_nothing_a_resume_w
     assert _table(out) == _table(ref_out)
 
 
-IMPACT_CASE = """
-title = "1/2-in steel ball on the long beam (coupled, Hertz), short run"
-units = "in-lbf-s"
-[target]
-case = "paper-long-beam"
-[impactor]
-material = "steel"
-diameter = "0.5 in"
-velocity = "{velocity}"
-[contact]
-law = "hertz"
-target_modulus = "7.9 GPa"
-[solver]
-time_step = "0.5 us"
-duration = "300 us"
-"""
+IMPACT_CASE = LONG_BEAM_IMPACT
 
 IMPACT_SPEC = """
 [sweep]

@@ -14,25 +14,12 @@ from click.testing import CliRunner
 from softimpact.cli import main
 from softimpact.input.toml import locate
 
+from _support.problems import LONG_BEAM_IMPACT
+
 INCH = 0.0254
 LAW = Path(__file__).parent / "data" / "law-v-main.json"
 
-BEAM_CASE = """
-title = "1/2-in steel ball on the long beam (coupled, Hertz), short run"
-units = "in-lbf-s"
-[target]
-case = "paper-long-beam"
-[impactor]
-material = "steel"
-diameter = "0.5 in"
-velocity = "{velocity}"
-[contact]
-law = "hertz"
-target_modulus = "7.9 GPa"
-[solver]
-time_step = "0.5 us"
-duration = "300 us"
-"""
+BEAM_CASE = LONG_BEAM_IMPACT
 
 PLATE_CASE = """
 title = "1/2-in {material} ball on a coarse SS plate (coupled, {law})"

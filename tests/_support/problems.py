@@ -61,3 +61,23 @@ surface = "bottom"
 direction = "x"
 length = "0.031 in"
 """
+
+
+# The 1/2-in steel ball on the long beam (coupled, Hertz), 300 µs: an impact case for sweeps,
+# ``LONG_BEAM_IMPACT.format(velocity=...)``.
+LONG_BEAM_IMPACT = """
+title = "1/2-in steel ball on the long beam (coupled, Hertz), short run"
+units = "in-lbf-s"
+[target]
+case = "paper-long-beam"
+[impactor]
+material = "steel"
+diameter = "0.5 in"
+velocity = "{velocity}"
+[contact]
+law = "hertz"
+target_modulus = "7.9 GPa"
+[solver]
+time_step = "0.5 us"
+duration = "300 us"
+"""
