@@ -116,8 +116,11 @@ def _transversely_isotropic(name, E1, E2, G12, nu12, nu23, density, thickness, s
     return Ply(name, E1, E2, E2, G12, G12, E2 / (2 * (1 + nu23)), nu12, nu12, nu23, density, thickness, source, strength)
 
 
-# G_IIc of the catalogue: no table below gives it; the values are representative of each resin
-# (brittle 177 °C epoxies 0.5–0.8 kJ/m², glass/epoxy about 1 kJ/m²) and say so in their source.
+# Catalogue provenance (checked 2026-11 against the sources named; every value not found in a
+# source says "unverified" in the ply's ``source``). S23 is not tabulated by any source below: the
+# catalogue sets S23 = S12 (the transverse-shear stand-in of Hashin's matrix-compression mode).
+# G_IIc is tabulated only for IM7/8552 (Camanho et al. 2007); the other values are representative
+# of the resin class (brittle 177 °C epoxies 0.5–0.8 kJ/m², glass/epoxy about 1 kJ/m²), unverified.
 PLIES = {
     "T300/934": Ply(
         "T300/934",
@@ -133,11 +136,25 @@ PLIES = {
         1580.0,
         0.0055 * INCH,
         "representative literature values (docs/modelling-notes.md); the paper's ref 12 is not available",
-        # T300/5208 of Tsai & Hahn (1980), the usual stand-in for T300/934 (same fibre, a 177 °C epoxy).
-        PlyStrength(1500 * MPA, 1500 * MPA, 40 * MPA, 246 * MPA, 68 * MPA, 68 * MPA, 500.0, "Tsai & Hahn 1980 (T300/5208); G_IIc 0.5 kJ/m² representative"),
+        # No T300/934 strength table was found: the T300/5208 strengths of Tsai & Hahn (1980) stand in
+        # (same T300 fibre, a 177 °C epoxy), as in the paper report's threshold section.
+        PlyStrength(
+            1500 * MPA,
+            1500 * MPA,
+            40 * MPA,
+            246 * MPA,
+            68 * MPA,
+            68 * MPA,
+            500.0,
+            "T300/5208 strengths of Tsai & Hahn 1980 standing in for T300/934; S23 = S12 assumed; G_IIc 0.5 kJ/m^2 representative, unverified",
+        ),
     ),
-    # Tsai & Hahn (1980), Introduction to Composite Materials, Technomic, Table 1.5 (typical unidirectional
-    # ply data: T300/5208); ν23 0.40 assumed (not in the table).
+    # Tsai & Hahn (1980), Introduction to Composite Materials, Technomic: the typical unidirectional
+    # T300/5208 data (E1 181, E2 10.3, G12 7.17 GPa, nu12 0.28, V_f 0.70; X = X' 1500, Y 40, Y' 246,
+    # S 68 MPa). Values confirmed against independent transcriptions (e.g. Martinez & Bishay 2021,
+    # Compos. Part C, Table 2, which tabulates them from Tsai & Hahn); the table number in the book was
+    # not confirmed. Density 1600 kg/m³ (rule of mixtures at V_f 0.70 gives 1.6 g/cm³) and ply
+    # thickness 0.125 mm are typical, unverified; nu23 0.40 assumed.
     "T300/5208": _transversely_isotropic(
         "T300/5208",
         181e9,
@@ -147,11 +164,25 @@ PLIES = {
         0.40,
         1600.0,
         0.125e-3,
-        "Tsai & Hahn 1980, Table 1.5 (nu23 assumed 0.40)",
-        PlyStrength(1500 * MPA, 1500 * MPA, 40 * MPA, 246 * MPA, 68 * MPA, 68 * MPA, 500.0, "Tsai & Hahn 1980, Table 1.5; G_IIc 0.5 kJ/m² representative"),
+        "Tsai & Hahn 1980, typical unidirectional ply data (E1, E2, G12, nu12); density and ply thickness typical, unverified; nu23 assumed 0.40",
+        PlyStrength(
+            1500 * MPA,
+            1500 * MPA,
+            40 * MPA,
+            246 * MPA,
+            68 * MPA,
+            68 * MPA,
+            500.0,
+            "Tsai & Hahn 1980, typical strengths of T300/5208; S23 = S12 assumed; G_IIc 0.5 kJ/m^2 representative, unverified",
+        ),
     ),
-    # Daniel & Ishai (2006), Engineering Mechanics of Composite Materials, 2nd ed., Oxford UP, Appendix A
-    # (properties of unidirectional composites: AS4/3501-6 carbon/epoxy).
+    # Daniel & Ishai (2006), Engineering Mechanics of Composite Materials, 2nd ed., Oxford UP, table of
+    # properties of typical unidirectional composites, AS4/3501-6 row (V_f 0.63, density 1.60 g/cm³,
+    # E1 147, E2 10.3, G12 7.0 GPa, nu12 0.27; F1t 2280, F1c 1725, F2t 57, F2c 228, F6 76 MPa):
+    # values confirmed against a transcription of that table; its number/appendix not confirmed.
+    # (The World-Wide Failure Exercise's AS4/3501-6, Soden, Hinton & Kaddour 1998, is a different
+    # batch: E1 126 GPa, X_t 1950 MPa; not mixed in here.) nu23 0.54 is MIL-HDBK-17-3F's AS4/3501-6
+    # value (V_f 0.595) as quoted secondhand; ply thickness 0.13 mm typical, unverified.
     "AS4/3501-6": _transversely_isotropic(
         "AS4/3501-6",
         147e9,
@@ -161,25 +192,50 @@ PLIES = {
         0.54,
         1600.0,
         0.13e-3,
-        "Daniel & Ishai 2006, Appendix A",
-        PlyStrength(2280 * MPA, 1725 * MPA, 57 * MPA, 228 * MPA, 76 * MPA, 76 * MPA, 550.0, "Daniel & Ishai 2006, Appendix A; G_IIc 0.55 kJ/m² representative"),
+        "Daniel & Ishai 2006, typical unidirectional properties (AS4/3501-6); nu23 0.54 of MIL-HDBK-17-3F (secondhand); ply thickness typical, unverified",
+        PlyStrength(
+            2280 * MPA,
+            1725 * MPA,
+            57 * MPA,
+            228 * MPA,
+            76 * MPA,
+            76 * MPA,
+            550.0,
+            "Daniel & Ishai 2006 (AS4/3501-6); S23 = S12 assumed; G_IIc 0.55 kJ/m^2 representative, unverified",
+        ),
     ),
-    # Camanho, Maimí & Dávila (2007), Compos. Sci. Technol. 67, 2715–2727, Table 1 (IM7/8552; Y_t the
-    # unidirectional, not the in-situ strength; G_IIc 0.788 kJ/m² from the same table); density and cured
-    # ply thickness from Hexcel's HexPly 8552 data sheet; ν23 0.45 assumed.
+    # Camanho, Maimí & Dávila (2007), Compos. Sci. Technol. 67, 2715–2727, Table 1 (IM7/8552): E1 171.42,
+    # E2 9.08, G12 5.29 GPa, nu12 0.32, X_t 2323.5, X_c 1200.1, Y_t 62.3, Y_c 199.8, S_L 92.3 MPa,
+    # G_IIc (G_6) 0.788 kJ/m², cured ply thickness 0.131 mm; confirmed against two transcriptions
+    # (NASA CompDam_DGD's IM7-8552.props, which gives X_t 2326.2 MPa, and a published in-situ-strength
+    # script, which gives 2323.5). Density 1570 kg/m³ and ply thickness 0.131 mm also in Hexcel's
+    # HexPly 8552 data sheet (IM7, nominal laminate density 1.57 g/cm³, cured ply 0.131 mm). nu23 0.52
+    # of Camanho, Bessa, Catalanotti, Vogler & Rolfes (2013), Mech. Mater. 59, 36–49, as cited by CompDam.
     "IM7/8552": _transversely_isotropic(
         "IM7/8552",
         171.42e9,
         9.08e9,
         5.29e9,
         0.32,
-        0.45,
+        0.52,
         1570.0,
         0.131e-3,
-        "Camanho, Maimi & Davila 2007, Table 1; Hexcel 8552 data sheet (density, ply thickness); nu23 assumed 0.45",
-        PlyStrength(2323.5 * MPA, 1200.1 * MPA, 62.3 * MPA, 199.8 * MPA, 92.3 * MPA, 92.3 * MPA, 788.0, "Camanho, Maimi & Davila 2007, Table 1"),
+        "Camanho, Maimi & Davila 2007, Table 1; Hexcel HexPly 8552 data sheet (density, ply thickness); nu23 of Camanho et al. 2013",
+        PlyStrength(
+            2323.5 * MPA,
+            1200.1 * MPA,
+            62.3 * MPA,
+            199.8 * MPA,
+            92.3 * MPA,
+            92.3 * MPA,
+            788.0,
+            "Camanho, Maimi & Davila 2007, Table 1 (G_IIc = G_6); S23 = S12 assumed",
+        ),
     ),
-    # Tsai & Hahn (1980), Table 1.5: Scotchply 1002 E-glass/epoxy; ν23 0.40 assumed.
+    # Tsai & Hahn (1980): Scotchply 1002 E-glass/epoxy (E1 38.6, E2 8.27, G12 4.14 GPa, nu12 0.26,
+    # V_f 0.45; X 1062, X' 610, Y 31, Y' 118, S 72 MPa), confirmed against independent transcriptions;
+    # table number not confirmed. Density 1800 kg/m³ (rule of mixtures at V_f 0.45 gives 1.8–1.9 g/cm³)
+    # and ply thickness 0.125 mm typical, unverified; nu23 0.40 assumed.
     "E-glass/epoxy": _transversely_isotropic(
         "E-glass/epoxy",
         38.6e9,
@@ -189,8 +245,17 @@ PLIES = {
         0.40,
         1800.0,
         0.125e-3,
-        "Tsai & Hahn 1980, Table 1.5 (Scotchply 1002; nu23 assumed 0.40)",
-        PlyStrength(1062 * MPA, 610 * MPA, 31 * MPA, 118 * MPA, 72 * MPA, 72 * MPA, 1000.0, "Tsai & Hahn 1980, Table 1.5; G_IIc 1 kJ/m² representative"),
+        "Tsai & Hahn 1980, Scotchply 1002 (E1, E2, G12, nu12); density and ply thickness typical, unverified; nu23 assumed 0.40",
+        PlyStrength(
+            1062 * MPA,
+            610 * MPA,
+            31 * MPA,
+            118 * MPA,
+            72 * MPA,
+            72 * MPA,
+            1000.0,
+            "Tsai & Hahn 1980, typical strengths of Scotchply 1002; S23 = S12 assumed; G_IIc 1 kJ/m^2 representative, unverified",
+        ),
     ),
 }
 
