@@ -151,9 +151,9 @@ PLIES = {
     ),
     # Tsai & Hahn (1980), Introduction to Composite Materials, Technomic: the typical unidirectional
     # T300/5208 data (E1 181, E2 10.3, G12 7.17 GPa, nu12 0.28, V_f 0.70; X = X' 1500, Y 40, Y' 246,
-    # S 68 MPa). Values confirmed against independent transcriptions (e.g. Martinez & Bishay 2021,
-    # Compos. Part C, Table 2, which tabulates them from Tsai & Hahn); the table number in the book was
-    # not confirmed. Density 1600 kg/m³ (rule of mixtures at V_f 0.70 gives 1.6 g/cm³) and ply
+    # S 68 MPa). Values confirmed against independent public transcriptions of the book's table (one of
+    # them names Martinez & Bishay 2021, Compos. Part C, Table 2, as its copy; that paper itself was not
+    # seen); the table number in the book was not confirmed. Density 1600 kg/m³ (rule of mixtures at V_f 0.70 gives 1.6 g/cm³) and ply
     # thickness 0.125 mm are typical, unverified; nu23 0.40 assumed.
     "T300/5208": _transversely_isotropic(
         "T300/5208",
