@@ -143,6 +143,7 @@ def parameter_convergence(models: ModelLadder, measured, start, cal, contact_tim
     used, the convergence record); {} when fewer than three levels exist."""
     level = cal.check.level
     ladder = (level - 2, level - 1, level) if level >= 1 else (-2, -1, 0)
+    contact_time = cal.prepared.contact_time  # the same samples as the fit's, from the same first contact
     fits = dict(cal.check.level_fits)
     fits[level] = tuple(getattr(cal, n) for n in MAIN)
     for k in ladder:
