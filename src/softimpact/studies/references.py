@@ -1,5 +1,6 @@
 """What the paper report's references can tell: the beams' first zero crossing of gauge 1 (paper
-Fig 21, ≈ 450 µs) and the free length or clamp compliance that would match it.
+Fig 21, ≈ 450 µs) and the free length or clamp compliance that would match it; and a bar series
+made like the built-in synthetic one with another α3 (a what-if for the coupled predictions).
 
 The paper calibrated the duration T of each transverse force history so that the computed
 *bending* strain at gauge 1 crosses zero first where the measured one did, "approximately 450 µs
@@ -25,6 +26,11 @@ to a target.
   on the section (for the whole width); c = 0 is the rigid clamp. Statically it adds the
   root rotation M·c, the rotation an extra length ΔL = c·EI of the beam under the same moment
   would add (:func:`equivalent_length`); unlike that length it adds no mass.
+- **Synthetic bar series** (:func:`synthetic_series_records`): gauge records of a bar series made
+  as the built-in ``paper-rubber-series`` was (tools/make_rubber_series.py): the Table I pulse of
+  eqs (4)–(7) with eq (15) and its exponential tail, through the series' bar on 144 Hermite
+  elements at 0.25 µs, 1 % noise, a baseline offset and an arbitrary clock from one seeded
+  generator, but with each test's scaling constants given (e.g. α3 from Tables II/III).
 """
 
 from __future__ import annotations
@@ -38,8 +44,11 @@ from ..errors import InputError
 from ..fem.linear import LinearModel
 from ..fem.loads import PatchLoad
 from ..fem.plane import PlaneModel
+from ..workflows.synthetic import gauge_model, synthetic_record
 
 __all__ = [
+    "SyntheticRecord",
+    "synthetic_series_records",
     "MAIN_LOBE_FRACTION",
     "first_zero_crossing",
     "lead_lobes",
@@ -219,3 +228,52 @@ def match_crossing(problem, parameter: str, target: float, bracket: tuple[float,
             x = float(brentq(lambda v: crossing(v) - target, x0, x1, xtol=1e-6 * abs(bracket[1] - bracket[0])))
             return CrossingMatch(parameter, target, x, crossing(x), bracket, scanned, count[0])
     return CrossingMatch(parameter, target, math.nan, math.nan, bracket, scanned, count[0])
+
+
+# --- a bar series made like the built-in synthetic one, with other constants ------------------------
+
+SERIES_ELEMENTS = 144  # the generator's bar mesh (finer than the series' 39: the records are not the reduction's model)
+SERIES_STEP = 0.25e-6  # s: the generator's step
+SERIES_WINDOW = 4.15e-3  # s: the generator's gauge model length
+SERIES_SEED = 19880101  # the generator's seed: the same noise, offsets and clocks test by test
+PRE_TRIGGER = 250e-6  # s of record before contact
+SAMPLE_INTERVAL = 0.5e-6  # s
+NOISE = 0.01  # σ of the noise as a share of the peak |strain|
+OFFSET = 5e-6  # σ of the baseline offset (strain)
+RECORD_MAX = 4.1e-3  # s: the longest record
+
+
+@dataclass(frozen=True)
+class SyntheticRecord:
+    """A made record as :func:`softimpact.studies.series.reduce_series` reads one: time [s], strain, metadata."""
+
+    time: np.ndarray
+    signal: np.ndarray
+    kind: str
+    metadata: dict
+
+
+def synthetic_series_records(series, laws) -> list[SyntheticRecord]:
+    """Gauge records of the tests of ``series`` (its bar and gauge; per test mass, diameter, velocity),
+    test i driven by ``laws[i]``'s pulse with its tail (a :class:`~softimpact.models.empirical.ScalingLaw`:
+    eqs 4–7 and 15), made as tools/make_rubber_series.py made the built-in series (module docstring):
+    with the built-in constants the records of its first tests are the built-in ones."""
+    gauge = gauge_model(replace(series.bar, elements=SERIES_ELEMENTS), series.gauge_position, SERIES_STEP, SERIES_WINDOW)
+    rng = np.random.default_rng(SERIES_SEED)
+    out = []
+    for test, law in zip(series.tests, laws):
+        pulse = law.pulse(test.mass, test.diameter, test.velocity, tail=True)
+        length = min(PRE_TRIGGER + pulse.duration * 0.8, RECORD_MAX)
+        t, eps = synthetic_record(
+            gauge,
+            pulse,
+            pre_trigger=PRE_TRIGGER,
+            length=length,
+            sample_interval=SAMPLE_INTERVAL,
+            noise=NOISE,
+            offset=float(rng.normal(0, OFFSET)),
+            clock_start=float(rng.uniform(-0.5e-3, 2e-3)),
+            rng=rng,
+        )
+        out.append(SyntheticRecord(t, eps, "strain", {"synthetic": f"{law.name}, alpha3 = {law.alpha3:.3f}"}))
+    return out
