@@ -318,23 +318,15 @@ def _what_if(all_tests: float | None = None, n_all: int = 0):
     builtin, _ = read_series_records(half)
     made = synthetic_series_records(half, [replace(PRESETS[P.law], alpha3=a3)] * len(half.tests))
     rod = Rod.of(series.bar)
-    models = []
+    models = []  # (series, beam problem, model of row 1's r0), shared by both laws
     for _, name, _ in TABLES:
         cs = load_calibration_series(name)
         problem, _ = load_beam_case(cs.case)
-        r0 = cs.reference[0][4]
-        models.append(
-            (
-                cs,
-                problem,
-                BeamModel(
-                    replace(problem, load=BeamLoad(problem.load.position, r0, None), solver=SolverSpec(QUESTION_STEP, QUESTION_WINDOW, problem.solver.newmark))
-                ),
-            )
-        )
+        row1 = BeamLoad(problem.load.position, cs.reference[0][4], None)
+        models.append((cs, problem, BeamModel(replace(problem, load=row1, solver=SolverSpec(QUESTION_STEP, QUESTION_WINDOW, problem.solver.newmark)))))
     results, closures = [], []
     for records in (builtin, made):
-        tests, law, _, cl = identify_series(rod, reduce_series(half, records))
+        _, law, _, cl = identify_series(rod, reduce_series(half, records))
         results.append(_coupled_figures(law, models))
         closures.append(float(np.max(np.abs(cl.peak_time_errors))))
     rows, errors = [], []
