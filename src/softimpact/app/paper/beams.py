@@ -13,6 +13,7 @@ from ...output.beam import beam_files, beam_section
 from ...output.report import Section
 from ...studies.references import (
     MAIN_LOBE_FRACTION,
+    at_free_length,
     beam_gauge_model,
     crossing_time,
     equivalent_length,
@@ -136,7 +137,8 @@ def _crossing_paragraphs(found) -> list[str]:
     if math.isfinite(llen.value):
         text += (
             f" A free length of {llen.value / INCH:.2f} in (impact at mid-length, gauge 1 kept 1 in from it) brings the long beam's "
-            f"crossing to 450 µs; the crossing grows by about {_slope(llen) * 1e6 * INCH:.0f} µs per inch of span"
+            f"crossing to 450 µs ({_us(crossing_time(_refined(at_free_length(lp, llen.value))))} µs on the refined model); the "
+            f"crossing grows by about {_slope(llen) * 1e6 * INCH:.0f} µs per inch of span"
         )
     text += (
         ". A rotational spring at the clamp (the clamped face's axial DOFs on springs; compliances up to the root rotation of "
