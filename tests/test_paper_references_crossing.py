@@ -10,7 +10,7 @@ from scipy.optimize import brentq
 from scipy.sparse.linalg import spsolve
 
 from softimpact.input.beam_case import load_beam_case
-from softimpact.studies.references import at_free_length, beam_gauge_model, crossing_time, equivalent_length, first_zero_crossing, match_crossing
+from softimpact.studies.references import at_free_length, beam_gauge_model, crossing_time, equivalent_length, first_zero_crossing, lead_lobes, match_crossing
 from softimpact.units import INCH
 from softimpact.workflows.beam_impact import BeamModel
 
@@ -30,10 +30,12 @@ def _workflow_crossing(problem) -> float:
 
 
 def test_crossing_of_a_sampled_sine():
-    """The crossing of a sine that the first lobe below the main-lobe share precedes is the sine's own zero, to interpolation error."""
+    """The crossing of a sine that a lobe below the main-lobe share precedes is the sine's own zero (to interpolation error),
+    and that skipped lobe's share of the peak is its amplitude ratio, 0.1."""
     t = np.linspace(0, 1e-3, 1001)
     y = np.where(t < 1e-4, -0.1 * np.sin(np.pi * t / 1e-4), np.sin(np.pi * (t - 1e-4) / 5e-4))
     assert first_zero_crossing(t, y) == pytest.approx(6e-4, abs=2e-7)
+    assert lead_lobes(t, y) == pytest.approx(0.1, rel=1e-3)
     assert math.isnan(first_zero_crossing(t[:500], y[:500]))
 
 
