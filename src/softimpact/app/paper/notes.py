@@ -11,7 +11,8 @@ NOTES = [
     "Steel ball: 5/8 in, E = 30.0e6 psi, ν = 0.29, 0.283 lb/in³ (handbook); its mass, 16.4 g, follows from the density.",
     "Rubber balls: silicone, 1/2 in → 1.1 g (text); 3/8 in → 0.46 g (same density). Silicone modulus 5 MPa, ν = 0.49 "
     "(representative; used only by the classical Hertz comparison).",
-    "Table I: α3 of the 1/2-in ball was lost in the text; 0.25 (the 3/8-in value) is used.",
+    "Table I: α3 of the 1/2-in ball was lost in the text; 0.25 (the 3/8-in value) is used. The question section's what-if "
+    "uses instead the α3 for which Table I's bar law gives Tables II/III's t_F0 (about 0.085), itself a calibration.",
     "The rubber-ball series is SYNTHETIC: the paper's figure data are not available, so records were computed by the "
     "package's bar FE from the Table I model, with a tail, 1 % noise, baseline offsets and arbitrary clocks.",
     "Hertz rigid-wall duration: 2.9433·α_max/V (= 3.2181·(m/K)^(2/5)·V^(-1/5)); the 3.2145 often quoted belongs to the second form.",
