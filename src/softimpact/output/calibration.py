@@ -82,6 +82,7 @@ def calibration_entry(item, gauges) -> dict:
                 n: {
                     "observed_order": k.parameter_orders.get(n),
                     "uncertainty_95": k.parameter_uncertainty_95.get(n),
+                    "gci": k.parameter_gci.get(n),
                     "status": k.parameter_status.get(n),
                     "safety_factor": k.parameter_safety.get(n),
                 }
@@ -259,10 +260,14 @@ def calibration_section(model, series, items, comparison, prefix: str, figures: 
         "(F0, tF0, T and the time origin). The model's discretisation error is checked first: estimated by Richardson "
         "from the case's mesh and one refinement, corrected for in a second fit, and the mesh refined (within a time "
         "budget) until that correction moves no parameter by more than half its noise standard error. ± are standard "
-        "errors of the noise and the remaining discretisation error together; the latter includes the calibrated "
-        "parameters' own Richardson study on three levels, whose safety factor is 1.25 only when the observed order is "
-        "near 2, a mesh-only and a step-only refinement do not move the parameter in opposite directions and the coarsest "
-        "level has at least 10 steps in the rise t_F0, and 3 otherwise (calibration.json: parameter_convergence).",
+        "errors of the noise and of the remaining discretisation error together. The latter comes from the calibrated "
+        "parameters' own Richardson study on three levels: its error estimate is one standard uncertainty (the last "
+        "change when the levels alternate, and for t_F0 also when the coarsest level has fewer than 10 steps in the rise). "
+        "Over 204 calibrations of 12 histories against strains from models 8× finer, these intervals covered the truth "
+        "at 95 % without being too wide (BENCHMARKS.md). The study's GCI is the conservative bound: its safety factor is "
+        "1.25 only when the observed order is near 2, a mesh-only and a step-only refinement do not move the parameter "
+        "in opposite directions and the coarsest level has at least 10 steps in the rise t_F0, and 3 otherwise "
+        "(calibration.json: parameter_convergence).",
     ]
     if paper_method is not None:
         c = paper_method

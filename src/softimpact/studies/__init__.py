@@ -5,4 +5,6 @@ whose modules import no other workflow; beside :mod:`softimpact.input` and :mod:
   (conditioning + reduction + scaling).
 - :mod:`softimpact.studies.calibration`: the calibration of a beam's force history on a ladder
   of refined models (beam_impact + refinement + calibration + convergence + scaling).
+- :mod:`softimpact.studies.references`: what the paper's references can tell: the beams' first zero
+  crossing against the free length and clamp compliance, and bar series made with another α3.
 """

@@ -23,8 +23,8 @@ from ..input.records import read_strains
 from ..input.scaling_constants import start_pulse
 from ..models.empirical import PROJECTILES
 from ..workflows.beam_impact import BeamModel
-from ..workflows.calibration import ASSUMED_ORDER_SAFETY, MAIN, Calibration, Measured, calibrate, calibrate_checked
-from ..workflows.convergence import richardson
+from ..workflows.calibration import MAIN, Calibration, Measured, calibrate, calibrate_checked
+from ..workflows.convergence import MIN_RISE_STEPS, richardson
 from ..workflows.refinement import coarsen_beam, refine_beam
 from ..workflows.scaling import ScalingFit, TestPoint, fit_groups
 
@@ -35,6 +35,7 @@ __all__ = [
     "CalibratedTest",
     "ModelLadder",
     "calibration_model",
+    "discretisation_uncertainty",
     "parameter_convergence",
     "with_parameter_convergence",
     "calibrate_tests",
@@ -131,6 +132,34 @@ def calibration_model(problem, radii, fit_radius: bool) -> ModelLadder:
     return ModelLadder(problem, radii, fit_radius)
 
 
+def discretisation_uncertainty(conv, name: str, rise_steps: float) -> float:
+    """The standard uncertainty (k = 1) of a calibrated parameter's discretisation error at the finest
+    level, from its convergence over three levels (``conv``: :func:`richardson`'s record; ``rise_steps``:
+    time steps of the coarsest level in the pulse rise t_F0).
+
+    The Richardson estimate of the error is taken as one standard uncertainty:
+    |f3 − f_ext| (order observed, at most the formal one) for a monotone sequence; |f3 − f2| when
+    the sequence alternates (the limit lies between the two finest levels) and, for t_F0, when the
+    coarsest level resolves the rise with fewer than MIN_RISE_STEPS steps (the observed order is then
+    not the fine levels' own: the first-order bound |f3 − f2| is kept); half the range when the
+    sequence diverges; 0 when converged to round-off. F0 and T describe the whole pulse, not its rise.
+    The GCI (Fs·estimate, Fs = 1.25 or 3 by the asymptotic rule) stays the reported conservative bound;
+    this uncertainty is the one combined with the noise's, and its coverage is measured in
+    benchmarks/bench_coverage.py (BENCHMARKS.md)."""
+    v = np.asarray(conv.values, float)
+    last = abs(float(v[-1] - v[-2]))
+    if conv.status == "converged to round-off":
+        return 0.0
+    if conv.status == "oscillatory":
+        return last
+    if conv.status in ("asymptotic", "monotone", "two levels"):
+        estimate = abs(float(v[-1] - conv.extrapolated))
+        if name == "time_of_peak" and rise_steps < MIN_RISE_STEPS:
+            return max(estimate, last)
+        return estimate
+    return 0.5 * float(np.max(v[-3:]) - np.min(v[-3:]))  # diverging, undefined
+
+
 def parameter_convergence(models: ModelLadder, measured, start, cal, contact_time, fit_radius) -> dict:
     """How the calibrated parameters themselves converge: the least-squares fits on the level
     used and the two below it (those the check made are reused; cheap engines: the data, and so
@@ -139,11 +168,12 @@ def parameter_convergence(models: ModelLadder, measured, start, cal, contact_tim
     three refined in mesh only and in time step only, and the steps of its time grid in the
     rise t_F0 fitted on the finest level: the same rule of the asymptotic range as ``converge`` (Fs = 1.25 only when
     the order is near 2, the one-factor refinements agree in sign and the rise has ≥ 10 steps;
-    Fs = 3 otherwise). Returns name → (95 % discretisation uncertainty of the value at the level
-    used, the convergence record); {} when fewer than three levels exist."""
+    Fs = 3 otherwise). Returns name → (standard uncertainty of the value at the level used
+    (:func:`discretisation_uncertainty`), the convergence record); {} when fewer than three levels exist."""
     level = cal.check.level
     ladder = (level - 2, level - 1, level) if level >= 1 else (-2, -1, 0)
-    contact_time = cal.prepared.contact_time  # the same samples as the fit's, from the same first contact
+    if math.isfinite(cal.check.contact_time):  # the check's first contact: every fit sees the same samples
+        contact_time = cal.check.contact_time
     fits = dict(cal.check.level_fits)
     fits[level] = tuple(getattr(cal, n) for n in MAIN)
     for k in ladder:
@@ -169,32 +199,27 @@ def parameter_convergence(models: ModelLadder, measured, start, cal, contact_tim
         values = [fits[k][i] for k in ladder]
         space, time = (sides[0][i], sides[1][i]) if sides else (None, None)
         conv = richardson(values, float(models.ratio), 2.0, name, space=space, time=time, rise_steps=rise_steps)
-        if conv.status == "converged to round-off":
-            u95 = 0.0
-        elif conv.status in ("asymptotic", "monotone"):
-            u95 = conv.safety_factor * abs(values[-1] - conv.extrapolated)
-        else:  # oscillatory, diverging: half the range, with the assumed order's safety
-            u95 = ASSUMED_ORDER_SAFETY * 0.5 * (max(values) - min(values))
-        out[name] = (float(u95), conv)
+        out[name] = (discretisation_uncertainty(conv, name, rise_steps), conv)
     return out
 
 
 def with_parameter_convergence(models, measured, start, cal, contact_time, fit_radius):
-    """The calibration with its standard errors widened, where the parameters' own convergence
-    (:func:`parameter_convergence`) shows a larger discretisation error than the check's estimate."""
+    """The calibration with its standard errors those of the noise and of the parameters' own
+    discretisation error together, √(SE_noise² + u²) (:func:`parameter_convergence`; they replace the
+    check's estimate, which rests on an assumed order); unchanged when fewer than three levels exist."""
     conv = parameter_convergence(models, measured, start, cal, contact_time, fit_radius)
     if not conv:
         return cal
     se = dict(cal.standard_errors)
     noise = cal.check.noise_errors
-    for name, (u95, _) in conv.items():
+    for name, (u, _) in conv.items():
         if name in se and name in noise:
-            se[name] = max(se[name], math.hypot(noise[name], u95 / 1.96))
-    orders = {name: c.order for name, (_, c) in conv.items()}
+            se[name] = math.hypot(noise[name], u)
     check = replace(
         cal.check,
-        parameter_orders=orders,
-        parameter_uncertainty_95={name: u for name, (u, _) in conv.items()},
+        parameter_orders={name: c.order for name, (_, c) in conv.items()},
+        parameter_uncertainty_95={name: 1.96 * u for name, (u, _) in conv.items()},
+        parameter_gci={name: c.safety_factor * abs(float(c.values[-1] - c.extrapolated)) for name, (_, c) in conv.items()},
         parameter_status={name: c.status for name, (_, c) in conv.items()},
         parameter_safety={name: c.safety_factor for name, (_, c) in conv.items()},
     )

@@ -119,8 +119,10 @@ class ModelCheck:
     order_observed: bool = False  # from three levels (else the formal order, assumed)
     safety: float = math.nan  # Roache's factor applied to the shifts in the standard errors
     level_fits: dict = field(default_factory=dict)  # level → (F0, t_F0, T) of its least-squares fit in the check
+    contact_time: float = math.nan  # first contact on the record's clock every fit of the check started from (given or located)
     parameter_orders: dict = field(default_factory=dict)  # observed order of each parameter's convergence (app)
-    parameter_uncertainty_95: dict = field(default_factory=dict)  # its 95 % discretisation uncertainty (app)
+    parameter_uncertainty_95: dict = field(default_factory=dict)  # 1.96 × its discretisation standard uncertainty (studies)
+    parameter_gci: dict = field(default_factory=dict)  # its GCI: Fs × the Richardson error estimate, the conservative bound (studies)
     parameter_status: dict = field(default_factory=dict)  # asymptotic, monotone, oscillatory, ... (app)
     parameter_safety: dict = field(default_factory=dict)  # Roache's factor behind each parameter's uncertainty (1.25 or 3)
 
@@ -559,20 +561,25 @@ def _misfit(cal: Calibration) -> float:
     return float(np.sum(np.square(cal.residual_rms / cal.prepared.noise)))
 
 
-def _best_start(model, measured, start, **kw) -> Calibration:
+def _best_start(model, measured, start, contact_time=None, **kw) -> tuple[Calibration, float]:
     """The least-squares fit on ``model`` from ``start`` and from starts with the same F0 and T and
-    the skews :data:`START_SKEWS`, the one of lowest misfit (ties: the given start's); a start
-    that cannot be prepared (first contact not located from its shape) is passed over."""
-    best = calibrate(model, measured, start, "least-squares", **kw)
-    for skew in START_SKEWS:
-        if abs(start.time_of_peak / start.duration - skew) < 0.02:
+    the skews :data:`START_SKEWS`, the one of lowest misfit (ties: the given start's), with the first
+    contact it started from (``contact_time`` when given, else located from that start's own shape:
+    a start unlike the record misplaces it). A start that cannot be prepared is passed over."""
+    best = None
+    for skew in (None, *START_SKEWS):
+        if skew is not None and abs(start.time_of_peak / start.duration - skew) < 0.02:
             continue
+        s = start if skew is None else SkewedPulse(start.peak_force, skew * start.duration, start.duration)
         try:
-            other = calibrate(model, measured, SkewedPulse(start.peak_force, skew * start.duration, start.duration), "least-squares", **kw)
+            ct = contact_time if contact_time is not None else prepare(model, measured, s, None, kw.get("radius")).contact_time
+            cal = calibrate(model, measured, s, "least-squares", contact_time=ct, **kw)
         except InputError:
+            if skew is None:
+                raise
             continue
-        if _misfit(other) < _misfit(best) * (1 - 1e-6):
-            best = replace(other, start=start)
+        if best is None or _misfit(cal) < _misfit(best[0]) * (1 - 1e-6):
+            best = (replace(cal, start=start), ct)
     return best
 
 
@@ -637,9 +644,8 @@ def calibrate_checked(
 
     level, model = 0, level_model(0)
     note("fitting on the case's mesh")
-    cal = _best_start(model, measured, start, contact_time=contact_time, radius=radius, fit_radius=fit_radius)
-    # every later fit (other levels, defect correction) sees the same samples from the same first contact
-    contact_time = cal.prepared.contact_time
+    # every later fit (other levels, defect correction) starts from the chosen fit's first contact: the same samples
+    cal, contact_time = _best_start(model, measured, start, contact_time=contact_time, radius=radius, fit_radius=fit_radius)
     level_fits = {}
     while True:
         level_fits[level] = tuple(getattr(cal, n) for n in MAIN)
@@ -697,7 +703,9 @@ def calibrate_checked(
         f"and moves the fit by up to {worst:.2g} noise standard errors"
         + ("" if meets else f" (above {tolerance:g}: the time budget stopped the refinement; the standard errors include it)")
     )
-    check = ModelCheck(level, ratio**level, error_to_noise, shifts, noise, tolerance, meets, message, p_used, p_obs is not None, safety, level_fits)
+    check = ModelCheck(
+        level, ratio**level, error_to_noise, shifts, noise, tolerance, meets, message, p_used, p_obs is not None, safety, level_fits, contact_time
+    )
     if method == "least-squares":
         return replace(cal, standard_errors=total, check=check)
     other = calibrate(model, measured, start, method, contact_time=cal.prepared.contact_time, radius=cal.contact_radius, error_to_noise=error_to_noise)
