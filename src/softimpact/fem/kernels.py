@@ -46,6 +46,8 @@ from __future__ import annotations
 import copy
 import math
 from bisect import bisect_left, bisect_right
+from itertools import repeat
+from operator import mul, sub
 from types import SimpleNamespace
 
 import numpy as np
@@ -83,28 +85,30 @@ class _LineCompliance:
             return self.point, 0.0
         if -r < self.extent[0] - 1e-12 * r or r > self.extent[1] + 1e-12 * r:
             raise InputError(f"contact radius {r:.4g} m runs past the loadable surface nodes")
-        hi, dc, sin, cos = self.hi, self.dc, math.sin, math.cos
+        hi = self.hi
         i0, i1 = bisect_right(hi, -r), bisect_left(self.lo, r)
         w = math.pi / (2.0 * r)
-        h = self.c[i0] + self.c[i1 - 1]
-        dh = 0.0
-        for j in range(i0, i1 - 1):  # the inner segment ends the disc covers
-            x = w * hi[j]
-            h += dc[j] * sin(x)
-            dh -= dc[j] * cos(x) * x
-        return 0.5 * h, 0.5 * dh / r
+        # the inner segment ends the disc covers: their phases x_j = w·m_j, then the two sums, each summed
+        # in order by C-level iterator chains (a Python loop would cost a bytecode pass a term)
+        x = list(map(mul, repeat(w), hi[i0 : i1 - 1]))
+        dc = self.dc[i0 : i1 - 1]
+        h = sum(map(mul, dc, map(math.sin, x)), self.c[i0] + self.c[i1 - 1])
+        dh = sum(map(mul, map(mul, dc, map(math.cos, x)), x))
+        return 0.5 * h, -0.5 * dh / r
 
     def load(self, r: float, f: float, out: np.ndarray) -> None:
         """out ← f·s(r) (out zero on entry): the nodal loads of the converged step."""
         if r < self.half_spacing:
             out[self.patch.nearest] = f
             return
-        lo, hi = self.lo, self.hi
+        lo, hi, sin = self.lo, self.hi, math.sin
         w = math.pi / (2.0 * r)
         i0, i1 = bisect_right(hi, -r), bisect_left(lo, r)
-        a = np.clip(self.patch.lo[i0:i1], -r, r)
-        b = np.clip(self.patch.hi[i0:i1], -r, r)
-        out[i0:i1] = (0.5 * f) * (np.sin(w * b) - np.sin(w * a))
+        # the segment ends the disc covers, each shared by two nodes (lo[j + 1] is hi[j]), the outer two clipped to ±r
+        ends = [sin(w * min(max(lo[i0], -r), r))]
+        ends.extend(map(sin, map(mul, repeat(w), hi[i0 : i1 - 1])))
+        ends.append(sin(w * min(max(hi[i1 - 1], -r), r)))
+        out[i0:i1] = list(map(mul, repeat(0.5 * f), map(sub, ends[1:], ends)))
 
 
 class _TableCompliance:
@@ -312,11 +316,14 @@ class ContactKernels:
 
         F, al, ald, rad, x, xv, cwork, cen = ([0.0] * (N + 1) for _ in range(8))
         Qr = np.zeros((N + 1, p))  # Qr[N − j] = q_j = F_j·s_j: a contact's loads newest first, contiguous
+        Qflat, gflat = Qr.ravel(), g.ravel()  # the same, as one run of lags × nodes each (views)
         xv[0] = ald[0] = velocity
         xa = ala = 0.0
         memory = isinstance(law, HistoryLaw)  # (a protocol check: once, not per step)
         state = law.initial_state() if memory else None
         branch = law.branch(state) if memory else law
+        apart = getattr(law, "apart", None) if memory else None  # the memory's free flight in one call, where the law offers it
+        load = comp.load
         old = [0.0] * (N + 1)  # response to the loads of the earlier contacts
         start = None  # first step of the current contact
         iterations, last, left_at = 0, N, None
@@ -332,26 +339,39 @@ class ContactKernels:
                 tgt = pred - np.asarray(old[k + 1 : N + 1])
                 hit = np.flatnonzero(tgt > 0.0)
                 j = k + int(hit[0]) if hit.size else N
-                tgt, pred = tgt.tolist(), pred.tolist()
-                for i in range(k, j):
-                    a_new = tgt[i - k]
-                    q = r1 * ald[i] + r2 * ala - kappa * al[i]
-                    ald1 = kappa * a_new + q
-                    ala = (a_new - al[i] - dt * ald[i] - c2 * ala) / bdt2
-                    x[i + 1], xv[i + 1], al[i + 1], ald[i + 1], cwork[i + 1] = pred[i - k], v, a_new, ald1, cwork[i]
-                    if memory:
-                        state = law.advance(state, a_new, ald1)
+                n = j - k
+                tgt = tgt[:n].tolist()
+                rates = []
+                a_prev, ad = al[k], ald[k]
+                for a_new in tgt:  # α̇ and α̈ by Newmark's rules on α (as in contact, below)
+                    q = r1 * ad + r2 * ala - kappa * a_prev
+                    ala = (a_new - a_prev - dt * ad - c2 * ala) / bdt2
+                    ad = kappa * a_new + q
+                    rates.append(ad)
+                    a_prev = a_new
+                x[k + 1 : j + 1] = pred[:n].tolist()
+                xv[k + 1 : j + 1] = [v] * n
+                al[k + 1 : j + 1] = tgt
+                ald[k + 1 : j + 1] = rates
+                cwork[k + 1 : j + 1] = [cwork[k]] * n
+                if apart is not None:
+                    state, cen[k + 1 : j + 1] = apart(state, n)
+                    branch = law.branch(state)
+                elif memory:
+                    for i in range(k + 1, j + 1):
+                        state = law.advance(state, al[i], ald[i])
                         branch = law.branch(state)
-                        cen[i + 1] = branch.energy(a_new)
-                    # a law without memory stores nothing while apart (α ≤ 0): cen stays 0
-                    if stop_after is not None:
-                        away = a_new < 0.0 and ald1 < 0.0
+                        cen[i] = branch.energy(al[i])
+                # a law without memory stores nothing while apart (α ≤ 0): cen stays 0
+                if stop_after is not None:
+                    for i in range(k + 1, j + 1):
+                        away = al[i] < 0.0 and ald[i] < 0.0
                         if away and left_at is None:
-                            left_at = (i + 1) * dt
+                            left_at = i * dt
                         elif not away:
                             left_at = None
-                        if left_at is not None and (i + 1) * dt - left_at >= stop_after:
-                            last = i + 1
+                        if left_at is not None and i * dt - left_at >= stop_after:
+                            last = i
                             break
                 if last < N:
                     break
@@ -361,9 +381,9 @@ class ContactKernels:
             # a law with memory: the branch of the state the last step left (built there, for its energy)
             x_pred = x[k] + dt * xv[k] + c2 * xa
             w_hist = old[k + 1]
-            if start is not None:  # the current contact's loads, lags 1 … k + 1 − start
+            if start is not None:  # the current contact's loads, lags 1 … k + 1 − start: one dot product
                 L = k + 1 - start
-                w_hist += float(np.dot(g[1 : L + 1].ravel(), Qr[N - k : N - k + L].ravel()))
+                w_hist += float(np.dot(gflat[p : (L + 1) * p], Qflat[(N - k) * p : (N - k + L) * p]))
             target = x_pred - w_hist
             q = r1 * ald[k] + r2 * ala - kappa * al[k]
             if target > 0.0:
@@ -373,7 +393,7 @@ class ContactKernels:
             else:
                 a_new, f, r = target, 0.0, 0.0
             if f != 0.0:
-                comp.load(r, f, Qr[N - k - 1])
+                load(r, f, Qr[N - k - 1])
                 if start is None:
                     start = k + 1
             elif start is not None:  # contact ended: the free response to its loads, once

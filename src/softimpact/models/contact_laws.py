@@ -553,6 +553,23 @@ class ViscoelasticSoftLaw:
         strain = max(alpha, 0.0) / self.base.diameter
         return MaxwellState(strain, state.stress * E + g * (strain - state.strain))  # MaxwellBranch.stress(alpha)
 
+    def apart(self, state: MaxwellState, steps: int) -> tuple[MaxwellState, list[float]]:
+        """``steps`` steps with the bodies apart (α ≤ 0: the arm's strain α⁺/d is zero, its stress relaxes,
+        σ ← σ·E + g·(0 − ε)): the state after them and the contact energy after each [J], the values of
+        ``state = advance(state, α, α̇)`` then ``branch(state).energy(α)`` step by step for any α ≤ 0 (that
+        branch's stress at α is σ·E: the same arithmetic, without building a state and a branch a step:
+        the contact kernels' free flight)."""
+        E, g = self._decay()
+        const = self.branch(state)._const
+        half_sd, kappa = const[6], const[7]
+        strain, stress = state.strain, state.stress
+        energies = []
+        for _ in range(steps):
+            stress = stress * E + g * (0.0 - strain)
+            strain = 0.0
+            energies.append(0.0 + half_sd * (stress * E + g * (0.0 - 0.0)) ** 2 / kappa)
+        return (MaxwellState(strain, stress) if steps else state), energies
+
 
 # The contact laws by name (case files' ``contact.law``), each with the class it builds: one table,
 # as scipy's ``METHODS``. "identified" is a law.json of ``softimpact identify``: the soft-projectile
