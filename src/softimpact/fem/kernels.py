@@ -168,6 +168,14 @@ class _Mapped:
         out[self.index] = row[: self.index.size]
 
 
+def _response_force(law, alpha: float, rate: float) -> float:
+    return law.response(alpha, rate)[0]
+
+
+def _force(law, alpha: float, rate: float) -> float:
+    return law.force(alpha, rate)
+
+
 def _light(patch):
     """The patch without its mesh (a plate's disc keeps its tables and share; the mesh stays behind)."""
     inner = getattr(patch, "patch", None)
@@ -322,8 +330,10 @@ class ContactKernels:
         memory = isinstance(law, HistoryLaw)  # (a protocol check: once, not per step)
         state = law.initial_state() if memory else None
         branch = law.branch(state) if memory else law
-        apart = getattr(law, "apart", None) if memory else None  # the memory's free flight in one call, where the law offers it
+        # where the law offers them: its memory's free flight in one call, a converged step's state, branch and energy in one
+        apart, settle = (getattr(law, "apart", None), getattr(law, "settle", None)) if memory else (None, None)
         load = comp.load
+        top_force = _response_force if hasattr(branch, "response") else _force
         old = [0.0] * (N + 1)  # response to the loads of the earlier contacts
         start = None  # first step of the current contact
         iterations, last, left_at = 0, N, None
@@ -386,7 +396,11 @@ class ContactKernels:
                 w_hist += float(np.dot(gflat[p : (L + 1) * p], Qflat[(N - k) * p : (N - k + L) * p]))
             target = x_pred - w_hist
             q = r1 * ald[k] + r2 * ala - kappa * al[k]
-            if target > 0.0:
+            if target > 0.0 and F[k] == 0.0 and top_force(branch, target, kappa * target + q) == 0.0:
+                # no force at the bracket's top α̃ (a force clipped to zero, as by the Maxwell arm's negative
+                # stress while unloading): R(α̃) = 0 there, the root (R increases with α), without a Newton iteration
+                a_new, f, r = target, 0.0, branch.radius(target)
+            elif target > 0.0:
                 guess = 2.0 * al[k] - al[k - 1] if k >= 1 else target
                 a_new, f, r, its = newton_contact(branch, comp, hm, kappa, q, target, guess, k + 1, dt, try_top=True)
                 iterations += its
@@ -408,7 +422,9 @@ class ContactKernels:
             # Newmark's displacement rule on α = x − c·u gives α̈ without the structure's state
             ala = (a_new - al[k] - dt * ald[k] - c2 * ala) / bdt2
             cwork[k + 1] = cwork[k] + 0.5 * (F[k] + f) * (a_new - al[k])
-            if memory:
+            if settle is not None:
+                state, branch, cen[k + 1] = settle(state, a_new, ald[k + 1])
+            elif memory:
                 state = law.advance(state, a_new, ald[k + 1])
                 branch = law.branch(state)
                 cen[k + 1] = branch.energy(a_new)

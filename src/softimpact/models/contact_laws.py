@@ -464,6 +464,20 @@ class MaxwellBranch:
             object.__setattr__(law, "_branch_const", base)
         object.__setattr__(self, "_const", (*base, base[5] * self.gain / base[1]))  # last: (m·V²/d)·g/d
 
+    @classmethod
+    def _of(cls, law: ViscoelasticSoftLaw, strain_start: float, stress_start: float, gain: float) -> MaxwellBranch:
+        """``MaxwellBranch(law, strain_start, stress_start, gain)``, the same object, built without the frozen
+        dataclass's ``__init__`` and with the constants of the law's last gain reused (a contact loop builds
+        one branch a step: this is its cost)."""
+        last = law.__dict__.get("_branch_gain")
+        if last is None or last[0] != gain:
+            const = cls(law, strain_start, stress_start, gain)._const
+            last = (gain, const)
+            object.__setattr__(law, "_branch_gain", last)
+        branch = object.__new__(cls)
+        branch.__dict__.update(law=law, strain_start=strain_start, stress_start=stress_start, gain=gain, _const=last[1])
+        return branch
+
     def stress(self, alpha: float) -> float:
         """σ at the end of the step if the approach there is ``alpha`` [m]."""
         return self.stress_start + self.gain * (max(alpha, 0.0) / self._const[1] - self.strain_start)
@@ -497,7 +511,8 @@ class MaxwellBranch:
         """Elastic energy of the equilibrium part plus the arm spring's, ½·(mV²/d)·d·σ²/κ [J]."""
         sk, d, p, _, _, _, half_sd, kappa, _ = self._const
         elastic = sk * (alpha / d) ** p * alpha / (p + 1.0) if alpha > 0.0 else 0.0  # SoftProjectileLaw.energy
-        return elastic + half_sd * self.stress(alpha) ** 2 / kappa
+        stress = self.stress_start + self.gain * (max(alpha, 0.0) / d - self.strain_start)  # self.stress(alpha)
+        return elastic + half_sd * stress**2 / kappa
 
 
 @dataclass(frozen=True)
@@ -546,12 +561,26 @@ class ViscoelasticSoftLaw:
 
     def branch(self, state: MaxwellState) -> MaxwellBranch:
         E, g = self._decay()
-        return MaxwellBranch(self, state.strain, state.stress * E, g)
+        return MaxwellBranch._of(self, state.strain, state.stress * E, g)
 
     def advance(self, state: MaxwellState, alpha: float, rate: float) -> MaxwellState:
         E, g = self._decay()
         strain = max(alpha, 0.0) / self.base.diameter
         return MaxwellState(strain, state.stress * E + g * (strain - state.strain))  # MaxwellBranch.stress(alpha)
+
+    def settle(self, state: MaxwellState, alpha: float, rate: float) -> tuple[MaxwellState, MaxwellBranch, float]:
+        """A converged step's memory at once: ``advance(state, α, α̇)``, the branch of that state and its
+        :meth:`MaxwellBranch.energy` at α [J], the same values (one call a step in the contact kernels)."""
+        E, g = self._decay()
+        strain = max(alpha, 0.0) / self.base.diameter
+        stress = state.stress * E + g * (strain - state.strain)
+        new = object.__new__(MaxwellState)  # MaxwellState(strain, stress) without the frozen __init__
+        new.__dict__.update(strain=strain, stress=stress)
+        start = stress * E
+        branch = MaxwellBranch._of(self, strain, start, g)
+        sk, d, p, _, _, _, half_sd, kappa, _ = branch._const  # branch.energy(alpha), inlined:
+        elastic = sk * (alpha / d) ** p * alpha / (p + 1.0) if alpha > 0.0 else 0.0
+        return new, branch, elastic + half_sd * (start + g * (max(alpha, 0.0) / d - strain)) ** 2 / kappa
 
     def apart(self, state: MaxwellState, steps: int) -> tuple[MaxwellState, list[float]]:
         """``steps`` steps with the bodies apart (α ≤ 0: the arm's strain α⁺/d is zero, its stress relaxes,
