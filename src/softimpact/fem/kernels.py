@@ -46,8 +46,6 @@ from __future__ import annotations
 import copy
 import math
 from bisect import bisect_left, bisect_right
-from itertools import repeat
-from operator import mul, sub
 from types import SimpleNamespace
 
 import numpy as np
@@ -88,13 +86,14 @@ class _LineCompliance:
         hi = self.hi
         i0, i1 = bisect_right(hi, -r), bisect_left(self.lo, r)
         w = math.pi / (2.0 * r)
-        # the inner segment ends the disc covers: their phases x_j = w·m_j, then the two sums, each summed
-        # in order by C-level iterator chains (a Python loop would cost a bytecode pass a term)
-        x = list(map(mul, repeat(w), hi[i0 : i1 - 1]))
-        dc = self.dc[i0 : i1 - 1]
-        h = sum(map(mul, dc, map(math.sin, x)), self.c[i0] + self.c[i1 - 1])
-        dh = sum(map(mul, map(mul, dc, map(math.cos, x)), x))
-        return 0.5 * h, -0.5 * dh / r
+        sin, cos = math.sin, math.cos
+        h = self.c[i0] + self.c[i1 - 1]
+        dh = 0.0
+        for d, m in zip(self.dc[i0 : i1 - 1], hi[i0 : i1 - 1]):  # the inner segment ends the disc covers
+            x = w * m
+            h += d * sin(x)
+            dh -= d * cos(x) * x
+        return 0.5 * h, 0.5 * dh / r
 
     def load(self, r: float, f: float, out: np.ndarray) -> None:
         """out ← f·s(r) (out zero on entry): the nodal loads of the converged step."""
@@ -105,10 +104,15 @@ class _LineCompliance:
         w = math.pi / (2.0 * r)
         i0, i1 = bisect_right(hi, -r), bisect_left(lo, r)
         # the segment ends the disc covers, each shared by two nodes (lo[j + 1] is hi[j]), the outer two clipped to ±r
-        ends = [sin(w * min(max(lo[i0], -r), r))]
-        ends.extend(map(sin, map(mul, repeat(w), hi[i0 : i1 - 1])))
-        ends.append(sin(w * min(max(hi[i1 - 1], -r), r)))
-        out[i0:i1] = list(map(mul, repeat(0.5 * f), map(sub, ends[1:], ends)))
+        half = 0.5 * f
+        below = sin(w * min(max(lo[i0], -r), r))
+        loads = []
+        for m in hi[i0 : i1 - 1]:
+            above = sin(w * m)
+            loads.append(half * (above - below))
+            below = above
+        loads.append(half * (sin(w * min(max(hi[i1 - 1], -r), r)) - below))
+        out[i0:i1] = loads
 
 
 class _TableCompliance:
@@ -166,14 +170,6 @@ class _Mapped:
         row[:] = 0.0
         self.comp.load(r, f, row)
         out[self.index] = row[: self.index.size]
-
-
-def _response_force(law, alpha: float, rate: float) -> float:
-    return law.response(alpha, rate)[0]
-
-
-def _force(law, alpha: float, rate: float) -> float:
-    return law.force(alpha, rate)
 
 
 def _light(patch):
@@ -261,18 +257,25 @@ class ContactKernels:
         self.__dict__.update(state)
         self._compliance = _compliance(self.patch, self._lagged[0])
 
-    def _convolve(self, Q: np.ndarray, first: int, upto: int, rows) -> np.ndarray:
-        """y_m = Σ_{first ≤ j ≤ upto} K_{m−j}·q_j for every step m ≥ first (shape (len(rows), steps + 1)),
-        K the kernels of ``rows`` (0: the approach row, 1…q: the outputs), by one product with their
-        cached spectra over the patch nodes ever loaded only (a small contact loads a few of them)."""
-        Hk, nfft = self._Hk, self._nfft
-        loads = Q[first : upto + 1]
+    def _contact_spectrum(self, Qr: np.ndarray, start: int, upto: int) -> np.ndarray:
+        """The spectrum (1 + q, nfft/2 + 1) of the response of every kernel row (0: the approach row, 1…q: the
+        outputs) to the loads of steps ``start`` … ``upto`` (``Qr``: the run's loads, newest first), at their
+        place in the run: one transform of the patch nodes the contact loaded (a small contact loads few of
+        them), one product with the kernels' cached spectra. Its inverse transform at index m − 1 is
+        y_m = Σ_{start ≤ j ≤ upto} K_{m−j}·q_j (:meth:`_response`); the run's outputs are the sum over its contacts."""
+        N, nfft = self.steps, self._nfft
+        loads = Qr[N - upto : N - start + 1]  # steps upto … start
         used = np.flatnonzero(np.any(loads != 0.0, axis=0))
-        y = np.zeros((Hk[rows].shape[0], self.steps + 1))
         if used.size == 0:
-            return y
-        spec = np.einsum("qpk,pk->qk", Hk[rows][:, used], np.fft.rfft(loads[:, used].T, nfft, axis=-1))
-        y[:, first:] = np.fft.irfft(spec, nfft, axis=-1)[:, : self.steps + 1 - first]  # y[first + i] = Σ_l K_{i − l}·q_{first + l}
+            return np.zeros((self._Hk.shape[0], nfft // 2 + 1), complex)
+        placed = np.zeros((used.size, nfft))
+        placed[:, start - 1 : upto] = loads[::-1, used].T  # q_j at index j − 1
+        return np.einsum("qpk,pk->qk", self._Hk[:, used], np.fft.rfft(placed, axis=-1))
+
+    def _response(self, spectrum: np.ndarray) -> np.ndarray:
+        """y (rows, steps + 1) from a response spectrum of :meth:`_contact_spectrum`, y_0 = 0."""
+        y = np.zeros((spectrum.shape[0], self.steps + 1))
+        y[:, 1:] = np.fft.irfft(spectrum, self._nfft, axis=-1)[:, : self.steps]
         return y
 
     def compliance_for(self, structure: ContactStructure | None):
@@ -333,9 +336,10 @@ class ContactKernels:
         # where the law offers them: its memory's free flight in one call, a converged step's state, branch and energy in one
         apart, settle = (getattr(law, "apart", None), getattr(law, "settle", None)) if memory else (None, None)
         load = comp.load
-        top_force = _response_force if hasattr(branch, "response") else _force
+        responds = hasattr(branch, "response")  # (F, ∂F/∂α, ∂F/∂α̇) in one call
         old = [0.0] * (N + 1)  # response to the loads of the earlier contacts
         start = None  # first step of the current contact
+        total = None  # the spectrum of the response to the loads of the contacts ended so far
         iterations, last, left_at = 0, N, None
         k = 0
         while k < N:
@@ -396,23 +400,24 @@ class ContactKernels:
                 w_hist += float(np.dot(gflat[p : (L + 1) * p], Qflat[(N - k) * p : (N - k + L) * p]))
             target = x_pred - w_hist
             q = r1 * ald[k] + r2 * ala - kappa * al[k]
-            if target > 0.0 and F[k] == 0.0 and top_force(branch, target, kappa * target + q) == 0.0:
+            if target <= 0.0:
+                a_new, f, r = target, 0.0, 0.0
+            elif F[k] == 0.0 and (branch.response(target, kappa * target + q)[0] if responds else branch.force(target, kappa * target + q)) == 0.0:
                 # no force at the bracket's top α̃ (a force clipped to zero, as by the Maxwell arm's negative
                 # stress while unloading): R(α̃) = 0 there, the root (R increases with α), without a Newton iteration
                 a_new, f, r = target, 0.0, branch.radius(target)
-            elif target > 0.0:
+            else:
                 guess = 2.0 * al[k] - al[k - 1] if k >= 1 else target
                 a_new, f, r, its = newton_contact(branch, comp, hm, kappa, q, target, guess, k + 1, dt, try_top=True)
                 iterations += its
-            else:
-                a_new, f, r = target, 0.0, 0.0
             if f != 0.0:
                 load(r, f, Qr[N - k - 1])
                 if start is None:
                     start = k + 1
             elif start is not None:  # contact ended: the free response to its loads, once
-                fresh = self._convolve(Qr[::-1], start, k, slice(0, 1))[0]
-                old = (np.asarray(old) + fresh).tolist()
+                spectrum = self._contact_spectrum(Qr, start, k)
+                total = spectrum if total is None else total + spectrum
+                old = (np.asarray(old) + self._response(spectrum[:1])[0]).tolist()
                 start = None
             x[k + 1] = x_pred - hm * f
             xa1 = -f / mass
@@ -442,7 +447,10 @@ class ContactKernels:
                 if left_at is not None and k * dt - left_at >= stop_after:
                     last = k
                     break
-        y = self._convolve(Qr[::-1], 1, N, slice(None))  # (1 + q, N + 1): approach row, then the outputs
+        if start is not None:  # in contact at the end
+            spectrum = self._contact_spectrum(Qr, start, N)
+            total = spectrum if total is None else total + spectrum
+        y = self._response(total) if total is not None else np.zeros((self._Hk.shape[0], N + 1))  # (1 + q, N + 1): approach row, then the outputs
         sl = slice(0, last + 1)
         nan = np.full(last + 1, np.nan)
         t = np.arange(N + 1) * dt

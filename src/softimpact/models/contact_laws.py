@@ -571,15 +571,21 @@ class ViscoelasticSoftLaw:
     def settle(self, state: MaxwellState, alpha: float, rate: float) -> tuple[MaxwellState, MaxwellBranch, float]:
         """A converged step's memory at once: ``advance(state, α, α̇)``, the branch of that state and its
         :meth:`MaxwellBranch.energy` at α [J], the same values (one call a step in the contact kernels)."""
-        E, g = self._decay()
-        strain = max(alpha, 0.0) / self.base.diameter
+        steady = self.__dict__.get("_steady")
+        if steady is None:  # (E, g, the branches' constants), once per bound law
+            E, g = self._decay()
+            steady = (E, g, MaxwellBranch._of(self, 0.0, 0.0, g)._const)
+            object.__setattr__(self, "_steady", steady)
+        E, g, const = steady
+        sk, d, p, _, _, _, half_sd, kappa, _ = const  # d: the base law's diameter
+        strain = max(alpha, 0.0) / d
         stress = state.stress * E + g * (strain - state.strain)
         new = object.__new__(MaxwellState)  # MaxwellState(strain, stress) without the frozen __init__
         new.__dict__.update(strain=strain, stress=stress)
         start = stress * E
-        branch = MaxwellBranch._of(self, strain, start, g)
-        sk, d, p, _, _, _, half_sd, kappa, _ = branch._const  # branch.energy(alpha), inlined:
-        elastic = sk * (alpha / d) ** p * alpha / (p + 1.0) if alpha > 0.0 else 0.0
+        branch = object.__new__(MaxwellBranch)  # MaxwellBranch(self, strain, start, g), as _of builds it
+        branch.__dict__.update(law=self, strain_start=strain, stress_start=start, gain=g, _const=const)
+        elastic = sk * (alpha / d) ** p * alpha / (p + 1.0) if alpha > 0.0 else 0.0  # branch.energy(alpha), inlined
         return new, branch, elastic + half_sd * (start + g * (max(alpha, 0.0) / d - strain)) ** 2 / kappa
 
     def apart(self, state: MaxwellState, steps: int) -> tuple[MaxwellState, list[float]]:
