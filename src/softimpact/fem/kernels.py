@@ -75,21 +75,21 @@ class _LineCompliance:
         c = np.asarray(cG, float)
         self.lo, self.hi, self.c = patch.lo.tolist(), patch.hi.tolist(), c.tolist()
         self.dc = (c[:-1] - c[1:]).tolist()  # c_j − c_{j+1}: the weight of the end shared by nodes j and j + 1
+        self.ends = list(zip(self.dc, self.hi))  # (weight, position) of each inner segment end
+        self.x0, self.x1 = self.extent = patch.extent
         self.point = self.c[patch.nearest]
-        self.extent = patch.extent
 
     def __call__(self, r: float) -> tuple[float, float]:
         if r < self.half_spacing:
             return self.point, 0.0
-        if -r < self.extent[0] - 1e-12 * r or r > self.extent[1] + 1e-12 * r:
+        if -r < self.x0 - 1e-12 * r or r > self.x1 + 1e-12 * r:
             raise InputError(f"contact radius {r:.4g} m runs past the loadable surface nodes")
-        hi = self.hi
-        i0, i1 = bisect_right(hi, -r), bisect_left(self.lo, r)
+        i0, i1 = bisect_right(self.hi, -r), bisect_left(self.lo, r)
         w = math.pi / (2.0 * r)
         sin, cos = math.sin, math.cos
         h = self.c[i0] + self.c[i1 - 1]
         dh = 0.0
-        for d, m in zip(self.dc[i0 : i1 - 1], hi[i0 : i1 - 1]):  # the inner segment ends the disc covers
+        for d, m in self.ends[i0 : i1 - 1]:  # the inner segment ends the disc covers
             x = w * m
             h += d * sin(x)
             dh -= d * cos(x) * x
