@@ -49,6 +49,7 @@ from bisect import bisect_left, bisect_right
 from types import SimpleNamespace
 
 import numpy as np
+from scipy.fft import next_fast_len
 
 from ..errors import InputError
 from ..models.protocols import HistoryLaw
@@ -172,6 +173,46 @@ class _Mapped:
         out[self.index] = row[: self.index.size]
 
 
+def _reciprocal_march(st: NewmarkStepper, rows: np.ndarray, dofs: np.ndarray, sign: float, steps: int) -> np.ndarray:
+    """The kernels (m, p, steps) of the m = 1 + q rows ``rows`` (m, n) for unit loads on the p surface DOFs
+    ``dofs`` (direction ``sign``), by reciprocity: one Newmark march of the structure at rest under the
+    loads f_1 = rowsᵀ at step 1 only, its m right-hand sides in one solve a step, the surface DOFs read
+    after each step, kernel[:, :, i] = sign·u_{i+1}[dofs]ᵀ. The numbers of
+    :meth:`ImpulseResponse.reciprocal` (``kernel``) to the last bit: the stepper's predictor
+    u' = K_eff⁻¹·[M·(a0·u + a2·v + a3·a) + C·(a1·u + a4·v + a5·a)] and corrector a' = a0·(u' − u) − a2·v − a3·a,
+    v' = v + a6·a + a7·a' in the same order, with a2·v formed once for both, the products in place, and
+    the outputs read by index instead of a sparse product: the march's own cost beside its solves and
+    its product with M, which no ordering changes (a band solve with m right-hand sides costs m solves;
+    BENCHMARKS.md)."""
+    f1 = np.asarray(rows, float).T.copy()  # (n, m)
+    a0, a1, a2, a3, a4, a5, a6, a7 = st.a0, st.a1, st.a2, st.a3, st.a4, st.a5, st.a6, st.a7
+    M, C = st.M, st.C
+    unit = a3 == 1.0  # average acceleration: a3·a is a
+    seen = np.empty((steps, dofs.size, f1.shape[1]))  # time-major: each step writes one contiguous block
+    u = st.solve(f1)  # from rest: u = K_eff⁻¹·f_1, a = a0·u, v = a7·a
+    a = a0 * u
+    v = a7 * a
+    seen[0] = u[dofs]
+    for k in range(1, steps):
+        a2v = a2 * v
+        z = a0 * u
+        z += a2v
+        z += a if unit else a3 * a
+        rhs = M @ z
+        if C is not None:
+            rhs = rhs + C @ (a1 * u + a4 * v + a5 * a)
+        u1 = st.solve(rhs)
+        acc = u1 - u
+        acc *= a0
+        acc -= a2v
+        acc -= a if unit else a3 * a
+        v += a6 * a
+        v += a7 * acc
+        u, a = u1, acc
+        seen[k] = u[dofs]
+    return np.ascontiguousarray((sign * seen).transpose(2, 1, 0))
+
+
 def _light(patch):
     """The patch without its mesh (a plate's disc keeps its tables and share; the mesh stays behind)."""
     inner = getattr(patch, "patch", None)
@@ -216,14 +257,20 @@ class ContactKernels:
         B = np.zeros((n, dofs.size))
         B[dofs, np.arange(dofs.size)] = float(structure.load_sign)
         rows = np.vstack([np.asarray(structure.approach_row, float)[None, :], np.asarray(structure.outputs, float).reshape(-1, n)])
-        self.engine = ImpulseResponse.reciprocal(st, B, self.steps, rows)
-        self.approach = self.engine.kernel[0]  # (p, steps)
-        self.outputs = self.engine.kernel[1:]  # (q, p, steps)
+        if st.dense:  # small models (a bar): the response engine's march, one product a step
+            self.engine = ImpulseResponse.reciprocal(st, B, self.steps, rows)
+            kernel = self.engine.kernel
+        else:
+            self.engine = None
+            kernel = _reciprocal_march(st, rows, dofs, float(structure.load_sign), self.steps)
+        self.approach = kernel[0]  # (p, steps)
+        self.outputs = kernel[1:]  # (q, p, steps)
         self._lagged = np.ascontiguousarray(self.approach.T)  # (steps, p): row i is g_i
         self._compliance = _compliance(self.patch, self._lagged[0])
         self._column = {int(d): i for i, d in enumerate(dofs)}
         self._mapped: tuple | None = None  # (surface DOFs, compliance) of the last smaller structure run
-        self._Hk, self._nfft = self.engine._spectrum()  # the kernels' spectra: part of the build, not of the first run
+        self._nfft = next_fast_len(2 * self.steps - 1, real=True)  # no wrap-around (ImpulseResponse._spectrum)
+        self._Hk = np.fft.rfft(kernel, self._nfft, axis=-1)  # the kernels' spectra: part of the build, not of the first run
         self.solves = st.nsolve
 
     @property
