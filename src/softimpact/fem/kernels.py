@@ -20,17 +20,23 @@ round-off (the sums are taken in another order). The approach's rate and
 acceleration follow from Newmark's rule applied to α itself (x and c·u each obey
 it, so their difference does), which needs no structural state.
 
-Cost (the build: one Newmark run with 1 + q right-hand sides, about 1.5–2.5 direct coupled runs;
-a run: milliseconds, see BENCHMARKS.md). The scalar state is plain Python floats. In the Newton
+Cost. The build is one Newmark march with 1 + q right-hand sides (the approach row and the q
+outputs, by reciprocity), solved in one call a step (:func:`_reciprocal_march`): about 1.6–2.6 direct
+coupled runs, since a band or sparse solve with m right-hand sides costs about m solves
+(BENCHMARKS.md). A run costs milliseconds. The scalar state is plain Python floats. In the Newton
 iteration the patch enters only through h_s(a) = c·G·s(a) and dh_s/da, evaluated exactly without
 forming s: over the nodes the disc reaches (the cosine line patch) or as the interpolation of the
 table's c·G·s_k computed once (a plate's disc, whose shares interpolate a table); s itself is formed
-once per step, at the root. While in contact, the history sum runs over the current contact's steps
-only (one contiguous dot product; the earlier contacts are a precomputed "old" response). While
-apart, no load is added: the structure's response to the last contact is one FFT product with the
-kernels' cached spectra, the impactor flies at constant speed, and the next contact is found by one
-vectorised test; the steps between carry only the scalar recursions of α̇, α̈ (and a law's memory).
-The outputs are one FFT convolution at the end, over the patch nodes ever loaded.
+once per step, at the root. A step whose force is zero at the bracket's top α̃ (a force clipped to
+zero, as by a Maxwell arm's negative stress while unloading) has its root there and takes it without
+a Newton solve. While in contact, the history sum runs over the current contact's steps only (one
+contiguous dot product; the earlier contacts are a precomputed "old" response). When a contact ends,
+the response to its loads is one FFT product with the kernels' cached spectra, kept for the outputs
+(the run's outputs are the sum over its contacts: one inverse transform at the end). While apart, no
+load is added, the impactor flies at constant speed, and the next contact is found by one vectorised
+test; the steps between carry only the scalar recursions of α̇, α̈, and a law's memory in one call
+where the law offers it (``apart``; ``settle`` gives a converged step's state, branch and energy at
+once: :class:`softimpact.models.contact_laws.ViscoelasticSoftLaw`).
 
 A smaller impactor (a smaller contact reach, its loadable nodes among the kernels') runs on the same
 kernels with its own patch (:meth:`ContactKernels.compliance_for`). Kernels pickle without the

@@ -488,9 +488,10 @@ class MaxwellBranch:
         if alpha <= 0.0:
             return 0.0, 0.0, 0.0
         sk, d, p, c, v, scale, _, _, kg = self._const
-        elastic = sk * (alpha / d) ** p
+        ad = alpha / d
+        elastic = sk * ad**p
         unclipped = elastic * (1.0 + c * rate / v)
-        f = unclipped + scale * (self.stress_start + self.gain * (alpha / d - self.strain_start))
+        f = unclipped + scale * (self.stress_start + self.gain * (ad - self.strain_start))
         if f <= 0.0:
             return 0.0, 0.0, 0.0
         return f, p * unclipped / alpha + kg, elastic * c / v
