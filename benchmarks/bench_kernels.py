@@ -7,13 +7,15 @@ Prints:
    it); the kernel build (:func:`softimpact.workflows.coupled.impact_kernels`) and its ratio to the direct
    run; the median of repeated kernel runs (``ContactKernels.run``) of the case's steel ball through
    Hertz's law and of a 1/2-in silicone-rubber ball at 2000 in/s through the identified law with its
-   Maxwell arm (tests/data/law-v-main.json), and of the whole ``run_impact(method="kernels")`` (summary
-   scalars included);
+   Maxwell arm (tests/data/law-v-main.json, with its Newton iterations), and of the whole
+   ``run_impact(method="kernels")`` (summary scalars included); each law's largest force difference
+   from direct stepping over the peak force;
 2. the cost growth with the mesh: the plate at 16², 32², 48² MITC9 (DOF, direct run, build, run);
 3. with ``--mc``: `softimpact sweep` Monte Carlo of 1000 coupled runs on the 48² plate (velocity
    U(1000, 5000) in/s, diameter U(3/8, 1/2) in, the law's parameters drawn from law.json), on 2 Dask
    workers, the wall time of the whole process (start, kernel build, runs, files).
 Usage: python benchmarks/bench_kernels.py [repeats] [--mc | --only-mc] [--no-growth]
+The same cases as an asv suite (a history over commits): benchmarks/asv/kernels.py, BENCHMARKS.md.
 """
 
 import os
