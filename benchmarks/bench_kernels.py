@@ -7,13 +7,15 @@ Prints:
    it); the kernel build (:func:`softimpact.workflows.coupled.impact_kernels`) and its ratio to the direct
    run; the median of repeated kernel runs (``ContactKernels.run``) of the case's steel ball through
    Hertz's law and of a 1/2-in silicone-rubber ball at 2000 in/s through the identified law with its
-   Maxwell arm (tests/data/law-v-main.json), and of the whole ``run_impact(method="kernels")`` (summary
-   scalars included);
+   Maxwell arm (tests/data/law-v-main.json, with its Newton iterations), and of the whole
+   ``run_impact(method="kernels")`` (summary scalars included); each law's largest force difference
+   from direct stepping over the peak force;
 2. the cost growth with the mesh: the plate at 16², 32², 48² MITC9 (DOF, direct run, build, run);
 3. with ``--mc``: `softimpact sweep` Monte Carlo of 1000 coupled runs on the 48² plate (velocity
    U(1000, 5000) in/s, diameter U(3/8, 1/2) in, the law's parameters drawn from law.json), on 2 Dask
    workers, the wall time of the whole process (start, kernel build, runs, files).
 Usage: python benchmarks/bench_kernels.py [repeats] [--mc | --only-mc] [--no-growth]
+The same cases as an asv suite (a history over commits): benchmarks/asv/kernels.py, BENCHMARKS.md.
 """
 
 import os
@@ -111,13 +113,16 @@ def structure(name: str, steel, rubber, repeats: int) -> dict:
     fast = kernels.run(steel.law, imp.mass, imp.velocity)
     err = float(abs(fast.force - direct.force).max() / direct.force.max())
     contact = int((fast.force > 0).sum())
-    soft_contact = int((kernels.run(rubber.law, ri.mass, ri.velocity).force > 0).sum())
+    slow = kernels.run(rubber.law, ri.mass, ri.velocity)
+    soft_contact = int((slow.force > 0).sum())
+    _, soft_direct = run_impact(rubber, model, energy=False, method="direct")
+    soft_err = float(abs(slow.force - soft_direct.force).max() / soft_direct.force.max())
     print(
         f"{name}: {model.size} DOF, {steel.solver.steps} steps; model {t_model:.2f} s; direct coupled run {t_direct:.3f} s; "
         f"kernel build {t_build:.3f} s = {t_build / t_direct:.2f} x direct; kernel run (Hertz, {contact} steps in contact) median {run[0] * 1e3:.1f} ms "
-        f"(best {run[1] * 1e3:.1f}), run_impact on kernels {whole[0] * 1e3:.1f} ms; identified law ({soft_contact} steps in contact) median "
-        f"{soft[0] * 1e3:.1f} ms (best {soft[1] * 1e3:.1f}); "
-        f"max |F_kernels - F_direct| / F_peak = {err:.1e}",
+        f"(best {run[1] * 1e3:.1f}), run_impact on kernels {whole[0] * 1e3:.1f} ms; identified law ({soft_contact} steps in contact, "
+        f"{slow.newton_iterations} Newton iterations) median {soft[0] * 1e3:.1f} ms (best {soft[1] * 1e3:.1f}); "
+        f"max |F_kernels - F_direct| / F_peak = {err:.1e} (Hertz), {soft_err:.1e} (identified law)",
         flush=True,
     )
     return {"direct": t_direct, "build": t_build, "run": run, "soft": soft}

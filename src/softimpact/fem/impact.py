@@ -387,7 +387,8 @@ def newton_contact(law, comp, hm: float, kappa: float, q: float, target: float, 
             f = law.force(a, rate)
             stiff, damp = law.stiffness(a, rate), law.damping(a, rate)
         r = law.radius(a)
-        hs, dhs = comp(r)
+        # h_s enters only multiplied by F, ∂F/∂α, ∂F/∂α̇: not evaluated where all three vanish (a clipped force)
+        hs, dhs = comp(r) if f != 0.0 or stiff != 0.0 or damp != 0.0 else (0.0, 0.0)
         h = hm + hs
         R = a - target + f * h
         if R > 0.0:

@@ -20,17 +20,23 @@ round-off (the sums are taken in another order). The approach's rate and
 acceleration follow from Newmark's rule applied to α itself (x and c·u each obey
 it, so their difference does), which needs no structural state.
 
-Cost (the build: one Newmark run with 1 + q right-hand sides, about 1.5–2.5 direct coupled runs;
-a run: milliseconds, see BENCHMARKS.md). The scalar state is plain Python floats. In the Newton
+Cost. The build is one Newmark march with 1 + q right-hand sides (the approach row and the q
+outputs, by reciprocity), solved in one call a step (:func:`_reciprocal_march`): about 1.6–2.6 direct
+coupled runs, since a band or sparse solve with m right-hand sides costs about m solves
+(BENCHMARKS.md). A run costs milliseconds. The scalar state is plain Python floats. In the Newton
 iteration the patch enters only through h_s(a) = c·G·s(a) and dh_s/da, evaluated exactly without
 forming s: over the nodes the disc reaches (the cosine line patch) or as the interpolation of the
 table's c·G·s_k computed once (a plate's disc, whose shares interpolate a table); s itself is formed
-once per step, at the root. While in contact, the history sum runs over the current contact's steps
-only (one contiguous dot product; the earlier contacts are a precomputed "old" response). While
-apart, no load is added: the structure's response to the last contact is one FFT product with the
-kernels' cached spectra, the impactor flies at constant speed, and the next contact is found by one
-vectorised test; the steps between carry only the scalar recursions of α̇, α̈ (and a law's memory).
-The outputs are one FFT convolution at the end, over the patch nodes ever loaded.
+once per step, at the root. A step whose force is zero at the bracket's top α̃ (a force clipped to
+zero, as by a Maxwell arm's negative stress while unloading) has its root there and takes it without
+a Newton solve. While in contact, the history sum runs over the current contact's steps only (one
+contiguous dot product; the earlier contacts are a precomputed "old" response). When a contact ends,
+the response to its loads is one FFT product with the kernels' cached spectra, kept for the outputs
+(the run's outputs are the sum over its contacts: one inverse transform at the end). While apart, no
+load is added, the impactor flies at constant speed, and the next contact is found by one vectorised
+test; the steps between carry only the scalar recursions of α̇, α̈, and a law's memory in one call
+where the law offers it (``apart``; ``settle`` gives a converged step's state, branch and energy at
+once: :class:`softimpact.models.contact_laws.ViscoelasticSoftLaw`).
 
 A smaller impactor (a smaller contact reach, its loadable nodes among the kernels') runs on the same
 kernels with its own patch (:meth:`ContactKernels.compliance_for`). Kernels pickle without the
@@ -49,6 +55,7 @@ from bisect import bisect_left, bisect_right
 from types import SimpleNamespace
 
 import numpy as np
+from scipy.fft import next_fast_len
 
 from ..errors import InputError
 from ..models.protocols import HistoryLaw
@@ -75,23 +82,24 @@ class _LineCompliance:
         c = np.asarray(cG, float)
         self.lo, self.hi, self.c = patch.lo.tolist(), patch.hi.tolist(), c.tolist()
         self.dc = (c[:-1] - c[1:]).tolist()  # c_j − c_{j+1}: the weight of the end shared by nodes j and j + 1
+        self.ends = list(zip(self.dc, self.hi))  # (weight, position) of each inner segment end
+        self.x0, self.x1 = self.extent = patch.extent
         self.point = self.c[patch.nearest]
-        self.extent = patch.extent
 
     def __call__(self, r: float) -> tuple[float, float]:
         if r < self.half_spacing:
             return self.point, 0.0
-        if -r < self.extent[0] - 1e-12 * r or r > self.extent[1] + 1e-12 * r:
+        if -r < self.x0 - 1e-12 * r or r > self.x1 + 1e-12 * r:
             raise InputError(f"contact radius {r:.4g} m runs past the loadable surface nodes")
-        hi, dc, sin, cos = self.hi, self.dc, math.sin, math.cos
-        i0, i1 = bisect_right(hi, -r), bisect_left(self.lo, r)
+        i0, i1 = bisect_right(self.hi, -r), bisect_left(self.lo, r)
         w = math.pi / (2.0 * r)
+        sin, cos = math.sin, math.cos
         h = self.c[i0] + self.c[i1 - 1]
         dh = 0.0
-        for j in range(i0, i1 - 1):  # the inner segment ends the disc covers
-            x = w * hi[j]
-            h += dc[j] * sin(x)
-            dh -= dc[j] * cos(x) * x
+        for d, m in self.ends[i0 : i1 - 1]:  # the inner segment ends the disc covers
+            x = w * m
+            h += d * sin(x)
+            dh -= d * cos(x) * x
         return 0.5 * h, 0.5 * dh / r
 
     def load(self, r: float, f: float, out: np.ndarray) -> None:
@@ -99,12 +107,19 @@ class _LineCompliance:
         if r < self.half_spacing:
             out[self.patch.nearest] = f
             return
-        lo, hi = self.lo, self.hi
+        lo, hi, sin = self.lo, self.hi, math.sin
         w = math.pi / (2.0 * r)
         i0, i1 = bisect_right(hi, -r), bisect_left(lo, r)
-        a = np.clip(self.patch.lo[i0:i1], -r, r)
-        b = np.clip(self.patch.hi[i0:i1], -r, r)
-        out[i0:i1] = (0.5 * f) * (np.sin(w * b) - np.sin(w * a))
+        # the segment ends the disc covers, each shared by two nodes (lo[j + 1] is hi[j]), the outer two clipped to ±r
+        half = 0.5 * f
+        below = sin(w * min(max(lo[i0], -r), r))
+        loads = []
+        for m in hi[i0 : i1 - 1]:
+            above = sin(w * m)
+            loads.append(half * (above - below))
+            below = above
+        loads.append(half * (sin(w * min(max(hi[i1 - 1], -r), r)) - below))
+        out[i0:i1] = loads
 
 
 class _TableCompliance:
@@ -164,6 +179,46 @@ class _Mapped:
         out[self.index] = row[: self.index.size]
 
 
+def _reciprocal_march(st: NewmarkStepper, rows: np.ndarray, dofs: np.ndarray, sign: float, steps: int) -> np.ndarray:
+    """The kernels (m, p, steps) of the m = 1 + q rows ``rows`` (m, n) for unit loads on the p surface DOFs
+    ``dofs`` (direction ``sign``), by reciprocity: one Newmark march of the structure at rest under the
+    loads f_1 = rowsᵀ at step 1 only, its m right-hand sides in one solve a step, the surface DOFs read
+    after each step, kernel[:, :, i] = sign·u_{i+1}[dofs]ᵀ. The numbers of
+    :meth:`ImpulseResponse.reciprocal` (``kernel``) to the last bit: the stepper's predictor
+    u' = K_eff⁻¹·[M·(a0·u + a2·v + a3·a) + C·(a1·u + a4·v + a5·a)] and corrector a' = a0·(u' − u) − a2·v − a3·a,
+    v' = v + a6·a + a7·a' in the same order, with a2·v formed once for both, the products in place, and
+    the outputs read by index instead of a sparse product: the march's own cost beside its solves and
+    its product with M, which no ordering changes (a band solve with m right-hand sides costs m solves;
+    BENCHMARKS.md)."""
+    f1 = np.asarray(rows, float).T.copy()  # (n, m)
+    a0, a1, a2, a3, a4, a5, a6, a7 = st.a0, st.a1, st.a2, st.a3, st.a4, st.a5, st.a6, st.a7
+    M, C = st.M, st.C
+    unit = a3 == 1.0  # average acceleration: a3·a is a
+    seen = np.empty((steps, dofs.size, f1.shape[1]))  # time-major: each step writes one contiguous block
+    u = st.solve(f1)  # from rest: u = K_eff⁻¹·f_1, a = a0·u, v = a7·a
+    a = a0 * u
+    v = a7 * a
+    seen[0] = u[dofs]
+    for k in range(1, steps):
+        a2v = a2 * v
+        z = a0 * u
+        z += a2v
+        z += a if unit else a3 * a
+        rhs = M @ z
+        if C is not None:
+            rhs = rhs + C @ (a1 * u + a4 * v + a5 * a)
+        u1 = st.solve(rhs)
+        acc = u1 - u
+        acc *= a0
+        acc -= a2v
+        acc -= a if unit else a3 * a
+        v += a6 * a
+        v += a7 * acc
+        u, a = u1, acc
+        seen[k] = u[dofs]
+    return np.ascontiguousarray((sign * seen).transpose(2, 1, 0))
+
+
 def _light(patch):
     """The patch without its mesh (a plate's disc keeps its tables and share; the mesh stays behind)."""
     inner = getattr(patch, "patch", None)
@@ -208,14 +263,20 @@ class ContactKernels:
         B = np.zeros((n, dofs.size))
         B[dofs, np.arange(dofs.size)] = float(structure.load_sign)
         rows = np.vstack([np.asarray(structure.approach_row, float)[None, :], np.asarray(structure.outputs, float).reshape(-1, n)])
-        self.engine = ImpulseResponse.reciprocal(st, B, self.steps, rows)
-        self.approach = self.engine.kernel[0]  # (p, steps)
-        self.outputs = self.engine.kernel[1:]  # (q, p, steps)
+        if st.dense:  # small models (a bar): the response engine's march, one product a step
+            self.engine = ImpulseResponse.reciprocal(st, B, self.steps, rows)
+            kernel = self.engine.kernel
+        else:
+            self.engine = None
+            kernel = _reciprocal_march(st, rows, dofs, float(structure.load_sign), self.steps)
+        self.approach = kernel[0]  # (p, steps)
+        self.outputs = kernel[1:]  # (q, p, steps)
         self._lagged = np.ascontiguousarray(self.approach.T)  # (steps, p): row i is g_i
         self._compliance = _compliance(self.patch, self._lagged[0])
         self._column = {int(d): i for i, d in enumerate(dofs)}
         self._mapped: tuple | None = None  # (surface DOFs, compliance) of the last smaller structure run
-        self._Hk, self._nfft = self.engine._spectrum()  # the kernels' spectra: part of the build, not of the first run
+        self._nfft = next_fast_len(2 * self.steps - 1, real=True)  # no wrap-around (ImpulseResponse._spectrum)
+        self._Hk = np.fft.rfft(kernel, self._nfft, axis=-1)  # the kernels' spectra: part of the build, not of the first run
         self.solves = st.nsolve
 
     @property
@@ -249,18 +310,25 @@ class ContactKernels:
         self.__dict__.update(state)
         self._compliance = _compliance(self.patch, self._lagged[0])
 
-    def _convolve(self, Q: np.ndarray, first: int, upto: int, rows) -> np.ndarray:
-        """y_m = Σ_{first ≤ j ≤ upto} K_{m−j}·q_j for every step m ≥ first (shape (len(rows), steps + 1)),
-        K the kernels of ``rows`` (0: the approach row, 1…q: the outputs), by one product with their
-        cached spectra over the patch nodes ever loaded only (a small contact loads a few of them)."""
-        Hk, nfft = self._Hk, self._nfft
-        loads = Q[first : upto + 1]
+    def _contact_spectrum(self, Qr: np.ndarray, start: int, upto: int) -> np.ndarray:
+        """The spectrum (1 + q, nfft/2 + 1) of the response of every kernel row (0: the approach row, 1…q: the
+        outputs) to the loads of steps ``start`` … ``upto`` (``Qr``: the run's loads, newest first), at their
+        place in the run: one transform of the patch nodes the contact loaded (a small contact loads few of
+        them), one product with the kernels' cached spectra. Its inverse transform at index m − 1 is
+        y_m = Σ_{start ≤ j ≤ upto} K_{m−j}·q_j (:meth:`_response`); the run's outputs are the sum over its contacts."""
+        N, nfft = self.steps, self._nfft
+        loads = Qr[N - upto : N - start + 1]  # steps upto … start
         used = np.flatnonzero(np.any(loads != 0.0, axis=0))
-        y = np.zeros((Hk[rows].shape[0], self.steps + 1))
         if used.size == 0:
-            return y
-        spec = np.einsum("qpk,pk->qk", Hk[rows][:, used], np.fft.rfft(loads[:, used].T, nfft, axis=-1))
-        y[:, first:] = np.fft.irfft(spec, nfft, axis=-1)[:, : self.steps + 1 - first]  # y[first + i] = Σ_l K_{i − l}·q_{first + l}
+            return np.zeros((self._Hk.shape[0], nfft // 2 + 1), complex)
+        placed = np.zeros((used.size, nfft))
+        placed[:, start - 1 : upto] = loads[::-1, used].T  # q_j at index j − 1
+        return np.einsum("qpk,pk->qk", self._Hk[:, used], np.fft.rfft(placed, axis=-1))
+
+    def _response(self, spectrum: np.ndarray) -> np.ndarray:
+        """y (rows, steps + 1) from a response spectrum of :meth:`_contact_spectrum`, y_0 = 0."""
+        y = np.zeros((spectrum.shape[0], self.steps + 1))
+        y[:, 1:] = np.fft.irfft(spectrum, self._nfft, axis=-1)[:, : self.steps]
         return y
 
     def compliance_for(self, structure: ContactStructure | None):
@@ -312,13 +380,19 @@ class ContactKernels:
 
         F, al, ald, rad, x, xv, cwork, cen = ([0.0] * (N + 1) for _ in range(8))
         Qr = np.zeros((N + 1, p))  # Qr[N − j] = q_j = F_j·s_j: a contact's loads newest first, contiguous
+        Qflat, gflat = Qr.ravel(), g.ravel()  # the same, as one run of lags × nodes each (views)
         xv[0] = ald[0] = velocity
         xa = ala = 0.0
         memory = isinstance(law, HistoryLaw)  # (a protocol check: once, not per step)
         state = law.initial_state() if memory else None
         branch = law.branch(state) if memory else law
+        # where the law offers them: its memory's free flight in one call, a converged step's state, branch and energy in one
+        apart, settle = (getattr(law, "apart", None), getattr(law, "settle", None)) if memory else (None, None)
+        load = comp.load
+        responds = hasattr(branch, "response")  # (F, ∂F/∂α, ∂F/∂α̇) in one call
         old = [0.0] * (N + 1)  # response to the loads of the earlier contacts
         start = None  # first step of the current contact
+        total = None  # the spectrum of the response to the loads of the contacts ended so far
         iterations, last, left_at = 0, N, None
         k = 0
         while k < N:
@@ -332,26 +406,39 @@ class ContactKernels:
                 tgt = pred - np.asarray(old[k + 1 : N + 1])
                 hit = np.flatnonzero(tgt > 0.0)
                 j = k + int(hit[0]) if hit.size else N
-                tgt, pred = tgt.tolist(), pred.tolist()
-                for i in range(k, j):
-                    a_new = tgt[i - k]
-                    q = r1 * ald[i] + r2 * ala - kappa * al[i]
-                    ald1 = kappa * a_new + q
-                    ala = (a_new - al[i] - dt * ald[i] - c2 * ala) / bdt2
-                    x[i + 1], xv[i + 1], al[i + 1], ald[i + 1], cwork[i + 1] = pred[i - k], v, a_new, ald1, cwork[i]
-                    if memory:
-                        state = law.advance(state, a_new, ald1)
+                n = j - k
+                tgt = tgt[:n].tolist()
+                rates = []
+                a_prev, ad = al[k], ald[k]
+                for a_new in tgt:  # α̇ and α̈ by Newmark's rules on α (as in contact, below)
+                    q = r1 * ad + r2 * ala - kappa * a_prev
+                    ala = (a_new - a_prev - dt * ad - c2 * ala) / bdt2
+                    ad = kappa * a_new + q
+                    rates.append(ad)
+                    a_prev = a_new
+                x[k + 1 : j + 1] = pred[:n].tolist()
+                xv[k + 1 : j + 1] = [v] * n
+                al[k + 1 : j + 1] = tgt
+                ald[k + 1 : j + 1] = rates
+                cwork[k + 1 : j + 1] = [cwork[k]] * n
+                if apart is not None:
+                    state, cen[k + 1 : j + 1] = apart(state, n)
+                    branch = law.branch(state)
+                elif memory:
+                    for i in range(k + 1, j + 1):
+                        state = law.advance(state, al[i], ald[i])
                         branch = law.branch(state)
-                        cen[i + 1] = branch.energy(a_new)
-                    # a law without memory stores nothing while apart (α ≤ 0): cen stays 0
-                    if stop_after is not None:
-                        away = a_new < 0.0 and ald1 < 0.0
+                        cen[i] = branch.energy(al[i])
+                # a law without memory stores nothing while apart (α ≤ 0): cen stays 0
+                if stop_after is not None:
+                    for i in range(k + 1, j + 1):
+                        away = al[i] < 0.0 and ald[i] < 0.0
                         if away and left_at is None:
-                            left_at = (i + 1) * dt
+                            left_at = i * dt
                         elif not away:
                             left_at = None
-                        if left_at is not None and (i + 1) * dt - left_at >= stop_after:
-                            last = i + 1
+                        if left_at is not None and i * dt - left_at >= stop_after:
+                            last = i
                             break
                 if last < N:
                     break
@@ -361,24 +448,29 @@ class ContactKernels:
             # a law with memory: the branch of the state the last step left (built there, for its energy)
             x_pred = x[k] + dt * xv[k] + c2 * xa
             w_hist = old[k + 1]
-            if start is not None:  # the current contact's loads, lags 1 … k + 1 − start
+            if start is not None:  # the current contact's loads, lags 1 … k + 1 − start: one dot product
                 L = k + 1 - start
-                w_hist += float(np.dot(g[1 : L + 1].ravel(), Qr[N - k : N - k + L].ravel()))
+                w_hist += float(np.dot(gflat[p : (L + 1) * p], Qflat[(N - k) * p : (N - k + L) * p]))
             target = x_pred - w_hist
             q = r1 * ald[k] + r2 * ala - kappa * al[k]
-            if target > 0.0:
+            if target <= 0.0:
+                a_new, f, r = target, 0.0, 0.0
+            elif F[k] == 0.0 and (branch.response(target, kappa * target + q)[0] if responds else branch.force(target, kappa * target + q)) == 0.0:
+                # no force at the bracket's top α̃ (a force clipped to zero, as by the Maxwell arm's negative
+                # stress while unloading): R(α̃) = 0 there, the root (R increases with α), without a Newton iteration
+                a_new, f, r = target, 0.0, branch.radius(target)
+            else:
                 guess = 2.0 * al[k] - al[k - 1] if k >= 1 else target
                 a_new, f, r, its = newton_contact(branch, comp, hm, kappa, q, target, guess, k + 1, dt, try_top=True)
                 iterations += its
-            else:
-                a_new, f, r = target, 0.0, 0.0
             if f != 0.0:
-                comp.load(r, f, Qr[N - k - 1])
+                load(r, f, Qr[N - k - 1])
                 if start is None:
                     start = k + 1
             elif start is not None:  # contact ended: the free response to its loads, once
-                fresh = self._convolve(Qr[::-1], start, k, slice(0, 1))[0]
-                old = (np.asarray(old) + fresh).tolist()
+                spectrum = self._contact_spectrum(Qr, start, k)
+                total = spectrum if total is None else total + spectrum
+                old = (np.asarray(old) + self._response(spectrum[:1])[0]).tolist()
                 start = None
             x[k + 1] = x_pred - hm * f
             xa1 = -f / mass
@@ -388,7 +480,9 @@ class ContactKernels:
             # Newmark's displacement rule on α = x − c·u gives α̈ without the structure's state
             ala = (a_new - al[k] - dt * ald[k] - c2 * ala) / bdt2
             cwork[k + 1] = cwork[k] + 0.5 * (F[k] + f) * (a_new - al[k])
-            if memory:
+            if settle is not None:
+                state, branch, cen[k + 1] = settle(state, a_new, ald[k + 1])
+            elif memory:
                 state = law.advance(state, a_new, ald[k + 1])
                 branch = law.branch(state)
                 cen[k + 1] = branch.energy(a_new)
@@ -406,7 +500,10 @@ class ContactKernels:
                 if left_at is not None and k * dt - left_at >= stop_after:
                     last = k
                     break
-        y = self._convolve(Qr[::-1], 1, N, slice(None))  # (1 + q, N + 1): approach row, then the outputs
+        if start is not None:  # in contact at the end
+            spectrum = self._contact_spectrum(Qr, start, N)
+            total = spectrum if total is None else total + spectrum
+        y = self._response(total) if total is not None else np.zeros((self._Hk.shape[0], N + 1))  # (1 + q, N + 1): approach row, then the outputs
         sl = slice(0, last + 1)
         nan = np.full(last + 1, np.nan)
         t = np.arange(N + 1) * dt

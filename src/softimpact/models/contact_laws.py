@@ -464,6 +464,20 @@ class MaxwellBranch:
             object.__setattr__(law, "_branch_const", base)
         object.__setattr__(self, "_const", (*base, base[5] * self.gain / base[1]))  # last: (m·V²/d)·g/d
 
+    @classmethod
+    def _of(cls, law: ViscoelasticSoftLaw, strain_start: float, stress_start: float, gain: float) -> MaxwellBranch:
+        """``MaxwellBranch(law, strain_start, stress_start, gain)``, the same object, built without the frozen
+        dataclass's ``__init__`` and with the constants of the law's last gain reused (a contact loop builds
+        one branch a step: this is its cost)."""
+        last = law.__dict__.get("_branch_gain")
+        if last is None or last[0] != gain:
+            const = cls(law, strain_start, stress_start, gain)._const
+            last = (gain, const)
+            object.__setattr__(law, "_branch_gain", last)
+        branch = object.__new__(cls)
+        branch.__dict__.update(law=law, strain_start=strain_start, stress_start=stress_start, gain=gain, _const=last[1])
+        return branch
+
     def stress(self, alpha: float) -> float:
         """σ at the end of the step if the approach there is ``alpha`` [m]."""
         return self.stress_start + self.gain * (max(alpha, 0.0) / self._const[1] - self.strain_start)
@@ -474,9 +488,10 @@ class MaxwellBranch:
         if alpha <= 0.0:
             return 0.0, 0.0, 0.0
         sk, d, p, c, v, scale, _, _, kg = self._const
-        elastic = sk * (alpha / d) ** p
+        ad = alpha / d
+        elastic = sk * ad**p
         unclipped = elastic * (1.0 + c * rate / v)
-        f = unclipped + scale * (self.stress_start + self.gain * (alpha / d - self.strain_start))
+        f = unclipped + scale * (self.stress_start + self.gain * (ad - self.strain_start))
         if f <= 0.0:
             return 0.0, 0.0, 0.0
         return f, p * unclipped / alpha + kg, elastic * c / v
@@ -497,7 +512,8 @@ class MaxwellBranch:
         """Elastic energy of the equilibrium part plus the arm spring's, ½·(mV²/d)·d·σ²/κ [J]."""
         sk, d, p, _, _, _, half_sd, kappa, _ = self._const
         elastic = sk * (alpha / d) ** p * alpha / (p + 1.0) if alpha > 0.0 else 0.0  # SoftProjectileLaw.energy
-        return elastic + half_sd * self.stress(alpha) ** 2 / kappa
+        stress = self.stress_start + self.gain * (max(alpha, 0.0) / d - self.strain_start)  # self.stress(alpha)
+        return elastic + half_sd * stress**2 / kappa
 
 
 @dataclass(frozen=True)
@@ -546,12 +562,49 @@ class ViscoelasticSoftLaw:
 
     def branch(self, state: MaxwellState) -> MaxwellBranch:
         E, g = self._decay()
-        return MaxwellBranch(self, state.strain, state.stress * E, g)
+        return MaxwellBranch._of(self, state.strain, state.stress * E, g)
 
     def advance(self, state: MaxwellState, alpha: float, rate: float) -> MaxwellState:
         E, g = self._decay()
         strain = max(alpha, 0.0) / self.base.diameter
         return MaxwellState(strain, state.stress * E + g * (strain - state.strain))  # MaxwellBranch.stress(alpha)
+
+    def settle(self, state: MaxwellState, alpha: float, rate: float) -> tuple[MaxwellState, MaxwellBranch, float]:
+        """A converged step's memory at once: ``advance(state, α, α̇)``, the branch of that state and its
+        :meth:`MaxwellBranch.energy` at α [J], the same values (one call a step in the contact kernels)."""
+        steady = self.__dict__.get("_steady")
+        if steady is None:  # (E, g, the branches' constants), once per bound law
+            E, g = self._decay()
+            steady = (E, g, MaxwellBranch._of(self, 0.0, 0.0, g)._const)
+            object.__setattr__(self, "_steady", steady)
+        E, g, const = steady
+        sk, d, p, _, _, _, half_sd, kappa, _ = const  # d: the base law's diameter
+        strain = max(alpha, 0.0) / d
+        stress = state.stress * E + g * (strain - state.strain)
+        new = object.__new__(MaxwellState)  # MaxwellState(strain, stress) without the frozen __init__
+        new.__dict__.update(strain=strain, stress=stress)
+        start = stress * E
+        branch = object.__new__(MaxwellBranch)  # MaxwellBranch(self, strain, start, g), as _of builds it
+        branch.__dict__.update(law=self, strain_start=strain, stress_start=start, gain=g, _const=const)
+        elastic = sk * (alpha / d) ** p * alpha / (p + 1.0) if alpha > 0.0 else 0.0  # branch.energy(alpha), inlined
+        return new, branch, elastic + half_sd * (start + g * (max(alpha, 0.0) / d - strain)) ** 2 / kappa
+
+    def apart(self, state: MaxwellState, steps: int) -> tuple[MaxwellState, list[float]]:
+        """``steps`` steps with the bodies apart (α ≤ 0: the arm's strain α⁺/d is zero, its stress relaxes,
+        σ ← σ·E + g·(0 − ε)): the state after them and the contact energy after each [J], the values of
+        ``state = advance(state, α, α̇)`` then ``branch(state).energy(α)`` step by step for any α ≤ 0 (that
+        branch's stress at α is σ·E: the same arithmetic, without building a state and a branch a step:
+        the contact kernels' free flight)."""
+        E, g = self._decay()
+        const = self.branch(state)._const
+        half_sd, kappa = const[6], const[7]
+        strain, stress = state.strain, state.stress
+        energies = []
+        for _ in range(steps):
+            stress = stress * E + g * (0.0 - strain)
+            strain = 0.0
+            energies.append(0.0 + half_sd * (stress * E + g * (0.0 - 0.0)) ** 2 / kappa)
+        return (MaxwellState(strain, stress) if steps else state), energies
 
 
 # The contact laws by name (case files' ``contact.law``), each with the class it builds: one table,

@@ -1,0 +1,1 @@
+"""asv (airspeed velocity) benchmarks: the cases of benchmarks/bench_kernels.py, timed per commit."""

@@ -1,0 +1,113 @@
+"""The contact kernels' fast paths against the step-by-step computations they replace.
+
+The Maxwell law's free flight (``apart``) and a converged step's update (``settle``) against its
+``advance``/``branch``/``energy`` step by step, to the last bit; the build's reciprocal march against
+the response engine's, to the last bit; a run whose force is clipped to zero while the bodies overlap
+(the steps the kernels take without a Newton solve) against direct coupled stepping.
+"""
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from softimpact.fem.impact import integrate_impact
+from softimpact.fem.kernels import ContactKernels
+from softimpact.fem.newmark import NewmarkStepper, SolverSpec
+from softimpact.fem.response import ImpulseResponse
+from softimpact.input.impact_case import load_impact_case
+from softimpact.models.contact_laws import SoftProjectileLaw, ViscoelasticSoftLaw
+from softimpact.workflows.coupled import impact_model
+
+DT = 0.5e-6
+MASS, DIAMETER, VELOCITY = 1.2e-3, 0.0127, 50.8  # a 1/2-in silicone-rubber ball at 2000 in/s
+
+
+def _maxwell() -> ViscoelasticSoftLaw:
+    """The identified law's form with tests/data/law-v-main.json's values at d_ref (a stiff, fast-relaxing arm)."""
+    return ViscoelasticSoftLaw(SoftProjectileLaw(MASS, DIAMETER, VELOCITY, k=4.77, p=1.317, c=0.0), kappa=17.24, theta=0.1285).for_time_step(DT)
+
+
+def _loaded_state(law):
+    """A state after a few loading and unloading steps (arm strain and stress both nonzero)."""
+    state = law.initial_state()
+    for alpha in (2e-5, 8e-5, 1.5e-4, 1.2e-4):
+        state = law.advance(state, alpha, 0.0)
+    assert state.strain > 0.0 and state.stress != 0.0
+    return state
+
+
+def test_apart_equals_advancing_step_by_step():
+    """States and contact energies of a flight apart equal advance, branch and energy step by step, bit for bit."""
+    law = _maxwell()
+    start = _loaded_state(law)
+    alphas = [-1e-6, -3e-6, 0.0, -2e-5, -1e-9, -4e-6]  # α ≤ 0: the bodies apart
+    state, energies = start, []
+    for alpha in alphas:
+        state = law.advance(state, alpha, -1.0)
+        energies.append(law.branch(state).energy(alpha))
+    fast, fast_energies = law.apart(start, len(alphas))
+    assert (fast.strain, fast.stress) == (state.strain, state.stress)
+    assert fast_energies == energies
+    assert law.apart(start, 0) == (start, [])
+
+
+def test_settle_equals_advance_branch_and_energy():
+    """A converged step's state, branch and energy from settle equal advance, branch and energy, bit for bit, loading and unloading."""
+    law = _maxwell()
+    state = slow = law.initial_state()
+    for alpha, rate in [(1e-5, 40.0), (6e-5, 30.0), (1.4e-4, 5.0), (1.3e-4, -8.0), (4e-5, -30.0), (-2e-6, -40.0), (3e-6, 10.0)]:
+        state, branch, energy = law.settle(state, alpha, rate)
+        slow = law.advance(slow, alpha, rate)
+        reference = law.branch(slow)
+        assert (state.strain, state.stress) == (slow.strain, slow.stress)
+        assert energy == reference.energy(alpha)
+        assert branch == reference
+        for probe in (2e-5, 1.5e-4):
+            assert branch.response(probe, 12.0) == reference.response(probe, 12.0)
+
+
+@pytest.fixture(scope="module")
+def beam():
+    """The long beam made coarse (40 × 4 Q4, the impact case's gauges), struck at its centre, 0.5 µs steps, 600 steps."""
+    problem, _ = load_impact_case("paper-long-beam-impact")
+    t = problem.target
+    solver = SolverSpec(DT, 300e-6, problem.solver.newmark)
+    problem = replace(problem, target=replace(t, beam=replace(t.beam, nx=40, nz=4), solver=solver))
+    model = impact_model(problem)
+    return model.contact_structure(problem.position, model.contact_reach(problem.position, problem.impactor.diameter)), solver
+
+
+@pytest.mark.parametrize("damped", [False, True])
+def test_build_march_equals_the_response_engine(beam, damped):
+    """The build's kernels equal the response engine's reciprocal kernels bit for bit, without and with Rayleigh damping."""
+    s, solver = beam
+    if damped:
+        s = replace(s, C=(200.0 * s.M + 1e-7 * s.K).tocsc())
+    st = NewmarkStepper(s.M, s.K, solver.time_step, C=s.C, params=solver.newmark)
+    kernels = ContactKernels(s, solver.time_step, solver.steps, solver.newmark, stepper=st)
+    n, dofs = st.n, np.asarray(s.surface_dofs, int)
+    B = np.zeros((n, dofs.size))
+    B[dofs, np.arange(dofs.size)] = float(s.load_sign)
+    rows = np.vstack([np.asarray(s.approach_row, float)[None, :], np.asarray(s.outputs, float)])
+    engine = ImpulseResponse.reciprocal(st, B, solver.steps, rows)
+    assert np.array_equal(kernels.approach, engine.kernel[0])
+    assert np.array_equal(kernels.outputs, engine.kernel[1:])
+    assert np.array_equal(kernels._Hk, engine._spectrum()[0])
+
+
+def test_a_clipped_force_equals_direct_stepping(beam):
+    """A soft ball whose Maxwell arm clips the force to zero while the bodies still overlap: the kernel run equals direct stepping to 1e-9 of the peak."""
+    s, solver = beam
+    law = _maxwell()
+    st = NewmarkStepper(s.M, s.K, solver.time_step, C=s.C, params=solver.newmark)
+    direct = integrate_impact(s, law, MASS, VELOCITY, solver.time_step, solver.steps, newmark=solver.newmark, stepper=st, energy=False)
+    clipped = (direct.force == 0.0) & (direct.approach > 0.0)
+    assert np.count_nonzero(clipped[1:]) >= 10  # the case exercises the steps taken without a Newton solve
+    fast = ContactKernels(s, solver.time_step, solver.steps, solver.newmark, stepper=st).run(law, MASS, VELOCITY)
+    peak = direct.force.max()
+    assert np.max(np.abs(fast.force - direct.force)) <= 1e-9 * peak
+    assert np.max(np.abs(fast.approach - direct.approach)) <= 1e-9 * np.max(np.abs(direct.approach))
+    assert np.max(np.abs(fast.contact_energy - direct.contact_energy)) <= 1e-9 * np.max(direct.contact_energy)
+    assert np.max(np.abs(fast.outputs - direct.outputs)) <= 1e-9 * np.max(np.abs(direct.outputs))
+    assert np.array_equal(fast.force > 0.0, direct.force > 0.0)
