@@ -77,29 +77,6 @@ def test_both_indices_are_homogeneous_of_degree_minus_one_in_a_common_strength_f
         assert T.damage_index(problem2, result, index) == pytest.approx(T.damage_index(problem, result, index) / 1.1, rel=1e-9)
 
 
-def test_the_report_shows_threshold_maps_that_differ_between_the_structures(paper_report):
-    """The paper report's maps: three structures × two indices × four diameters, every band containing its median and wider
-    than twice the mesh's GCI; first-ply thresholds of the 1/2-in ball differ between long beam, short beam and plate by more
-    than their bands' discretisation parts (the structures' bending differs), while delamination, set by the ball's peak force, differs by under 5 %."""
-    import csv
-
-    out = paper_report.out
-    assert (out / "thresholds" / "threshold-maps.png").is_file()
-    rows = list(csv.DictReader((out / "thresholds" / "threshold-maps.csv").read_text().splitlines()))
-    assert len(rows) == 24 and {r["structure"] for r in rows} == {"long beam", "short beam", "8-in plate"}
-    for r in rows:
-        med, lo, hi, gci = (
-            float(r[k]) for k in ("threshold_velocity_median_m_s", "threshold_velocity_p05_m_s", "threshold_velocity_p95_m_s", "discretisation_error_m_s")
-        )
-        assert lo < med < hi and hi - lo >= 2 * gci
-    half = {(r["structure"], r["index"]): r for r in rows if abs(float(r["diameter_m"]) - 0.5 * INCH) < 1e-9}
-    tw = sorted(float(half[(s, "tsai_wu")]["threshold_velocity_median_m_s"]) for s in ("long beam", "short beam", "8-in plate"))
-    gci = max(float(half[(s, "tsai_wu")]["discretisation_error_m_s"]) for s in ("long beam", "short beam", "8-in plate"))
-    assert min(np.diff(tw)) > gci
-    de = [float(half[(s, "delamination")]["threshold_velocity_median_m_s"]) for s in ("long beam", "short beam", "8-in plate")]
-    assert max(de) / min(de) - 1 < 0.05
-
-
 def test_the_threshold_on_kernels_equals_the_threshold_on_direct_stepping(beam):
     """The Tsai–Wu threshold of the 1/2-in ball found over kernel runs equals the one found over direct coupled stepping within 0.5 %."""
     s, law = beam
