@@ -38,14 +38,14 @@ def _loaded_state(law):
 
 
 def test_apart_equals_advancing_step_by_step():
-    """States and contact energies of a flight apart equal advance, branch and energy step by step, bit for bit."""
+    """States and contact energies of a flight apart equal the step's branch energy, then advance, step by step, bit for bit."""
     law = _maxwell()
     start = _loaded_state(law)
     alphas = [-1e-6, -3e-6, 0.0, -2e-5, -1e-9, -4e-6]  # α ≤ 0: the bodies apart
     state, energies = start, []
     for alpha in alphas:
-        state = law.advance(state, alpha, -1.0)
         energies.append(law.branch(state).energy(alpha))
+        state = law.advance(state, alpha, -1.0)
     fast, fast_energies = law.apart(start, len(alphas))
     assert (fast.strain, fast.stress) == (state.strain, state.stress)
     assert fast_energies == energies
@@ -53,15 +53,20 @@ def test_apart_equals_advancing_step_by_step():
 
 
 def test_settle_equals_advance_branch_and_energy():
-    """A converged step's state, branch and energy from settle equal advance, branch and energy, bit for bit, loading and unloading."""
+    """A converged step's state, branch and energy from settle equal advance, branch and the step's own branch's
+    energy (its arm stress at α is the converged σ: ½·(mV²/d)·d·σ²/κ beside the elastic part), loading and unloading."""
     law = _maxwell()
     state = slow = law.initial_state()
     for alpha, rate in [(1e-5, 40.0), (6e-5, 30.0), (1.4e-4, 5.0), (1.3e-4, -8.0), (4e-5, -30.0), (-2e-6, -40.0), (3e-6, 10.0)]:
         state, branch, energy = law.settle(state, alpha, rate)
+        step = law.branch(slow)
         slow = law.advance(slow, alpha, rate)
         reference = law.branch(slow)
         assert (state.strain, state.stress) == (slow.strain, slow.stress)
-        assert energy == reference.energy(alpha)
+        assert energy == pytest.approx(step.energy(alpha), rel=1e-13, abs=1e-300)
+        elastic = law.base.energy(alpha) if alpha > 0 else 0.0
+        scale = law.base.mass * law.base.velocity**2 / law.base.diameter
+        assert energy - elastic == pytest.approx(0.5 * scale * law.base.diameter * slow.stress**2 / law.kappa, rel=1e-9)
         assert branch == reference
         for probe in (2e-5, 1.5e-4):
             assert branch.response(probe, 12.0) == reference.response(probe, 12.0)
@@ -111,3 +116,22 @@ def test_a_clipped_force_equals_direct_stepping(beam):
     assert np.max(np.abs(fast.contact_energy - direct.contact_energy)) <= 1e-9 * np.max(direct.contact_energy)
     assert np.max(np.abs(fast.outputs - direct.outputs)) <= 1e-9 * np.max(np.abs(direct.outputs))
     assert np.array_equal(fast.force > 0.0, direct.force > 0.0)
+
+
+def test_contact_energy_holds_the_arm_stress_the_force_implies(beam):
+    """Direct coupled stepping with the Maxwell law: at every step in contact (F > 0) the contact energy minus the
+    equilibrium part's elastic energy is the arm spring's ½·(mV²/d)·d·σ²/κ with σ = F/(mV²/d) − k(α/d)^p(1 + cα̇/V),
+    the arm stress the force history itself implies (a record one relaxation step ahead would be σ·E: 3 % low here)."""
+    s, solver = beam
+    law = _maxwell()
+    st = NewmarkStepper(s.M, s.K, solver.time_step, C=s.C, params=solver.newmark)
+    r = integrate_impact(s, law, MASS, VELOCITY, solver.time_step, solver.steps, newmark=solver.newmark, stepper=st, energy=False)
+    b = law.base
+    scale = b.mass * b.velocity**2 / b.diameter
+    on = r.force > 0.0
+    a, rate = r.approach[on], r.approach_rate[on]
+    sigma = r.force[on] / scale - b.k * (a / b.diameter) ** b.p * (1.0 + b.c * rate / b.velocity)
+    elastic = b.k * scale * (a / b.diameter) ** b.p * a / (b.p + 1.0)
+    arm = r.contact_energy[on] - elastic
+    expected = 0.5 * scale * b.diameter * sigma**2 / law.kappa
+    assert np.max(np.abs(arm - expected)) <= 1e-6 * np.max(expected)

@@ -306,11 +306,9 @@ def integrate_impact(
         if energy:
             ek[k + 1] = 0.5 * float(v1 @ (M @ v1))
             es[k + 1] = 0.5 * float(u1 @ (K @ u1))
+        cen[k + 1] = branch.energy(a_new)  # the step's branch: its stress at α_{k+1} is the converged σ_{k+1}
         if state is not None:
             state = law.advance(state, a_new, ald[k + 1])
-            cen[k + 1] = law.branch(state).energy(a_new)
-        else:
-            cen[k + 1] = branch.energy(a_new)
         u, v, acc, xa, s_prev = u1, v1, acc1, xa1, fs
         if k + 1 in slot:
             saved[:, slot[k + 1]] = u1

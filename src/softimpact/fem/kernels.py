@@ -426,9 +426,9 @@ class ContactKernels:
                     branch = law.branch(state)
                 elif memory:
                     for i in range(k + 1, j + 1):
+                        cen[i] = branch.energy(al[i])
                         state = law.advance(state, al[i], ald[i])
                         branch = law.branch(state)
-                        cen[i] = branch.energy(al[i])
                 # a law without memory stores nothing while apart (α ≤ 0): cen stays 0
                 if stop_after is not None:
                     for i in range(k + 1, j + 1):
@@ -483,9 +483,9 @@ class ContactKernels:
             if settle is not None:
                 state, branch, cen[k + 1] = settle(state, a_new, ald[k + 1])
             elif memory:
+                cen[k + 1] = branch.energy(a_new)  # the step's branch: its stress at α_{k+1} is the converged σ_{k+1}
                 state = law.advance(state, a_new, ald[k + 1])
                 branch = law.branch(state)
-                cen[k + 1] = branch.energy(a_new)
             else:
                 cen[k + 1] = float(branch.energy(a_new))
             xa = xa1

@@ -570,8 +570,9 @@ class ViscoelasticSoftLaw:
         return MaxwellState(strain, state.stress * E + g * (strain - state.strain))  # MaxwellBranch.stress(alpha)
 
     def settle(self, state: MaxwellState, alpha: float, rate: float) -> tuple[MaxwellState, MaxwellBranch, float]:
-        """A converged step's memory at once: ``advance(state, α, α̇)``, the branch of that state and its
-        :meth:`MaxwellBranch.energy` at α [J], the same values (one call a step in the contact kernels)."""
+        """A converged step's memory at once: ``advance(state, α, α̇)``, the branch of that state, and the
+        contact energy at the end of the step [J]: the step's own branch's (``branch(state).energy(α)`` of
+        the state before it), whose arm stress at α is the converged σ (one call a step in the contact kernels)."""
         steady = self.__dict__.get("_steady")
         if steady is None:  # (E, g, the branches' constants), once per bound law
             E, g = self._decay()
@@ -586,14 +587,14 @@ class ViscoelasticSoftLaw:
         start = stress * E
         branch = object.__new__(MaxwellBranch)  # MaxwellBranch(self, strain, start, g), as _of builds it
         branch.__dict__.update(law=self, strain_start=strain, stress_start=start, gain=g, _const=const)
-        elastic = sk * (alpha / d) ** p * alpha / (p + 1.0) if alpha > 0.0 else 0.0  # branch.energy(alpha), inlined
-        return new, branch, elastic + half_sd * (start + g * (max(alpha, 0.0) / d - strain)) ** 2 / kappa
+        elastic = sk * (alpha / d) ** p * alpha / (p + 1.0) if alpha > 0.0 else 0.0  # the step branch's energy(alpha), inlined
+        return new, branch, elastic + half_sd * stress**2 / kappa
 
     def apart(self, state: MaxwellState, steps: int) -> tuple[MaxwellState, list[float]]:
         """``steps`` steps with the bodies apart (α ≤ 0: the arm's strain α⁺/d is zero, its stress relaxes,
-        σ ← σ·E + g·(0 − ε)): the state after them and the contact energy after each [J], the values of
-        ``state = advance(state, α, α̇)`` then ``branch(state).energy(α)`` step by step for any α ≤ 0 (that
-        branch's stress at α is σ·E: the same arithmetic, without building a state and a branch a step:
+        σ ← σ·E + g·(0 − ε)): the state after them and the contact energy after each [J] (the arm spring's
+        ½·(mV²/d)·d·σ²/κ), the values of ``branch(state).energy(α)`` then ``state = advance(state, α, α̇)``
+        step by step for any α ≤ 0 (the same arithmetic, without building a state and a branch a step:
         the contact kernels' free flight)."""
         E, g = self._decay()
         const = self.branch(state)._const
@@ -603,7 +604,7 @@ class ViscoelasticSoftLaw:
         for _ in range(steps):
             stress = stress * E + g * (0.0 - strain)
             strain = 0.0
-            energies.append(0.0 + half_sd * (stress * E + g * (0.0 - 0.0)) ** 2 / kappa)
+            energies.append(0.0 + half_sd * stress**2 / kappa)
         return (MaxwellState(strain, stress) if steps else state), energies
 
 
