@@ -72,13 +72,26 @@ def synthetic_record(
     return ts + clock_start, y
 
 
-def beam_measurement(model, pulse, *, pre_trigger: float, noise: float, offsets, rng: np.random.Generator, sample_interval: float | None = None):
-    """Synthetic measured gauge strains of a beam model (direct stepping) driven by ``pulse``.
+def beam_measurement(
+    model,
+    pulse,
+    *,
+    pre_trigger: float,
+    noise: float,
+    offsets,
+    rng: np.random.Generator,
+    sample_interval: float | None = None,
+    radius: float | None = None,
+    engine: bool = False,
+):
+    """Synthetic measured gauge strains of a beam model driven by ``pulse`` (direct stepping, or with
+    ``engine`` its response engine: the same strains to round-off, cheaper for many pulses on one model).
 
     Returns (time [s] on a record clock starting ``pre_trigger`` before contact, {gauge: strain}).
-    ``noise``: σ as a fraction of each gauge's peak |strain|; ``offsets``: one per gauge.
+    ``noise``: σ as a fraction of each gauge's peak |strain|; ``offsets``: one per gauge; ``radius``:
+    the contact radius r0 [m] (default the problem's).
     """
-    result = model.direct(pulse, energy=False)
+    result = model.respond(pulse, radius) if engine else model.direct(pulse, energy=False, displacement=False, radius=radius)
     dt = model.problem.solver.time_step
     step = sample_interval or dt
     t_model = result.time
