@@ -1,6 +1,8 @@
 """The discretisation uncertainty of a calibrated parameter (studies.calibration.discretisation_uncertainty)
 against sequences whose limit is known in closed form."""
 
+import math
+
 import pytest
 
 from softimpact.studies.calibration import discretisation_uncertainty
@@ -40,10 +42,27 @@ def test_unresolved_rise_keeps_the_first_order_bound_for_the_time_of_peak_only()
     assert discretisation_uncertainty(conv, "peak_force", 5.0) == pytest.approx(last / 3.0)
 
 
-def test_round_off_and_diverging():
-    """Converged to round-off: zero; diverging (differences that grow): half the range of the three levels."""
+def test_round_off_only_when_every_level_agrees():
+    """Three levels equal to round-off: zero. Two finest levels that agree exactly after a first change of 1 (a fit
+    stuck, e.g. on a bound) are not converged: that change is kept as the uncertainty."""
     assert discretisation_uncertainty(richardson([2.0, 2.0, 2.0], 2.0, 2.0, "x"), "peak_force", 20.0) == 0.0
-    values = [1.0, 1.1, 1.4]
+    conv = richardson([1.0, 2.0, 2.0], 2.0, 2.0, "x")
+    assert discretisation_uncertainty(conv, "peak_force", 20.0) == pytest.approx(1.0)
+
+
+@pytest.mark.parametrize("values", [[1.0, 1.1, 1.4], [1.0, 1.0 + 1e-3, 1.3]])
+def test_diverging_keeps_at_least_the_last_change(values):
+    """Differences that grow (no order can be observed): the whole range, never less than the last change |f3 − f2|."""
     conv = richardson(values, 2.0, 2.0, "x")
     assert conv.status == "diverging"
-    assert discretisation_uncertainty(conv, "peak_force", 20.0) == pytest.approx(0.2)
+    u = discretisation_uncertainty(conv, "peak_force", 20.0)
+    assert u == pytest.approx(max(values) - min(values))
+    assert u >= abs(values[2] - values[1])
+
+
+def test_unknown_rise_and_missing_level():
+    """A rise of unknown resolution (NaN steps) keeps t_F0's first-order bound; a level without a finite value gives NaN."""
+    values = _sequence(1.0, 0.2, 2.0, 2.0)
+    conv = richardson(values, 2.0, 2.0, "time_of_peak")
+    assert discretisation_uncertainty(conv, "time_of_peak", float("nan")) == pytest.approx(abs(values[2] - values[1]))
+    assert math.isnan(discretisation_uncertainty(richardson([1.0, float("nan"), 1.2], 2.0, 2.0, "x"), "peak_force", 20.0))

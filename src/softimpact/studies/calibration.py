@@ -24,7 +24,7 @@ from ..input.scaling_constants import start_pulse
 from ..models.empirical import PROJECTILES
 from ..workflows.beam_impact import BeamModel
 from ..workflows.calibration import MAIN, Calibration, Measured, calibrate, calibrate_checked
-from ..workflows.convergence import MIN_RISE_STEPS, richardson
+from ..workflows.convergence import MIN_RISE_STEPS, ROUNDOFF, richardson
 from ..workflows.refinement import coarsen_beam, refine_beam
 from ..workflows.scaling import ScalingFit, TestPoint, fit_groups
 
@@ -134,30 +134,46 @@ def calibration_model(problem, radii, fit_radius: bool) -> ModelLadder:
 
 def discretisation_uncertainty(conv, name: str, rise_steps: float) -> float:
     """The standard uncertainty (k = 1) of a calibrated parameter's discretisation error at the finest
-    level, from its convergence over three levels (``conv``: :func:`richardson`'s record; ``rise_steps``:
-    time steps of the coarsest level in the pulse rise t_F0).
+    level, from its convergence over three levels f1, f2, f3 (coarse → fine; ``conv``: :func:`richardson`'s
+    record; ``rise_steps``: time steps of the coarsest level in the pulse rise t_F0).
 
     The Richardson estimate of the error is taken as one standard uncertainty:
-    |f3 − f_ext| (order observed, at most the formal one) for a monotone sequence; |f3 − f2| when
-    the sequence alternates (the limit lies between the two finest levels) and, for t_F0, when the
-    coarsest level resolves the rise with fewer than MIN_RISE_STEPS steps (the observed order is then
-    not the fine levels' own: the first-order bound |f3 − f2| is kept); half the range when the
-    sequence diverges; 0 when converged to round-off. F0 and T describe the whole pulse, not its rise.
+
+    - monotone ("asymptotic" or not): |f3 − f_ext|, f_ext extrapolated at the order ``richardson`` used
+      (the observed one when asymptotic, at most the formal one otherwise);
+    - alternating: |f3 − f2| (the limit lies between the two finest levels; ``converge`` reports
+      half the range of all three, which the first level's larger change dominates);
+    - for t_F0 when the coarsest level resolves the rise with fewer than MIN_RISE_STEPS steps (or the
+      rise is unknown): at least |f3 − f2| (the observed order is then not the fine levels' own:
+      the first-order bound is kept). F0 and T describe the whole pulse, not its rise;
+    - diverging: the whole range of the three levels (at least the last change);
+    - "converged to round-off": 0 only when f1, f2 and f3 all agree to round-off; two finest levels that
+      agree exactly after a larger first change (a fit stuck, e.g. on a bound) keep |f2 − f1|;
+    - not finite (a level without a value): NaN.
+
     The GCI (Fs·estimate, Fs = 1.25 or 3 by the asymptotic rule) stays the reported conservative bound;
     this uncertainty is the one combined with the noise's, and its coverage is measured in
     benchmarks/bench_coverage.py (BENCHMARKS.md)."""
-    v = np.asarray(conv.values, float)
-    last = abs(float(v[-1] - v[-2]))
+    v = np.asarray(conv.values, float)[-3:]
+    if not np.all(np.isfinite(v)) or conv.status == "undefined":
+        return math.nan
+    last, first = abs(float(v[-1] - v[-2])), abs(float(v[-2] - v[0]))
     if conv.status == "converged to round-off":
-        return 0.0
+        return 0.0 if first <= ROUNDOFF * max(abs(float(v[-1])), 1e-300) else first
     if conv.status == "oscillatory":
         return last
     if conv.status in ("asymptotic", "monotone", "two levels"):
         estimate = abs(float(v[-1] - conv.extrapolated))
-        if name == "time_of_peak" and rise_steps < MIN_RISE_STEPS:
+        if name == "time_of_peak" and not rise_steps >= MIN_RISE_STEPS:  # NaN: unknown, kept conservative
             return max(estimate, last)
         return estimate
-    return 0.5 * float(np.max(v[-3:]) - np.min(v[-3:]))  # diverging, undefined
+    return float(np.max(v) - np.min(v))  # diverging
+
+
+def _gci(conv) -> float:
+    """The GCI of the finest level in the parameter's units (Fs·|f3 − f_ext|, half the range × Fs when
+    alternating); NaN where ``richardson`` gives none (diverging)."""
+    return float(conv.gci_fine * abs(float(conv.values[-1]))) if math.isfinite(conv.gci_fine) else math.nan
 
 
 def parameter_convergence(models: ModelLadder, measured, start, cal, contact_time, fit_radius) -> dict:
@@ -219,7 +235,8 @@ def with_parameter_convergence(models, measured, start, cal, contact_time, fit_r
         cal.check,
         parameter_orders={name: c.order for name, (_, c) in conv.items()},
         parameter_uncertainty_95={name: 1.96 * u for name, (u, _) in conv.items()},
-        parameter_gci={name: c.safety_factor * abs(float(c.values[-1] - c.extrapolated)) for name, (_, c) in conv.items()},
+        parameter_gci={name: _gci(c) for name, (_, c) in conv.items()},
+        parameter_levels={name: [float(x) for x in c.values] for name, (_, c) in conv.items()},
         parameter_status={name: c.status for name, (_, c) in conv.items()},
         parameter_safety={name: c.safety_factor for name, (_, c) in conv.items()},
     )

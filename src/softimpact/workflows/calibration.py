@@ -119,10 +119,11 @@ class ModelCheck:
     order_observed: bool = False  # from three levels (else the formal order, assumed)
     safety: float = math.nan  # Roache's factor applied to the shifts in the standard errors
     level_fits: dict = field(default_factory=dict)  # level → (F0, t_F0, T) of its least-squares fit in the check
-    contact_time: float = math.nan  # first contact on the record's clock every fit of the check started from (given or located)
+    contact_time: float = math.nan  # first contact on the record's clock every later fit of the check started from (given, or the case-mesh fit's)
     parameter_orders: dict = field(default_factory=dict)  # observed order of each parameter's convergence (app)
     parameter_uncertainty_95: dict = field(default_factory=dict)  # 1.96 × its discretisation standard uncertainty (studies)
     parameter_gci: dict = field(default_factory=dict)  # its GCI: Fs × the Richardson error estimate, the conservative bound (studies)
+    parameter_levels: dict = field(default_factory=dict)  # its values on the three levels, coarse → fine (studies)
     parameter_status: dict = field(default_factory=dict)  # asymptotic, monotone, oscillatory, ... (app)
     parameter_safety: dict = field(default_factory=dict)  # Roache's factor behind each parameter's uncertainty (1.25 or 3)
 
@@ -556,31 +557,44 @@ ASSUMED_ORDER_SAFETY = 3.0
 START_SKEWS = (0.05, 0.12)
 
 
-def _misfit(cal: Calibration) -> float:
-    """The least-squares objective of a fit in noise units: Σ_g (RMS residual_g / σ_g)²."""
-    return float(np.sum(np.square(cal.residual_rms / cal.prepared.noise)))
+def _misfits(fits: list[Calibration]) -> list[float]:
+    """Each fit's least-squares objective Σ_g Σ_j ((computed − measured)/σ_g)² on one common set of record
+    samples: every sample the fits share up to the end of the model's run after the earliest fitted first
+    contact (pre-impact part included, as the fits see it), with each fit's own clock and offsets; so
+    that fits whose first contacts differ are compared on the same data."""
+    first = min(c.prepared.contact_time for c in fits)
+    out = []
+    for c in fits:
+        prep = c.prepared
+        record_time = prep.time + prep.contact_time
+        use = record_time <= first + c.time[-1]
+        computed = np.array([np.interp(prep.time[use], c.time, y, left=0.0) for y in c.computed])
+        out.append(float(np.sum(np.square((computed - prep.strains[:, use]) / prep.noise[:, None]))))
+    return out
 
 
-def _best_start(model, measured, start, contact_time=None, **kw) -> tuple[Calibration, float]:
+def _best_start(model, measured, start, contact_time=None, **kw) -> Calibration:
     """The least-squares fit on ``model`` from ``start`` and from starts with the same F0 and T and
-    the skews :data:`START_SKEWS`, the one of lowest misfit (ties: the given start's), with the first
-    contact it started from (``contact_time`` when given, else located from that start's own shape:
-    a start unlike the record misplaces it). A start that cannot be prepared is passed over."""
-    best = None
+    the skews :data:`START_SKEWS`, the one of lowest misfit on common samples (:func:`_misfits`;
+    ties: the given start's). Each start locates first contact from its own shape unless
+    ``contact_time`` is given (a start unlike the record misplaces it); a start that cannot be
+    prepared is passed over."""
+    fits = []
     for skew in (None, *START_SKEWS):
         if skew is not None and abs(start.time_of_peak / start.duration - skew) < 0.02:
             continue
         s = start if skew is None else SkewedPulse(start.peak_force, skew * start.duration, start.duration)
         try:
-            ct = contact_time if contact_time is not None else prepare(model, measured, s, None, kw.get("radius")).contact_time
-            cal = calibrate(model, measured, s, "least-squares", contact_time=ct, **kw)
+            fits.append(calibrate(model, measured, s, "least-squares", contact_time=contact_time, **kw))
         except InputError:
             if skew is None:
                 raise
-            continue
-        if best is None or _misfit(cal) < _misfit(best[0]) * (1 - 1e-6):
-            best = (replace(cal, start=start), ct)
-    return best
+    misfit = _misfits(fits)
+    best = 0
+    for k in range(1, len(fits)):
+        if misfit[k] < misfit[best] * (1 - 1e-6):
+            best = k
+    return replace(fits[best], start=start)
 
 
 def _observed_order(ys: dict, low: int, mid: int, high: int, ratio: float, formal: float) -> float | None:
@@ -644,8 +658,9 @@ def calibrate_checked(
 
     level, model = 0, level_model(0)
     note("fitting on the case's mesh")
-    # every later fit (other levels, defect correction) starts from the chosen fit's first contact: the same samples
-    cal, contact_time = _best_start(model, measured, start, contact_time=contact_time, radius=radius, fit_radius=fit_radius)
+    cal = _best_start(model, measured, start, contact_time=contact_time, radius=radius, fit_radius=fit_radius)
+    if contact_time is None:  # every later fit (other levels, defect correction) starts from this fit's first contact
+        contact_time = cal.prepared.contact_time
     level_fits = {}
     while True:
         level_fits[level] = tuple(getattr(cal, n) for n in MAIN)
