@@ -143,7 +143,7 @@ def short_run():
 def test_energy_balance(short_run):
     """No damping: work done by the load (summed over every step) equals kinetic + strain energy to 1e-6 relative at the sampled steps."""
     _, r, _ = short_run
-    e = r.energy
+    e = r.energies
     assert np.max(np.abs(e.kinetic + e.strain - e.work)) < 1e-6 * np.max(e.work)
 
 

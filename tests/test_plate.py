@@ -287,7 +287,7 @@ def test_patch_radius_follows_eq_10():
 def test_energy_balance_of_direct_stepping():
     """Average acceleration: kinetic + strain energy equals the work of the patch loads to 1e-10."""
     r = PlateModel(_problem(10, duration=300e-6, grow=True)).direct()
-    E = r.energy
+    E = r.energies
     assert np.max(np.abs(E.kinetic + E.strain - E.work)) < 1e-10 * np.max(E.work)
 
 

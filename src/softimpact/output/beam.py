@@ -56,8 +56,8 @@ def beam_summary(model, result) -> dict:
         "validity": beam_validity(result).summary(),
         "case_SI": p,
     }
-    if result.energy:
-        out["energy_balance_relative"] = energy_balance(result.energy)
+    if result.energies:
+        out["energy_balance_relative"] = energy_balance(result.energies)
     return out
 
 

@@ -60,8 +60,8 @@ def plate_summary(model, result) -> dict:
         "validity": plate_validity(result).summary(),
         "case_SI": p,
     }
-    if result.energy:
-        out["energy_balance_relative"] = energy_balance(result.energy)
+    if result.energies:
+        out["energy_balance_relative"] = energy_balance(result.energies)
     return out
 
 

@@ -158,7 +158,7 @@ class BeamResult:
     bending: np.ndarray  # (n_gauges, n): (ε_face − ε_opposite)/2
     deflection: np.ndarray  # (n,) m, z-displacement of the top face under the impact point (up +)
     displacement: np.ndarray | None = None  # (n_dofs, n), reduced DOFs, direct stepping only
-    energy: Energies | None = None  # kinetic, strain, work [J] at the steps energy.step, direct stepping only
+    energies: Energies | None = None  # kinetic, strain, work [J] at the steps energies.step, direct stepping only
 
 
 class BeamModel(LinearModel):
@@ -215,7 +215,7 @@ class BeamModel(LinearModel):
     ) -> BeamResult:
         """Direct Newmark stepping of all DOFs (:meth:`LinearModel.march`); with ``energy``, the
         energy balance, its kinetic and strain energies at about ``energy_samples`` evenly spaced
-        steps (``energy.step``); with ``displacement``, the whole displacement history (for deformed
+        steps (``energies.step``); with ``displacement``, the whole displacement history (for deformed
         shapes: n_dofs × n_steps floats; without it only the outputs are kept); ``radius``: r0 of
         this history (default the problem's contact radius)."""
         F = self.force_samples(history)

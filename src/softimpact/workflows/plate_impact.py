@@ -198,7 +198,7 @@ class PlateResult:
     strain: np.ndarray  # (n_gauges, n)
     deflection: np.ndarray  # (1 + n_points, n) m, up +: impact point first, then problem.points
     displacement: np.ndarray | None = None  # (n_dofs, n_kept), free DOFs, direct stepping only
-    energy: Energies | None = None  # kinetic, strain, work [J] at every step, direct stepping only
+    energies: Energies | None = None  # kinetic, strain, work [J] at every step, direct stepping only
     kept: np.ndarray | None = None  # step indices of the columns of ``displacement``
 
 
