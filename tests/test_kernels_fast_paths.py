@@ -1,7 +1,7 @@
 """The contact kernels' fast paths against the step-by-step computations they replace.
 
 The Maxwell law's free flight (``apart``) and a converged step's update (``settle``) against its
-``advance``/``branch``/``energy`` step by step, to the last bit; the build's reciprocal march against
+``advance``/``branch``/``energy`` step by step (states to the last bit, energies to 1e-13); the build's reciprocal march against
 the response engine's, to the last bit; a run whose force is clipped to zero while the bodies overlap
 (the steps the kernels take without a Newton solve) against direct coupled stepping.
 """

@@ -3,7 +3,7 @@
 
 "Measured" strains are computed by a model 8× as fine as the case in mesh and in time step
 (1600 × 48 elements, 0.125 µs: level 3 of the calibration ladder, finer than any level calibrate
-uses, so that the calibrated histories can be scored against the Tables), through its response
+uses at its default budget, so that the calibrated histories can be scored against the Tables), through its response
 engine, driven by the histories of Tables II and III, with 1.5 % noise, a gauge offset and a
 100-µs pre-trigger. About 5 minutes per beam. Run from the repository root:
 python tools/make_beam_measurements.py

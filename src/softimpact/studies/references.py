@@ -226,12 +226,15 @@ def match_crossing(problem, parameter: str, target: float, bracket: tuple[float,
     for (x0, c0), (x1, c1) in zip(scanned[:-1], scanned[1:]):
         if math.isfinite(c0) and math.isfinite(c1) and (c0 - target) * (c1 - target) <= 0:
             x = float(brentq(lambda v: crossing(v) - target, x0, x1, xtol=1e-6 * abs(bracket[1] - bracket[0])))
-            return CrossingMatch(parameter, target, x, crossing(x), bracket, scanned, count[0])
+            c = crossing(x)
+            if abs(c - target) <= MATCH_TOLERANCE:  # else a jump of the crossing (another lobe read) between x0 and x1
+                return CrossingMatch(parameter, target, x, c, bracket, scanned, count[0])
     return CrossingMatch(parameter, target, math.nan, math.nan, bracket, scanned, count[0])
 
 
 # --- a bar series made like the built-in synthetic one, with other constants ------------------------
 
+MATCH_TOLERANCE = 2e-6  # s: a match must cross within this of the target (brentq brackets a jump as well as a root)
 SERIES_ELEMENTS = 144  # the generator's bar mesh (finer than the series' 39: the records are not the reduction's model)
 SERIES_STEP = 0.25e-6  # s: the generator's step
 SERIES_WINDOW = 4.15e-3  # s: the generator's gauge model length

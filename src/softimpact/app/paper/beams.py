@@ -140,6 +140,14 @@ def _crossing_paragraphs(found) -> list[str]:
             f"crossing to 450 µs ({_us(crossing_time(_refined(at_free_length(lp, llen.value))))} µs on the refined model); the "
             f"crossing grows by about {_slope(llen) * 1e6 * INCH:.0f} µs per inch of span"
         )
+        lo, hi = (crossing_time(lp, length=llen.value, fraction=f) for f in (0.2, 0.4))
+        same = crossing_time(sp, length=llen.value)
+        text += (
+            f". That match rests on how the crossing is read: at {llen.value / INCH:.2f} in, reading the first lobe above "
+            f"20 % or 40 % of the largest |strain| instead of {MAIN_LOBE_FRACTION:.0%} gives {_us(lo)} or {_us(hi)} µs; and the "
+            f"short beam made as long crosses at {_us(same)} µs, so the two beams' different answers below come from that "
+            "reading, not from a difference between them"
+        )
     text += (
         ". A rotational spring at the clamp (the clamped face's axial DOFs on springs; compliances up to the root rotation of "
         f"{COMPLIANCE_BRACKET_LENGTH / INCH:.0f} in of extra beam) "

@@ -25,7 +25,7 @@ NOTES = [
     "Eq (14) is written with r0; the cosine distribution is applied over the instantaneous r(t) of eq (10), each node "
     "receiving the exact integral over its tributary segment, so the nodal forces sum to F(t) at every instant.",
     "Tables II and III: the paper's gauge records are not available, so 'measured' strains are SYNTHETIC, computed by a "
-    "model 8× as fine as the case (1600 × 48 elements, 0.125 µs, finer than any level calibration uses) from the tabulated "
+    "model 8× as fine as the case (1600 × 48 elements, 0.125 µs, finer than any level calibration uses at its default budget) from the tabulated "
     "histories, with 1.5 % noise and gauge offsets; calibration starts on the paper's 200 × 6 mesh at 1 µs and refines it "
     "within its budget. Table II/III's 'F0, 15' column is read as pounds-force.",
     "Table II's tF0/T is about 0.08, Table I's surviving α3 (3/8 in) is 0.25: the transverse and bar skewness differ "

@@ -351,7 +351,7 @@ def _what_if(all_tests: float | None = None, n_all: int = 0):
     worse = [q for q, j in (("F0", 0), ("T", 2)) if mean[1, j] > mean[0, j]]
     text = (
         f"What-if with the tables' α3 (bar data made, not measured). The built-in bar series was made with α3 = 0.25; here its "
-        f"eight 1/2-in tests are made again by the same generator (same bar model, noise, offsets and clocks) with α3 = {a3:.3f}, "
+        f"eight 1/2-in tests are made again by the same generator and seed (same bar model and noise level; the longer records draw more noise, so the draws differ) with α3 = {a3:.3f}, "
         "the value for which Table I's bar law gives the tables' t_F0 (t_F0·V/(α2·d) averaged over their rows), and a law "
         "is identified from each set by the same function and settings (the eight 1/2-in tests only; closure t_F0 within "
         f"{closures[0]:.1%} and {closures[1]:.1%}) and run coupled on the beams"
