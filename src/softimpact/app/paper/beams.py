@@ -144,8 +144,8 @@ def _crossing_paragraphs(found) -> list[str]:
         same = crossing_time(sp, length=llen.value)
         text += (
             f". That match rests on how the crossing is read: at {llen.value / INCH:.2f} in, reading the first lobe above "
-            f"20 % or 40 % of the largest |strain| instead of {MAIN_LOBE_FRACTION:.0%} gives {_us(lo)} or {_us(hi)} µs; and the "
-            f"short beam made as long crosses at {_us(same)} µs, so the two beams' different answers below come from that "
+            f"20 % or 40 % of the largest |strain| instead of {MAIN_LOBE_FRACTION:.0%} gives {_at(lo)} and {_at(hi)}; and the "
+            f"short beam made as long has {_at(same)}, so the two beams' different answers below come from that "
             "reading, not from a difference between them"
         )
     text += (
@@ -169,6 +169,11 @@ def _crossing_paragraphs(found) -> list[str]:
         edge = min((x for x, c in slen.scanned if math.isfinite(c)), default=math.nan)
         short += f"; no free length does (the lobe first appears at {edge / INCH:.2f} in, crossing at {_us(dict(slen.scanned)[edge])} µs)."
     return [text, short + " Either is a fit of one unknown of the specimen to one number read off a figure, not a measurement of it."]
+
+
+def _at(t: float) -> str:
+    """A crossing time in words: "a crossing at 450 µs", or "no crossing within the window" (NaN)."""
+    return f"a crossing at {_us(t)} µs" if math.isfinite(t) else "no crossing within the window"
 
 
 def compliance_text(match, per_inch: float) -> str:
