@@ -135,3 +135,17 @@ def test_contact_energy_holds_the_arm_stress_the_force_implies(beam):
     arm = r.contact_energy[on] - elastic
     expected = 0.5 * scale * b.diameter * sigma**2 / law.kappa
     assert np.max(np.abs(arm - expected)) <= 1e-6 * np.max(expected)
+
+
+@pytest.mark.parametrize("stop_after", [10e-6, 50e-6])
+def test_runs_stop_at_the_same_step_after_separation(beam, stop_after):
+    """With ``stop_after`` the kernel run ends at the same step as direct stepping (the impactor moving away for that long,
+    through contact and through the kernels' vectorised flight apart), with the same forces up to there."""
+    s, solver = beam
+    law, steps = _maxwell(), 1200  # 600 µs: the ball leaves within it
+    st = NewmarkStepper(s.M, s.K, solver.time_step, C=s.C, params=solver.newmark)
+    direct = integrate_impact(s, law, MASS, VELOCITY, solver.time_step, steps, newmark=solver.newmark, stepper=st, energy=False, stop_after=stop_after)
+    fast = ContactKernels(s, solver.time_step, steps, solver.newmark, stepper=st).run(law, MASS, VELOCITY, stop_after=stop_after)
+    assert direct.time.size < steps + 1  # the run did stop early
+    assert fast.time.size == direct.time.size
+    assert np.max(np.abs(fast.force - direct.force)) <= 1e-9 * direct.force.max()

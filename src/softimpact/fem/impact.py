@@ -273,7 +273,7 @@ def integrate_impact(
     s_prev = np.zeros(dofs.size)  # shares × F at the previous step (nodal forces / sign)
     iterations = 0
     last = N
-    left_at = None
+    clock = None if stop_after is None else SeparationClock(stop_after)
     for k in range(N):
         branch = branch_of(law, state)
         u_free = st.solve(st.predictor(u, v, acc))
@@ -312,15 +312,9 @@ def integrate_impact(
         u, v, acc, xa, s_prev = u1, v1, acc1, xa1, fs
         if k + 1 in slot:
             saved[:, slot[k + 1]] = u1
-        if stop_after is not None:
-            away = f == 0.0 and a_new < 0.0 and xv[k + 1] < float(c @ v1)
-            if away and left_at is None:
-                left_at = t[k + 1]
-            elif not away:
-                left_at = None
-            if left_at is not None and t[k + 1] - left_at >= stop_after:
-                last = k + 1
-                break
+        if clock is not None and clock.done(t[k + 1], f == 0.0 and a_new < 0.0 and xv[k + 1] < float(c @ v1)):
+            last = k + 1
+            break
     sl = slice(0, last + 1)
     return ImpactHistory(
         time=t[sl],
@@ -343,6 +337,26 @@ def integrate_impact(
         displacement=saved[:, keep <= last] if keep.size else None,
         kept=keep[keep <= last] if keep.size else None,
     )
+
+
+class SeparationClock:
+    """When a run may stop (``stop_after`` [s]): the impactor moving away from the target (no force,
+    α < 0, α̇ < 0: slower than the struck point) without a break for ``stop_after``. The one rule of
+    direct stepping and of the contact kernels (in contact and apart)."""
+
+    __slots__ = ("stop_after", "left_at")
+
+    def __init__(self, stop_after: float):
+        self.stop_after, self.left_at = stop_after, None
+
+    def done(self, t: float, away: bool) -> bool:
+        """Record the state at time ``t`` [s]; True once the impactor has been moving away for ``stop_after``."""
+        if not away:
+            self.left_at = None
+            return False
+        if self.left_at is None:
+            self.left_at = t
+        return t - self.left_at >= self.stop_after
 
 
 class PatchCompliance:

@@ -60,7 +60,7 @@ from scipy.fft import next_fast_len
 from ..errors import InputError
 from ..models.protocols import HistoryLaw
 from ..models.specimens import Impactor
-from .impact import ContactPatch, ContactStructure, ImpactHistory, PatchCompliance, newton_contact
+from .impact import ContactPatch, ContactStructure, ImpactHistory, PatchCompliance, SeparationClock, newton_contact
 from .newmark import NewmarkParameters, NewmarkStepper
 from .plate_loads import DiscShares
 from .response import ImpulseResponse
@@ -393,7 +393,8 @@ class ContactKernels:
         old = [0.0] * (N + 1)  # response to the loads of the earlier contacts
         start = None  # first step of the current contact
         total = None  # the spectrum of the response to the loads of the contacts ended so far
-        iterations, last, left_at = 0, N, None
+        iterations, last = 0, N
+        clock = None if stop_after is None else SeparationClock(stop_after)
         k = 0
         while k < N:
             if start is None and k > 0 and F[k] == 0.0 and al[k] <= 0.0:
@@ -430,14 +431,9 @@ class ContactKernels:
                         state = law.advance(state, al[i], ald[i])
                         branch = law.branch(state)
                 # a law without memory stores nothing while apart (α ≤ 0): cen stays 0
-                if stop_after is not None:
+                if clock is not None:
                     for i in range(k + 1, j + 1):
-                        away = al[i] < 0.0 and ald[i] < 0.0
-                        if away and left_at is None:
-                            left_at = i * dt
-                        elif not away:
-                            left_at = None
-                        if left_at is not None and i * dt - left_at >= stop_after:
+                        if clock.done(i * dt, al[i] < 0.0 and ald[i] < 0.0):
                             last = i
                             break
                 if last < N:
@@ -490,16 +486,10 @@ class ContactKernels:
                 cen[k + 1] = float(branch.energy(a_new))
             xa = xa1
             k += 1
-            if stop_after is not None:
-                # moving apart: the impactor slower than the target point, ẋ < ẇ = ẋ − α̇
-                away = f == 0.0 and a_new < 0.0 and ald[k] < 0.0
-                if away and left_at is None:
-                    left_at = k * dt
-                elif not away:
-                    left_at = None
-                if left_at is not None and k * dt - left_at >= stop_after:
-                    last = k
-                    break
+            # moving apart: the impactor slower than the target point, ẋ < ẇ = ẋ − α̇
+            if clock is not None and clock.done(k * dt, f == 0.0 and a_new < 0.0 and ald[k] < 0.0):
+                last = k
+                break
         if start is not None:  # in contact at the end
             spectrum = self._contact_spectrum(Qr, start, N)
             total = spectrum if total is None else total + spectrum
