@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -121,6 +121,18 @@ def _transversely_isotropic(name, E1, E2, G12, nu12, nu23, density, thickness, s
 # catalogue sets S23 = S12 (the transverse-shear stand-in of Hashin's matrix-compression mode).
 # G_IIc is tabulated only for IM7/8552 (Camanho et al. 2007); the other values are representative
 # of the resin class (brittle 177 °C epoxies 0.5–0.8 kJ/m², glass/epoxy about 1 kJ/m²), unverified.
+# Tsai & Hahn's (1980) typical T300/5208 strengths (the T300/5208 entry below), also the stand-in for T300/934.
+_T300_5208_STRENGTH = PlyStrength(
+    1500 * MPA,
+    1500 * MPA,
+    40 * MPA,
+    246 * MPA,
+    68 * MPA,
+    68 * MPA,
+    500.0,
+    "Tsai & Hahn 1980, typical strengths of T300/5208; S23 = S12 assumed; G_IIc 0.5 kJ/m^2 representative, unverified",
+)
+
 PLIES = {
     "T300/934": Ply(
         "T300/934",
@@ -138,15 +150,9 @@ PLIES = {
         "representative literature values (docs/modelling-notes.md); the paper's ref 12 is not available",
         # No T300/934 strength table was found: the T300/5208 strengths of Tsai & Hahn (1980) stand in
         # (same T300 fibre, a 177 °C epoxy), as in the paper report's threshold section.
-        PlyStrength(
-            1500 * MPA,
-            1500 * MPA,
-            40 * MPA,
-            246 * MPA,
-            68 * MPA,
-            68 * MPA,
-            500.0,
-            "T300/5208 strengths of Tsai & Hahn 1980 standing in for T300/934; S23 = S12 assumed; G_IIc 0.5 kJ/m^2 representative, unverified",
+        replace(
+            _T300_5208_STRENGTH,
+            source="T300/5208 strengths of Tsai & Hahn 1980 standing in for T300/934; S23 = S12 assumed; G_IIc 0.5 kJ/m^2 representative, unverified",
         ),
     ),
     # Tsai & Hahn (1980), Introduction to Composite Materials, Technomic: the typical unidirectional
@@ -165,16 +171,7 @@ PLIES = {
         1600.0,
         0.125e-3,
         "Tsai & Hahn 1980, typical unidirectional ply data (E1, E2, G12, nu12); density and ply thickness typical, unverified; nu23 assumed 0.40",
-        PlyStrength(
-            1500 * MPA,
-            1500 * MPA,
-            40 * MPA,
-            246 * MPA,
-            68 * MPA,
-            68 * MPA,
-            500.0,
-            "Tsai & Hahn 1980, typical strengths of T300/5208; S23 = S12 assumed; G_IIc 0.5 kJ/m^2 representative, unverified",
-        ),
+        _T300_5208_STRENGTH,
     ),
     # Daniel & Ishai (2006), Engineering Mechanics of Composite Materials, 2nd ed., Oxford UP, table of
     # properties of typical unidirectional composites, AS4/3501-6 row (V_f 0.63, density 1.60 g/cm³,
