@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from softimpact.fem.impact import integrate_impact
-from softimpact.fem.kernels import ContactKernels
+from softimpact.fem.kernels import ContactKernels, _reciprocal_march
 from softimpact.fem.newmark import NewmarkStepper, SolverSpec
 from softimpact.fem.response import ImpulseResponse
 from softimpact.input.impact_case import load_impact_case
@@ -99,6 +99,32 @@ def test_build_march_equals_the_response_engine(beam, damped):
     assert np.array_equal(kernels.approach, engine.kernel[0])
     assert np.array_equal(kernels.outputs, engine.kernel[1:])
     assert np.array_equal(kernels._Hk, engine._spectrum()[0])
+
+
+@pytest.mark.parametrize("damped", [False, True])
+def test_threaded_build_march_equals_the_response_engine(damped):
+    """A model past the dense limit (the long beam at 60 × 4 Q4, 610 DOF: a band factor): the build's marches, one
+    thread per kernel row (its default) or all rows in one march, equal the response engine's reciprocal kernels
+    bit for bit, without and with Rayleigh damping."""
+    problem, _ = load_impact_case("paper-long-beam-impact")
+    t = problem.target
+    solver = SolverSpec(DT, 60e-6, problem.solver.newmark)
+    problem = replace(problem, target=replace(t, beam=replace(t.beam, nx=60, nz=4), solver=solver))
+    model = impact_model(problem)
+    s = model.contact_structure(problem.position, model.contact_reach(problem.position, problem.impactor.diameter))
+    if damped:
+        s = replace(s, C=(200.0 * s.M + 1e-7 * s.K).tocsc())
+    st = NewmarkStepper(s.M, s.K, solver.time_step, C=s.C, params=solver.newmark)
+    assert not st.dense
+    n, dofs = st.n, np.asarray(s.surface_dofs, int)
+    B = np.zeros((n, dofs.size))
+    B[dofs, np.arange(dofs.size)] = float(s.load_sign)
+    rows = np.vstack([np.asarray(s.approach_row, float)[None, :], np.asarray(s.outputs, float)])
+    engine = ImpulseResponse.reciprocal(st, B, solver.steps, rows)
+    assert np.abs(engine.kernel).max() > 0.0
+    for threads in (None, 1):
+        kernel = _reciprocal_march(st, rows, dofs, float(s.load_sign), solver.steps, threads=threads)
+        assert np.array_equal(kernel, engine.kernel)
 
 
 def test_a_clipped_force_equals_direct_stepping(beam):

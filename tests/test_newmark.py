@@ -39,3 +39,33 @@ def test_unstable_parameters_are_refused():
     """β < γ/2 is only conditionally stable and is refused."""
     with pytest.raises(InputError, match="beta"):
         NewmarkParameters(beta=0.1, gamma=0.5)
+
+
+def test_band_solve_without_the_gil_is_lapacks_and_runs_in_threads():
+    """The band solve called without the GIL (SciPy's Cython LAPACK through ctypes) gives f2py's dpbtrs numbers to
+    the last bit, one or several right-hand sides, also when threads solve at once; and it solves the system."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    import scipy.sparse
+
+    from softimpact.fem import newmark
+
+    n = 600
+    rng = np.random.default_rng(3)
+    offsets = (0, 1, -1, 9, -9)
+    diagonals = [np.full(n, 30.0), *[np.full(n - abs(o), -1.0 - rng.random()) for o in offsets[1:]]]
+    diagonals[2], diagonals[4] = diagonals[1], diagonals[3]  # symmetric
+    A = scipy.sparse.diags(diagonals, offsets).tocsc()
+    factor = newmark.BandedCholesky(A)
+    assert newmark._PBTRS is not None  # SciPy's Cython LAPACK capsule was read
+    b = rng.standard_normal((n, 3))
+    permuted = b if factor.identity else b[factor.perm]
+    reference, info = factor._pbtrs(factor.factor, permuted, lower=0)  # f2py's wrapper
+    assert info == 0
+    reference = reference if factor.identity else reference[factor.inverse_perm]
+    assert np.array_equal(factor.solve(b), reference)
+    assert np.array_equal(factor.solve(b[:, 1]), reference[:, 1])
+    with ThreadPoolExecutor(3) as pool:
+        columns = list(pool.map(lambda j: [factor.solve(b[:, j]) for _ in range(50)][-1], range(3)))
+    assert all(np.array_equal(columns[j], reference[:, j]) for j in range(3))
+    assert np.max(np.abs(A @ reference - b)) <= 1e-12 * np.max(np.abs(b))

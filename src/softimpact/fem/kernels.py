@@ -20,10 +20,10 @@ round-off (the sums are taken in another order). The approach's rate and
 acceleration follow from Newmark's rule applied to α itself (x and c·u each obey
 it, so their difference does), which needs no structural state.
 
-Cost. The build is one Newmark march with 1 + q right-hand sides (the approach row and the q
-outputs, by reciprocity), solved in one call a step (:func:`_reciprocal_march`): about 1.6–2.6 direct
-coupled runs, since a band or sparse solve with m right-hand sides costs about m solves
-(BENCHMARKS.md). A run costs milliseconds. The scalar state is plain Python floats. In the Newton
+Cost. The build is 1 + q Newmark marches of one right-hand side each (the approach row and the q
+outputs, by reciprocity), run at once in threads (:func:`_reciprocal_march`; the factor's solves release
+the GIL): about 1.1–1.5 direct coupled runs on 2 cores (one march costs about one direct run, and a band
+or sparse solve with m right-hand sides costs about m solves: BENCHMARKS.md). A run costs milliseconds. The scalar state is plain Python floats. In the Newton
 iteration the patch enters only through h_s(a) = c·G·s(a) and dh_s/da, evaluated exactly without
 forming s: over the nodes the disc reaches (the cosine line patch) or as the interpolation of the
 table's c·G·s_k computed once (a plate's disc, whose shares interpolate a table); s itself is formed
@@ -52,6 +52,7 @@ from __future__ import annotations
 import copy
 import math
 from bisect import bisect_left, bisect_right
+from concurrent.futures import ThreadPoolExecutor
 from types import SimpleNamespace
 
 import numpy as np
@@ -66,6 +67,8 @@ from .plate_loads import DiscShares
 from .response import ImpulseResponse
 
 __all__ = ["ContactKernels"]
+
+MARCH_THREADS = 16  # the kernel build's marches run at once, one per kernel row up to this many (_reciprocal_march)
 
 
 class _LineCompliance:
@@ -179,23 +182,38 @@ class _Mapped:
         out[self.index] = row[: self.index.size]
 
 
-def _reciprocal_march(st: NewmarkStepper, rows: np.ndarray, dofs: np.ndarray, sign: float, steps: int) -> np.ndarray:
+def _reciprocal_march(st: NewmarkStepper, rows: np.ndarray, dofs: np.ndarray, sign: float, steps: int, threads: int | None = None) -> np.ndarray:
     """The kernels (m, p, steps) of the m = 1 + q rows ``rows`` (m, n) for unit loads on the p surface DOFs
-    ``dofs`` (direction ``sign``), by reciprocity: one Newmark march of the structure at rest under the
-    loads f_1 = rowsᵀ at step 1 only, its m right-hand sides in one solve a step, the surface DOFs read
-    after each step, kernel[:, :, i] = sign·u_{i+1}[dofs]ᵀ. The numbers of
+    ``dofs`` (direction ``sign``), by reciprocity: Newmark marches of the structure at rest under the loads
+    f_1 = rowsᵀ at step 1 only (:func:`_march`). The rows are independent: they are split over ``threads``
+    marches run at once (None: one per row, up to :data:`MARCH_THREADS`), since the factor's solves release
+    the GIL (:class:`softimpact.fem.newmark.BandedCholesky`, SuperLU), while a band solve with m right-hand
+    sides costs m solves in one march (BENCHMARKS.md). One march per row beats one per core: on 2 cores,
+    three one-row marches take about 1.5 marches' time, a two-row and a one-row march 2. Each row's numbers
+    are the same whatever the split (its column of each solve and product is computed alone: a test)."""
+    rows = np.asarray(rows, float)
+    groups = np.array_split(np.arange(rows.shape[0]), max(1, min(rows.shape[0], threads or MARCH_THREADS)))
+    if len(groups) == 1:
+        return _march(st, rows, dofs, sign, steps)
+    with ThreadPoolExecutor(len(groups)) as pool:
+        parts = list(pool.map(lambda g: _march(st, rows[g], dofs, sign, steps), groups))
+    return np.concatenate(parts, axis=0)
+
+
+def _march(st: NewmarkStepper, rows: np.ndarray, dofs: np.ndarray, sign: float, steps: int) -> np.ndarray:
+    """:func:`_reciprocal_march` of the rows ``rows`` in one march, their right-hand sides in one solve a
+    step, the surface DOFs read after each step, kernel[:, :, i] = sign·u_{i+1}[dofs]ᵀ. The numbers of
     :meth:`ImpulseResponse.reciprocal` (``kernel``) to the last bit: the stepper's predictor
     u' = K_eff⁻¹·[M·(a0·u + a2·v + a3·a) + C·(a1·u + a4·v + a5·a)] and corrector a' = a0·(u' − u) − a2·v − a3·a,
     v' = v + a6·a + a7·a' in the same order, with a2·v formed once for both, the products in place, and
-    the outputs read by index instead of a sparse product: the march's own cost beside its solves and
-    its product with M, which no ordering changes (a band solve with m right-hand sides costs m solves;
-    BENCHMARKS.md)."""
+    the outputs read by index instead of a sparse product. The factor's solve is called uncounted
+    (:meth:`NewmarkStepper.factor_solve`: marches may run in threads)."""
     f1 = np.asarray(rows, float).T.copy()  # (n, m)
     a0, a1, a2, a3, a4, a5, a6, a7 = st.a0, st.a1, st.a2, st.a3, st.a4, st.a5, st.a6, st.a7
-    M, C = st.M, st.C
+    M, C, solve = st.M, st.C, st.factor_solve
     unit = a3 == 1.0  # average acceleration: a3·a is a
     seen = np.empty((steps, dofs.size, f1.shape[1]))  # time-major: each step writes one contiguous block
-    u = st.solve(f1)  # from rest: u = K_eff⁻¹·f_1, a = a0·u, v = a7·a
+    u = solve(f1)  # from rest: u = K_eff⁻¹·f_1, a = a0·u, v = a7·a
     a = a0 * u
     v = a7 * a
     seen[0] = u[dofs]
@@ -207,7 +225,7 @@ def _reciprocal_march(st: NewmarkStepper, rows: np.ndarray, dofs: np.ndarray, si
         rhs = M @ z
         if C is not None:
             rhs = rhs + C @ (a1 * u + a4 * v + a5 * a)
-        u1 = st.solve(rhs)
+        u1 = solve(rhs)
         acc = u1 - u
         acc *= a0
         acc -= a2v
@@ -269,6 +287,7 @@ class ContactKernels:
         else:
             self.engine = None
             kernel = _reciprocal_march(st, rows, dofs, float(structure.load_sign), self.steps)
+            st.nsolve += self.steps * rows.shape[0]  # (one solve a step per row; the marches' calls are uncounted)
         self.approach = kernel[0]  # (p, steps)
         self.outputs = kernel[1:]  # (q, p, steps)
         self._lagged = np.ascontiguousarray(self.approach.T)  # (steps, p): row i is g_i

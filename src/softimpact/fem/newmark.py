@@ -10,6 +10,7 @@ Arrays: DOF vectors have shape (n,); histories put time on the last axis.
 
 from __future__ import annotations
 
+import ctypes
 import math
 from dataclasses import dataclass
 
@@ -30,6 +31,30 @@ BAND_TRY_SPARSE = 1_000_000
 # A stored entry of SuperLU's factor costs this much more per solve than one of the band
 # (measured on the 48 × 48 MITC9 plate, 27 455 DOF: 2.5 against 2.0 ns an entry).
 SPARSE_ENTRY_COST = 1.25
+
+
+def _pbtrs_without_gil():
+    """LAPACK's dpbtrs as exported by :mod:`scipy.linalg.cython_lapack` (SciPy's public Cython-level
+    LAPACK), called through :mod:`ctypes`, which releases the GIL for the call; scipy.linalg.lapack's
+    f2py wrapper holds it, so two threads' band solves would run one after the other. The same routine
+    of the same library: the same numbers, to the last bit. None where the capsule cannot be read
+    (the f2py wrapper is used then)."""
+    try:
+        from scipy.linalg import cython_lapack
+
+        capsule = cython_lapack.__pyx_capi__["dpbtrs"]
+        api = ctypes.pythonapi
+        api.PyCapsule_GetName.restype, api.PyCapsule_GetName.argtypes = ctypes.c_char_p, [ctypes.py_object]
+        api.PyCapsule_GetPointer.restype, api.PyCapsule_GetPointer.argtypes = ctypes.c_void_p, [ctypes.py_object, ctypes.c_char_p]
+        address = api.PyCapsule_GetPointer(capsule, api.PyCapsule_GetName(capsule))
+        integer = ctypes.POINTER(ctypes.c_int)
+        # dpbtrs(uplo, n, kd, nrhs, ab, ldab, b, ldb, info)
+        return ctypes.CFUNCTYPE(None, ctypes.c_char_p, integer, integer, integer, ctypes.c_void_p, integer, ctypes.c_void_p, integer, integer)(address)
+    except Exception:  # noqa: BLE001 (any failure: the f2py wrapper serves)
+        return None
+
+
+_PBTRS = _pbtrs_without_gil()
 
 
 class BandedCholesky:
@@ -59,9 +84,10 @@ class BandedCholesky:
         from threadpoolctl import threadpool_limits
 
         with threadpool_limits(1, user_api="blas"):
-            self.factor = scipy.linalg.cholesky_banded(ab, lower=False)
+            self.factor = np.asfortranarray(scipy.linalg.cholesky_banded(ab, lower=False))  # LAPACK's band storage
         self.bandwidth = bw
         (self._pbtrs,) = scipy.linalg.get_lapack_funcs(("pbtrs",), (self.factor,))
+        self._sizes = (ctypes.c_int(n), ctypes.c_int(bw), ctypes.c_int(bw + 1))  # dpbtrs's read-only n, kd, ldab, once
 
     @classmethod
     def plan(cls, A):
@@ -92,10 +118,18 @@ class BandedCholesky:
         return 4.0 * self.factor.shape[1] * (self.bandwidth + 1)
 
     def solve(self, rhs: np.ndarray) -> np.ndarray:
-        # LAPACK's banded Cholesky solve (dpbtrs) called directly: scipy's
-        # cho_solve_banded wraps it in checks that cost as much as the solve on small bands.
+        """K⁻¹·rhs, rhs (n,) or (n, k): LAPACK's banded Cholesky solve (dpbtrs) called directly (scipy's
+        cho_solve_banded wraps it in checks that cost as much as the solve on small bands), without
+        the GIL where SciPy's Cython LAPACK is at hand (:func:`_pbtrs_without_gil`): threads solve at once."""
         b = rhs if self.identity else rhs[self.perm]
-        x, info = self._pbtrs(self.factor, b, lower=0)
+        if _PBTRS is None or self.factor.dtype != np.float64:
+            x, info = self._pbtrs(self.factor, b, lower=0)
+        else:
+            x = np.array(b, dtype=np.float64, order="F")  # a copy, overwritten with the solution
+            n, kd, ldab = self._sizes
+            status = ctypes.c_int(0)
+            _PBTRS(b"U", n, kd, ctypes.c_int(1 if x.ndim == 1 else x.shape[1]), self.factor.ctypes.data, ldab, x.ctypes.data, n, status)
+            info = status.value
         if info != 0:
             raise np.linalg.LinAlgError(f"banded Cholesky solve failed (LAPACK info {info})")
         return x if self.identity else x[self.inverse_perm]
@@ -229,6 +263,13 @@ class NewmarkStepper:
     def solve(self, rhs: np.ndarray) -> np.ndarray:
         """K_eff⁻¹·rhs; rhs of shape (n,) or (n, k)."""
         self.nsolve += 1
+        if self.dense:
+            return scipy.linalg.cho_solve(self._factor, rhs, check_finite=False)
+        return self._factor.solve(rhs)
+
+    def factor_solve(self, rhs: np.ndarray) -> np.ndarray:
+        """K_eff⁻¹·rhs, not counted in ``nsolve``: safe to call from several threads at once (the kernel
+        build's marches; the band and SuperLU solves of a sparse system release the GIL, a dense one's holds it)."""
         if self.dense:
             return scipy.linalg.cho_solve(self._factor, rhs, check_finite=False)
         return self._factor.solve(rhs)
