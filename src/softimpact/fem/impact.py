@@ -377,8 +377,15 @@ def newton_contact(law, comp, hm: float, kappa: float, q: float, target: float, 
     stepping and of the contact kernels.
 
     ``comp(r) -> (h_s, dh_s/dr)``: the patch compliance c·G·s(r) and its derivative, with
-    ``comp.half_spacing`` (:class:`PatchCompliance`, or the kernels' exact evaluators). Starts from
-    ``guess`` (the linear extrapolation of α) when it lies in the bracket, else α̃. ``try_top``: a
+    ``comp.half_spacing`` (:class:`PatchCompliance`, or the kernels' exact evaluators). Where the patch
+    also offers ``comp.value(r) -> h_s`` (the kernels' line patch), iterates after the first full
+    evaluation take h_s from it, exact, and keep that evaluation's dh_s/dr: the slope only shapes the
+    Newton step (whose size is the convergence test), while the residual R, which locates the root,
+    is exact at every iterate. Starts from
+    ``guess`` (the linear extrapolation of α) when it lies in the bracket, else α̃; ends at the first iterate
+    whose Newton step is within the tolerance (its force and radius are returned as evaluated), or at the
+    midpoint of a bracket closed by bisection. A law whose contact radius is a = c·α^n says so with
+    ``radius_power`` n (da/dα = n·a/α); else da/dα is a central difference. ``try_top``: a
     Newton step landing exactly on α̃ is tried once (an iterate where the force is clipped to zero
     steps there, and the root is there when the clipped force stays zero) instead of bisecting
     (the kernels take it; direct stepping keeps the plain bracket test, so its iteration counts in
@@ -391,6 +398,9 @@ def newton_contact(law, comp, hm: float, kappa: float, q: float, target: float, 
     R = math.nan
     top = False  # α̃ evaluated
     response = getattr(law, "response", None)  # (F, ∂F/∂α, ∂F/∂α̇) at once, where the law offers it
+    power = getattr(law, "radius_power", None)  # a = c·α^n: da/dα = n·a/α exactly (else a central difference)
+    value = getattr(comp, "value", None)  # h_s(r) alone, where the patch offers it
+    slope = None  # dh_s/dr of the last full evaluation
     for its in range(1, NEWTON_MAXITER + 1):  # noqa: B007 (the count is returned after the loop)
         rate = kappa * a + q
         if response is not None:
@@ -400,7 +410,13 @@ def newton_contact(law, comp, hm: float, kappa: float, q: float, target: float, 
             stiff, damp = law.stiffness(a, rate), law.damping(a, rate)
         r = law.radius(a)
         # h_s enters only multiplied by F, ∂F/∂α, ∂F/∂α̇: not evaluated where all three vanish (a clipped force)
-        hs, dhs = comp(r) if f != 0.0 or stiff != 0.0 or damp != 0.0 else (0.0, 0.0)
+        if f == 0.0 and stiff == 0.0 and damp == 0.0:
+            hs = 0.0
+        elif value is not None and slope is not None:
+            hs = value(r)  # exact; its slope kept from an earlier iterate (a nearby r: the step estimate only)
+        else:
+            hs, slope = comp(r)
+        dhs = 0.0 if slope is None else slope
         h = hm + hs
         R = a - target + f * h
         if R > 0.0:
@@ -409,13 +425,15 @@ def newton_contact(law, comp, hm: float, kappa: float, q: float, target: float, 
             lo = a
         dR = 1.0 + (stiff + kappa * damp) * h
         if f != 0.0 and r >= half:
-            da = RADIUS_STEP * a
-            dr = (law.radius(a + da) - law.radius(a - da)) / (2.0 * da)
+            if power is not None:
+                dr = power * r / a
+            else:
+                da = RADIUS_STEP * a
+                dr = (law.radius(a + da) - law.radius(a - da)) / (2.0 * da)
             dR += f * dhs * dr
         step = R / dR
         if abs(step) <= NEWTON_TOL * target:
-            a -= step
-            break
+            return a, float(f), r, its  # this iterate is the root within the tolerance: its force and radius
         top = top or a == target
         a_next = a - step
         # a step onto α̃ itself (an iterate where the force is clipped to zero steps there: R = α − α̃)
@@ -431,7 +449,7 @@ def newton_contact(law, comp, hm: float, kappa: float, q: float, target: float, 
             f"the contact Newton iteration did not converge at t = {index * dt:.6g} s (step {index}) in {NEWTON_MAXITER} iterations: "
             f"residual {R:.3g} m, approach bracket [{lo:.6g}, {hi:.6g}] m"
         )
-    return a, float(law.force(a, kappa * a + q)), law.radius(a), its
+    return a, float(law.force(a, kappa * a + q)), law.radius(a), its  # the bracket closed: its midpoint
 
 
 def _solve_contact(law, patch: ContactPatch, cG, hm, kappa, q, target, guess, index: int, dt: float):

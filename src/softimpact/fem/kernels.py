@@ -77,17 +77,19 @@ class _LineCompliance:
     clipped to ±r (sin = ±1) and each inner segment end m_j is shared by two nodes, so
 
         h_s = ½·[c_{i0} + c_{i1−1} + Σ_j (c_j − c_{j+1})·sin(π·m_j/(2r))],
+        dh_s/dr = −½·(π/(2r))/r·Σ_j (c_j − c_{j+1})·m_j·cos(π·m_j/(2r)),
 
-    one sine (and one cosine for the derivative) per reached node."""
+    one sine and one cosine per reached node."""
 
     def __init__(self, patch: ContactPatch, cG: np.ndarray):
         self.patch, self.half_spacing = patch, float(patch.half_spacing)
         c = np.asarray(cG, float)
         self.lo, self.hi, self.c = patch.lo.tolist(), patch.hi.tolist(), c.tolist()
         self.dc = (c[:-1] - c[1:]).tolist()  # c_j − c_{j+1}: the weight of the end shared by nodes j and j + 1
-        self.ends = list(zip(self.dc, self.hi))  # (weight, position) of each inner segment end
+        self.ends = [(d, m, d * m) for d, m in zip(self.dc, self.hi)]  # (weight, position, their product) of each inner segment end
         self.x0, self.x1 = self.extent = patch.extent
         self.point = self.c[patch.nearest]
+        self._kept = None  # (r, i0, i1, π/(2r), the inner ends' sines) of the last :meth:`value`
 
     def __call__(self, r: float) -> tuple[float, float]:
         if r < self.half_spacing:
@@ -99,11 +101,31 @@ class _LineCompliance:
         sin, cos = math.sin, math.cos
         h = self.c[i0] + self.c[i1 - 1]
         dh = 0.0
-        for d, m in self.ends[i0 : i1 - 1]:  # the inner segment ends the disc covers
+        for d, m, dm in self.ends[i0 : i1 - 1]:  # the inner segment ends the disc covers
             x = w * m
             h += d * sin(x)
-            dh -= d * cos(x) * x
-        return 0.5 * h, 0.5 * dh / r
+            dh += dm * cos(x)
+        return 0.5 * h, -0.5 * w * dh / r
+
+    def value(self, r: float) -> float:
+        """h_s(r) alone (the contact iteration's later iterates, :func:`newton_contact`), the same sum as
+        :meth:`__call__`'s; its sines are kept for :meth:`load` at the same r (the converged iterate's)."""
+        if r < self.half_spacing:
+            return self.point
+        if -r < self.x0 - 1e-12 * r or r > self.x1 + 1e-12 * r:
+            raise InputError(f"contact radius {r:.4g} m runs past the loadable surface nodes")
+        i0, i1 = bisect_right(self.hi, -r), bisect_left(self.lo, r)
+        w = math.pi / (2.0 * r)
+        sin = math.sin
+        h = self.c[i0] + self.c[i1 - 1]
+        sines = []
+        keep = sines.append
+        for d, m, _ in self.ends[i0 : i1 - 1]:
+            x = sin(w * m)
+            keep(x)
+            h += d * x
+        self._kept = (r, i0, i1, w, sines)
+        return 0.5 * h
 
     def load(self, r: float, f: float, out: np.ndarray) -> None:
         """out ← f·s(r) (out zero on entry): the nodal loads of the converged step."""
@@ -111,14 +133,18 @@ class _LineCompliance:
             out[self.patch.nearest] = f
             return
         lo, hi, sin = self.lo, self.hi, math.sin
-        w = math.pi / (2.0 * r)
-        i0, i1 = bisect_right(hi, -r), bisect_left(lo, r)
+        kept = self._kept
+        if kept is not None and kept[0] == r:  # the sines of the inner ends, from :meth:`value` at this r
+            _, i0, i1, w, inner = kept
+        else:
+            w = math.pi / (2.0 * r)
+            i0, i1 = bisect_right(hi, -r), bisect_left(lo, r)
+            inner = [sin(w * m) for m in hi[i0 : i1 - 1]]
         # the segment ends the disc covers, each shared by two nodes (lo[j + 1] is hi[j]), the outer two clipped to ±r
         half = 0.5 * f
         below = sin(w * min(max(lo[i0], -r), r))
         loads = []
-        for m in hi[i0 : i1 - 1]:
-            above = sin(w * m)
+        for above in inner:
             loads.append(half * (above - below))
             below = above
         loads.append(half * (sin(w * min(max(hi[i1 - 1], -r), r)) - below))
@@ -340,9 +366,10 @@ class ContactKernels:
         used = np.flatnonzero(np.any(loads != 0.0, axis=0))
         if used.size == 0:
             return np.zeros((self._Hk.shape[0], nfft // 2 + 1), complex)
-        placed = np.zeros((used.size, nfft))
-        placed[:, start - 1 : upto] = loads[::-1, used].T  # q_j at index j − 1
-        return np.einsum("qpk,pk->qk", self._Hk[:, used], np.fft.rfft(placed, axis=-1))
+        nodes = slice(used[0], used[-1] + 1)  # the loaded nodes' span (a view of the spectra, not a copy)
+        placed = np.zeros((used[-1] + 1 - used[0], nfft))
+        placed[:, start - 1 : upto] = loads[::-1, nodes].T  # q_j at index j − 1
+        return np.einsum("qpk,pk->qk", self._Hk[:, nodes], np.fft.rfft(placed, axis=-1))
 
     def _response(self, spectrum: np.ndarray) -> np.ndarray:
         """y (rows, steps + 1) from a response spectrum of :meth:`_contact_spectrum`, y_0 = 0."""
@@ -400,6 +427,7 @@ class ContactKernels:
         F, al, ald, rad, x, xv, cwork, cen = ([0.0] * (N + 1) for _ in range(8))
         Qr = np.zeros((N + 1, p))  # Qr[N − j] = q_j = F_j·s_j: a contact's loads newest first, contiguous
         Qflat, gflat = Qr.ravel(), g.ravel()  # the same, as one run of lags × nodes each (views)
+        dot = np.dot
         xv[0] = ald[0] = velocity
         xa = ala = 0.0
         memory = isinstance(law, HistoryLaw)  # (a protocol check: once, not per step)
@@ -461,21 +489,22 @@ class ContactKernels:
                 if k >= N:
                     break
             # a law with memory: the branch of the state the last step left (built there, for its energy)
+            ak, adk, fk = al[k], ald[k], F[k]
             x_pred = x[k] + dt * xv[k] + c2 * xa
             w_hist = old[k + 1]
             if start is not None:  # the current contact's loads, lags 1 … k + 1 − start: one dot product
                 L = k + 1 - start
-                w_hist += float(np.dot(gflat[p : (L + 1) * p], Qflat[(N - k) * p : (N - k + L) * p]))
+                w_hist += float(dot(gflat[p : (L + 1) * p], Qflat[(N - k) * p : (N - k + L) * p]))
             target = x_pred - w_hist
-            q = r1 * ald[k] + r2 * ala - kappa * al[k]
+            q = r1 * adk + r2 * ala - kappa * ak
             if target <= 0.0:
                 a_new, f, r = target, 0.0, 0.0
-            elif F[k] == 0.0 and (branch.response(target, kappa * target + q)[0] if responds else branch.force(target, kappa * target + q)) == 0.0:
+            elif fk == 0.0 and (branch.response(target, kappa * target + q)[0] if responds else branch.force(target, kappa * target + q)) == 0.0:
                 # no force at the bracket's top α̃ (a force clipped to zero, as by the Maxwell arm's negative
                 # stress while unloading): R(α̃) = 0 there, the root (R increases with α), without a Newton iteration
                 a_new, f, r = target, 0.0, branch.radius(target)
             else:
-                guess = 2.0 * al[k] - al[k - 1] if k >= 1 else target
+                guess = 2.0 * ak - al[k - 1] if k >= 1 else target
                 a_new, f, r, its = newton_contact(branch, comp, hm, kappa, q, target, guess, k + 1, dt, try_top=True)
                 iterations += its
             if f != 0.0:
@@ -490,23 +519,23 @@ class ContactKernels:
             x[k + 1] = x_pred - hm * f
             xa1 = -f / mass
             xv[k + 1] = xv[k] + dt * ((1.0 - gamma) * xa + gamma * xa1)
-            F[k + 1], al[k + 1], rad[k + 1] = f, a_new, r
-            ald[k + 1] = kappa * a_new + q
+            ad_new = kappa * a_new + q
+            F[k + 1], al[k + 1], rad[k + 1], ald[k + 1] = f, a_new, r, ad_new
             # Newmark's displacement rule on α = x − c·u gives α̈ without the structure's state
-            ala = (a_new - al[k] - dt * ald[k] - c2 * ala) / bdt2
-            cwork[k + 1] = cwork[k] + 0.5 * (F[k] + f) * (a_new - al[k])
+            ala = (a_new - ak - dt * adk - c2 * ala) / bdt2
+            cwork[k + 1] = cwork[k] + 0.5 * (fk + f) * (a_new - ak)
             if settle is not None:
-                state, branch, cen[k + 1] = settle(state, a_new, ald[k + 1])
+                state, branch, cen[k + 1] = settle(state, a_new, ad_new)
             elif memory:
                 cen[k + 1] = branch.energy(a_new)  # the step's branch: its stress at α_{k+1} is the converged σ_{k+1}
-                state = law.advance(state, a_new, ald[k + 1])
+                state = law.advance(state, a_new, ad_new)
                 branch = law.branch(state)
             else:
                 cen[k + 1] = float(branch.energy(a_new))
             xa = xa1
             k += 1
             # moving apart: the impactor slower than the target point, ẋ < ẇ = ẋ − α̇
-            if clock is not None and clock.done(k * dt, f == 0.0 and a_new < 0.0 and ald[k] < 0.0):
+            if clock is not None and clock.done(k * dt, f == 0.0 and a_new < 0.0 and ad_new < 0.0):
                 last = k
                 break
         if start is not None:  # in contact at the end

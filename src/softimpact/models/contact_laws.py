@@ -145,6 +145,8 @@ class HertzLaw:
     ``energy`` take a scalar (the stepping loop's fast path) or an array of α.
     """
 
+    radius_power = 0.5  # the contact radius a = sqrt(c·α) ∝ α^½ (the contact iteration's da/dα = ½·a/α)
+
     K: float
     R: float
     exponent: float = 1.5
@@ -223,6 +225,8 @@ class YangSunState:
 @dataclass(frozen=True)
 class YangSunBranch:
     """The Yang–Sun law at a fixed α_m: loading above α_m, the unloading curve below."""
+
+    radius_power = 0.5  # the contact radius a = sqrt(c·α) ∝ α^½ (the contact iteration's da/dα = ½·a/α)
 
     law: YangSunLaw
     alpha_max: float
@@ -309,6 +313,8 @@ class HuntCrossleyLaw:
     (D = 3(1 − e)/(2v⁻)). ``impact_velocity`` v⁻ > 0 [m/s].
     """
 
+    radius_power = 0.5  # the contact radius a = sqrt(c·α) ∝ α^½ (the contact iteration's da/dα = ½·a/α)
+
     K: float
     R: float
     restitution: float
@@ -365,6 +371,8 @@ class SoftProjectileLaw:
     ``k``, ``p``, ``c`` dimensionless (already scaled to this diameter; see
     :meth:`scaled`).
     """
+
+    radius_power = 0.5  # the contact radius a = sqrt(c·α) ∝ α^½ (the contact iteration's da/dα = ½·a/α)
 
     mass: float
     diameter: float
@@ -447,6 +455,8 @@ class MaxwellBranch:
     The base law's constants are copied once per branch (plain floats: the contact iteration calls
     :meth:`response` thousands of times per run); every result is the same arithmetic as the base law's.
     """
+
+    radius_power = 0.5  # the contact radius a = sqrt(c·α) ∝ α^½ (the contact iteration's da/dα = ½·a/α)
 
     law: ViscoelasticSoftLaw
     strain_start: float
@@ -574,13 +584,13 @@ class ViscoelasticSoftLaw:
         contact energy at the end of the step [J]: the step's own branch's (``branch(state).energy(α)`` of
         the state before it), whose arm stress at α is the converged σ (one call a step in the contact kernels)."""
         steady = self.__dict__.get("_steady")
-        if steady is None:  # (E, g, the branches' constants), once per bound law
+        if steady is None:  # (E, g, the branches' constants and those of the energy), once per bound law
             E, g = self._decay()
-            steady = (E, g, MaxwellBranch._of(self, 0.0, 0.0, g)._const)
+            const = MaxwellBranch._of(self, 0.0, 0.0, g)._const
+            steady = (E, g, const, const[0], const[1], const[2], const[6], const[7])
             object.__setattr__(self, "_steady", steady)
-        E, g, const = steady
-        sk, d, p, _, _, _, half_sd, kappa, _ = const  # d: the base law's diameter
-        strain = max(alpha, 0.0) / d
+        E, g, const, sk, d, p, half_sd, kappa = steady  # d: the base law's diameter
+        strain = (alpha if alpha > 0.0 else 0.0) / d
         stress = state.stress * E + g * (strain - state.strain)
         new = object.__new__(MaxwellState)  # MaxwellState(strain, stress) without the frozen __init__
         new.__dict__.update(strain=strain, stress=stress)
@@ -596,16 +606,17 @@ class ViscoelasticSoftLaw:
         ½·(mV²/d)·d·σ²/κ), the values of ``branch(state).energy(α)`` then ``state = advance(state, α, α̇)``
         step by step for any α ≤ 0 (the same arithmetic, without building a state and a branch a step:
         the contact kernels' free flight)."""
+        if steps <= 0:
+            return state, []
         E, g = self._decay()
         const = self.branch(state)._const
         half_sd, kappa = const[6], const[7]
-        strain, stress = state.strain, state.stress
-        energies = []
-        for _ in range(steps):
-            stress = stress * E + g * (0.0 - strain)
-            strain = 0.0
-            energies.append(0.0 + half_sd * stress**2 / kappa)
-        return (MaxwellState(strain, stress) if steps else state), energies
+        # the first step releases the arm's strain; from then on σ ← σ·E + g·(0 − 0) = σ·E: a running product
+        factors = np.full(steps, E)
+        factors[0] = state.stress * E + g * (0.0 - state.strain)
+        stress = np.cumprod(factors)
+        energies = 0.0 + half_sd * stress**2 / kappa
+        return MaxwellState(0.0, float(stress[-1])), energies.tolist()
 
 
 # The contact laws by name (case files' ``contact.law``), each with the class it builds: one table,
