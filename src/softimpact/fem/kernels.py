@@ -20,10 +20,10 @@ round-off (the sums are taken in another order). The approach's rate and
 acceleration follow from Newmark's rule applied to α itself (x and c·u each obey
 it, so their difference does), which needs no structural state.
 
-Cost. The build is 1 + q Newmark marches of one right-hand side each (the approach row and the q
-outputs, by reciprocity), run at once in threads (:func:`_reciprocal_march`; the factor's solves release
-the GIL): about 1.1–1.5 direct coupled runs on 2 cores (one march costs about one direct run, and a band
-or sparse solve with m right-hand sides costs about m solves: BENCHMARKS.md). A run costs milliseconds. The scalar state is plain Python floats. In the Newton
+Cost. The build marches the structure with 1 + q right-hand sides (the approach row and the q
+outputs, by reciprocity; :func:`_reciprocal_march`): with a band factor one march per row, run at once in
+threads (the band solve releases the GIL), about 1.1–1.6 direct coupled runs on 2 free cores; with SuperLU's
+sparse factor (large plates) one march solving all rows in one call a step, about 1.6–1.9 (BENCHMARKS.md). A run costs milliseconds. The scalar state is plain Python floats. In the Newton
 iteration the patch enters only through h_s(a) = c·G·s(a) and dh_s/da, evaluated exactly without
 forming s: over the nodes the disc reaches (the cosine line patch) or as the interpolation of the
 table's c·G·s_k computed once (a plate's disc, whose shares interpolate a table); s itself is formed
@@ -212,13 +212,17 @@ def _reciprocal_march(st: NewmarkStepper, rows: np.ndarray, dofs: np.ndarray, si
     """The kernels (m, p, steps) of the m = 1 + q rows ``rows`` (m, n) for unit loads on the p surface DOFs
     ``dofs`` (direction ``sign``), by reciprocity: Newmark marches of the structure at rest under the loads
     f_1 = rowsᵀ at step 1 only (:func:`_march`). The rows are independent: they are split over ``threads``
-    marches run at once (None: one per row, up to :data:`MARCH_THREADS`), since the factor's solves release
-    the GIL (:class:`softimpact.fem.newmark.BandedCholesky`, SuperLU), while a band solve with m right-hand
-    sides costs m solves in one march (BENCHMARKS.md). One march per row beats one per core: on 2 cores,
-    three one-row marches take about 1.5 marches' time, a two-row and a one-row march 2. Each row's numbers
-    are the same whatever the split (its column of each solve and product is computed alone: a test)."""
+    marches run at once. None: one per row (up to :data:`MARCH_THREADS`) where a band factor solves them
+    (:attr:`NewmarkStepper.separate_solves`: m right-hand sides cost m solves together or apart, and the
+    band solve releases the GIL), else one march (SuperLU solves several columns in one call for less than
+    apart, BENCHMARKS.md). One march per row beats one per core: on 2 free cores, three one-row marches take
+    about 1.5 marches' time, a two-row and a one-row march 2; on a busy core they cost about what one march
+    of all rows costs. Each row's numbers are the same whatever the split (its column of each solve and
+    product is computed alone: a test)."""
     rows = np.asarray(rows, float)
-    groups = np.array_split(np.arange(rows.shape[0]), max(1, min(rows.shape[0], threads or MARCH_THREADS)))
+    if threads is None:
+        threads = MARCH_THREADS if st.separate_solves else 1
+    groups = np.array_split(np.arange(rows.shape[0]), max(1, min(rows.shape[0], threads)))
     if len(groups) == 1:
         return _march(st, rows, dofs, sign, steps)
     with ThreadPoolExecutor(len(groups)) as pool:

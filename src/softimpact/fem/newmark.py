@@ -267,6 +267,13 @@ class NewmarkStepper:
             return scipy.linalg.cho_solve(self._factor, rhs, check_finite=False)
         return self._factor.solve(rhs)
 
+    @property
+    def separate_solves(self) -> bool:
+        """True when m right-hand sides cost m one-column solves whether solved together or apart, and apart
+        they run in threads at once (a band factor: LAPACK's dpbtrs sweeps the band once per column, called
+        without the GIL); False for SuperLU (several columns in one call cost less than apart) and dense factors."""
+        return isinstance(self._factor, BandedCholesky) and _PBTRS is not None
+
     def factor_solve(self, rhs: np.ndarray) -> np.ndarray:
         """K_eff⁻¹·rhs, not counted in ``nsolve``: safe to call from several threads at once (the kernel
         build's marches; the band and SuperLU solves of a sparse system release the GIL, a dense one's holds it)."""
