@@ -59,7 +59,10 @@ X_SCALE = (0.02, 1.0, 0.1, 1.0)  # typical steps of (t0/T, F0, t_F0/T, T): t0 an
 
 
 def skewed_shape(t, t0, F0, tp, T):
-    """Eq (15) started at t0: quarter sine to t0 + t_F0, quarter cosine to t0 + T, zero elsewhere."""
+    """Eq (15) started at t0: quarter sine to t0 + t_F0, quarter cosine to t0 + T, zero elsewhere.
+
+    The parameters may be arrays that broadcast against ``t`` (a column (k, 1) of each: k pulses
+    at once, row by row the same numbers as k calls)."""
     x = np.asarray(t, float) - t0
     rise = F0 * np.sin(np.pi * x / (2 * tp))
     fall = F0 * np.cos(np.pi * (x - tp) / (2 * (T - tp)))
@@ -67,8 +70,11 @@ def skewed_shape(t, t0, F0, tp, T):
 
 
 def _tailed_shape(t, t0, F0, tp, T, level, decay):
+    """Eq (15) to the knee where its fall reaches level·F0, then level·F0·exp(−(t − t_k)/decay); the
+    parameters scalars, or columns (k, 1) of k pulses at once (as :func:`skewed_shape`)."""
     x = np.asarray(t, float) - t0
-    tk = tp + 2 * (T - tp) / np.pi * math.acos(level)
+    knee = math.acos(level) if np.ndim(level) == 0 else np.array([[math.acos(v)] for v in np.ravel(level)])  # libm's acos either way
+    tk = tp + 2 * (T - tp) / np.pi * knee
     tail = level * F0 * np.exp(-np.maximum(x - tk, 0.0) / decay)
     return np.where(x < tk, skewed_shape(x, 0.0, F0, tp, T), tail)
 
@@ -150,6 +156,28 @@ def _guess(t, F):
     return F0, tp, T
 
 
+def _least_squares(residuals, p0, **options):
+    """scipy's least_squares of ``residuals`` with its forward-difference Jacobian's points evaluated
+    in one call: ``residuals(P)`` takes parameter rows P (k, n_p) and returns residual rows (k, m),
+    each row the numbers a call on that row alone gives. The steps and the points are scipy's own
+    (its ``workers`` hook, SciPy ≥ 1.16): the same fit as a plain call, in a fraction of the calls.
+    """
+    from scipy.optimize import least_squares
+
+    def one(q):
+        return residuals(q[None, :])[0]
+
+    def points(fun, xs):  # the map least_squares runs the difference points through
+        return list(residuals(np.array(list(xs))))
+
+    try:
+        return least_squares(one, p0, workers=points, **options)
+    except TypeError as exc:  # SciPy < 1.16: no workers
+        if "workers" not in str(exc):
+            raise
+        return least_squares(one, p0, **options)
+
+
 def _errors(sol, scales, n):
     """Standard errors of the scaled parameters from the Jacobian: s²(JᵀJ)⁻¹."""
     J = sol.jac
@@ -171,8 +199,6 @@ def fit_pulse(t, F, *, t_end: float | None = None, guess: tuple[float, float, fl
     ``guess``: (F0, t_F0, T) to start from (default: from a lightly smoothed copy of the record);
     the bounds (module constants) are multiples of it.
     """
-    from scipy.optimize import least_squares
-
     t, F = _validate(t, F)
     t_end = float(t[-1]) if t_end is None else float(t_end)
     sel = t <= t_end
@@ -188,17 +214,17 @@ def fit_pulse(t, F, *, t_end: float | None = None, guess: tuple[float, float, fl
     x_scale = np.array(X_SCALE)
     free = slice(0, 4) if with_onset else slice(1, 4)
 
-    def unpack(q):
-        p = np.concatenate(([0.0], q)) if not with_onset else q
+    def unpack(q):  # (n_free,) or (n_free, k)
+        p = np.concatenate((np.zeros((1, *q.shape[1:])), q)) if not with_onset else q
         return p[0] * T, p[1] * F0, p[2] * T, p[3] * T
 
-    def residual(q):
-        t0, f0, tpk, dur = unpack(q)
-        return (skewed_shape(ts, t0, f0, min(tpk, 0.999 * dur), dur) - Fs) / F0
+    def residuals(Q):  # rows of parameters → rows of residuals
+        t0, f0, tpk, dur = (c[:, None] for c in unpack(Q.T))
+        return (skewed_shape(ts, t0, f0, np.minimum(tpk, 0.999 * dur), dur) - Fs) / F0
 
     lo, hi, p0 = lo[free], hi[free], p0[free]
     p0 = np.clip(p0, lo + 1e-9, hi - 1e-9)
-    sol = least_squares(residual, p0, bounds=(lo, hi), x_scale=x_scale[free])
+    sol = _least_squares(residuals, p0, bounds=(lo, hi), x_scale=x_scale[free])
     t0, f0, tpk, dur = unpack(sol.x)
     tpk = min(tpk, 0.999 * dur)
     se = np.concatenate(([0.0], _errors(sol, scales[free], ts.size))) if not with_onset else _errors(sol, scales, ts.size)
@@ -208,8 +234,6 @@ def fit_pulse(t, F, *, t_end: float | None = None, guess: tuple[float, float, fl
 
 def _fit_tailed(t, F, main: PulseFit) -> tuple[TailedPulse, float]:
     """Stage 1: eq (15) to the knee, then an exponential tail, over the whole record."""
-    from scipy.optimize import least_squares
-
     m = main.pulse
     F0, T = m.peak_force, m.duration
     after = t > main.start + T
@@ -220,15 +244,15 @@ def _fit_tailed(t, F, main: PulseFit) -> tuple[TailedPulse, float]:
     def unpack(p):
         return p[0] * T, p[1] * F0, p[2] * T, p[3] * T, p[4], p[5] * T
 
-    def residual(p):
-        t0, f0, tpk, dur, lev, dec = unpack(p)
-        return (_tailed_shape(t, t0, f0, min(tpk, 0.999 * dur), dur, lev, dec) - F) / F0
+    def residuals(P):  # rows of parameters → rows of residuals
+        t0, f0, tpk, dur, lev, dec = (c[:, None] for c in unpack(P.T))
+        return (_tailed_shape(t, t0, f0, np.minimum(tpk, 0.999 * dur), dur, lev, dec) - F) / F0
 
     p0 = np.array([main.start / T, 1.0, m.time_of_peak / T, 1.0, level0, decay0 / T])
     lo = np.array([-ONSET_BOUND, PEAK_BOUNDS[0], RISE_BOUNDS[0], DURATION_BOUNDS[0], 0.005, 0.01])  # tail level and decay/T: wide
     hi = np.array([ONSET_BOUND, PEAK_BOUNDS[1], RISE_BOUNDS[1], DURATION_BOUNDS[1], 0.7, 50.0])
     p0 = np.clip(p0, lo + 1e-9, hi - 1e-9)
-    sol = least_squares(residual, p0, bounds=(lo, hi), x_scale=np.array([*X_SCALE, 0.05, 0.5]))
+    sol = _least_squares(residuals, p0, bounds=(lo, hi), x_scale=np.array([*X_SCALE, 0.05, 0.5]))
     t0, f0, tpk, dur, lev, dec = unpack(sol.x)
     return TailedPulse(SkewedPulse(f0, min(tpk, 0.999 * dur), dur), lev, dec), t0
 

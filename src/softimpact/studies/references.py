@@ -160,13 +160,20 @@ def gauge_bending(model: LinearModel, history) -> tuple[np.ndarray, np.ndarray]:
     return t, y[0]
 
 
-def crossing_time(problem, *, length: float | None = None, compliance: float = 0.0, fraction: float = MAIN_LOBE_FRACTION) -> float:
+def crossing_time(problem, *, length: float | None = None, compliance: float = 0.0, fraction: float = MAIN_LOBE_FRACTION, runs: dict | None = None) -> float:
     """The first zero crossing [s] (:func:`first_zero_crossing`) of gauge 1's bending strain under the
     problem's history, at free length ``length`` [m] (None: the case's) and clamp ``compliance``
-    [rad/(N·m)]; NaN when none within the problem's window."""
-    target = problem if length is None else at_free_length(problem, length)
-    t, y = gauge_bending(beam_gauge_model(target, compliance), problem.load.history)
-    return first_zero_crossing(t, y, fraction)
+    [rad/(N·m)]; NaN when none within the problem's window. ``runs``: the beam runs of THIS problem
+    already made, (length, compliance) → (time, bending strain), filled here (a run read at another
+    ``fraction``, or met again by a search, is not stepped twice)."""
+    key = (length, float(compliance))
+    if runs is None or key not in runs:
+        target = problem if length is None else at_free_length(problem, length)
+        run = gauge_bending(beam_gauge_model(target, compliance), problem.load.history)
+        if runs is None:
+            return first_zero_crossing(*run, fraction)
+        runs[key] = run
+    return first_zero_crossing(*runs[key], fraction)
 
 
 def equivalent_length(problem, compliance: float) -> float:
@@ -195,22 +202,26 @@ class CrossingMatch:
     evaluations: int
 
 
-def match_crossing(problem, parameter: str, target: float, bracket: tuple[float, float], *, points: int = 8, edge_steps: int = 6) -> CrossingMatch:
+def match_crossing(
+    problem, parameter: str, target: float, bracket: tuple[float, float], *, points: int = 8, edge_steps: int = 6, runs: dict | None = None
+) -> CrossingMatch:
     """The free length (``parameter="length"``, [m]) or clamp compliance (``"compliance"``, [rad/(N·m)])
     in ``bracket`` whose crossing of gauge 1 is ``target`` [s]. A scan of ``points`` values; where the
     main lobe appears or vanishes between two of them (a crossing on one side, none on the other) its
     edge is located by ``edge_steps`` bisections and added to the scan; then Brent's method on the
     first pair of scanned values whose crossings straddle the target (tolerance 1e-6 of the bracket).
-    ``value`` NaN when no pair does."""
+    ``value`` NaN when no pair does. ``runs``: as :func:`crossing_time`'s (the problem's runs, shared;
+    a point met twice is stepped once; ``evaluations`` counts the crossings asked for)."""
     if parameter not in ("length", "compliance"):
         raise InputError(f"parameter: {parameter!r} is not 'length' or 'compliance'", "parameter")
     from scipy.optimize import brentq
 
     count = [0]
+    runs = {} if runs is None else runs
 
     def crossing(x):
         count[0] += 1
-        return crossing_time(problem, length=x) if parameter == "length" else crossing_time(problem, compliance=x)
+        return crossing_time(problem, length=x, runs=runs) if parameter == "length" else crossing_time(problem, compliance=x, runs=runs)
 
     scan = {float(x): crossing(float(x)) for x in np.linspace(*bracket, points)}
     xs = sorted(scan)

@@ -179,9 +179,16 @@ def _run(s: ThresholdStructure, law, diameter: float, velocity: float, method: s
     return problem, result
 
 
-def index_at(s: ThresholdStructure, law, diameter: float, velocity: float, index: str, method: str = "kernels") -> float:
-    """The damage ``index`` of one coupled run: ball of ``diameter`` [m] at ``velocity`` [m/s]; ``method`` "kernels" or "direct"."""
-    return damage_index(*_run(s, law, diameter, velocity, method), index)
+def index_at(s: ThresholdStructure, law, diameter: float, velocity: float, index: str, method: str = "kernels", runs: dict | None = None) -> float:
+    """The damage ``index`` of one coupled run: ball of ``diameter`` [m] at ``velocity`` [m/s]; ``method`` "kernels" or "direct".
+    ``runs``: coupled runs already made, filled here ((structure, law, diameter, velocity, method) → run, the
+    objects by identity: for one caller that keeps them alive), so a run every index reads is made once."""
+    if runs is None:
+        return damage_index(*_run(s, law, diameter, velocity, method), index)
+    key = (id(s), id(law), diameter, velocity, method)
+    if key not in runs:
+        runs[key] = _run(s, law, diameter, velocity, method)
+    return damage_index(*runs[key], index)
 
 
 def threshold_velocity(
@@ -195,6 +202,7 @@ def threshold_velocity(
     guess: float | None = None,
     beta: float | None = None,
     method: str = "kernels",
+    runs: dict | None = None,
 ) -> float:
     """The velocity V* [m/s] in [``lo``, ``hi``] at which ``index`` first reaches 1 (kernel runs):
     a geometric scan (ratio 1.5) for the first level where I ≥ 1, then Brent's method on
@@ -205,11 +213,12 @@ def threshold_velocity(
     the scan when they leave [lo, hi] or do not converge in 8 runs. A draw whose I crosses 1
     more than once in the range may then give a crossing other than the first: the
     indices here grow monotonically with V over the ranges used (they follow the peak force).
-    ``method``: "kernels" (the runs of a map) or "direct" (each run stepped directly: the reference)."""
+    ``method``: "kernels" (the runs of a map) or "direct" (each run stepped directly: the reference);
+    ``runs``: as :func:`index_at`'s (the scans of two indices share their runs)."""
     from scipy.optimize import brentq
 
     def g(lnv):
-        return math.log(max(index_at(s, law, diameter, math.exp(lnv), index, method), 1e-300))
+        return math.log(max(index_at(s, law, diameter, math.exp(lnv), index, method, runs), 1e-300))
 
     if guess is not None and beta is not None and math.isfinite(guess) and beta > 0:
         x0, g0 = math.log(guess), g(math.log(guess))
@@ -293,17 +302,18 @@ def threshold_map(
     q = norm.ppf((np.arange(strength_quantiles) + 0.5) / strength_quantiles)
     factors = np.maximum(1.0 + strength_cov * q, 0.05)
     rows = []
+    runs: dict = {}  # every coupled run of the map, for all its indices (the scans from lo are the same runs)
     for index in indices:
         for d in diameters:
             mass = s.density * math.pi / 6.0 * d**3
-            nominal = threshold_velocity(s, law, d, index, lo, hi)
+            nominal = threshold_velocity(s, law, d, index, lo, hi, runs=runs)
             beta = math.nan
             if math.isfinite(nominal):
-                i1, i2 = (index_at(s, law, d, nominal * f, index) for f in (0.98, 1.02))
+                i1, i2 = (index_at(s, law, d, nominal * f, index, runs=runs) for f in (0.98, 1.02))
                 beta = math.log(i2 / i1) / math.log(1.02 / 0.98)
-            vs = np.array([threshold_velocity(s, lw, d, index, lo, hi, guess=nominal, beta=beta) for lw in drawn] or [nominal], float)
+            vs = np.array([threshold_velocity(s, lw, d, index, lo, hi, guess=nominal, beta=beta, runs=runs) for lw in drawn] or [nominal], float)
             ok = vs[np.isfinite(vs)]
-            coarse_v = threshold_velocity(coarse, law, d, index, lo, hi, guess=nominal, beta=beta) if coarse is not None else math.nan
+            coarse_v = threshold_velocity(coarse, law, d, index, lo, hi, guess=nominal, beta=beta, runs=runs) if coarse is not None else math.nan
             gci = gci_two_meshes(nominal, coarse_v)
             if ok.size and math.isfinite(beta) and beta > 0:
                 combined = (ok[:, None] * factors[None, :] ** (1.0 / beta)).ravel()

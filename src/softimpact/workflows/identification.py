@@ -436,11 +436,16 @@ def refine(
         v[free] = z
         return IdentifiedLaw(PARAMETERS, v, law.half_widths, law.d_ref, law.rms_per_test, law.cost, law.identified_on)
 
+    known: dict[bytes, np.ndarray] = {}  # z → its errors: the stages and the final Jacobian revisit points
+
     def errors(z):
-        trial = with_values(z)
-        runs = [(tests[i], _simulate(trial, tests[i], structure, steps_per_pulse, shapes[i][2])) for i in reps.values()]
-        sim = np.array([_scaled_shape(pulse_shape(h.time, h.force), t) for t, h in runs])
-        return (sim[group] / measured - 1.0).ravel()
+        key = np.asarray(z, float).tobytes()
+        if key not in known:
+            trial = with_values(z)
+            runs = [(tests[i], _simulate(trial, tests[i], structure, steps_per_pulse, shapes[i][2])) for i in reps.values()]
+            sim = np.array([_scaled_shape(pulse_shape(h.time, h.force), t) for t, h in runs])
+            known[key] = (sim[group] / measured - 1.0).ravel()
+        return known[key].copy()
 
     def quartic(z):
         r = errors(z)

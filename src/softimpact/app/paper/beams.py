@@ -71,11 +71,12 @@ def crossing_section() -> Section:
         problem, _ = load_beam_case(name, 1)
         beam = name.removeprefix("paper-").removesuffix("-beam")
         t, y = gauge_bending(beam_gauge_model(problem), problem.load.history)
+        runs = {(None, 0.0): (t, y)}  # this problem's beam runs by (free length, compliance), each stepped once: the compliance scan starts at 0
         here, fine, lead = first_zero_crossing(t, y), crossing_time(_refined(problem)), lead_lobes(t, y)
         per_inch = equivalent_length(problem, 1.0) / INCH  # in of extra length per rad/(N·m)
-        length = match_crossing(problem, "length", PAPER_CROSSING, LENGTH_BRACKET)
-        compliance = match_crossing(problem, "compliance", PAPER_CROSSING, (0.0, COMPLIANCE_BRACKET_LENGTH / INCH / per_inch))
-        found[beam] = (problem, here, fine, length, compliance, per_inch, lead)
+        length = match_crossing(problem, "length", PAPER_CROSSING, LENGTH_BRACKET, runs=runs)
+        compliance = match_crossing(problem, "compliance", PAPER_CROSSING, (0.0, COMPLIANCE_BRACKET_LENGTH / INCH / per_inch), runs=runs)
+        found[beam] = (problem, here, fine, length, compliance, per_inch, lead, runs)
         edge = min((x for x, c in length.scanned if math.isfinite(c)), default=math.nan)
         edge_c = dict(length.scanned).get(edge, math.nan)
         lmatch = (
@@ -116,9 +117,10 @@ def crossing_section() -> Section:
 
 
 def _crossing_paragraphs(found) -> list[str]:
-    """The crossing section's text, its numbers from ``found`` (beam → problem, crossing, refined, matches, in per rad/(N·m))."""
-    lp, lhere, lfine, llen, lcomp, _, llead = found["long"]
-    sp, shere, sfine, slen, scomp, sper, slead = found["short"]
+    """The crossing section's text, its numbers from ``found`` (beam → problem, crossing, refined, matches, in per rad/(N·m),
+    lead lobes, the problem's beam runs)."""
+    lp, lhere, lfine, llen, lcomp, _, llead, lruns = found["long"]
+    sp, shere, sfine, slen, scomp, sper, slead, _ = found["short"]
     lmax = max(c for _, c in lcomp.scanned)
     text = (
         "The paper calibrated each transverse history's duration T on the first zero crossing of the bending strain at gauge 1, "
@@ -140,7 +142,7 @@ def _crossing_paragraphs(found) -> list[str]:
             f"crossing to 450 µs ({_us(crossing_time(_refined(at_free_length(lp, llen.value))))} µs on the refined model); the "
             f"crossing grows by about {_slope(llen) * 1e6 * INCH:.0f} µs per inch of span"
         )
-        lo, hi = (crossing_time(lp, length=llen.value, fraction=f) for f in (0.2, 0.4))
+        lo, hi = (crossing_time(lp, length=llen.value, fraction=f, runs=lruns) for f in (0.2, 0.4))  # the match's own run, read otherwise
         same = crossing_time(sp, length=llen.value)
         text += (
             f". That match rests on how the crossing is read: at {llen.value / INCH:.2f} in, reading the first lobe above "

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import functools
+
 from ...input.series import load_series
 from ...input.series_records import read_series_records
 from ...output.report import Section
@@ -9,14 +11,27 @@ from ...output.series import reduction_files, scaling_files, scaling_section
 from ...studies.series import fit_series, reduce_series
 from .comparison import comparison_section
 
-__all__ = ["rubber_series_sections"]
+__all__ = ["rubber_series_sections", "rubber_series", "rubber_series_fits"]
+
+
+@functools.lru_cache(maxsize=1)
+def rubber_series():
+    """The built-in rubber series and its reduced tests, read and reduced once per process (this section,
+    the thresholds' α covariance and the identification share them; not to be changed): (series, reduced)."""
+    series = load_series("paper-rubber-series")
+    return series, reduce_series(series, *read_series_records(series))
+
+
+@functools.lru_cache(maxsize=1)
+def rubber_series_fits():
+    """The scaling fits (Table I) of :func:`rubber_series`, once per process (not to be changed)."""
+    return fit_series(rubber_series()[1])
 
 
 def rubber_series_sections(figures: bool, files: dict) -> list[Section]:
     """The built-in rubber series reduced and fitted (Table I), then the empirical model beside the classical ones."""
-    series = load_series("paper-rubber-series")
-    reduced = reduce_series(series, *read_series_records(series))
-    fits = fit_series(reduced)
+    series, reduced = rubber_series()
+    fits = rubber_series_fits()
     files.update(reduction_files(series, reduced, figures, prefix="rubber-series/"))
     files.update(scaling_files(fits, series.units, figures, prefix="rubber-series/"))
     sections = [scaling_section(fits, series, reduced, "rubber-series/", figures)]

@@ -125,14 +125,12 @@ def paper_identification():
     (:func:`~softimpact.workflows.identification.identify_series`), once per process (about 20 s; the
     question section and the threshold maps share it): (rod, bar tests, law, approaches, closure)."""
     from ...fem.bar import Rod
-    from ...input.series import load_series
-    from ...input.series_records import read_series_records
-    from ...studies.series import reduce_series
     from ...workflows.identification import identify_series
+    from .rubber_series import rubber_series
 
-    series = load_series("paper-rubber-series")
+    series, reduced = rubber_series()
     rod = Rod.of(series.bar)
-    return (rod, *identify_series(rod, reduce_series(series, *read_series_records(series))))
+    return (rod, *identify_series(rod, reduced))
 
 
 def _map_structures(name: str, law):
@@ -179,12 +177,9 @@ def paper_threshold_maps(draws: int = MAP_DRAWS) -> list[dict]:
 def _paper_fit() -> dict:
     """The scaling.json contents of the built-in rubber series' fit (computed once per process; not to be changed)."""
     from ...formats.scaling_json import scaling_summary
-    from ...input.series import load_series
-    from ...input.series_records import read_series_records
-    from ...studies.series import fit_series, reduce_series
+    from .rubber_series import rubber_series_fits
 
-    series = load_series("paper-rubber-series")
-    return scaling_summary(fit_series(reduce_series(series, *read_series_records(series))))
+    return scaling_summary(rubber_series_fits())
 
 
 def _paper_spec(case: str, projectile: str, draws: int, levels: int) -> dict:
