@@ -249,6 +249,8 @@ class NewmarkStepper:
         K_eff = self.K + self.a0 * self.M + (0.0 if self.C is None else self.a1 * self.C)
         if self.dense:
             self._factor = scipy.linalg.cho_factor(K_eff)
+            # LAPACK's dpotrs called directly: cho_solve's checks cost more than the solve on a bar's ~80 DOF
+            (self._potrs,) = scipy.linalg.get_lapack_funcs(("potrs",), (self._factor[0],))
         else:
             self._factor = spd_factor(K_eff)
         self.nsolve = 0
@@ -263,9 +265,7 @@ class NewmarkStepper:
     def solve(self, rhs: np.ndarray) -> np.ndarray:
         """K_eff⁻¹·rhs; rhs of shape (n,) or (n, k)."""
         self.nsolve += 1
-        if self.dense:
-            return scipy.linalg.cho_solve(self._factor, rhs, check_finite=False)
-        return self._factor.solve(rhs)
+        return self.factor_solve(rhs)
 
     @property
     def separate_solves(self) -> bool:
@@ -278,7 +278,11 @@ class NewmarkStepper:
         """K_eff⁻¹·rhs, not counted in ``nsolve``: safe to call from several threads at once (the kernel
         build's marches; the band and SuperLU solves of a sparse system release the GIL, a dense one's holds it)."""
         if self.dense:
-            return scipy.linalg.cho_solve(self._factor, rhs, check_finite=False)
+            c, lower = self._factor
+            x, info = self._potrs(c, rhs, lower=lower)
+            if info != 0:
+                raise np.linalg.LinAlgError(f"Cholesky solve failed (LAPACK info {info})")
+            return x
         return self._factor.solve(rhs)
 
     def history_operator(self) -> np.ndarray:
