@@ -38,10 +38,10 @@ def _loaded_state(law):
 
 
 def test_apart_equals_advancing_step_by_step():
-    """States and contact energies of a flight apart equal the step's branch energy, then advance, step by step, bit for bit."""
+    """States and contact energies of a flight apart (2006 steps) equal the step's branch energy, then advance, step by step, bit for bit."""
     law = _maxwell()
     start = _loaded_state(law)
-    alphas = [-1e-6, -3e-6, 0.0, -2e-5, -1e-9, -4e-6]  # α ≤ 0: the bodies apart
+    alphas = [-1e-6, -3e-6, 0.0, -2e-5, -1e-9, -4e-6] + [-1e-6] * 2000  # α ≤ 0: the bodies apart, a long flight
     state, energies = start, []
     for alpha in alphas:
         energies.append(law.branch(state).energy(alpha))
@@ -115,14 +115,14 @@ def test_threaded_build_march_equals_the_response_engine(damped):
     if damped:
         s = replace(s, C=(200.0 * s.M + 1e-7 * s.K).tocsc())
     st = NewmarkStepper(s.M, s.K, solver.time_step, C=s.C, params=solver.newmark)
-    assert not st.dense
+    assert not st.dense and st.separate_solves  # a band factor, solved without the GIL: the threaded marches are taken
     n, dofs = st.n, np.asarray(s.surface_dofs, int)
     B = np.zeros((n, dofs.size))
     B[dofs, np.arange(dofs.size)] = float(s.load_sign)
     rows = np.vstack([np.asarray(s.approach_row, float)[None, :], np.asarray(s.outputs, float)])
     engine = ImpulseResponse.reciprocal(st, B, solver.steps, rows)
     assert np.abs(engine.kernel).max() > 0.0
-    for threads in (None, 1):
+    for threads in (None, 1, 2):  # one march per row, all rows in one march, an uneven two-and-one split
         kernel = _reciprocal_march(st, rows, dofs, float(s.load_sign), solver.steps, threads=threads)
         assert np.array_equal(kernel, engine.kernel)
 
@@ -175,3 +175,20 @@ def test_runs_stop_at_the_same_step_after_separation(beam, stop_after):
     assert direct.time.size < steps + 1  # the run did stop early
     assert fast.time.size == direct.time.size
     assert np.max(np.abs(fast.force - direct.force)) <= 1e-9 * direct.force.max()
+
+
+def test_line_patch_loads_from_kept_sines_equal_fresh_loads(beam):
+    """The line patch's loads at r taken from the sines kept by value(r) equal loads computed afresh, and loads at
+    another radius than the last value() ignore the kept sines (equal to a fresh patch's loads there)."""
+    s, solver = beam
+    kernels = ContactKernels(s, solver.time_step, solver.steps, solver.newmark)
+    comp = kernels._compliance
+    spacing = 2.0 * comp.half_spacing
+    fresh = type(comp)(comp.patch, kernels._lagged[0])
+    for r1, r2 in ((2.7 * spacing, 2.7 * spacing), (2.7 * spacing, 3.7 * spacing), (3.7 * spacing, 1.6 * spacing)):  # within the 4 spacings loadable
+        assert comp.value(r1) == comp(r1)[0]
+        kept, new = np.zeros(kernels._lagged.shape[1]), np.zeros(kernels._lagged.shape[1])
+        comp.load(r2, 7.0, kept)
+        fresh.load(r2, 7.0, new)
+        assert np.array_equal(kept, new)
+        assert abs(kept.sum() - 7.0) <= 1e-12 * 7.0  # the shares sum to one

@@ -44,8 +44,6 @@ def test_unstable_parameters_are_refused():
 def test_band_solve_without_the_gil_is_lapacks_and_runs_in_threads():
     """The band solve called without the GIL (SciPy's Cython LAPACK through ctypes) gives f2py's dpbtrs numbers to
     the last bit, one or several right-hand sides, also when threads solve at once; and it solves the system."""
-    from concurrent.futures import ThreadPoolExecutor
-
     import scipy.sparse
 
     from softimpact.fem import newmark
@@ -56,6 +54,15 @@ def test_band_solve_without_the_gil_is_lapacks_and_runs_in_threads():
     diagonals = [np.full(n, 30.0), *[np.full(n - abs(o), -1.0 - rng.random()) for o in offsets[1:]]]
     diagonals[2], diagonals[4] = diagonals[1], diagonals[3]  # symmetric
     A = scipy.sparse.diags(diagonals, offsets).tocsc()
+    shuffle = rng.permutation(n)
+    numberings = [_check_band_solve(newmark, M, rng).identity for M in (A, A[shuffle][:, shuffle].tocsc())]
+    assert numberings == [True, False]  # as numbered, and renumbered by RCM (a permuted right-hand side)
+
+
+def _check_band_solve(newmark, A, rng):
+    from concurrent.futures import ThreadPoolExecutor
+
+    n = A.shape[0]
     factor = newmark.BandedCholesky(A)
     assert newmark._PBTRS is not None  # SciPy's Cython LAPACK capsule was read
     b = rng.standard_normal((n, 3))
@@ -69,6 +76,9 @@ def test_band_solve_without_the_gil_is_lapacks_and_runs_in_threads():
         columns = list(pool.map(lambda j: [factor.solve(b[:, j]) for _ in range(50)][-1], range(3)))
     assert all(np.array_equal(columns[j], reference[:, j]) for j in range(3))
     assert np.max(np.abs(A @ reference - b)) <= 1e-12 * np.max(np.abs(b))
+    with pytest.raises(ValueError, match="right-hand side"):  # a short right-hand side is refused, not read past
+        factor.solve(b[:-3, 0])
+    return factor
 
 
 def test_sparse_solves_in_threads_equal_serial_solves():

@@ -23,11 +23,13 @@ it, so their difference does), which needs no structural state.
 Cost. The build marches the structure with 1 + q right-hand sides (the approach row and the q
 outputs, by reciprocity; :func:`_reciprocal_march`): with a band factor one march per row, run at once in
 threads (the band solve releases the GIL), about 1.1–1.6 direct coupled runs on 2 free cores; with SuperLU's
-sparse factor (large plates) one march solving all rows in one call a step, about 1.6–1.9 (BENCHMARKS.md). A run costs milliseconds. The scalar state is plain Python floats. In the Newton
-iteration the patch enters only through h_s(a) = c·G·s(a) and dh_s/da, evaluated exactly without
-forming s: over the nodes the disc reaches (the cosine line patch) or as the interpolation of the
-table's c·G·s_k computed once (a plate's disc, whose shares interpolate a table); s itself is formed
-once per step, at the root. A step whose force is zero at the bracket's top α̃ (a force clipped to
+sparse factor (large plates) one march solving all rows in one call a step, about 1.6–1.9 (BENCHMARKS.md).
+A run costs milliseconds. The scalar state is plain Python floats. In the Newton iteration the patch
+enters only through h_s(a) = c·G·s(a) and dh_s/da, evaluated without forming s, exactly: over the
+nodes the disc reaches (the cosine line patch; after the first iterate h_s alone, the slope kept from
+the first, :func:`softimpact.fem.impact.newton_contact`) or as the interpolation of the table's c·G·s_k
+computed once (a plate's disc, whose shares interpolate a table); s itself is formed once per step, at
+the root. A step whose force is zero at the bracket's top α̃ (a force clipped to
 zero, as by a Maxwell arm's negative stress while unloading) has its root there and takes it without
 a Newton solve. While in contact, the history sum runs over the current contact's steps only (one
 contiguous dot product; the earlier contacts are a precomputed "old" response). When a contact ends,
@@ -294,10 +296,20 @@ class ContactKernels:
 
     ``approach`` (p, steps): g_i, the approach-row displacement at lag i per unit load on each
     patch node; ``outputs`` (q, p, steps): the output rows' (H_i). Any number of coupled runs
-    (other impactors, velocities, laws) then reuse them: :meth:`run`.
+    (other impactors, velocities, laws) then reuse them: :meth:`run`. ``threads``: the build's marches run
+    at once (:func:`_reciprocal_march`; None: one per row with a band factor, 1: one march, as a caller
+    whose cores are already busy may prefer: threads on a busy core cost ≈ 7 % more than one march).
     """
 
-    def __init__(self, structure: ContactStructure, time_step: float, steps: int, newmark: NewmarkParameters = NewmarkParameters(), stepper=None):
+    def __init__(
+        self,
+        structure: ContactStructure,
+        time_step: float,
+        steps: int,
+        newmark: NewmarkParameters = NewmarkParameters(),
+        stepper=None,
+        threads: int | None = None,
+    ):
         if not (isinstance(steps, (int, np.integer)) and steps >= 1):
             raise InputError(f"steps must be a positive integer, got {steps!r}")
         dt = float(time_step)
@@ -316,8 +328,8 @@ class ContactKernels:
             kernel = self.engine.kernel
         else:
             self.engine = None
-            kernel = _reciprocal_march(st, rows, dofs, float(structure.load_sign), self.steps)
-            st.nsolve += self.steps * rows.shape[0]  # (one solve a step per row; the marches' calls are uncounted)
+            kernel = _reciprocal_march(st, rows, dofs, float(structure.load_sign), self.steps, threads)
+            st.nsolve += self.steps * rows.shape[0]  # counted as right-hand sides: one a step per row (the marches' calls are uncounted)
         self.approach = kernel[0]  # (p, steps)
         self.outputs = kernel[1:]  # (q, p, steps)
         self._lagged = np.ascontiguousarray(self.approach.T)  # (steps, p): row i is g_i

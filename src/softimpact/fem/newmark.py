@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import ctypes
 import math
+import re
 from dataclasses import dataclass
 
 import numpy as np
@@ -43,13 +44,18 @@ def _pbtrs_without_gil():
         from scipy.linalg import cython_lapack
 
         capsule = cython_lapack.__pyx_capi__["dpbtrs"]
-        api = ctypes.pythonapi
-        api.PyCapsule_GetName.restype, api.PyCapsule_GetName.argtypes = ctypes.c_char_p, [ctypes.py_object]
-        api.PyCapsule_GetPointer.restype, api.PyCapsule_GetPointer.argtypes = ctypes.c_void_p, [ctypes.py_object, ctypes.c_char_p]
-        address = api.PyCapsule_GetPointer(capsule, api.PyCapsule_GetName(capsule))
+        # private prototypes of the C API's capsule calls (ctypes.pythonapi's own attributes are left alone)
+        name_of = ctypes.PYFUNCTYPE(ctypes.c_char_p, ctypes.py_object)(("PyCapsule_GetName", ctypes.pythonapi))
+        pointer_of = ctypes.PYFUNCTYPE(ctypes.c_void_p, ctypes.py_object, ctypes.c_char_p)(("PyCapsule_GetPointer", ctypes.pythonapi))
+        name = name_of(capsule)
+        # the signature this call assumes: 32-bit integers, doubles (a 64-bit-integer build is not called this way)
+        if not re.fullmatch(rb"void \(char \*, (int \*, ){3}\w+_d \*, int \*, \w+_d \*, int \*, int \*\)", name):
+            return None
         integer = ctypes.POINTER(ctypes.c_int)
         # dpbtrs(uplo, n, kd, nrhs, ab, ldab, b, ldb, info)
-        return ctypes.CFUNCTYPE(None, ctypes.c_char_p, integer, integer, integer, ctypes.c_void_p, integer, ctypes.c_void_p, integer, integer)(address)
+        return ctypes.CFUNCTYPE(None, ctypes.c_char_p, integer, integer, integer, ctypes.c_void_p, integer, ctypes.c_void_p, integer, integer)(
+            pointer_of(capsule, name)
+        )
     except Exception:  # noqa: BLE001 (any failure: the f2py wrapper serves)
         return None
 
@@ -121,6 +127,9 @@ class BandedCholesky:
         """K⁻¹·rhs, rhs (n,) or (n, k): LAPACK's banded Cholesky solve (dpbtrs) called directly (scipy's
         cho_solve_banded wraps it in checks that cost as much as the solve on small bands), without
         the GIL where SciPy's Cython LAPACK is at hand (:func:`_pbtrs_without_gil`): threads solve at once."""
+        n = self.factor.shape[1]
+        if np.ndim(rhs) not in (1, 2) or np.shape(rhs)[0] != n:  # (LAPACK would read and write past the array)
+            raise ValueError(f"banded Cholesky solve: right-hand side of shape {np.shape(rhs)} for a system of {n} unknowns")
         b = rhs if self.identity else rhs[self.perm]
         if _PBTRS is None or self.factor.dtype != np.float64:
             x, info = self._pbtrs(self.factor, b, lower=0)

@@ -614,9 +614,9 @@ class ViscoelasticSoftLaw:
         # the first step releases the arm's strain; from then on σ ← σ·E + g·(0 − 0) = σ·E: a running product
         factors = np.full(steps, E)
         factors[0] = state.stress * E + g * (0.0 - state.strain)
-        stress = np.cumprod(factors)
-        energies = 0.0 + half_sd * stress**2 / kappa
-        return MaxwellState(0.0, float(stress[-1])), energies.tolist()
+        stress = np.cumprod(factors).tolist()
+        # the energies in Python floats: float ** 2 (C's pow) and numpy's x·x differ in the last bit now and then
+        return MaxwellState(0.0, stress[-1]), [0.0 + half_sd * x**2 / kappa for x in stress]
 
 
 # The contact laws by name (case files' ``contact.law``), each with the class it builds: one table,
