@@ -26,12 +26,13 @@ def _validity(summary: dict) -> tuple[dict, tuple]:
 
 
 def _damage_words(summary: dict) -> str:
-    """The line's damage part: the largest index and Davies–Zhang's ratio (summary.json's ``damage``)."""
+    """The line's damage part: the largest index and Davies–Zhang's ratio (summary.json's ``damage``): the largest
+    force of any contact over P_c (a later contact can press harder than the first, whose peak is F0)."""
     d = summary.get("damage")
     if not d:
         return ""
     worst = max(("max_strain", "tsai_wu", "hashin", "interlaminar_index"), key=lambda k: d[k])
-    return f"; damage: {worst.replace('_', ' ')} {d[worst]:.2f}, F0/P_c (Davies-Zhang) {d['delamination']:.2f}"
+    return f"; damage: {worst.replace('_', ' ')} {d[worst]:.2f}, F_max/P_c (Davies-Zhang) {d['delamination']:.2f}"
 
 
 def impact(*, case: str, figures: bool = True, fields: bool = False, progress: Progress = no_progress) -> Outcome:
