@@ -235,3 +235,17 @@ def test_a_case_of_another_kind_names_what_was_given_and_what_is_expected(tmp_pa
     """Every case command given a case of another kind: one line naming both kinds, never "<table>: missing"."""
     line = error_line(invoke(command, case, "--out", tmp_path / "o", "--no-figures"))
     assert f"is {given}: {expected}" in line and "missing" not in line
+
+
+@pytest.mark.parametrize(
+    ("written", "expected", "key"), [('layup = "', 'lay_up = "', "plate.laminate.layup"), ("support = {", "supports = {", "plate.support")]
+)
+def test_a_misspelt_required_key_is_named_with_the_key_written(tmp_path, written, expected, key):
+    """A required key written misspelt ('lay_up', 'supports') is reported once, naming the key expected and the one
+    written (not as 'missing' with no hint, nor with its key printed twice), and nothing is written."""
+    text = locate("plate-ss-8in").read_text().replace("elements = [48, 48]", "elements = [8, 8]")
+    assert written in text
+    (tmp_path / "plate.toml").write_text(text.replace(written, expected, 1))
+    line = error_line(invoke("plate", tmp_path / "plate.toml", "--out", tmp_path / "out", "--no-figures"))
+    assert line.count(key) == 1 and "missing (required)" in line and repr(expected.split(" ")[0]) in line
+    assert not (tmp_path / "out").exists()

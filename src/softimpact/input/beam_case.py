@@ -182,8 +182,9 @@ def beam_problem(data: dict, base: Path = Path("."), history: int | None = None)
             with naming({"fractions": lam.key("fractions"), "thickness": lam.key("thickness")}):
                 stack = Blend(ply, pairs, lam.quantity("thickness", "length"))
         else:
+            layup = lam.string("layup")  # (read outside the naming: its own errors name the key already)
             with naming({None: lam.key("layup")}):
-                stack = Stack(ply, parse_layup(lam.string("layup")))
+                stack = Stack(ply, parse_layup(layup))
         lam.done()
     else:
         if "material" in mat:

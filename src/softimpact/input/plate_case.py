@@ -99,8 +99,9 @@ def plate_problem(data: dict, base: Path = Path("."), history: int | None = None
     supports = _supports(p)
     lam = p.table("laminate")
     ply = read_ply(lam)
+    layup = lam.string("layup")  # (read outside the naming: its own errors name the key already)
     with naming({None: lam.key("layup")}):
-        stack = Stack(ply, parse_layup(lam.string("layup")))
+        stack = Stack(ply, parse_layup(layup))
     lam.done()
     spec = PlateSpec(p.quantity("length", "length"), p.quantity("width", "length"), tuple(elements), stack, supports, element=element)
     p.done()

@@ -10,6 +10,7 @@ addressed by name as well as by path.
 
 from __future__ import annotations
 
+import difflib
 import tomllib
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -56,9 +57,15 @@ class Table:
         self._used.add(name)
         if name not in self.data:
             if default is _MISSING:
-                raise InputError(f"{self.key(name)}: missing (required)")
+                raise InputError(f"{self.key(name)}: missing (required){self._misspelt(name)}")
             return default
         return self.data[name]
+
+    def _misspelt(self, name: str) -> str:
+        """A hint naming a key of the table nobody has asked for that looks like ``name`` (a misspelling: the
+        error would otherwise be "missing" for the key and, later, "unknown" for the other)."""
+        near = difflib.get_close_matches(name, [k for k in self.data if k not in self._used], n=1, cutoff=0.75)
+        return f"; the table has {near[0]!r}: is it a misspelling of {name!r}?" if near else ""
 
     def quantity(self, name: str, kind: str, default=_MISSING, positive: bool = True) -> float:
         value = self.raw(name, default)
