@@ -128,7 +128,8 @@ def test_threaded_build_march_equals_the_response_engine(damped):
 
 
 def test_a_clipped_force_equals_direct_stepping(beam):
-    """A soft ball whose Maxwell arm clips the force to zero while the bodies still overlap: the kernel run equals direct stepping to 1e-9 of the peak."""
+    """A soft ball whose Maxwell arm clips the force to zero while the bodies still overlap: the kernel run equals direct stepping to 1e-9 of the peak,
+    and neither reports a contact disc while the clipped force is zero."""
     s, solver = beam
     law = _maxwell()
     st = NewmarkStepper(s.M, s.K, solver.time_step, C=s.C, params=solver.newmark)
@@ -142,6 +143,9 @@ def test_a_clipped_force_equals_direct_stepping(beam):
     assert np.max(np.abs(fast.contact_energy - direct.contact_energy)) <= 1e-9 * np.max(direct.contact_energy)
     assert np.max(np.abs(fast.outputs - direct.outputs)) <= 1e-9 * np.max(np.abs(direct.outputs))
     assert np.array_equal(fast.force > 0.0, direct.force > 0.0)
+    # no contact disc where no force presses, the bodies overlapping or not; the disc's radius where it does
+    for h in (fast, direct):
+        assert np.all(h.contact_radius[h.force == 0.0] == 0.0) and np.all(h.contact_radius[h.force > 0.0] > 0.0)
 
 
 def test_contact_energy_holds_the_arm_stress_the_force_implies(beam):

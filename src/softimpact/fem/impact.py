@@ -171,7 +171,7 @@ class ImpactHistory:
     force: np.ndarray  # contact force [N], compression +
     approach: np.ndarray
     approach_rate: np.ndarray
-    contact_radius: np.ndarray
+    contact_radius: np.ndarray  # of the pressed disc [m]; 0 where the force is zero (apart, or a clipped force with the bodies still overlapping)
     impactor_displacement: np.ndarray  # along the impact direction
     impactor_velocity: np.ndarray  # positive toward the structure
     target_displacement: np.ndarray  # w = approach_row·u
@@ -284,7 +284,7 @@ def integrate_impact(
             guess = 2.0 * al[k] - al[k - 1] if k >= 1 else target
             a_new, f, sh, its = _solve_contact(branch, patch, cG, hm, kappa, q, target, guess, k + 1, dt)
             iterations += its
-            r = branch.radius(a_new)
+            r = branch.radius(a_new) if f != 0.0 else 0.0  # the contact disc of a pressing force (none while a clipped force is zero)
         else:
             a_new, f, sh, r = target, 0.0, patch._point, 0.0
         fs = f * sh
@@ -486,7 +486,7 @@ class CoupledResult:
     impactor_displacement: np.ndarray
     approach: np.ndarray
     approach_rate: np.ndarray
-    contact_radius: np.ndarray
+    contact_radius: np.ndarray  # of the pressed disc [m]; 0 where the force is zero
     deflection: np.ndarray  # (n,) m, mid-surface under the impact point, along the impact direction (into the target +)
     strain: np.ndarray  # (n_outputs, n): the structure's output rows (gauge strains)
     strain_names: tuple[str, ...]  # names of the rows of ``strain``

@@ -518,11 +518,13 @@ class ContactKernels:
             elif fk == 0.0 and (branch.response(target, kappa * target + q)[0] if responds else branch.force(target, kappa * target + q)) == 0.0:
                 # no force at the bracket's top α̃ (a force clipped to zero, as by the Maxwell arm's negative
                 # stress while unloading): R(α̃) = 0 there, the root (R increases with α), without a Newton iteration
-                a_new, f, r = target, 0.0, branch.radius(target)
+                a_new, f, r = target, 0.0, 0.0  # no contact disc where no force presses
             else:
                 guess = 2.0 * ak - al[k - 1] if k >= 1 else target
                 a_new, f, r, its = newton_contact(branch, comp, hm, kappa, q, target, guess, k + 1, dt, try_top=True)
                 iterations += its
+                if f == 0.0:
+                    r = 0.0  # no contact disc where no force presses (a root where the force is clipped to zero)
             if f != 0.0:
                 load(r, f, Qr[N - k - 1])
                 if start is None:
