@@ -172,3 +172,51 @@ def test_foreign_files_name_the_force_argument(tmp_path):
     assert "force=True" in str(exc.value) and "--force" not in str(exc.value)
     res.write(tmp_path, figures=False, force=True)
     assert json.loads((tmp_path / "summary.json").read_text())["peak_force_N"] == res.peak_force
+
+
+def test_beam_case_warns_and_records_as_the_command_line(tmp_path):
+    """si.run(si.load("paper-short-beam")) warns the command's deflection flag at the user's line and lists it, and the case, in manifest.json."""
+    done = CliRunner().invoke(main, ["beam", "paper-short-beam", "--out", str(tmp_path / "cli"), "--no-figures"], catch_exceptions=False)
+    assert done.exit_code == 0, done.output
+    cli = json.loads((tmp_path / "cli" / "manifest.json").read_text())
+    with warnings.catch_warnings(record=True) as heard:
+        warnings.simplefilter("always")
+        res = si.run(si.load("paper-short-beam"), figures=False)
+    res.write(tmp_path / "api", figures=False)
+    api = json.loads((tmp_path / "api" / "manifest.json").read_text())
+    assert cli["warnings"] and _said(heard) == cli["warnings"] == api["warnings"]
+    assert api["inputs"] == cli["inputs"]
+    w = float(np.max(np.abs(res.result.deflection))) / res.problem.beam.thickness
+    assert w > 0.5 and any(f"{w:.3g} times the thickness" in s for s in _said(heard))
+    assert all(Path(x.filename).resolve() == Path(__file__).resolve() for x in heard if issubclass(x.category, SoftimpactWarning))
+
+
+def test_bar_impact_warns_of_a_contact_wider_than_the_bar(tmp_path):
+    """The rubber ball at 2000 in/s on the 1/2-in bar: the contact radius (from the run's history) passes the bar's radius, and si.impact says so."""
+    shutil.copy(LAW, tmp_path / "law.json")
+    bar = si.Bar("Al 6061-T6", length="36 in", diameter="0.5 in")
+    with warnings.catch_warnings(record=True) as heard:
+        warnings.simplefilter("always")
+        res = si.impact(
+            bar, impactor=si.Sphere("silicone rubber", "0.5 in", velocity="2000 in/s"), law=tmp_path / "law.json", time_step="0.5 us", duration="600 us"
+        )
+    a = float(np.max(res.result.contact_radius))
+    assert a > 0.25 * 0.0254
+    assert any(f"contact radius {a:.4g} m exceeds the bar's radius" in s for s in _said(heard)), _said(heard)
+    assert res.warnings == tuple(_said(heard))
+    res.write(tmp_path / "out", figures=False)
+    manifest = json.loads((tmp_path / "out" / "manifest.json").read_text())
+    assert manifest["warnings"] == list(res.warnings)
+    assert manifest["inputs"] == {str(tmp_path / "law.json"): _sha256(tmp_path / "law.json")}
+
+
+def test_command_wrappers_warn_at_the_users_line(tmp_path):
+    """si.predict past the constants' 1000-5000 in/s warns (a SoftimpactWarning at this line, as `softimpact predict` warns) and manifest.json keeps it."""
+    with warnings.catch_warnings(record=True) as heard:
+        warnings.simplefilter("always")
+        res = si.predict(projectile="rubber-1/2in", velocity="6000 in/s", figures=False)
+    said = _said(heard)
+    assert len(said) == 1 and "outside the range of the constants" in said[0]
+    assert all(Path(x.filename).resolve() == Path(__file__).resolve() for x in heard if issubclass(x.category, SoftimpactWarning))
+    res.write(tmp_path / "out", figures=False)
+    assert json.loads((tmp_path / "out" / "manifest.json").read_text())["warnings"] == said
