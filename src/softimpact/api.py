@@ -14,6 +14,12 @@ The rest of the chain wraps the commands' own functions (:mod:`softimpact.app`):
 :func:`reduce`, :func:`fit`, :func:`predict`, :func:`identify`, :func:`calibrate`,
 :func:`converge`, :func:`sweep`; and :func:`read_record` reads one channel of a lab record.
 
+Warnings: what the command line shows as ``softimpact: warning:`` lines (a model past its validity
+envelope, a law used outside what it was identified on) the API warns as
+:class:`~softimpact.errors.SoftimpactWarning` s pointing at the user's call, raised by the same
+functions; the result keeps them (``res.warnings``) and ``write`` lists them in manifest.json,
+with the files read (a law.json with its SHA-256), as the command line does.
+
 Results are frozen; they carry their inputs in SI (``res.problem``) and offer
 ``.plot(ax=None)``, ``.write(dir)`` (the command's files and manifest.json, written
 atomically as the command line writes them), ``.summary()`` (summary.json's numbers)
@@ -590,6 +596,9 @@ class ImpactResult(_Written):
         The assembled model that ran (reused by ``write_fields``).
     case_files : tuple of Path
         The case files read (never overwritten by ``write``).
+    warnings : tuple of str
+        The run's :class:`~softimpact.errors.SoftimpactWarning` s, one line each (already warned at
+        the call; listed in manifest.json by ``write``, as the command line lists them).
 
     Attributes
     ----------
@@ -720,6 +729,9 @@ class BeamResult(_Prescribed):
         The assembled model that ran (reused by ``write_fields``).
     case_files : tuple of Path
         The case files read (never overwritten by ``write``).
+    warnings : tuple of str
+        The run's :class:`~softimpact.errors.SoftimpactWarning` s, one line each (already warned at
+        the call; listed in manifest.json by ``write``, as the command line lists them).
     """
 
     command = "softimpact beam"
@@ -770,6 +782,9 @@ class PlateResult(_Prescribed):
         The assembled model that ran (reused by ``write_fields``).
     case_files : tuple of Path
         The case files read (never overwritten by ``write``).
+    warnings : tuple of str
+        The run's :class:`~softimpact.errors.SoftimpactWarning` s, one line each (already warned at
+        the call; listed in manifest.json by ``write``, as the command line lists them).
     """
 
     command = "softimpact plate"
@@ -818,6 +833,9 @@ class BarResult(_Written):
         Time [s], force [N] read from the first gauge, and its name.
     case_files : tuple of Path
         The case files read.
+    warnings : tuple of str
+        The run's :class:`~softimpact.errors.SoftimpactWarning` s, one line each (already warned at
+        the call; listed in manifest.json by ``write``, as the command line lists them).
     """
 
     problem: object
@@ -1226,6 +1244,10 @@ class CommandResult(_Written):
         ``files`` (name → text or bytes; numbers in SI with unit-suffixed names), ``line``,
         ``inputs``, ``warnings``, ``gates``. A failed quality gate does not raise here (the
         command line exits 3); :meth:`write` marks it ``"status": "failed"`` in manifest.json.
+    warnings : tuple of str
+        The :class:`~softimpact.errors.SoftimpactWarning` s raised while the command ran, one line each
+        (already warned at the call, as the outcome's own ``warnings`` were); manifest.json lists the
+        outcome's, then these, as the command line does.
     """
 
     command: str
