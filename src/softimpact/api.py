@@ -34,6 +34,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import sys
 import warnings
 from dataclasses import dataclass, field, replace
@@ -120,7 +121,7 @@ def _elements(value, count: int, name: str) -> tuple[int, ...]:
 
 # --- warnings at the edge --------------------------------------------------------------------------
 
-_PACKAGE = str(Path(__file__).resolve().parent)
+_PACKAGE = tuple({os.path.dirname(__file__) + os.sep, str(Path(__file__).resolve().parent) + os.sep})  # as imported, and resolved
 
 
 def _one_line(text) -> str:
