@@ -220,3 +220,8 @@ def test_command_wrappers_warn_at_the_users_line(tmp_path):
     assert all(Path(x.filename).resolve() == Path(__file__).resolve() for x in heard if issubclass(x.category, SoftimpactWarning))
     res.write(tmp_path / "out", figures=False)
     assert json.loads((tmp_path / "out" / "manifest.json").read_text())["warnings"] == said
+    done = CliRunner().invoke(
+        main, ["predict", "--projectile", "rubber-1/2in", "--velocity", "6000 in/s", "--out", str(tmp_path / "cli"), "--no-figures"], catch_exceptions=False
+    )
+    assert done.exit_code == 0, done.output
+    assert json.loads((tmp_path / "cli" / "manifest.json").read_text())["warnings"] == said  # in the user's units, as the command says it

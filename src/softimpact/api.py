@@ -88,12 +88,16 @@ def _si(value, kind: str, name: str) -> float:
 
 
 def _text(value, kind: str, name: str) -> str | None:
-    """A quantity as the text an app function parses (``"0.0127 m"``); None stays None."""
+    """A quantity as the text an app function parses; None stays None. Checked here (an error names
+    ``name``); a unit string passes as given (the app parses it with the same :func:`softimpact.units.parse`,
+    to the same float, and its lines and warnings then quote the user's units as the command line's do),
+    a pint quantity as its SI value (``"0.0127 m"``)."""
     if value is None:
         return None
     from .units import SI_UNITS
 
-    return f"{_si(value, kind, name)!r} {SI_UNITS[kind]}"
+    si = _si(value, kind, name)
+    return value if isinstance(value, str) else f"{si!r} {SI_UNITS[kind]}"
 
 
 def _material(value, name: str):
