@@ -14,6 +14,12 @@ The rest of the chain wraps the commands' own functions (:mod:`softimpact.app`):
 :func:`reduce`, :func:`fit`, :func:`predict`, :func:`identify`, :func:`calibrate`,
 :func:`converge`, :func:`sweep`; and :func:`read_record` reads one channel of a lab record.
 
+Warnings: what the command line shows as ``softimpact: warning:`` lines (a model past its validity
+envelope, a law used outside what it was identified on) the API warns as
+:class:`~softimpact.errors.SoftimpactWarning` s pointing at the user's call, raised by the same
+functions; the result keeps them (``res.warnings``) and ``write`` lists them in manifest.json,
+with the files read (a law.json with its SHA-256), as the command line does.
+
 Results are frozen; they carry their inputs in SI (``res.problem``) and offer
 ``.plot(ax=None)``, ``.write(dir)`` (the command's files and manifest.json, written
 atomically as the command line writes them), ``.summary()`` (summary.json's numbers)
@@ -28,10 +34,13 @@ from __future__ import annotations
 
 import json
 import math
-from dataclasses import dataclass, field
+import os
+import sys
+import warnings
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
-from .errors import InputError
+from .errors import InputError, SoftimpactWarning
 
 __all__ = [
     "Laminate",
@@ -79,12 +88,16 @@ def _si(value, kind: str, name: str) -> float:
 
 
 def _text(value, kind: str, name: str) -> str | None:
-    """A quantity as the text an app function parses (``"0.0127 m"``); None stays None."""
+    """A quantity as the text an app function parses; None stays None. Checked here (an error names
+    ``name``); a unit string passes as given (the app parses it with the same :func:`softimpact.units.parse`,
+    to the same float, and its lines and warnings then quote the user's units as the command line's do),
+    a pint quantity as its SI value (``"0.0127 m"``)."""
     if value is None:
         return None
     from .units import SI_UNITS
 
-    return f"{_si(value, kind, name)!r} {SI_UNITS[kind]}"
+    si = _si(value, kind, name)
+    return value if isinstance(value, str) else f"{si!r} {SI_UNITS[kind]}"
 
 
 def _material(value, name: str):
@@ -108,6 +121,62 @@ def _elements(value, count: int, name: str) -> tuple[int, ...]:
     if len(values) != count or not all(isinstance(n, int) and not isinstance(n, bool) and n >= 1 for n in values):
         raise InputError(f"{name}: expected {count} positive integer(s), got {value!r}")
     return values
+
+
+# --- warnings at the edge --------------------------------------------------------------------------
+
+_PACKAGE = tuple({os.path.dirname(__file__) + os.sep, str(Path(__file__).resolve().parent) + os.sep})  # as imported, and resolved
+
+
+def _one_line(text) -> str:
+    """A warning's text on one line, as the command line shows it and keeps it for manifest.json."""
+    return " ".join(str(text).split())
+
+
+class _Heard:
+    """Collects the warnings raised below one API call and, on leaving, warns them again at the user's line.
+
+    The command line shows each :class:`~softimpact.errors.SoftimpactWarning` raised below a command
+    (:func:`softimpact.models.validity.warn` and friends) as a ``softimpact: warning:`` line and keeps
+    it for manifest.json; here each is warned again, a SoftimpactWarning pointing at the first frame
+    outside softimpact (the user's call), and its one-line text kept in :attr:`texts` for the result's
+    manifest.json. Any other warning passes on unchanged. Used as ``with _Heard() as heard: ...``.
+    """
+
+    def __enter__(self):
+        self.texts: list[str] = []
+        self._catching = warnings.catch_warnings(record=True)
+        self._caught = self._catching.__enter__()
+        warnings.simplefilter("always", SoftimpactWarning)  # each, as the command line shows each
+        return self
+
+    def __exit__(self, *exc):
+        self._catching.__exit__(*exc)
+        level, frame = 1, sys._getframe(0)
+        while frame is not None and frame.f_code.co_filename.startswith(_PACKAGE):
+            level, frame = level + 1, frame.f_back
+        for w in self._caught:
+            if issubclass(w.category, SoftimpactWarning):
+                self.texts.append(_one_line(w.message))
+                warnings.warn(w.message, stacklevel=level)
+            else:
+                warnings.warn_explicit(w.message, w.category, w.filename, w.lineno, source=w.source)
+        return False
+
+
+def _write(out, files: dict, inputs, manifest: dict, force: bool) -> list[Path]:
+    """:func:`softimpact.output.files.write_outputs`, its errors naming ``write`` and ``force=True``
+    (the API's terms) where the command line's name ``--out`` and ``--force``."""
+    from .output.files import write_outputs
+
+    try:
+        return write_outputs(out, files, inputs=inputs, manifest=manifest, force=force)
+    except InputError as exc:
+        text = str(exc)
+        if not text.startswith("--out: "):
+            raise
+        text = "write: " + text.removeprefix("--out: ")
+        raise InputError(text.replace("`softimpact --force ...`", "write(..., force=True)"), exc.argument) from None
 
 
 # --- inputs ---------------------------------------------------------------------------------------
@@ -420,6 +489,8 @@ class Sphere:
 
         mat = _material(material, "material")
         d = _si(diameter, "length", "diameter")
+        if not d > 0:  # before the mass it gives (the case file's check, naming the argument)
+            raise InputError(f"diameter: must be positive, got {diameter!r}")
         v = _si(velocity, "velocity", "velocity")
         m = sphere_mass(mat, d) if mass is None else _si(mass, "mass", "mass")
         Impactor(m, d, v)  # the same checks as every other path
@@ -441,6 +512,7 @@ class _Written:
     """What every result offers on top of its numbers: the command's files, written or parsed."""
 
     command = "softimpact"
+    warnings: tuple[str, ...] = ()  # the SoftimpactWarnings of the run, one line each (as manifest.json lists them)
 
     def files(self, figures: bool = True) -> dict[str, bytes | str]:  # pragma: no cover - each result has its own
         raise NotImplementedError
@@ -471,10 +543,16 @@ class _Written:
             The files written (manifest.json not included).
         """
         from .gates import status
-        from .output.files import write_outputs
 
-        manifest = {"status": status((), False), "accept_poor": False, "command": f"{self.command} (Python API)", "arguments": {}, "warnings": [], "gates": []}
-        return write_outputs(out, self.files(figures), inputs=self.inputs(), manifest=manifest, force=force)
+        manifest = {
+            "status": status((), False),
+            "accept_poor": False,
+            "command": f"{self.command} (Python API)",
+            "arguments": {},
+            "warnings": list(self.warnings),
+            "gates": [],
+        }
+        return _write(out, self.files(figures), self.inputs(), manifest, force)
 
 
 def _frame(columns: dict, units_of: dict):
@@ -523,6 +601,9 @@ class ImpactResult(_Written):
         The assembled model that ran (reused by ``write_fields``).
     case_files : tuple of Path
         The case files read (never overwritten by ``write``).
+    warnings : tuple of str
+        The run's :class:`~softimpact.errors.SoftimpactWarning` s, one line each (already warned at
+        the call; listed in manifest.json by ``write``, as the command line lists them).
 
     Attributes
     ----------
@@ -539,6 +620,7 @@ class ImpactResult(_Written):
     result: object
     model: object = field(repr=False, compare=False, default=None)
     case_files: tuple = field(repr=False, default=())
+    warnings: tuple = field(repr=False, compare=False, default=())
     command = "softimpact impact"
 
     peak_force = property(lambda self: self.result.peak_force, doc="Peak force of the first contact [N].")
@@ -624,6 +706,7 @@ class _Prescribed(_Written):
     result: object
     model: object = field(repr=False, compare=False, default=None)
     case_files: tuple = field(repr=False, default=())
+    warnings: tuple = field(repr=False, compare=False, default=())
 
     time = property(lambda self: self.result.time, doc="Time [s], (n_steps + 1,).")
     force = property(lambda self: self.result.force, doc="Applied force [N], (n_steps + 1,).")
@@ -651,6 +734,9 @@ class BeamResult(_Prescribed):
         The assembled model that ran (reused by ``write_fields``).
     case_files : tuple of Path
         The case files read (never overwritten by ``write``).
+    warnings : tuple of str
+        The run's :class:`~softimpact.errors.SoftimpactWarning` s, one line each (already warned at
+        the call; listed in manifest.json by ``write``, as the command line lists them).
     """
 
     command = "softimpact beam"
@@ -701,6 +787,9 @@ class PlateResult(_Prescribed):
         The assembled model that ran (reused by ``write_fields``).
     case_files : tuple of Path
         The case files read (never overwritten by ``write``).
+    warnings : tuple of str
+        The run's :class:`~softimpact.errors.SoftimpactWarning` s, one line each (already warned at
+        the call; listed in manifest.json by ``write``, as the command line lists them).
     """
 
     command = "softimpact plate"
@@ -749,6 +838,9 @@ class BarResult(_Written):
         Time [s], force [N] read from the first gauge, and its name.
     case_files : tuple of Path
         The case files read.
+    warnings : tuple of str
+        The run's :class:`~softimpact.errors.SoftimpactWarning` s, one line each (already warned at
+        the call; listed in manifest.json by ``write``, as the command line lists them).
     """
 
     problem: object
@@ -756,6 +848,7 @@ class BarResult(_Written):
     plain: object = field(repr=False, default=None)
     inferred: object = field(repr=False, default=None)
     case_files: tuple = field(repr=False, default=())
+    warnings: tuple = field(repr=False, compare=False, default=())
     command = "softimpact bar"
 
     peak_force = property(lambda self: self.result.peak_force, doc="Peak contact force [N].")
@@ -823,17 +916,29 @@ def _plate_gauges(gauges: dict | None):
     return tuple(out)
 
 
+def _is_law_file(law) -> bool:
+    return isinstance(law, Path) or (isinstance(law, str) and law.endswith(".json"))
+
+
 def _law(law, hertz, sphere: Sphere):
-    """(name, law): a name of :data:`CONTACT_LAWS` resolved by :func:`resolve_law`, a law.json path, or a law object."""
+    """(name, law, the law file read or None): a name of :data:`CONTACT_LAWS` resolved by :func:`resolve_law`,
+    a law object, or a law.json path read as a case file's ``law_file`` is
+    (:func:`softimpact.input.contact_law.read_contact_law`: the same warnings when the sphere lies outside
+    what the law was identified on)."""
     from .models.contact_laws import resolve_law
 
-    if isinstance(law, Path) or (isinstance(law, str) and law.endswith(".json")):
-        from .formats.law_json import read_law
+    if _is_law_file(law):
+        from .input.contact_law import read_contact_law
+        from .input.toml import Table
 
-        identified = read_law(Path(law), "law")
-        return "identified", identified.law(sphere.mass, sphere.diameter, sphere.velocity)
+        class _Argument(Table):  # the API's argument is ``law``, not the case file's ``contact.law_file``
+            def key(self, name: str) -> str:
+                return "law"
+
+        resolved, path = read_contact_law(_Argument({"law_file": str(law)}), "identified", hertz, sphere.mass, sphere.diameter, sphere.velocity, Path())
+        return "identified", resolved, path
     resolved = resolve_law(law, hertz)
-    return (law if isinstance(law, str) else getattr(law, "name", type(law).__name__)), resolved
+    return (law if isinstance(law, str) else getattr(law, "name", type(law).__name__)), resolved, None
 
 
 def impact(
@@ -911,6 +1016,13 @@ def impact(
     >>> 100 < res.peak_force < 1000  # N: a Hertz impact of a few hundred newtons
     True
     """
+    with _Heard() as heard:
+        res = _impact(structure, at, impactor, law, time_step, duration, gauges, target_modulus, contact_radius, beta, gamma, units, title)
+    return replace(res, warnings=tuple(heard.texts))
+
+
+def _impact(structure, at, impactor, law, time_step, duration, gauges, target_modulus, contact_radius, beta, gamma, units, title):
+    """:func:`impact`, its warnings left to the caller."""
     from .fem.newmark import NewmarkParameters, SolverSpec
     from .models.contact_laws import HertzLaw
 
@@ -932,7 +1044,7 @@ def impact(
             return HertzLaw.sphere_on_laminate(impactor.diameter / 2, impactor.material, modulus if modulus is not None else spec.stack.ply.E3)
         return HertzLaw.sphere_on_flat(impactor.diameter / 2, impactor.material, spec.material)
 
-    name, resolved = _law(law, hertz, impactor)
+    name, resolved, law_file = _law(law, hertz, impactor)
     if at is None:
         raise InputError("at: give the impact point (a length along a beam, (x, y) on a plate)")
     if isinstance(structure, Beam):
@@ -950,7 +1062,7 @@ def impact(
 
     problem = ImpactProblem(target, "(Python API)", impactor.impactor, impactor.material, name, resolved, title, units)
     KINDS["impact"].check(problem)  # the resource guards of the command, before anything is built
-    return run(Case("impact", problem))
+    return _run(Case("impact", problem, () if law_file is None else (law_file,)))
 
 
 def _naming():
@@ -966,11 +1078,12 @@ def _bar_impact(bar: Bar, at, sphere: Sphere, law, solver, gauges, units: str, t
 
     if at is not None:
         raise InputError("at: a bar is struck on its end (leave at out)")
-    if isinstance(law, str) and law.endswith(".json") or isinstance(law, Path):
-        _, law = _law(law, None, sphere)
+    law_file = None
+    if _is_law_file(law):
+        _, law, law_file = _law(law, None, sphere)
     gs = tuple(Gauge(str(n), _si(p, "length", f"gauges[{n!r}]")) for n, p in (gauges or {}).items())
     projectile = Projectile(sphere.material, sphere.diameter, sphere.velocity, sphere.mass)
-    return run(Case("bar", BarImpactProblem(bar.spec, projectile, solver, gs, law, title, units)))
+    return _run(Case("bar", BarImpactProblem(bar.spec, projectile, solver, gs, law, title, units), () if law_file is None else (law_file,)))
 
 
 @dataclass(frozen=True)
@@ -985,11 +1098,14 @@ class Case:
         The resolved problem, SI.
     files : tuple of Path
         The files read (case first).
+    warnings : tuple of str
+        The warnings reading it raised (already shown; :func:`run` keeps them for manifest.json).
     """
 
     kind: str
     problem: object
     files: tuple = ()
+    warnings: tuple = field(default=(), compare=False)
 
 
 def load(case, *, history: int | None = None) -> Case:
@@ -1021,10 +1137,11 @@ def load(case, *, history: int | None = None) -> Case:
     """
     from .cases import case_kind
 
-    kind, _ = case_kind(str(case))
-    problem, files = kind.load(str(case), history)
-    kind.check(problem)
-    return Case(kind.name, problem, tuple(Path(f) for f in (files if isinstance(files, tuple) else (files,))))
+    with _Heard() as heard:
+        kind, _ = case_kind(str(case))
+        problem, files = kind.load(str(case), history)
+        kind.check(problem)
+    return Case(kind.name, problem, tuple(Path(f) for f in (files if isinstance(files, tuple) else (files,))), tuple(heard.texts))
 
 
 def run(problem, *, figures: bool = True):
@@ -1058,6 +1175,15 @@ def run(problem, *, figures: bool = True):
     True
     """
     case = problem if isinstance(problem, Case) else Case(_kind_of(problem), problem)
+    with _Heard() as heard:
+        res = _run(case, figures)
+    return replace(res, warnings=(*case.warnings, *heard.texts))
+
+
+def _run(case: Case, figures: bool = True):
+    """:func:`run`, its warnings left to the caller (each as the command warns it: the same functions)."""
+    from .models.validity import Validity, warn
+
     p, files = case.problem, case.files
     if case.kind == "impact" and hasattr(p, "projectile"):  # an impact case on a bar target runs as the bar
         case = Case("bar", p, files)
@@ -1070,21 +1196,33 @@ def run(problem, *, figures: bool = True):
         model = impact_model(p)
         snaps = snapshot_steps(p.solver.steps) if figures and p.on_plate else ()
         model, result = run_impact(p, model, snapshots=snaps)
+        from .app.impact import warn_validity
+        from .output.impact import impact_summary
+
+        warn_validity(impact_summary(p, result, model))
         return ImpactResult(p, result, model, files)
     if case.kind == "beam":
+        from .output.beam import beam_validity
         from .workflows.beam_impact import BeamModel
 
         model = BeamModel(p)
-        return BeamResult(p, model.direct(displacement=figures), model, files)
+        result = model.direct(displacement=figures)
+        warn(beam_validity(result))
+        return BeamResult(p, result, model, files)
     if case.kind == "plate":
-        from .output.plate import snapshot_steps
+        from .app.plate import _mirrored_loads
+        from .output.plate import plate_validity, snapshot_steps
         from .workflows.plate_impact import PlateModel
 
         model = PlateModel(p)
-        return PlateResult(p, model.direct(snapshots=snapshot_steps(p.solver.steps) if figures else ()), model, files)
+        result = model.direct(snapshots=snapshot_steps(p.solver.steps) if figures else ())
+        warn(Validity({}, _mirrored_loads(p)) + plate_validity(result))  # the command's order
+        return PlateResult(p, result, model, files)
     from .app.bar import run_bar
+    from .output.bar import bar_validity
 
     result, plain, inferred = run_bar(p)
+    warn(bar_validity(result))
     return BarResult(p, result, plain, inferred, files)
 
 
@@ -1111,10 +1249,15 @@ class CommandResult(_Written):
         ``files`` (name → text or bytes; numbers in SI with unit-suffixed names), ``line``,
         ``inputs``, ``warnings``, ``gates``. A failed quality gate does not raise here (the
         command line exits 3); :meth:`write` marks it ``"status": "failed"`` in manifest.json.
+    warnings : tuple of str
+        The :class:`~softimpact.errors.SoftimpactWarning` s raised while the command ran, one line each
+        (already warned at the call, as the outcome's own ``warnings`` were); manifest.json lists the
+        outcome's, then these, as the command line does.
     """
 
     command: str
     outcome: object = field(repr=False, default=None)
+    warnings: tuple = field(repr=False, compare=False, default=())
 
     @property
     def line(self) -> str:
@@ -1160,7 +1303,6 @@ class CommandResult(_Written):
     def write(self, out, *, figures: bool = True, force: bool = False) -> list[Path]:
         """Write the command's files and manifest.json into ``out`` (see :meth:`ImpactResult.write`)."""
         from .gates import status
-        from .output.files import write_outputs
 
         gates = tuple(self.outcome.gates)
         manifest = {
@@ -1168,10 +1310,22 @@ class CommandResult(_Written):
             "accept_poor": False,
             "command": f"{self.command} (Python API)",
             "arguments": {},
-            "warnings": list(self.outcome.warnings),
+            "warnings": [*map(_one_line, self.outcome.warnings), *self.warnings],  # the command line's order
             "gates": [g.as_dict() for g in gates],
         }
-        return write_outputs(out, self.files(figures), inputs=self.inputs(), manifest=manifest, force=force)
+        return _write(out, self.files(figures), self.inputs(), manifest, force)
+
+
+def _command(command: str, call) -> CommandResult:
+    """``call()``, an app command's :class:`~softimpact.app.Outcome`, as a CommandResult: the warnings raised
+    while it ran kept and warned again at the user's line, then the outcome's own warnings warned (the
+    command line shows both, in this order)."""
+    with _Heard() as heard:
+        outcome = call()
+    with _Heard():
+        for text in outcome.warnings:
+            warnings.warn(_one_line(text), SoftimpactWarning, stacklevel=1)
+    return CommandResult(command, outcome, tuple(heard.texts))
 
 
 def reduce(series, *, figures: bool = True) -> CommandResult:
@@ -1202,7 +1356,7 @@ def reduce(series, *, figures: bool = True) -> CommandResult:
     """
     from .app.series import reduce as command
 
-    return CommandResult("softimpact reduce", command(series_name=str(series), figures=figures))
+    return _command("softimpact reduce", lambda: command(series_name=str(series), figures=figures))
 
 
 def fit(series, *, figures: bool = True) -> CommandResult:
@@ -1232,7 +1386,7 @@ def fit(series, *, figures: bool = True) -> CommandResult:
     """
     from .app.series import fit as command
 
-    return CommandResult("softimpact fit", command(series_name=str(series), figures=figures))
+    return _command("softimpact fit", lambda: command(series_name=str(series), figures=figures))
 
 
 def predict(
@@ -1300,7 +1454,7 @@ def predict(
     """
     from .app.predict import predict as command
 
-    outcome = command(
+    outcome = lambda: command(  # noqa: E731
         projectile=projectile,
         mass=_text(mass, "mass", "mass"),
         diameter=_text(diameter, "length", "diameter"),
@@ -1316,7 +1470,7 @@ def predict(
         system=units,
         figures=figures,
     )
-    return CommandResult("softimpact predict", outcome)
+    return _command("softimpact predict", outcome)
 
 
 def identify(series, *, figures: bool = True) -> CommandResult:
@@ -1347,7 +1501,7 @@ def identify(series, *, figures: bool = True) -> CommandResult:
     """
     from .app.identify import identify as command
 
-    return CommandResult("softimpact identify", command(series_name=str(series), figures=figures))
+    return _command("softimpact identify", lambda: command(series_name=str(series), figures=figures))
 
 
 def calibrate(
@@ -1406,7 +1560,7 @@ def calibrate(
     """
     from .app.calibrate import calibrate_command
 
-    outcome = calibrate_command(
+    outcome = lambda: calibrate_command(  # noqa: E731
         case=str(case),
         measured=None if measured is None else str(measured),
         velocity=_text(velocity, "velocity", "velocity"),
@@ -1419,7 +1573,7 @@ def calibrate(
         figures=figures,
         budget=budget,
     )
-    return CommandResult("softimpact calibrate", outcome)
+    return _command("softimpact calibrate", outcome)
 
 
 def converge(case, *, levels: int = 3, ratio: int = 2, history: int | None = None, figures: bool = True) -> CommandResult:
@@ -1456,7 +1610,7 @@ def converge(case, *, levels: int = 3, ratio: int = 2, history: int | None = Non
     """
     from .app.converge import converge as command
 
-    return CommandResult("softimpact converge", command(case=str(case), levels=levels, ratio=ratio, history=history, figures=figures))
+    return _command("softimpact converge", lambda: command(case=str(case), levels=levels, ratio=ratio, history=history, figures=figures))
 
 
 def sweep(spec, *, out, workers: int | None = 0, scheduler: str | None = None, figures: bool = True) -> CommandResult:
@@ -1493,7 +1647,7 @@ def sweep(spec, *, out, workers: int | None = 0, scheduler: str | None = None, f
     """
     from .app.sweep import sweep as command
 
-    return CommandResult("softimpact sweep", command(spec=str(spec), out_dir=str(out), workers=workers, scheduler=scheduler, figures=figures))
+    return _command("softimpact sweep", lambda: command(spec=str(spec), out_dir=str(out), workers=workers, scheduler=scheduler, figures=figures))
 
 
 @dataclass(frozen=True)

@@ -16,13 +16,19 @@ from ..units import display
 from ..workflows.coupled import impact_model, run_impact
 from . import Outcome, Progress, no_progress
 
-__all__ = ["impact"]
+__all__ = ["impact", "warn_validity"]
 
 
 def _validity(summary: dict) -> tuple[dict, tuple]:
     """The validity ratios and flags of summary.json (computed once, where the summary is)."""
     v = dict(summary["validity"])
     return v, tuple(v.pop("flags"))
+
+
+def warn_validity(summary: dict) -> None:
+    """Each flag of summary.json's ``validity`` as a :class:`~softimpact.errors.SoftimpactWarning`: the one path
+    of the command and of the Python API (:func:`softimpact.api.run`) from a coupled run to its warnings."""
+    warn(Validity(*_validity(summary)))
 
 
 def _damage_words(summary: dict) -> str:
@@ -52,7 +58,7 @@ def impact(*, case: str, figures: bool = True, fields: bool = False, progress: P
     if fields:
         files.update(field_files(model, kept_frames(result, kept)))
     summary = json.loads(files["summary.json"])
-    warn(Validity(*_validity(summary)))
+    warn_validity(summary)
     problem, result, _ = split_damage(problem, result)
     fu, tu, su = (display(problem.units, k) for k in ("force", "time", "strain"))
     peaks = ", ".join(f"{n} {eps[np.argmax(np.abs(eps))] * su.factor:.0f} {su.label}" for n, eps in zip(result.strain_names, result.strain))
