@@ -74,11 +74,13 @@ class BarKind:
         return self.summary(None, simulate_impact(problem or self.problem(data, Path(base))))
 
     def summary(self, problem, result, model=None):
-        """The scalars of ``softimpact bar``'s summary.json (:func:`softimpact.output.bar.bar_summary`)."""
-        from ..output.bar import bar_summary
+        """The scalars of ``softimpact bar``'s summary.json (:func:`softimpact.output.bar.bar_summary`); ``validity_flags``:
+        the names of the run's validity flags (:func:`softimpact.output.bar.bar_validity`, as the command's)."""
+        from ..output.bar import bar_summary, bar_validity
 
         s = bar_summary(result)
-        return {k: v for k, v in s.items() if isinstance(v, (int, float, dict)) and k != "case_SI"}
+        scalars = {k: v for k, v in s.items() if isinstance(v, (int, float, dict)) and k != "case_SI"}
+        return {**scalars, "validity_flags": bar_validity(result).names}
 
     def output_keys(self, problem):
         keys = ["peak_force_N", "time_of_peak_s", "contact_duration_s", "impulse_N_s", "rebound_velocity_m_s", "energy_drift_relative", "newton_iterations"]

@@ -104,10 +104,12 @@ class BeamKind:
 
     def summary(self, problem, result, model=None):
         """Peak force, impulse, deflection under the load (:func:`softimpact.output.beam.beam_scalars`, as
-        ``softimpact beam``'s summary.json) and gauge peaks."""
-        from ..output.beam import beam_scalars
+        ``softimpact beam``'s summary.json) and gauge peaks; ``validity_flags``: the names of the run's
+        validity flags (:func:`softimpact.output.beam.beam_validity`, as the command's)."""
+        from ..output.beam import beam_scalars, beam_validity
 
-        return {**beam_scalars(result), **gauge_outputs(result.time, [g.name for g in problem.gauges], result.strain)}
+        scalars = {**beam_scalars(result), **gauge_outputs(result.time, [g.name for g in problem.gauges], result.strain)}
+        return {**scalars, "validity_flags": beam_validity(result).names}
 
     def damage(self, problem, result) -> dict:
         """Peak damage indices at the gauge sections and the delamination threshold force."""

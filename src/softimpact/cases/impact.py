@@ -254,8 +254,10 @@ class ImpactKind:
 
     def summary(self, problem, result, model=None):
         """The scalars of ``softimpact impact``'s summary.json (:func:`softimpact.output.impact.impact_summary`):
-        lists, texts and the resolved case left out, null (not separated) as NaN."""
-        from ..output.impact import impact_summary
+        lists, texts and the resolved case left out, null (not separated) as NaN; ``validity_flags``: the names of
+        the run's validity flags (:func:`softimpact.output.impact.impact_validity`, as the command's)."""
+        from ..output.impact import impact_summary, impact_validity
+        from ..studies.damage import split_damage
 
         def scalars(tree):
             out = {}
@@ -270,7 +272,8 @@ class ImpactKind:
 
         s = impact_summary(problem, result, model)
         s.pop("case_SI", None)
-        return scalars(s)
+        own, run, _ = split_damage(problem, result)  # impact_summary's split: the envelopes of the impact itself
+        return {**scalars(s), "validity_flags": impact_validity(own, run, s.get("damage")).names}
 
     def output_keys(self, problem):
         if _is_bar(problem):

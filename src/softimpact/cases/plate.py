@@ -121,11 +121,13 @@ class PlateKind:
 
     def summary(self, problem, result, model=None):
         """Peak force, impulse, deflection under the load and its time (:func:`softimpact.output.plate.plate_scalars`,
-        as ``softimpact plate``'s summary.json) and gauge peaks (the damage pseudo-gauges left out)."""
-        from ..output.plate import plate_scalars
+        as ``softimpact plate``'s summary.json) and gauge peaks (the damage pseudo-gauges left out); ``validity_flags``:
+        the names of the run's validity flags (:func:`softimpact.output.plate.plate_validity`, as the command's)."""
+        from ..output.plate import plate_scalars, plate_validity
 
         real = [(g.name, eps) for g, eps in zip(problem.gauges, result.strain) if not g.name.startswith(DAMAGE_PREFIX + ".")]
-        return {**plate_scalars(result), **gauge_outputs(result.time, [n for n, _ in real], [e for _, e in real])}
+        scalars = {**plate_scalars(result), **gauge_outputs(result.time, [n for n, _ in real], [e for _, e in real])}
+        return {**scalars, "validity_flags": plate_validity(result).names}
 
     def _damage(self, problem, strains: dict, force: np.ndarray) -> dict:
         from ..workflows.damage import plate_damage, strain_tensor

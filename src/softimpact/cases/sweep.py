@@ -16,6 +16,7 @@ computed once. Nothing here parses arguments or writes the sweep's files.
 from __future__ import annotations
 
 import re
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -41,10 +42,14 @@ __all__ = [
     "plan_thresholds",
     "sweep_results",
     "CHECKPOINTS",
+    "FLAG_COLUMN",
+    "validity_counts",
+    "warning_counts",
 ]
 
 Progress = Callable[[int, int, str], None]  # progress(done, total, label)
 CHECKPOINTS = "checkpoints"  # folder in OUT holding one JSON file per finished chunk
+FLAG_COLUMN = "flag."  # runs.parquet: one boolean column flag.<name> per validity flag raised by any run
 _ADDRESS = re.compile(r"^(?:(tcp|tls|inproc|ucx|ws|wss)://)?(\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9_.-]+):([0-9]{1,5})$")
 
 
@@ -141,10 +146,11 @@ def prepare_group(kind: str, candidates, base: str, runs: int, outputs=()):
     first = None
     for data in candidates:
         try:
-            prepared = KINDS[kind].prepare(data, Path(base), runs, tuple(outputs))
-            if hasattr(prepared, "widen"):  # a shared part that covers every run of the group (impact: the widest contact)
-                prepared.widen(candidates)
-                prepared.build()
+            with _Caught():  # the runs read their cases again and keep their warnings (run_chunk)
+                prepared = KINDS[kind].prepare(data, Path(base), runs, tuple(outputs))
+                if hasattr(prepared, "widen"):  # a shared part that covers every run of the group (impact: the widest contact)
+                    prepared.widen(candidates)
+                    prepared.build()
             return prepared
         except Exception as exc:  # a drawn structure can be invalid: its runs fail, the sweep goes on
             first = first or _Failed(_one_line(exc))
@@ -153,19 +159,57 @@ def prepare_group(kind: str, candidates, base: str, runs: int, outputs=()):
     return first
 
 
+class _Caught:
+    """The :class:`~softimpact.errors.SoftimpactWarning` s raised inside the block, as one-line texts
+    (``texts``; each once, in order), none shown; other warnings are shown as usual on leaving it."""
+
+    def __enter__(self):
+        from ..errors import SoftimpactWarning
+
+        self._cm = warnings.catch_warnings(record=True)
+        self._seen = self._cm.__enter__()
+        warnings.simplefilter("always", SoftimpactWarning)  # every run's own, not once per code location
+        self.texts: list[str] = []
+        return self
+
+    def __exit__(self, *exc):
+        from ..errors import SoftimpactWarning
+
+        self._cm.__exit__(*exc)
+        for w in self._seen:
+            if issubclass(w.category, SoftimpactWarning):
+                text = _one_line_text(w.message)
+                if text not in self.texts:
+                    self.texts.append(text)
+            else:
+                warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+        return False
+
+
+def _one_line_text(message) -> str:
+    lines = str(message).strip().splitlines()
+    return lines[0] if lines else ""
+
+
 def run_chunk(kind: str, prepared, items, base: str, outputs) -> list[dict]:
-    """Runs of one chunk → rows {run, outputs (dict or None), error (None or one line)}."""
+    """Runs of one chunk → rows {run, outputs (dict or None), error (None or one line), flags, warnings}:
+    ``flags`` the names of the run's validity flags (the kind's ``validity_flags``, :mod:`softimpact.models.validity`),
+    ``warnings`` the texts of the warnings its case raised when read (law.json's range checks, ...): kept with the
+    run (they travel back from Dask workers) and shown by the sweep once each, not once per run."""
     case_kind = KINDS[kind]
     rows = []
     for run, data in items:
         if isinstance(prepared, _Failed):
-            rows.append({"run": run, "outputs": None, "error": prepared.reason})
+            rows.append({"run": run, "outputs": None, "error": prepared.reason, "flags": [], "warnings": []})
             continue
-        try:
-            flat = flatten(case_kind.run(prepared, data, Path(base), tuple(outputs)))
-            rows.append({"run": run, "outputs": {o: float(flat[o]) for o in outputs}, "error": None})
-        except Exception as exc:  # recorded with its reason; the sweep goes on
-            rows.append({"run": run, "outputs": None, "error": _one_line(exc)})
+        with _Caught() as caught:
+            try:
+                flat = flatten(case_kind.run(prepared, data, Path(base), tuple(outputs)))
+                row = {"run": run, "outputs": {o: float(flat[o]) for o in outputs}, "error": None}
+                row["flags"] = list(dict.fromkeys(flat.get("validity_flags", ())))
+            except Exception as exc:  # recorded with its reason; the sweep goes on
+                row = {"run": run, "outputs": None, "error": _one_line(exc), "flags": []}
+        rows.append({**row, "warnings": caught.texts})
     return rows
 
 
@@ -265,7 +309,37 @@ def run_table(plan: SweepPlan, rows: dict) -> dict[str, np.ndarray | list]:
     for o in spec.outputs:
         cols[o] = np.array([np.nan if rows[r.index]["outputs"] is None else rows[r.index]["outputs"][o] for r in plan.runs])
     cols["error"] = [rows[r.index]["error"] or "" for r in plan.runs]
+    # Validity (models.validity): the run's flags by name, and one boolean column per flag any run raised, to filter on.
+    flags = [rows[r.index].get("flags", []) for r in plan.runs]
+    cols["validity_flags"] = [", ".join(f) for f in flags]
+    for name in dict.fromkeys(n for f in flags for n in f):
+        cols[f"{FLAG_COLUMN}{name}"] = np.array([name in f for f in flags], dtype=bool)
+    cols["warnings"] = [" | ".join(rows[r.index].get("warnings", [])) for r in plan.runs]
     return cols
+
+
+def validity_counts(plan: SweepPlan, rows: dict) -> dict:
+    """summary.json's ``validity``: how many runs raised any validity flag and, per flag
+    (:data:`softimpact.models.validity.FLAG_LABELS`), how many runs raised it, with its words."""
+    from ..models.validity import FLAG_LABELS
+
+    flags = [rows[r.index].get("flags", []) for r in plan.runs]
+    per = {name: sum(name in f for f in flags) for name in dict.fromkeys(n for f in flags for n in f)}
+    return {
+        "runs_outside_envelope": sum(bool(f) for f in flags),
+        "runs_per_flag": per,
+        "labels": {name: FLAG_LABELS.get(name, name) for name in per},
+        "note": f"per run in runs.parquet: validity_flags (names) and one boolean column {FLAG_COLUMN}<name> per flag",
+    }
+
+
+def warning_counts(plan: SweepPlan, rows: dict) -> list[dict]:
+    """summary.json's ``run_warnings``: each distinct warning the runs' cases raised, with how many runs raised it."""
+    counts: dict[str, int] = {}
+    for r in plan.runs:
+        for text in rows[r.index].get("warnings", []):
+            counts[text] = counts.get(text, 0) + 1
+    return [{"warning": text, "runs": n} for text, n in counts.items()]
 
 
 def _velocity_key(spec: SweepSpec) -> str | None:
@@ -296,7 +370,7 @@ def sweep_results(plan: SweepPlan, rows: dict, computed: int) -> tuple[dict, dic
 
     spec = plan.spec
     cols = run_table(plan, rows)
-    varied = {k: v for k, v in cols.items() if k not in spec.outputs and k not in ("run", "error")}
+    varied = {k: cols[k] for k in cols if k not in spec.outputs and k not in ("run", "error", "validity_flags", "warnings") and not k.startswith(FLAG_COLUMN)}
     failures = [{"run": int(cols["run"][i]), "reason": e} for i, e in enumerate(cols["error"]) if e]
     summary = {
         "softimpact_version": __version__,
@@ -312,6 +386,8 @@ def sweep_results(plan: SweepPlan, rows: dict, computed: int) -> tuple[dict, dic
         "computed_now": computed,
         "from_checkpoints": len(plan.runs) - computed,
         "failures": failures,
+        "validity": validity_counts(plan, rows),
+        "run_warnings": warning_counts(plan, rows),
         "statistics": {o: sweep_stats.statistics(cols[o]) for o in spec.outputs},
         "sensitivity_spearman": {o: sweep_stats.sensitivity(varied, np.asarray(cols[o], float)) for o in spec.outputs},
         "sensitivity_sobol_first_order": {o: sweep_stats.sobol_first_order(varied, np.asarray(cols[o], float)) for o in spec.outputs},
