@@ -52,7 +52,8 @@ def sweep(
         f"{summary['runs']} runs in {summary['groups']} structure group(s): {summary['succeeded']} done, {summary['failed']} failed, "
         f"{summary['from_checkpoints']} from checkpoints ({dt:.1f} s, {_rate(summary['computed_now'] / dt)} runs/s)"
     )
-    found = [str(w.message).strip() for w in caught if issubclass(w.category, SoftimpactWarning)]
+    # validity flags raised here (the probes' reading of their cases) are the runs' own, counted per run
+    found = [str(w.message).strip() for w in caught if issubclass(w.category, SoftimpactWarning) and not getattr(w.message, "flag", "")]
     return Outcome(files, line, (s.path, s.case_path), tuple(sweep_warnings(summary, found)))
 
 

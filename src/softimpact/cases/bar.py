@@ -86,6 +86,8 @@ class BarKind:
         keys = ["peak_force_N", "time_of_peak_s", "contact_duration_s", "impulse_N_s", "rebound_velocity_m_s", "energy_drift_relative", "newton_iterations"]
         for g in problem.gauges:
             keys += [f"gauges.{g.name}.{f}" for f in GAUGE_FIELDS]
+        # the contact envelope's ratios (summary.json's validity, output.bar.bar_validity): a sweep may keep them per run
+        keys += ["validity.approach_over_diameter", "validity.contact_radius_over_projectile_radius", "validity.contact_radius_over_bar_radius"]
         return tuple(keys)
 
     def expand(self, data, key):

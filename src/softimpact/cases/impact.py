@@ -26,11 +26,14 @@ NOT_STRUCTURE = ("impactor.velocity", "impactor.mass", "impactor.material", "imp
 KERNEL_MIN_RUNS = 4
 # Outputs that need the structure's own state (its energies): a group asking for one steps directly.
 NEEDS_STRUCTURE = ("energy_balance_relative", "energy_error_after_first_contact_relative")
+# The ratios of every coupled run's validity (output.impact.impact_validity): sweep outputs validity.<ratio>.
+VALIDITY_RATIOS = ("approach_over_diameter", "contact_radius_over_projectile_radius", "deflection_over_thickness")
 
 
 def _wants_damage(outputs) -> bool:
-    """Whether a run must carry the damage indices' pseudo-gauges: no outputs named (all of them), or a ``damage.*`` one."""
-    return not outputs or any(o.startswith("damage.") for o in outputs)
+    """Whether a run must carry the damage indices' pseudo-gauges: no outputs named (all of them), a ``damage.*`` one
+    or the maximum-strain index of the validity envelope."""
+    return not outputs or any(o.startswith("damage.") or o == "validity.max_strain_index" for o in outputs)
 
 
 class SharedModel:
@@ -300,7 +303,10 @@ class ImpactKind:
             keys += ["target.peak_deflection_at_impact_m", "target.time_of_peak_deflection_s"]
         from ..output.impact import damage_keys
 
-        return tuple(keys) + damage_keys(problem)
+        # the envelopes' ratios (summary.json's validity, models.validity): a sweep may keep them per run
+        keys += [f"validity.{k}" for k in VALIDITY_RATIOS]
+        damage = damage_keys(problem)
+        return tuple(keys) + damage + (("validity.max_strain_index",) if damage else ())
 
     def expand(self, data, key):
         pass

@@ -160,8 +160,10 @@ def prepare_group(kind: str, candidates, base: str, runs: int, outputs=()):
 
 
 class _Caught:
-    """The :class:`~softimpact.errors.SoftimpactWarning` s raised inside the block, as one-line texts
-    (``texts``; each once, in order), none shown; other warnings are shown as usual on leaving it."""
+    """The :class:`~softimpact.errors.SoftimpactWarning` s raised inside the block, none shown: the validity
+    flags among them by kind (``flags``: :class:`~softimpact.models.validity.ValidityWarning`'s names, e.g. a
+    law extrapolated in velocity), the others as one-line texts (``texts``; each once, in order). Other
+    warnings are shown as usual on leaving it."""
 
     def __enter__(self):
         from ..errors import SoftimpactWarning
@@ -170,6 +172,7 @@ class _Caught:
         self._seen = self._cm.__enter__()
         warnings.simplefilter("always", SoftimpactWarning)  # every run's own, not once per code location
         self.texts: list[str] = []
+        self.flags: list[str] = []
         return self
 
     def __exit__(self, *exc):
@@ -177,7 +180,10 @@ class _Caught:
 
         self._cm.__exit__(*exc)
         for w in self._seen:
-            if issubclass(w.category, SoftimpactWarning):
+            if getattr(w.message, "flag", ""):
+                if w.message.flag not in self.flags:
+                    self.flags.append(w.message.flag)
+            elif issubclass(w.category, SoftimpactWarning):
                 text = _one_line_text(w.message)
                 if text not in self.texts:
                     self.texts.append(text)
@@ -194,8 +200,9 @@ def _one_line_text(message) -> str:
 def run_chunk(kind: str, prepared, items, base: str, outputs) -> list[dict]:
     """Runs of one chunk → rows {run, outputs (dict or None), error (None or one line), flags, warnings}:
     ``flags`` the names of the run's validity flags (the kind's ``validity_flags``, :mod:`softimpact.models.validity`),
-    ``warnings`` the texts of the warnings its case raised when read (law.json's range checks, ...): kept with the
-    run (they travel back from Dask workers) and shown by the sweep once each, not once per run."""
+    and those its case raised when read (a law's fitted ranges, :func:`softimpact.models.validity.warn`), ``warnings``
+    the texts of the other warnings its case raised: kept with the run (they travel back from Dask workers and into
+    the checkpoints) and shown by the sweep once each, not once per run."""
     case_kind = KINDS[kind]
     rows = []
     for run, data in items:
@@ -206,10 +213,11 @@ def run_chunk(kind: str, prepared, items, base: str, outputs) -> list[dict]:
             try:
                 flat = flatten(case_kind.run(prepared, data, Path(base), tuple(outputs)))
                 row = {"run": run, "outputs": {o: float(flat[o]) for o in outputs}, "error": None}
-                row["flags"] = list(dict.fromkeys(flat.get("validity_flags", ())))
+                row["flags"] = list(flat.get("validity_flags", ()))
             except Exception as exc:  # recorded with its reason; the sweep goes on
                 row = {"run": run, "outputs": None, "error": _one_line(exc), "flags": []}
-        rows.append({**row, "warnings": caught.texts})
+        # the flags raised while its case was read (a law's fitted range), then the run's own
+        rows.append({**row, "flags": list(dict.fromkeys(caught.flags + row["flags"])), "warnings": caught.texts})
     return rows
 
 

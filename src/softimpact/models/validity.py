@@ -33,6 +33,8 @@ import math
 import warnings
 from dataclasses import dataclass
 
+from ..errors import SoftimpactWarning
+
 __all__ = [
     "HERTZ_APPROACH_OVER_DIAMETER",
     "HERTZ_FAMILY",
@@ -48,6 +50,7 @@ __all__ = [
     "surface_strain_bound",
     "gauge_allowable_flags",
     "warn",
+    "ValidityWarning",
 ]
 
 HERTZ_APPROACH_OVER_DIAMETER = 0.1  # α/d: a/R ≈ 0.45 (module docstring)
@@ -178,9 +181,17 @@ def gauge_allowable_flags(where: str, ply, peak_strain: float) -> Validity:
     return Validity({"gauge_strain_over_allowable_bound": r}, flags, ("gauge_strain_past_allowables",) * len(flags))
 
 
-def warn(validity: Validity) -> None:
-    """Each flag as a :class:`~softimpact.errors.SoftimpactWarning`."""
-    from ..errors import SoftimpactWarning
+class ValidityWarning(SoftimpactWarning):
+    """A validity flag as a warning: its text, and its kind in ``flag`` (a key of :data:`FLAG_LABELS`, or "")."""
 
-    for f in validity.flags:
-        warnings.warn(f, SoftimpactWarning, stacklevel=2)
+    def __init__(self, text: str, flag: str = ""):
+        super().__init__(text)
+        self.flag = flag
+
+
+def warn(validity: Validity) -> None:
+    """Each flag as a :class:`~softimpact.errors.SoftimpactWarning` (shown as its text) carrying the flag's
+    kind in ``.flag`` (:attr:`Validity.names`): a sweep counts its runs by kind instead of repeating the texts."""
+    names = validity.names if len(validity.names) == len(validity.flags) else ("",) * len(validity.flags)
+    for f, name in zip(validity.flags, names):
+        warnings.warn(ValidityWarning(f, name), stacklevel=2)
