@@ -80,7 +80,10 @@ def sweep_warnings(summary: dict, found=()) -> list[str]:
         lines.append(
             f"{v['runs_outside_envelope']} of {summary['runs']} runs outside the models' validity envelopes: {per} "
             "(per run in runs.parquet: validity_flags, flag.<name>; the statistics and thresholds include them)"
+            + "".join(f"; not checked: {u}" for u in v.get("not_checked", []))
         )
+    elif v.get("not_checked"):
+        lines.append(f"the runs' validity envelopes did not check {'; '.join(v['not_checked'])}")
     if summary["failed"]:
         first = summary["failures"][0]
         lines.append(
