@@ -157,3 +157,11 @@ def test_impact_sweep_counts_flags_and_shows_repeated_warnings_once(tmp_path):
     assert len(t["validity_flags"][-1].split(", ")) == len(fastest["flags"]) + outside[-1]  # the range flag is a warning of the single run
     rate = float(re.search(r"([0-9.]+) runs/s", output).group(1))
     assert rate > 0 and np.isfinite(rate)
+
+
+@pytest.mark.parametrize("rate, text", [(1 / 3, "0.33"), (5.64, "5.6"), (123.4, "123"), (0.0, "0")])
+def test_runs_per_second_keep_two_significant_digits(rate, text):
+    """The sweep's rate is printed with two significant digits (a third of a run per second is 0.33, not 0), never in exponent form."""
+    from softimpact.app.sweep import _rate
+
+    assert _rate(rate) == text
