@@ -125,9 +125,12 @@ class PlateKind:
         the names of the run's validity flags (:func:`softimpact.output.plate.plate_validity`, as the command's)."""
         from ..output.plate import plate_scalars, plate_validity
 
-        real = [(g.name, eps) for g, eps in zip(problem.gauges, result.strain) if not g.name.startswith(DAMAGE_PREFIX + ".")]
+        keep = [j for j, g in enumerate(problem.gauges) if not g.name.startswith(DAMAGE_PREFIX + ".")]
+        real = [(problem.gauges[j].name, result.strain[j]) for j in keep]
         scalars = {**plate_scalars(result), **gauge_outputs(result.time, [n for n, _ in real], [e for _, e in real])}
-        return {**scalars, "validity_flags": plate_validity(result).names}
+        # the envelopes of the plate command's own run: its gauges, not the damage pseudo-gauges
+        own = dataclasses.replace(result, problem=dataclasses.replace(problem, gauges=tuple(problem.gauges[j] for j in keep)), strain=result.strain[keep])
+        return {**scalars, "validity_flags": plate_validity(own).names}
 
     def _damage(self, problem, strains: dict, force: np.ndarray) -> dict:
         from ..workflows.damage import plate_damage, strain_tensor
