@@ -48,7 +48,7 @@ BEAM_SPEC = f"""
 [sweep]
 case = "beam.toml"
 method = "grid"
-outputs = ["peak_force_N"]
+outputs = ["peak_force_N", "validity.deflection_over_thickness"]
 [[sweep.parameter]]
 key = "load.history.velocity"
 values = {[f"{v} in/s" for v in BEAM_VELOCITIES]}
@@ -116,6 +116,7 @@ def test_beam_sweep_keeps_each_runs_validity_flags(tmp_path):
     failed = [s["max_strain_index"] > 1 for s in single]
     assert any(deflected) and not all(deflected) and any(failed) and not all(failed)  # the test's premise: some runs in, some out
     t = _table(tmp_path / "out")
+    assert t["validity.deflection_over_thickness"] == pytest.approx([s["deflection_over_thickness"] for s in single], rel=1e-6)
     assert t["flag.deflection_past_linear"] == deflected
     assert t["flag.strains_past_allowables"] == failed
     assert [len(f.split(", ")) if f else 0 for f in t["validity_flags"]] == [len(s["flags"]) for s in single]

@@ -130,7 +130,8 @@ class PlateKind:
         scalars = {**plate_scalars(result), **gauge_outputs(result.time, [n for n, _ in real], [e for _, e in real])}
         # the envelopes of the plate command's own run: its gauges, not the damage pseudo-gauges
         own = dataclasses.replace(result, problem=dataclasses.replace(problem, gauges=tuple(problem.gauges[j] for j in keep)), strain=result.strain[keep])
-        return {**scalars, "validity_flags": plate_validity(own).names}
+        v = plate_validity(own)
+        return {**scalars, "validity": {"deflection_over_thickness": v.values["deflection_over_thickness"]}, "validity_flags": v.names}
 
     def _damage(self, problem, strains: dict, force: np.ndarray) -> dict:
         from ..workflows.damage import plate_damage, strain_tensor
@@ -150,7 +151,8 @@ class PlateKind:
     def output_keys(self, problem):
         from ..models.failure import CRITERIA
 
-        keys = ["peak_force_N", "impulse_N_s", "peak_deflection_at_load_m", "time_of_peak_deflection_s"] + gauge_keys([g.name for g in problem.gauges])
+        keys = ["peak_force_N", "impulse_N_s", "peak_deflection_at_load_m", "time_of_peak_deflection_s", "validity.deflection_over_thickness"]
+        keys += gauge_keys([g.name for g in problem.gauges])
         if _screenable(problem.plate.stack):
             keys += [f"damage.{c}" for c in CRITERIA] + ["damage.delamination", "damage.threshold_force_N"]
             keys += [f"damage.{p}.{c}" for p in _damage_points(problem) for c in CRITERIA]
