@@ -53,7 +53,7 @@ def _table(out: Path) -> dict:
     import pyarrow.parquet as pq
 
     cols = pq.read_table(out / "runs.parquet").to_pydict()
-    return {k: v if k == "error" else np.array(v, float) for k, v in cols.items()}
+    return {k: v if k in ("error", "validity_flags", "warnings") else np.array(v, float) for k, v in cols.items()}
 
 
 def _coarse_plate(tmp_path: Path, elements: int = 12) -> None:

@@ -9,17 +9,21 @@ planned, grouped by structure and run, resuming from ``OUT/checkpoints``
 
 from __future__ import annotations
 
+import math
 import os
 import time
+import warnings
 from pathlib import Path
 
 from ..cases.sweep import check_scheduler, execute, plan_sweep, sweep_results
-from ..errors import InputError
+from ..errors import InputError, SoftimpactWarning
 from ..input.sweep_spec import load_sweep_spec
 from ..output.sweep import sweep_files
 from . import Outcome, Progress, no_progress
 
-__all__ = ["sweep"]
+__all__ = ["sweep", "sweep_warnings"]
+
+MAX_DISTINCT = 8  # distinct run warnings shown (e.g. a Monte Carlo's draws outside a law's fitted range, each with its value)
 
 
 def sweep(
@@ -28,26 +32,62 @@ def sweep(
     """``softimpact sweep SPEC --out DIR``: the spec and the scheduler's address are checked whole before anything is written."""
     t0 = time.perf_counter()
     check_scheduler(scheduler)
-    s = load_sweep_spec(spec)
-    if workers is None:
-        workers = os.cpu_count() or 1
-    if workers < 0:
-        raise InputError(f"--workers: expected 0 (plain loop) or more, got {workers}")
-    plan = plan_sweep(s)  # bad specs fail here, before the checkpoints folder exists
-    rows, computed = execute(plan, Path(out_dir), workers, scheduler, progress)
+    with warnings.catch_warnings(record=True) as caught:  # the spec's and the probes' warnings: shown once each, below
+        warnings.simplefilter("always", SoftimpactWarning)
+        s = load_sweep_spec(spec)
+        if workers is None:
+            workers = os.cpu_count() or 1
+        if workers < 0:
+            raise InputError(f"--workers: expected 0 (plain loop) or more, got {workers}")
+        plan = plan_sweep(s)  # bad specs fail here, before the checkpoints folder exists
+        rows, computed = execute(plan, Path(out_dir), workers, scheduler, progress)
+    for w in caught:
+        if not issubclass(w.category, SoftimpactWarning):
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     cols, summary, th = sweep_results(plan, rows, computed)
     system = s.case_data.get("units") if s.case_data.get("units") in ("in-lbf-s", "SI") else "in-lbf-s"
     files = sweep_files(cols, summary, th, figures, system)
     dt = time.perf_counter() - t0
     line = (
         f"{summary['runs']} runs in {summary['groups']} structure group(s): {summary['succeeded']} done, {summary['failed']} failed, "
-        f"{summary['from_checkpoints']} from checkpoints ({dt:.1f} s, {summary['computed_now'] / dt:.0f} runs/s)"
+        f"{summary['from_checkpoints']} from checkpoints ({dt:.1f} s, {_rate(summary['computed_now'] / dt)} runs/s)"
     )
-    warnings = []
+    # validity flags raised here (the probes' reading of their cases) are the runs' own, counted per run
+    found = [str(w.message).strip() for w in caught if issubclass(w.category, SoftimpactWarning) and not getattr(w.message, "flag", "")]
+    return Outcome(files, line, (s.path, s.case_path), tuple(sweep_warnings(summary, found)))
+
+
+def _rate(x: float) -> str:
+    """A rate with two significant digits, never in exponent form (0.33, 5.6, 123)."""
+    if not math.isfinite(x) or x <= 0:
+        return "0"
+    return f"{x:.{max(0, 1 - math.floor(math.log10(x)))}f}"
+
+
+def sweep_warnings(summary: dict, found=()) -> list[str]:
+    """The sweep's warning lines, each once: the runs' warnings (summary.json's ``run_warnings``; ``found``, those
+    raised while the spec was read and checked, counted once when no run raised them), at most
+    :data:`MAX_DISTINCT`; ONE line counting the runs outside the models' envelopes per flag (``validity``); and the failures."""
+    counts = {w["warning"]: w["runs"] for w in summary.get("run_warnings", [])}
+    for text in found:
+        counts.setdefault(text.splitlines()[0] if text else text, 0)
+    lines = [text if n <= 1 else f"{text} ({n} runs)" for text, n in counts.items()]
+    if len(lines) > MAX_DISTINCT:
+        lines = lines[:MAX_DISTINCT] + [f"... and {len(lines) - MAX_DISTINCT} more distinct warnings of the runs (summary.json's run_warnings)"]
+    v = summary.get("validity", {})
+    if v.get("runs_outside_envelope"):
+        per = ", ".join(f"{v['labels'][name]} ({n})" for name, n in v["runs_per_flag"].items())
+        lines.append(
+            f"{v['runs_outside_envelope']} of {summary['runs']} runs outside the models' validity envelopes: {per} "
+            "(per run in runs.parquet: validity_flags, flag.<name>; the statistics and thresholds include them)"
+            + "".join(f"; not checked: {u}" for u in v.get("not_checked", []))
+        )
+    elif v.get("not_checked"):
+        lines.append(f"the runs' validity envelopes did not check {'; '.join(v['not_checked'])}")
     if summary["failed"]:
         first = summary["failures"][0]
-        warnings.append(
+        lines.append(
             f"{summary['failed']} of {summary['runs']} runs failed (run {first['run']}: {first['reason']}; all in summary.json): "
             f"the statistics, correlations and thresholds are over the {summary['succeeded']} that ran, which may bias them"
         )
-    return Outcome(files, line, (s.path, s.case_path), tuple(warnings))
+    return lines

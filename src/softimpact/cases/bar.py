@@ -74,16 +74,20 @@ class BarKind:
         return self.summary(None, simulate_impact(problem or self.problem(data, Path(base))))
 
     def summary(self, problem, result, model=None):
-        """The scalars of ``softimpact bar``'s summary.json (:func:`softimpact.output.bar.bar_summary`)."""
-        from ..output.bar import bar_summary
+        """The scalars of ``softimpact bar``'s summary.json (:func:`softimpact.output.bar.bar_summary`); ``validity_flags``:
+        the names of the run's validity flags (:func:`softimpact.output.bar.bar_validity`, as the command's)."""
+        from ..output.bar import bar_summary, bar_validity
 
         s = bar_summary(result)
-        return {k: v for k, v in s.items() if isinstance(v, (int, float, dict)) and k != "case_SI"}
+        scalars = {k: v for k, v in s.items() if isinstance(v, (int, float, dict)) and k != "case_SI"}
+        return {**scalars, "validity_flags": bar_validity(result).names}
 
     def output_keys(self, problem):
         keys = ["peak_force_N", "time_of_peak_s", "contact_duration_s", "impulse_N_s", "rebound_velocity_m_s", "energy_drift_relative", "newton_iterations"]
         for g in problem.gauges:
             keys += [f"gauges.{g.name}.{f}" for f in GAUGE_FIELDS]
+        # the contact envelope's ratios (summary.json's validity, output.bar.bar_validity): a sweep may keep them per run
+        keys += ["validity.approach_over_diameter", "validity.contact_radius_over_projectile_radius", "validity.contact_radius_over_bar_radius"]
         return tuple(keys)
 
     def expand(self, data, key):

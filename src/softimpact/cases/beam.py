@@ -104,10 +104,13 @@ class BeamKind:
 
     def summary(self, problem, result, model=None):
         """Peak force, impulse, deflection under the load (:func:`softimpact.output.beam.beam_scalars`, as
-        ``softimpact beam``'s summary.json) and gauge peaks."""
-        from ..output.beam import beam_scalars
+        ``softimpact beam``'s summary.json) and gauge peaks; ``validity_flags``: the names of the run's
+        validity flags (:func:`softimpact.output.beam.beam_validity`, as the command's)."""
+        from ..output.beam import beam_scalars, beam_validity
 
-        return {**beam_scalars(result), **gauge_outputs(result.time, [g.name for g in problem.gauges], result.strain)}
+        scalars = {**beam_scalars(result), **gauge_outputs(result.time, [g.name for g in problem.gauges], result.strain)}
+        v = beam_validity(result)
+        return {**scalars, "validity": {"deflection_over_thickness": v.values["deflection_over_thickness"]}, "validity_flags": v.names}
 
     def damage(self, problem, result) -> dict:
         """Peak damage indices at the gauge sections and the delamination threshold force."""
@@ -121,7 +124,8 @@ class BeamKind:
     def output_keys(self, problem):
         from ..models.failure import CRITERIA
 
-        keys = ["peak_force_N", "impulse_N_s", "peak_deflection_under_load_m"] + gauge_keys([g.name for g in problem.gauges])
+        keys = ["peak_force_N", "impulse_N_s", "peak_deflection_under_load_m", "validity.deflection_over_thickness"]
+        keys += gauge_keys([g.name for g in problem.gauges])
         if _screenable(problem.beam.stack):
             keys += [f"damage.{c}" for c in CRITERIA] + ["damage.delamination", "damage.threshold_force_N"]
         return tuple(keys)

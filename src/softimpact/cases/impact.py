@@ -26,11 +26,14 @@ NOT_STRUCTURE = ("impactor.velocity", "impactor.mass", "impactor.material", "imp
 KERNEL_MIN_RUNS = 4
 # Outputs that need the structure's own state (its energies): a group asking for one steps directly.
 NEEDS_STRUCTURE = ("energy_balance_relative", "energy_error_after_first_contact_relative")
+# The ratios of every coupled run's validity (output.impact.impact_validity): sweep outputs validity.<ratio>.
+VALIDITY_RATIOS = ("approach_over_diameter", "contact_radius_over_projectile_radius", "deflection_over_thickness")
 
 
 def _wants_damage(outputs) -> bool:
-    """Whether a run must carry the damage indices' pseudo-gauges: no outputs named (all of them), or a ``damage.*`` one."""
-    return not outputs or any(o.startswith("damage.") for o in outputs)
+    """Whether a run must carry the damage indices' pseudo-gauges: no outputs named (all of them), a ``damage.*`` one
+    or the maximum-strain index of the validity envelope."""
+    return not outputs or any(o.startswith("damage.") or o == "validity.max_strain_index" for o in outputs)
 
 
 class SharedModel:
@@ -254,8 +257,10 @@ class ImpactKind:
 
     def summary(self, problem, result, model=None):
         """The scalars of ``softimpact impact``'s summary.json (:func:`softimpact.output.impact.impact_summary`):
-        lists, texts and the resolved case left out, null (not separated) as NaN."""
-        from ..output.impact import impact_summary
+        lists, texts and the resolved case left out, null (not separated) as NaN; ``validity_flags``: the names of
+        the run's validity flags (:func:`softimpact.output.impact.impact_validity`, as the command's)."""
+        from ..output.impact import impact_summary, impact_validity
+        from ..studies.damage import split_damage
 
         def scalars(tree):
             out = {}
@@ -270,7 +275,8 @@ class ImpactKind:
 
         s = impact_summary(problem, result, model)
         s.pop("case_SI", None)
-        return scalars(s)
+        own, run, _ = split_damage(problem, result)  # impact_summary's split: the envelopes of the impact itself
+        return {**scalars(s), "validity_flags": impact_validity(own, run, s.get("damage")).names}
 
     def output_keys(self, problem):
         if _is_bar(problem):
@@ -297,7 +303,10 @@ class ImpactKind:
             keys += ["target.peak_deflection_at_impact_m", "target.time_of_peak_deflection_s"]
         from ..output.impact import damage_keys
 
-        return tuple(keys) + damage_keys(problem)
+        # the envelopes' ratios (summary.json's validity, models.validity): a sweep may keep them per run
+        keys += [f"validity.{k}" for k in VALIDITY_RATIOS]
+        damage = damage_keys(problem)
+        return tuple(keys) + damage + (("validity.max_strain_index",) if damage else ())
 
     def expand(self, data, key):
         pass

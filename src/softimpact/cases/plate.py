@@ -121,11 +121,17 @@ class PlateKind:
 
     def summary(self, problem, result, model=None):
         """Peak force, impulse, deflection under the load and its time (:func:`softimpact.output.plate.plate_scalars`,
-        as ``softimpact plate``'s summary.json) and gauge peaks (the damage pseudo-gauges left out)."""
-        from ..output.plate import plate_scalars
+        as ``softimpact plate``'s summary.json) and gauge peaks (the damage pseudo-gauges left out); ``validity_flags``:
+        the names of the run's validity flags (:func:`softimpact.output.plate.plate_validity`, as the command's)."""
+        from ..output.plate import plate_scalars, plate_validity
 
-        real = [(g.name, eps) for g, eps in zip(problem.gauges, result.strain) if not g.name.startswith(DAMAGE_PREFIX + ".")]
-        return {**plate_scalars(result), **gauge_outputs(result.time, [n for n, _ in real], [e for _, e in real])}
+        keep = [j for j, g in enumerate(problem.gauges) if not g.name.startswith(DAMAGE_PREFIX + ".")]
+        real = [(problem.gauges[j].name, result.strain[j]) for j in keep]
+        scalars = {**plate_scalars(result), **gauge_outputs(result.time, [n for n, _ in real], [e for _, e in real])}
+        # the envelopes of the plate command's own run: its gauges, not the damage pseudo-gauges
+        own = dataclasses.replace(result, problem=dataclasses.replace(problem, gauges=tuple(problem.gauges[j] for j in keep)), strain=result.strain[keep])
+        v = plate_validity(own)
+        return {**scalars, "validity": {"deflection_over_thickness": v.values["deflection_over_thickness"]}, "validity_flags": v.names}
 
     def _damage(self, problem, strains: dict, force: np.ndarray) -> dict:
         from ..workflows.damage import plate_damage, strain_tensor
@@ -145,7 +151,8 @@ class PlateKind:
     def output_keys(self, problem):
         from ..models.failure import CRITERIA
 
-        keys = ["peak_force_N", "impulse_N_s", "peak_deflection_at_load_m", "time_of_peak_deflection_s"] + gauge_keys([g.name for g in problem.gauges])
+        keys = ["peak_force_N", "impulse_N_s", "peak_deflection_at_load_m", "time_of_peak_deflection_s", "validity.deflection_over_thickness"]
+        keys += gauge_keys([g.name for g in problem.gauges])
         if _screenable(problem.plate.stack):
             keys += [f"damage.{c}" for c in CRITERIA] + ["damage.delamination", "damage.threshold_force_N"]
             keys += [f"damage.{p}.{c}" for p in _damage_points(problem) for c in CRITERIA]

@@ -16,6 +16,7 @@ computed once. Nothing here parses arguments or writes the sweep's files.
 from __future__ import annotations
 
 import re
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -41,10 +42,14 @@ __all__ = [
     "plan_thresholds",
     "sweep_results",
     "CHECKPOINTS",
+    "FLAG_COLUMN",
+    "validity_counts",
+    "warning_counts",
 ]
 
 Progress = Callable[[int, int, str], None]  # progress(done, total, label)
 CHECKPOINTS = "checkpoints"  # folder in OUT holding one JSON file per finished chunk
+FLAG_COLUMN = "flag."  # runs.parquet: one boolean column flag.<name> per validity flag raised by any run
 _ADDRESS = re.compile(r"^(?:(tcp|tls|inproc|ucx|ws|wss)://)?(\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9_.-]+):([0-9]{1,5})$")
 
 
@@ -76,6 +81,7 @@ class SweepPlan:
     runs: tuple
     chunks: tuple[Chunk, ...]
     groups: int
+    unchecked: tuple[str, ...] = ()  # envelopes its runs do not check (the outputs asked for leave out what they need)
 
 
 def plan_sweep(spec: SweepSpec) -> SweepPlan:
@@ -119,7 +125,12 @@ def plan_sweep(spec: SweepSpec) -> SweepPlan:
         for k in range(0, len(members), spec.chunk):
             part = members[k : k + spec.chunk]
             chunks.append(Chunk(f"chunk-{g:05d}-{k // spec.chunk:05d}", g, len(members), tuple((i, cases[i]) for i in part)))
-    return SweepPlan(spec, kind.name, tuple(runs), tuple(chunks), len(groups))
+    # An impact's strains are checked against the ply allowables only on the damage pseudo-gauges, which its
+    # runs carry when a damage output (or the index itself) is asked for.
+    unchecked = ()
+    if "validity.max_strain_index" in known and not any(o.startswith("damage.") or o == "validity.max_strain_index" for o in spec.outputs):
+        unchecked = ("strains against the ply allowables (ask for validity.max_strain_index or a damage.* output)",)
+    return SweepPlan(spec, kind.name, tuple(runs), tuple(chunks), len(groups), unchecked)
 
 
 def _one_line(exc: BaseException) -> str:
@@ -141,10 +152,11 @@ def prepare_group(kind: str, candidates, base: str, runs: int, outputs=()):
     first = None
     for data in candidates:
         try:
-            prepared = KINDS[kind].prepare(data, Path(base), runs, tuple(outputs))
-            if hasattr(prepared, "widen"):  # a shared part that covers every run of the group (impact: the widest contact)
-                prepared.widen(candidates)
-                prepared.build()
+            with _Caught():  # the runs read their cases again and keep their warnings (run_chunk)
+                prepared = KINDS[kind].prepare(data, Path(base), runs, tuple(outputs))
+                if hasattr(prepared, "widen"):  # a shared part that covers every run of the group (impact: the widest contact)
+                    prepared.widen(candidates)
+                    prepared.build()
             return prepared
         except Exception as exc:  # a drawn structure can be invalid: its runs fail, the sweep goes on
             first = first or _Failed(_one_line(exc))
@@ -153,19 +165,65 @@ def prepare_group(kind: str, candidates, base: str, runs: int, outputs=()):
     return first
 
 
+class _Caught:
+    """The :class:`~softimpact.errors.SoftimpactWarning` s raised inside the block, none shown: the validity
+    flags among them by kind (``flags``: :class:`~softimpact.models.validity.ValidityWarning`'s names, e.g. a
+    law extrapolated in velocity), the others as one-line texts (``texts``; each once, in order). Other
+    warnings are shown as usual on leaving it."""
+
+    def __enter__(self):
+        from ..errors import SoftimpactWarning
+
+        self._cm = warnings.catch_warnings(record=True)
+        self._seen = self._cm.__enter__()
+        warnings.simplefilter("always", SoftimpactWarning)  # every run's own, not once per code location
+        self.texts: list[str] = []
+        self.flags: list[str] = []
+        return self
+
+    def __exit__(self, *exc):
+        from ..errors import SoftimpactWarning
+
+        self._cm.__exit__(*exc)
+        for w in self._seen:
+            if getattr(w.message, "flag", ""):
+                if w.message.flag not in self.flags:
+                    self.flags.append(w.message.flag)
+            elif issubclass(w.category, SoftimpactWarning):
+                text = _one_line_text(w.message)
+                if text not in self.texts:
+                    self.texts.append(text)
+            else:
+                warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+        return False
+
+
+def _one_line_text(message) -> str:
+    lines = str(message).strip().splitlines()
+    return lines[0] if lines else ""
+
+
 def run_chunk(kind: str, prepared, items, base: str, outputs) -> list[dict]:
-    """Runs of one chunk → rows {run, outputs (dict or None), error (None or one line)}."""
+    """Runs of one chunk → rows {run, outputs (dict or None), error (None or one line), flags, warnings}:
+    ``flags`` the names of the run's validity flags (the kind's ``validity_flags``, :mod:`softimpact.models.validity`),
+    and those its case raised when read (a law's fitted ranges, :func:`softimpact.models.validity.warn`), ``warnings``
+    the texts of the other warnings its case raised: kept with the run (they travel back from Dask workers and into
+    the checkpoints) and shown by the sweep once each, not once per run."""
     case_kind = KINDS[kind]
     rows = []
     for run, data in items:
         if isinstance(prepared, _Failed):
-            rows.append({"run": run, "outputs": None, "error": prepared.reason})
+            rows.append({"run": run, "outputs": None, "error": prepared.reason, "flags": [], "warnings": []})
             continue
-        try:
-            flat = flatten(case_kind.run(prepared, data, Path(base), tuple(outputs)))
-            rows.append({"run": run, "outputs": {o: float(flat[o]) for o in outputs}, "error": None})
-        except Exception as exc:  # recorded with its reason; the sweep goes on
-            rows.append({"run": run, "outputs": None, "error": _one_line(exc)})
+        with _Caught() as caught:
+            try:
+                flat = flatten(case_kind.run(prepared, data, Path(base), tuple(outputs)))
+                row = {"run": run, "outputs": {o: float(flat[o]) for o in outputs}, "error": None}
+                row["flags"] = list(flat.get("validity_flags", ()))
+            except Exception as exc:  # recorded with its reason; the sweep goes on
+                row = {"run": run, "outputs": None, "error": _one_line(exc), "flags": []}
+        # the flags raised while its case was read (a law's fitted range), then the run's own
+        rows.append({**row, "flags": list(dict.fromkeys(caught.flags + row["flags"])), "warnings": caught.texts})
     return rows
 
 
@@ -265,7 +323,37 @@ def run_table(plan: SweepPlan, rows: dict) -> dict[str, np.ndarray | list]:
     for o in spec.outputs:
         cols[o] = np.array([np.nan if rows[r.index]["outputs"] is None else rows[r.index]["outputs"][o] for r in plan.runs])
     cols["error"] = [rows[r.index]["error"] or "" for r in plan.runs]
+    # Validity (models.validity): the run's flags by name, and one boolean column per flag any run raised, to filter on.
+    flags = [rows[r.index].get("flags", []) for r in plan.runs]
+    cols["validity_flags"] = [", ".join(f) for f in flags]
+    for name in dict.fromkeys(n for f in flags for n in f):
+        cols[f"{FLAG_COLUMN}{name}"] = np.array([name in f for f in flags], dtype=bool)
+    cols["warnings"] = [" | ".join(rows[r.index].get("warnings", [])) for r in plan.runs]
     return cols
+
+
+def validity_counts(plan: SweepPlan, rows: dict) -> dict:
+    """summary.json's ``validity``: how many runs raised any validity flag and, per flag
+    (:data:`softimpact.models.validity.FLAG_LABELS`), how many runs raised it, with its words."""
+    from ..models.validity import FLAG_LABELS
+
+    flags = [rows[r.index].get("flags", []) for r in plan.runs]
+    per = {name: sum(name in f for f in flags) for name in dict.fromkeys(n for f in flags for n in f)}
+    return {
+        "runs_outside_envelope": sum(bool(f) for f in flags),
+        "runs_per_flag": per,
+        "labels": {name: FLAG_LABELS.get(name, name) for name in per},
+        "note": f"per run in runs.parquet: validity_flags (names) and one boolean column {FLAG_COLUMN}<name> per flag",
+    }
+
+
+def warning_counts(plan: SweepPlan, rows: dict) -> list[dict]:
+    """summary.json's ``run_warnings``: each distinct warning the runs' cases raised, with how many runs raised it."""
+    counts: dict[str, int] = {}
+    for r in plan.runs:
+        for text in rows[r.index].get("warnings", []):
+            counts[text] = counts.get(text, 0) + 1
+    return [{"warning": text, "runs": n} for text, n in counts.items()]
 
 
 def _velocity_key(spec: SweepSpec) -> str | None:
@@ -296,7 +384,7 @@ def sweep_results(plan: SweepPlan, rows: dict, computed: int) -> tuple[dict, dic
 
     spec = plan.spec
     cols = run_table(plan, rows)
-    varied = {k: v for k, v in cols.items() if k not in spec.outputs and k not in ("run", "error")}
+    varied = {k: cols[k] for k in cols if k not in spec.outputs and k not in ("run", "error", "validity_flags", "warnings") and not k.startswith(FLAG_COLUMN)}
     failures = [{"run": int(cols["run"][i]), "reason": e} for i, e in enumerate(cols["error"]) if e]
     summary = {
         "softimpact_version": __version__,
@@ -312,6 +400,8 @@ def sweep_results(plan: SweepPlan, rows: dict, computed: int) -> tuple[dict, dic
         "computed_now": computed,
         "from_checkpoints": len(plan.runs) - computed,
         "failures": failures,
+        "validity": {**validity_counts(plan, rows), "not_checked": list(plan.unchecked)},
+        "run_warnings": warning_counts(plan, rows),
         "statistics": {o: sweep_stats.statistics(cols[o]) for o in spec.outputs},
         "sensitivity_spearman": {o: sweep_stats.sensitivity(varied, np.asarray(cols[o], float)) for o in spec.outputs},
         "sensitivity_sobol_first_order": {o: sweep_stats.sobol_first_order(varied, np.asarray(cols[o], float)) for o in spec.outputs},

@@ -33,6 +33,8 @@ import math
 import warnings
 from dataclasses import dataclass
 
+from ..errors import SoftimpactWarning
+
 __all__ = [
     "HERTZ_APPROACH_OVER_DIAMETER",
     "HERTZ_FAMILY",
@@ -40,6 +42,7 @@ __all__ = [
     "RANGE_SLACK",
     "DENSITY_SLACK",
     "Validity",
+    "FLAG_LABELS",
     "contact_validity",
     "deflection_validity",
     "range_flags",
@@ -47,6 +50,7 @@ __all__ = [
     "surface_strain_bound",
     "gauge_allowable_flags",
     "warn",
+    "ValidityWarning",
 ]
 
 HERTZ_APPROACH_OVER_DIAMETER = 0.1  # α/d: a/R ≈ 0.45 (module docstring)
@@ -55,16 +59,32 @@ DEFLECTION_OVER_THICKNESS = 0.5  # w/h: membrane stiffening 12 % on a clamped pl
 RANGE_SLACK = 0.10  # beyond ±10 % of a fitted range: an extrapolation
 DENSITY_SLACK = 0.20  # a projectile density more than 20 % off the fitted ones: another material
 
+# Each kind of flag by a short name (:attr:`Validity.names`) and a few words: a sweep counts its runs per name.
+FLAG_LABELS = {
+    "hertz_approach": f"approach > {HERTZ_APPROACH_OVER_DIAMETER:g} d (Hertz)",
+    "contact_past_projectile_radius": "contact radius > the projectile's radius",
+    "contact_past_bar_radius": "contact radius > the bar's radius",
+    "deflection_past_linear": f"w/h > {DEFLECTION_OVER_THICKNESS:g}",
+    "extrapolated_velocity": "velocity outside the fitted range",
+    "extrapolated_diameter": "diameter outside the fitted range",
+    "extrapolated_mass": "mass outside the fitted range",
+    "extrapolated_density": "density off the fitted projectiles'",
+    "strains_past_allowables": "strains past the ply allowables",
+    "gauge_strain_past_allowables": "a gauge strain past the ply allowables",
+}
+
 
 @dataclass(frozen=True)
 class Validity:
-    """Ratios of a run against its models' limits (name → number) and the flags they raise."""
+    """Ratios of a run against its models' limits (name → number) and the flags they raise; ``names``:
+    each flag's kind (a key of :data:`FLAG_LABELS`, same order; empty for a Validity rebuilt from a summary)."""
 
     values: dict
     flags: tuple[str, ...] = ()
+    names: tuple[str, ...] = ()
 
     def __add__(self, other: Validity) -> Validity:
-        return Validity({**self.values, **other.values}, self.flags + other.flags)
+        return Validity({**self.values, **other.values}, self.flags + other.flags, self.names + other.names)
 
     def summary(self) -> dict:
         """summary.json's ``"validity"``: the ratios, then ``flags`` (a list of sentences, empty when all hold)."""
@@ -75,22 +95,25 @@ def contact_validity(law_name: str, max_approach: float, max_radius: float, diam
     """Approach [m] and contact radius [m] of a contact law against the projectile's diameter [m]
     (and the bar's radius [m] on a bar)."""
     v = {"approach_over_diameter": max_approach / diameter, "contact_radius_over_projectile_radius": max_radius / (diameter / 2)}
-    flags = []
+    flags, names = [], []
     if law_name in HERTZ_FAMILY and v["approach_over_diameter"] > HERTZ_APPROACH_OVER_DIAMETER:
         flags.append(
             f"{law_name}: the approach reaches {v['approach_over_diameter']:.3g} of the projectile's diameter ({max_approach:.4g} m of "
             f"{diameter:.4g} m), past the {HERTZ_APPROACH_OVER_DIAMETER:g} where Hertz's small-contact assumption (a << R) holds"
         )
+        names.append("hertz_approach")
     if v["contact_radius_over_projectile_radius"] > 1.0:
         flags.append(
             f"{law_name}: the contact radius reaches {v['contact_radius_over_projectile_radius']:.3g} times the projectile's radius "
             f"({max_radius:.4g} m against {diameter / 2:.4g} m): no sphere touches over more than its own radius"
         )
+        names.append("contact_past_projectile_radius")
     if bar_radius is not None:
         v["contact_radius_over_bar_radius"] = max_radius / bar_radius
         if max_radius > bar_radius:
             flags.append(f"{law_name}: the contact radius {max_radius:.4g} m exceeds the bar's radius {bar_radius:.4g} m (the contact overhangs the bar's end)")
-    return Validity(v, tuple(flags))
+        names.append("contact_past_bar_radius")
+    return Validity(v, tuple(flags), tuple(names))
 
 
 def deflection_validity(what: str, max_deflection: float, thickness: float) -> Validity:
@@ -102,20 +125,21 @@ def deflection_validity(what: str, max_deflection: float, thickness: float) -> V
             f"{what}: the deflection reaches {r:.3g} times the thickness ({abs(max_deflection):.4g} m, h {thickness:.4g} m), past the "
             f"{DEFLECTION_OVER_THICKNESS:g} where linear theory holds (membrane stretching stiffens it as (w/h)^2)",
         )
-    return Validity({"deflection_over_thickness": r}, flags)
+    return Validity({"deflection_over_thickness": r}, flags, ("deflection_past_linear",) * len(flags))
 
 
 def range_flags(what: str, checks) -> Validity:
     """``checks``: (quantity, value, (lo, hi), unit) tuples of a fitted model; a flag for each value more
     than :data:`RANGE_SLACK` outside its range (:data:`DENSITY_SLACK` for a density)."""
-    values, flags = {}, []
+    values, flags, names = {}, [], []
     for name, value, (lo, hi), unit in checks:
         slack = DENSITY_SLACK if name == "density" else RANGE_SLACK
         key = name.replace(" ", "_")
         values[f"{key}_over_fitted_min"], values[f"{key}_over_fitted_max"] = value / lo, value / hi
         if not (1 - slack) * lo <= value <= (1 + slack) * hi:
             flags.append(f"{what}: {name} {value:.4g} {unit} lies outside the {lo:.4g}-{hi:.4g} {unit} it was fitted on: an extrapolation")
-    return Validity(values, tuple(flags))
+            names.append(f"extrapolated_{key}")
+    return Validity(values, tuple(flags), tuple(names))
 
 
 def allowable_flags(where: str, max_strain_index: float) -> Validity:
@@ -126,7 +150,7 @@ def allowable_flags(where: str, max_strain_index: float) -> Validity:
             f"{where}: strains reach {max_strain_index:.3g} times the ply allowables (maximum-strain index): the ply has failed "
             "and the linear elastic answer past that is not the structure's",
         )
-    return Validity({"max_strain_index": max_strain_index}, flags)
+    return Validity({"max_strain_index": max_strain_index}, flags, ("strains_past_allowables",) * len(flags))
 
 
 def surface_strain_bound(ply) -> float:
@@ -154,12 +178,20 @@ def gauge_allowable_flags(where: str, ply, peak_strain: float) -> Validity:
             f"{where}: a strain of {abs(peak_strain):.4g} is past the ply allowables ({bound:.4g} is the most any direction reaches "
             "before a maximum-strain index passes 1): the ply has failed and the linear elastic answer past that is not the structure's",
         )
-    return Validity({"gauge_strain_over_allowable_bound": r}, flags)
+    return Validity({"gauge_strain_over_allowable_bound": r}, flags, ("gauge_strain_past_allowables",) * len(flags))
+
+
+class ValidityWarning(SoftimpactWarning):
+    """A validity flag as a warning: its text, and its kind in ``flag`` (a key of :data:`FLAG_LABELS`, or "")."""
+
+    def __init__(self, text: str, flag: str = ""):
+        super().__init__(text)
+        self.flag = flag
 
 
 def warn(validity: Validity) -> None:
-    """Each flag as a :class:`~softimpact.errors.SoftimpactWarning`."""
-    from ..errors import SoftimpactWarning
-
-    for f in validity.flags:
-        warnings.warn(f, SoftimpactWarning, stacklevel=2)
+    """Each flag as a :class:`~softimpact.errors.SoftimpactWarning` (shown as its text) carrying the flag's
+    kind in ``.flag`` (:attr:`Validity.names`): a sweep counts its runs by kind instead of repeating the texts."""
+    names = validity.names if len(validity.names) == len(validity.flags) else ("",) * len(validity.flags)
+    for f, name in zip(validity.flags, names):
+        warnings.warn(ValidityWarning(f, name), stacklevel=2)
