@@ -40,7 +40,7 @@ import warnings
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
-from .errors import InputError, SoftimpactWarning
+from .errors import HeldWarnings, InputError, SoftimpactWarning
 
 __all__ = [
     "Laminate",
@@ -133,34 +133,29 @@ def _one_line(text) -> str:
     return " ".join(str(text).split())
 
 
-class _Heard:
+class _Heard(HeldWarnings):
     """Collects the warnings raised below one API call and, on leaving, warns them again at the user's line.
 
     The command line shows each :class:`~softimpact.errors.SoftimpactWarning` raised below a command
     (:func:`softimpact.models.validity.warn` and friends) as a ``softimpact: warning:`` line and keeps
     it for manifest.json; here each is warned again, a SoftimpactWarning pointing at the first frame
     outside softimpact (the user's call), and its one-line text kept in :attr:`texts` for the result's
-    manifest.json. Any other warning passes on unchanged. Used as ``with _Heard() as heard: ...``.
+    manifest.json. Any other warning passes on unchanged (:class:`~softimpact.errors.HeldWarnings`).
+    Used as ``with _Heard() as heard: ...``.
     """
 
     def __enter__(self):
         self.texts: list[str] = []
-        self._catching = warnings.catch_warnings(record=True)
-        self._caught = self._catching.__enter__()
-        warnings.simplefilter("always", SoftimpactWarning)  # each, as the command line shows each
-        return self
+        return super().__enter__()
 
     def __exit__(self, *exc):
-        self._catching.__exit__(*exc)
+        super().__exit__(*exc)
         level, frame = 1, sys._getframe(0)
         while frame is not None and frame.f_code.co_filename.startswith(_PACKAGE):
             level, frame = level + 1, frame.f_back
-        for w in self._caught:
-            if issubclass(w.category, SoftimpactWarning):
-                self.texts.append(_one_line(w.message))
-                warnings.warn(w.message, stacklevel=level)
-            else:
-                warnings.warn_explicit(w.message, w.category, w.filename, w.lineno, source=w.source)
+        for w in self.held:
+            self.texts.append(_one_line(w.message))
+            warnings.warn(w.message, stacklevel=level)
         return False
 
 

@@ -15,7 +15,9 @@ command line turns the error into a one-line message and an exit code:
   mesh, an ignored column): one ``softimpact: warning:`` line, exit unchanged.
 """
 
-__all__ = ["InputError", "TooLarge", "CheckFailed", "SolverFailed", "SoftimpactWarning", "EXIT_INPUT", "EXIT_CHECK", "EXIT_INTERNAL"]
+import warnings
+
+__all__ = ["InputError", "TooLarge", "CheckFailed", "SolverFailed", "SoftimpactWarning", "HeldWarnings", "EXIT_INPUT", "EXIT_CHECK", "EXIT_INTERNAL"]
 
 EXIT_INPUT = 2  # bad input: a one-line reason, nothing written
 EXIT_CHECK = 3  # ran, but the answer failed its checks (diagnostics written, marked failed)
@@ -63,3 +65,27 @@ class SolverFailed(CheckFailed):
 
 class SoftimpactWarning(UserWarning):
     """A result the user may use, with a caveat shown as one line (never an exit code)."""
+
+
+class HeldWarnings:
+    """``with HeldWarnings() as w:`` — the :class:`SoftimpactWarning` s raised inside the block, every one (not
+    once per code location), held in ``w.held`` (:class:`warnings.WarningMessage` records, in order) and not
+    shown; any other warning is shown as usual when the block ends. The one mechanism of the edges that
+    show or keep the core's warnings in their own way: the sweep (once each, counted per run) and the
+    Python API (warned again at the user's line)."""
+
+    def __enter__(self):
+        self.held: list = []
+        self._catching = warnings.catch_warnings(record=True)
+        self._caught = self._catching.__enter__()
+        warnings.simplefilter("always", SoftimpactWarning)
+        return self
+
+    def __exit__(self, *exc):
+        self._catching.__exit__(*exc)
+        for w in self._caught:
+            if issubclass(w.category, SoftimpactWarning):
+                self.held.append(w)
+            else:
+                warnings.warn_explicit(w.message, w.category, w.filename, w.lineno, source=w.source)
+        return False

@@ -12,11 +12,10 @@ from __future__ import annotations
 import math
 import os
 import time
-import warnings
 from pathlib import Path
 
 from ..cases.sweep import check_scheduler, execute, plan_sweep, sweep_results
-from ..errors import InputError, SoftimpactWarning
+from ..errors import HeldWarnings, InputError
 from ..input.sweep_spec import load_sweep_spec
 from ..output.sweep import sweep_files
 from . import Outcome, Progress, no_progress
@@ -32,8 +31,7 @@ def sweep(
     """``softimpact sweep SPEC --out DIR``: the spec and the scheduler's address are checked whole before anything is written."""
     t0 = time.perf_counter()
     check_scheduler(scheduler)
-    with warnings.catch_warnings(record=True) as caught:  # the spec's and the probes' warnings: shown once each, below
-        warnings.simplefilter("always", SoftimpactWarning)
+    with HeldWarnings() as caught:  # the spec's and the probes' warnings: shown once each, below
         s = load_sweep_spec(spec)
         if workers is None:
             workers = os.cpu_count() or 1
@@ -41,9 +39,6 @@ def sweep(
             raise InputError(f"--workers: expected 0 (plain loop) or more, got {workers}")
         plan = plan_sweep(s)  # bad specs fail here, before the checkpoints folder exists
         rows, computed = execute(plan, Path(out_dir), workers, scheduler, progress)
-    for w in caught:
-        if not issubclass(w.category, SoftimpactWarning):
-            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     cols, summary, th = sweep_results(plan, rows, computed)
     system = s.case_data.get("units") if s.case_data.get("units") in ("in-lbf-s", "SI") else "in-lbf-s"
     files = sweep_files(cols, summary, th, figures, system)
@@ -53,7 +48,7 @@ def sweep(
         f"{summary['from_checkpoints']} from checkpoints ({dt:.1f} s, {_rate(summary['computed_now'] / dt)} runs/s)"
     )
     # validity flags raised here (the probes' reading of their cases) are the runs' own, counted per run
-    found = [str(w.message).strip() for w in caught if issubclass(w.category, SoftimpactWarning) and not getattr(w.message, "flag", "")]
+    found = [str(w.message).strip() for w in caught.held if not getattr(w.message, "flag", "")]
     return Outcome(files, line, (s.path, s.case_path), tuple(sweep_warnings(summary, found)))
 
 

@@ -16,14 +16,13 @@ computed once. Nothing here parses arguments or writes the sweep's files.
 from __future__ import annotations
 
 import re
-import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import HeldWarnings, InputError
 from ..input.sweep_spec import Level, SweepSpec
 from ..output.sweep import load_checkpoint, save_checkpoint
 from ..workflows import sweep_stats
@@ -165,36 +164,24 @@ def prepare_group(kind: str, candidates, base: str, runs: int, outputs=()):
     return first
 
 
-class _Caught:
-    """The :class:`~softimpact.errors.SoftimpactWarning` s raised inside the block, none shown: the validity
-    flags among them by kind (``flags``: :class:`~softimpact.models.validity.ValidityWarning`'s names, e.g. a
-    law extrapolated in velocity), the others as one-line texts (``texts``; each once, in order). Other
-    warnings are shown as usual on leaving it."""
-
-    def __enter__(self):
-        from ..errors import SoftimpactWarning
-
-        self._cm = warnings.catch_warnings(record=True)
-        self._seen = self._cm.__enter__()
-        warnings.simplefilter("always", SoftimpactWarning)  # every run's own, not once per code location
-        self.texts: list[str] = []
-        self.flags: list[str] = []
-        return self
+class _Caught(HeldWarnings):
+    """The :class:`~softimpact.errors.SoftimpactWarning` s raised inside the block, none shown
+    (:class:`~softimpact.errors.HeldWarnings`): the validity flags among them by kind (``flags``:
+    :class:`~softimpact.models.validity.ValidityWarning`'s names, e.g. a law extrapolated in velocity), the
+    others as one-line texts (``texts``; each once, in order)."""
 
     def __exit__(self, *exc):
-        from ..errors import SoftimpactWarning
-
-        self._cm.__exit__(*exc)
-        for w in self._seen:
+        super().__exit__(*exc)
+        self.texts: list[str] = []
+        self.flags: list[str] = []
+        for w in self.held:
             if getattr(w.message, "flag", ""):
                 if w.message.flag not in self.flags:
                     self.flags.append(w.message.flag)
-            elif issubclass(w.category, SoftimpactWarning):
+            else:
                 text = _one_line_text(w.message)
                 if text not in self.texts:
                     self.texts.append(text)
-            else:
-                warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
         return False
 
 
