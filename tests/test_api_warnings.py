@@ -15,23 +15,11 @@ import softimpact as si
 from softimpact.cli import main
 from softimpact.errors import InputError, SoftimpactWarning
 
-LAW = Path(__file__).parent / "data" / "law-v-main.json"  # `softimpact identify paper-rubber-series`; records no projectile
+from _support.problems import IDENTIFIED_LAW, IDENTIFIED_ON_LONG_BEAM
 
-RUBBER_CASE = """title = "1/2-in silicone-rubber ball at 2000 in/s (identified law)"
-units = "in-lbf-s"
-[target]
-case = "paper-long-beam"
-[impactor]
-material = "silicone rubber"
-diameter = "0.5 in"
-velocity = "2000 in/s"
-[contact]
-law = "identified"
-law_file = "law.json"
-[solver]
-time_step = "0.5 us"
-duration = "1000 us"
-"""
+LAW = IDENTIFIED_LAW
+
+RUBBER_CASE = IDENTIFIED_ON_LONG_BEAM.format(material="silicone rubber", velocity="2000 in/s", duration="1000 us")
 
 
 def _sha256(path: Path) -> str:

@@ -14,36 +14,11 @@ from click.testing import CliRunner
 
 from softimpact.cli import main
 
-from _support.problems import LONG_BEAM_IMPACT
+from _support.problems import COARSE_LONG_BEAM, LONG_BEAM_IMPACT
 
 INCH = 0.0254
 
-# A coarse long beam (quick to build) under the empirical law; same physics as paper-long-beam.
-CASE = """
-title = "coarse long beam"
-units = "in-lbf-s"
-[beam]
-length = "6.0 in"
-width = "1.0 in"
-elements = [60, 4]
-support = "clamped-free"
-[beam.laminate]
-ply = "T300/934"
-layup = "[90/0]5s"
-[load]
-position = "3.0 in"
-contact_radius = "0.25 in"
-history = { shape = "empirical", projectile = "rubber-1/2in", velocity = "2000 in/s" }
-[solver]
-time_step = "1 us"
-duration = "500 us"
-[[gauges]]
-name = "g1"
-position = "2.0 in"
-[[gauges]]
-name = "g2"
-position = "0.5 in"
-"""
+CASE = COARSE_LONG_BEAM
 
 GRID = """
 [sweep]

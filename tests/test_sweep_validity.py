@@ -14,35 +14,12 @@ from click.testing import CliRunner
 from softimpact.cli import main
 from softimpact.models.validity import DEFLECTION_OVER_THICKNESS, RANGE_SLACK
 
-INCH = 0.0254
-LAW = Path(__file__).parent / "data" / "law-v-main.json"  # records its tests' velocities and diameters, not its projectile
+from _support.constants import INCH
+from _support.problems import COARSE_LONG_BEAM, IDENTIFIED_LAW, IDENTIFIED_ON_LONG_BEAM
 
-# A coarse long beam under the empirical force history (a beam sweep runs on the response engine in milliseconds).
-BEAM = """
-title = "coarse long beam"
-units = "in-lbf-s"
-[beam]
-length = "6.0 in"
-width = "1.0 in"
-elements = [60, 4]
-support = "clamped-free"
-[beam.laminate]
-ply = "T300/934"
-layup = "[90/0]5s"
-[load]
-position = "3.0 in"
-contact_radius = "0.25 in"
-history = { shape = "empirical", projectile = "rubber-1/2in", velocity = "2000 in/s" }
-[solver]
-time_step = "1 us"
-duration = "500 us"
-[[gauges]]
-name = "g1"
-position = "2.0 in"
-[[gauges]]
-name = "g2"
-position = "0.5 in"
-"""
+LAW = IDENTIFIED_LAW
+
+BEAM = COARSE_LONG_BEAM  # a beam sweep runs on the response engine in milliseconds
 BEAM_VELOCITIES = (1000, 3000, 5000)  # in/s: the coarse beam's w/h passes 0.5 and its gauge strains the allowables in between
 BEAM_SPEC = f"""
 [sweep]
@@ -55,22 +32,7 @@ values = {[f"{v} in/s" for v in BEAM_VELOCITIES]}
 """.replace("'", '"')
 
 # The identified law of law.json on the long beam (coupled; four runs: the target's contact kernels).
-IMPACT = """
-title = "1/2-in silicone-rubber ball on the long beam (identified law)"
-units = "in-lbf-s"
-[target]
-case = "paper-long-beam"
-[impactor]
-material = "silicone rubber"
-diameter = "0.5 in"
-velocity = "2000 in/s"
-[contact]
-law = "identified"
-law_file = "law.json"
-[solver]
-time_step = "0.5 us"
-duration = "600 us"
-"""
+IMPACT = IDENTIFIED_ON_LONG_BEAM.format(material="silicone rubber", velocity="2000 in/s", duration="600 us")
 IMPACT_VELOCITIES = (500, 1500, 3000, 6000)  # in/s: law.json was fitted on 1000-5000 in/s (25.4-127 m/s)
 IMPACT_SPEC = f"""
 [sweep]

@@ -12,7 +12,7 @@ from softimpact.cli import main
 from softimpact.models.validity import HERTZ_APPROACH_OVER_DIAMETER, contact_validity, deflection_validity, surface_strain_bound
 
 from _support.constants import INCH
-from _support.problems import PLATE
+from _support.problems import IDENTIFIED_ON_LONG_BEAM, PLATE
 
 
 def _run(*args):
@@ -119,20 +119,9 @@ def _law(tmp_path, projectile: bool):
     return json.loads((tmp_path / "law.json").read_text())
 
 
-IMPACT = """units = "in-lbf-s"
-[target]
-case = "paper-long-beam"
-[impactor]
-material = "{material}"
-diameter = "0.5 in"
-velocity = "2000 in/s"
-[contact]
-law = "identified"
-law_file = "law.json"
-[solver]
-time_step = "0.5 us"
-duration = "20 us"
-"""
+def _impact(material: str, duration: str = "20 us") -> str:
+    """A 1/2-in ball of ``material`` at 2000 in/s through the identified law of the folder's law.json."""
+    return IDENTIFIED_ON_LONG_BEAM.format(material=material, velocity="2000 in/s", duration=duration)
 
 
 def test_law_json_records_the_projectile_it_was_identified_on(tmp_path):
@@ -147,12 +136,12 @@ def test_a_rubber_law_used_for_a_steel_ball_is_warned(tmp_path):
     """The rubber ball's identified law used for a steel ball of the same diameter: warned (mass and density
     outside what it was identified on); the rubber ball itself at the same velocity is not."""
     _law(tmp_path, True)
-    (tmp_path / "steel.toml").write_text(IMPACT.format(material="steel"))
+    (tmp_path / "steel.toml").write_text(_impact("steel"))
     r = _run("impact", tmp_path / "steel.toml", "--out", tmp_path / "s", "--no-figures")
     assert r.exit_code == 0, r.output
     w = _warnings(r.output)
     assert any("density" in x and "kg/m^3" in x for x in w) and any("mass" in x for x in w)
-    (tmp_path / "rubber.toml").write_text(IMPACT.format(material="silicone rubber"))
+    (tmp_path / "rubber.toml").write_text(_impact("silicone rubber"))
     r = _run("impact", tmp_path / "rubber.toml", "--out", tmp_path / "r", "--no-figures")
     assert r.exit_code == 0, r.output
     assert not any("density" in x or "mass" in x for x in _warnings(r.output))
@@ -162,7 +151,7 @@ def test_an_old_law_json_without_the_projectile_is_warned_as_unchecked(tmp_path)
     """A law.json written before the projectile was recorded reads, with a warning that the impactor's mass and
     material cannot be checked."""
     _law(tmp_path, False)
-    (tmp_path / "steel.toml").write_text(IMPACT.format(material="steel"))
+    (tmp_path / "steel.toml").write_text(_impact("steel"))
     r = _run("impact", tmp_path / "steel.toml", "--out", tmp_path / "s", "--no-figures")
     assert r.exit_code == 0, r.output
     assert any("cannot be checked" in x for x in _warnings(r.output))
@@ -245,7 +234,7 @@ def test_a_hand_edited_law_whose_contact_radius_outgrows_the_ball_is_warned(tmp_
     data = _law(tmp_path, True)
     data["parameters"]["k_ref"]["value"] = 0.05
     (tmp_path / "law.json").write_text(json.dumps(data))
-    (tmp_path / "c.toml").write_text(IMPACT.format(material="silicone rubber").replace('duration = "20 us"', 'duration = "200 us"'))
+    (tmp_path / "c.toml").write_text(_impact("silicone rubber", "200 us"))
     r = _run("impact", tmp_path / "c.toml", "--out", tmp_path / "o", "--no-figures")
     assert r.exit_code == 0, r.output
     v = json.loads((tmp_path / "o" / "summary.json").read_text())["validity"]

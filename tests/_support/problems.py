@@ -1,6 +1,8 @@
 """The paper's 8 × 8 in plate problem, shared by the plate tests; its exact solution is
 :mod:`_support.plate_navier` (FSDT Navier series), as scipy's ``test_ivp.py`` pairs problems with exact solutions."""
 
+from pathlib import Path
+
 from softimpact.models.laminate import PLIES, Stack, parse_layup
 from softimpact.models.plate_laminate import plate_section
 from softimpact.models.pulses import SkewedPulse
@@ -80,4 +82,53 @@ target_modulus = "7.9 GPa"
 [solver]
 time_step = "0.5 us"
 duration = "300 us"
+"""
+
+
+# A coarse long beam (60 × 4 Q4: quick to build) under the empirical rubber-ball force history, the physics of
+# paper-long-beam: a beam case for sweeps and their checks.
+COARSE_LONG_BEAM = """
+title = "coarse long beam"
+units = "in-lbf-s"
+[beam]
+length = "6.0 in"
+width = "1.0 in"
+elements = [60, 4]
+support = "clamped-free"
+[beam.laminate]
+ply = "T300/934"
+layup = "[90/0]5s"
+[load]
+position = "3.0 in"
+contact_radius = "0.25 in"
+history = { shape = "empirical", projectile = "rubber-1/2in", velocity = "2000 in/s" }
+[solver]
+time_step = "1 us"
+duration = "500 us"
+[[gauges]]
+name = "g1"
+position = "2.0 in"
+[[gauges]]
+name = "g2"
+position = "0.5 in"
+"""
+
+# `softimpact identify paper-rubber-series`'s law.json: it records its tests' velocities and diameters, not their projectile.
+IDENTIFIED_LAW = Path(__file__).resolve().parent.parent / "data" / "law-v-main.json"
+
+# A 1/2-in ball on the long beam through the identified law of a law.json beside the case (coupled):
+# ``IDENTIFIED_ON_LONG_BEAM.format(material=..., velocity=..., duration=...)``.
+IDENTIFIED_ON_LONG_BEAM = """units = "in-lbf-s"
+[target]
+case = "paper-long-beam"
+[impactor]
+material = "{material}"
+diameter = "0.5 in"
+velocity = "{velocity}"
+[contact]
+law = "identified"
+law_file = "law.json"
+[solver]
+time_step = "0.5 us"
+duration = "{duration}"
 """
