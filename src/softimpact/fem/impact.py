@@ -389,7 +389,7 @@ def newton_contact(law, comp, hm: float, kappa: float, q: float, target: float, 
     Newton step landing exactly on α̃ is tried once (an iterate where the force is clipped to zero
     steps there, and the root is there when the clipped force stays zero) instead of bisecting
     (the kernels take it; direct stepping keeps the plain bracket test, so its iteration counts in
-    summary.json do not move). Returns (α, F, contact radius, iterations); :class:`SolverFailed`
+    summary.json do not move). Returns (α, F, contact radius — 0 where F is, no disc pressed — iterations); :class:`SolverFailed`
     (time, step, residual and bracket) after :data:`NEWTON_MAXITER` iterations."""
     lo, hi = 0.0, target
     a = guess if 0.0 < guess < target else target
@@ -433,7 +433,7 @@ def newton_contact(law, comp, hm: float, kappa: float, q: float, target: float, 
             dR += f * dhs * dr
         step = R / dR
         if abs(step) <= NEWTON_TOL * target:
-            return a, float(f), r, its  # this iterate is the root within the tolerance: its force and radius
+            return a, float(f), r if f != 0.0 else 0.0, its  # this iterate is the root within the tolerance: its force and disc
         top = top or a == target
         a_next = a - step
         # a step onto α̃ itself (an iterate where the force is clipped to zero steps there: R = α − α̃)
@@ -449,7 +449,8 @@ def newton_contact(law, comp, hm: float, kappa: float, q: float, target: float, 
             f"the contact Newton iteration did not converge at t = {index * dt:.6g} s (step {index}) in {NEWTON_MAXITER} iterations: "
             f"residual {R:.3g} m, approach bracket [{lo:.6g}, {hi:.6g}] m"
         )
-    return a, float(law.force(a, kappa * a + q)), law.radius(a), its  # the bracket closed: its midpoint
+    f = float(law.force(a, kappa * a + q))  # the bracket closed: its midpoint
+    return a, f, law.radius(a) if f != 0.0 else 0.0, its
 
 
 def _solve_contact(law, patch: ContactPatch, cG, hm, kappa, q, target, guess, index: int, dt: float):

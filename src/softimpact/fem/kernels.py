@@ -523,8 +523,6 @@ class ContactKernels:
                 guess = 2.0 * ak - al[k - 1] if k >= 1 else target
                 a_new, f, r, its = newton_contact(branch, comp, hm, kappa, q, target, guess, k + 1, dt, try_top=True)
                 iterations += its
-                if f == 0.0:
-                    r = 0.0  # no contact disc where no force presses (a root where the force is clipped to zero)
             if f != 0.0:
                 load(r, f, Qr[N - k - 1])
                 if start is None:
