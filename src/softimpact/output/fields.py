@@ -29,6 +29,7 @@ interpolation): node n's u_x is ``model.plane.expand(u)[nodal_dofs[0, n]]``.
 from __future__ import annotations
 
 import math
+import os
 import tempfile
 from dataclasses import replace
 from pathlib import Path
@@ -125,9 +126,35 @@ def field_frames(model, u: np.ndarray):
     return points, [("quad", cells)], {"displacement": disp, "rotation": rot}, {}
 
 
-def write_fields(path, model, frames) -> np.ndarray:
+def write_fields(path, model, frames, *, force: bool = False) -> np.ndarray:
     """Write ``frames`` = (step indices, times [s], reduced displacements (n_free, n_frames)) of a beam
-    or plate ``model`` as ``path`` (.xdmf) and its .h5 beside it (module docstring); returns the steps."""
+    or plate ``model`` as ``path`` (.xdmf) and its .h5 beside it (module docstring); returns the steps.
+
+    Both files are written together and atomically (staged beside them, then moved into place); an
+    existing .xdmf or its companion .h5 is never replaced unless ``force`` (InputError naming it):
+    softimpact cannot prove it wrote a file no manifest lists, so it leaves it to its owner."""
+    path = Path(path)
+    if path.suffix.lower() != ".xdmf":
+        from ..errors import InputError
+
+        raise InputError(f"write_fields: {path}: give an .xdmf path (its heavy data go beside it as {path.with_suffix('.h5').name})")
+    pair = (path, path.with_suffix(".h5"))
+    if not force:
+        for p in pair:
+            if p.exists() or p.is_symlink():
+                from ..errors import InputError
+
+                raise InputError(f"write_fields: {p} exists and softimpact cannot prove it wrote it: choose another path, or force=True to replace it")
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with tempfile.TemporaryDirectory(prefix=".softimpact-fields-", dir=path.parent) as tmp:
+        _write_xdmf(Path(tmp) / path.name, model, frames)
+        for p in pair:
+            os.replace(Path(tmp) / p.name, p)
+    return np.asarray(frames[0])
+
+
+def _write_xdmf(path: Path, model, frames) -> None:
+    """The .xdmf and its .h5 (named by the .xdmf's stem, beside it) of ``frames`` (:func:`write_fields`)."""
     try:
         import h5py
         from meshio.xdmf import TimeSeriesWriter
@@ -147,8 +174,6 @@ def write_fields(path, model, frames) -> np.ndarray:
 
     steps, times, u = frames
     points, cells, point_data, cell_data = field_frames(model, u)
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
     with Writer(str(path)) as writer:
         writer.write_points_cells(points, cells)
         for i, t in enumerate(times):
@@ -157,7 +182,6 @@ def write_fields(path, model, frames) -> np.ndarray:
                 point_data={k: v[i] for k, v in point_data.items()},
                 cell_data={k: [v[i]] for k, v in cell_data.items()},
             )
-    return np.asarray(steps)
 
 
 def field_files(model, frames, name: str = "fields") -> dict[str, bytes]:
@@ -165,5 +189,5 @@ def field_files(model, frames, name: str = "fields") -> dict[str, bytes]:
     outcome's files (so the command line's atomic writer puts them into --out with the rest).
     The .xdmf names its .h5 relative to itself, so the pair moves together."""
     with tempfile.TemporaryDirectory(prefix="softimpact-fields-") as tmp:
-        write_fields(Path(tmp) / f"{name}.xdmf", model, frames)
+        _write_xdmf(Path(tmp) / f"{name}.xdmf", model, frames)
         return {f"{name}.xdmf": (Path(tmp) / f"{name}.xdmf").read_bytes(), f"{name}.h5": (Path(tmp) / f"{name}.h5").read_bytes()}

@@ -6,10 +6,14 @@ with :func:`os.replace`, so a run that fails leaves no half-written file that
 looks complete, and an input file is never overwritten.
 
 With a manifest, the run also writes ``manifest.json`` (last): its files and
-their SHA-256, the inputs and theirs, the package version, status and command.
-A reused DIR never mixes runs: the files the previous manifest lists that this
-run does not rewrite are removed (only those, and only while unchanged since
-that run wrote them). The staging folder is named ``.softimpact-<pid>-…``; it is
+their SHA-256, the inputs and theirs, the package version, status and command,
+signed as softimpact's (``generator`` and ``signature``: a SHA-256 over the files'
+names and hashes). A reused DIR never mixes runs: the files the previous manifest
+lists that this run does not rewrite are removed (only those, only while unchanged
+since that run wrote them, and only when that manifest is softimpact's own: another
+tool's ``manifest.json`` lists nothing softimpact may touch, and is itself the
+user's file). Every writer takes the folder's lock (:data:`LOCK`), the command line
+for the whole run (:func:`claim_output`), a Python ``.write()`` for its write. The staging folder is named ``.softimpact-<pid>-…``; it is
 removed on SIGTERM, and one left by a killed run is removed by the next run.
 """
 
@@ -56,6 +60,8 @@ __all__ = [
 MANIFEST = "manifest.json"
 STAGING_PREFIX = ".softimpact-"  # staging folders: .softimpact-<pid>-<random>
 STALE_AGE = 3600.0  # s: a staging folder without a readable pid this old is a leftover
+GENERATOR = "softimpact"  # manifest.json's "generator": the manifests softimpact trusts as its own
+SIGNATURE_TAG = "softimpact-manifest-1\n"  # prefix of the text a manifest's "signature" hashes
 LOCK = ".softimpact.lock"  # held in DIR while a run computes and writes: a second run into DIR exits 2 at once
 # What a softimpact run may write: a file in DIR with one of these suffixes that no previous manifest lists
 # unchanged is the user's, and stops a run before any computing (``force`` to proceed).
@@ -226,6 +232,8 @@ def foreign_files(out_dir, inputs=(), names=None) -> list[Path]:
             continue
         name = path.relative_to(out).as_posix()
         if name == MANIFEST:
+            if _foreign_manifest(out):
+                found.append(path)
             continue
         if path.is_symlink() or name not in previous or (names is not None and previous[name] != _file_sha256(path)):
             found.append(path)
@@ -266,6 +274,7 @@ def claim_output(out_dir, *, force: bool = False, inputs=()) -> Iterator[Path]:
         raise InputError(f"--out: another softimpact run is writing into {out} (it holds {out / LOCK}); wait for it or choose another folder") from None
     except OSError as exc:
         raise InputError(f"--out: cannot lock {out} ({exc.strerror or exc})") from None
+    _HELD.add(out.resolve())
     try:
         if not force:
             found = foreign_files(out, inputs)
@@ -273,6 +282,7 @@ def claim_output(out_dir, *, force: bool = False, inputs=()) -> Iterator[Path]:
                 raise _foreign_error(out, found)
         yield out
     finally:
+        _HELD.discard(out.resolve())
         lock.release()
         try:
             (out / LOCK).unlink()
@@ -283,6 +293,36 @@ def claim_output(out_dir, *, force: bool = False, inputs=()) -> Iterator[Path]:
                 out.rmdir()  # only if empty: the run wrote nothing
             except OSError:
                 pass
+
+
+_HELD: set[Path] = set()  # folders whose lock this process holds (claim_output): its own writes go ahead
+
+
+@contextmanager
+def _folder_lock(out: Path) -> Iterator[None]:
+    """The folder's lock for one write, unless this process already holds it (:func:`claim_output`):
+    a Python ``.write()`` into a folder a running command holds is refused, not silently mixed."""
+    from filelock import FileLock, Timeout
+
+    here = out.resolve()
+    if here in _HELD or any(held in here.parents for held in _HELD):  # inside a folder this run holds
+        yield
+        return
+    lock = FileLock(str(out / LOCK), timeout=0)
+    try:
+        lock.acquire()
+    except Timeout:
+        raise InputError(f"--out: another softimpact run is writing into {out} (it holds {out / LOCK}); wait for it or choose another folder") from None
+    except OSError as exc:
+        raise InputError(f"--out: cannot lock {out} ({exc.strerror or exc})") from None
+    try:
+        yield
+    finally:
+        lock.release()
+        try:
+            (out / LOCK).unlink()
+        except OSError:
+            pass
 
 
 def _pid_alive(pid: int) -> bool:
@@ -312,14 +352,37 @@ def _remove_stale_staging(out: Path) -> None:
             shutil.rmtree(entry, ignore_errors=True)
 
 
-def _previous_files(out: Path) -> dict[str, str]:
-    """The files (name → sha256) listed by a previous run's manifest in ``out`` (empty if none or unreadable)."""
+def signature(files: dict[str, str]) -> str:
+    """A manifest's ``signature``: the SHA-256 of its files' names and hashes (``files``: name → sha256),
+    after :data:`SIGNATURE_TAG`. Not a secret: it tells softimpact's manifests from another tool's
+    ``manifest.json`` (and from one edited by hand), whose listed files are never softimpact's to replace."""
+    return sha256(SIGNATURE_TAG + json.dumps(dict(sorted(files.items())), separators=(",", ":")))
+
+
+def _own_manifest(out: Path) -> dict | None:
+    """The files (name → sha256) of ``out``'s manifest.json when softimpact signed it; None when it has
+    none, or one softimpact did not write (another tool's, an edited one, an unreadable one)."""
     try:
         data = json.loads((out / MANIFEST).read_text(encoding="utf-8"))
-        files = data.get("files", {})
-        return {str(k): str(v) for k, v in files.items()} if isinstance(files, dict) else {}
-    except (OSError, ValueError, AttributeError):
-        return {}
+    except (OSError, ValueError):
+        return None
+    files = data.get("files") if isinstance(data, dict) else None
+    if not isinstance(files, dict) or data.get("generator") != GENERATOR:
+        return None
+    files = {str(k): str(v) for k, v in files.items()}
+    return files if data.get("signature") == signature(files) else None
+
+
+def _previous_files(out: Path) -> dict[str, str]:
+    """The files (name → sha256) listed by a previous softimpact run's signed manifest in ``out``
+    (empty if none, or if the manifest there is not softimpact's)."""
+    return _own_manifest(out) or {}
+
+
+def _foreign_manifest(out: Path) -> bool:
+    """Whether ``out`` holds a manifest.json softimpact did not write (the user's or another tool's)."""
+    path = out / MANIFEST
+    return (path.is_file() or path.is_symlink()) and (path.is_symlink() or _own_manifest(out) is None)
 
 
 def _remove_previous(out: Path, previous: dict[str, str], keep) -> None:
@@ -386,6 +449,15 @@ def write_outputs(out_dir, files: dict[str, bytes | str], inputs=(), manifest: d
             raise _foreign_error(out, found)
     try:
         out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InputError(f"--out: cannot write into {out} ({exc.strerror})") from None
+    with _folder_lock(out):
+        return _write_staged(out, files, inputs, manifest, targets)
+
+
+def _write_staged(out: Path, files: dict, inputs, manifest: dict | None, targets: dict) -> list[Path]:
+    """:func:`write_outputs`' write, the folder held: staged, then moved into place, the manifest last."""
+    try:
         _remove_stale_staging(out)
         staging = Path(tempfile.mkdtemp(prefix=f"{STAGING_PREFIX}{os.getpid()}-", dir=out))
     except OSError as exc:
@@ -420,9 +492,12 @@ def _manifest_text(files: dict, inputs, manifest: dict) -> str:
     for p in inputs:
         digest = _file_sha256(Path(p))
         listed_inputs[str(p)] = digest
+    listed = {name: sha256(content) for name, content in sorted(files.items())}
     data = {
         **manifest,
-        "files": {name: sha256(content) for name, content in sorted(files.items())},
+        "files": listed,
         "inputs": listed_inputs,
+        "generator": GENERATOR,
+        "signature": signature(listed),
     }
     return json_text(data)
