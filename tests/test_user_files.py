@@ -10,7 +10,6 @@ from filelock import FileLock
 
 from softimpact.cli import main
 from softimpact.errors import InputError
-from softimpact.output.fields import write_fields
 from softimpact.output.files import LOCK, MANIFEST, signature, write_outputs
 
 PREDICT = ["predict", "--projectile", "rubber-1/2in", "--velocity", "1166 in/s", "--no-figures"]
