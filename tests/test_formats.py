@@ -7,6 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from softimpact.errors import InputError
 from softimpact.formats.law_json import law_json, read_law
 from softimpact.formats.scaling_json import read_scaling_law
 
@@ -67,3 +68,25 @@ def test_formats_is_neutral_and_input_reads_through_it():
         assert not any(m.startswith(("softimpact.input", "softimpact.output")) for m in _imports(f)), f
     used = _imports(SRC / "input" / "contact_law.py")
     assert "softimpact.formats.law_json" in used and not any(m.startswith("softimpact.output") for m in used)
+
+
+@pytest.mark.parametrize("units", ["in-lbf-s", "imperial", 3])
+def test_law_json_in_other_units_is_refused(tmp_path, units):
+    """A law.json that says its numbers are not SI is refused naming the field (its d_ref read as metres would scale the law)."""
+    raw = json.loads(LAW.read_text())
+    raw["units"] = units
+    path = tmp_path / "law.json"
+    path.write_text(json.dumps(raw))
+    with pytest.raises(InputError, match="units"):
+        read_law(path)
+
+
+def test_scaling_json_in_other_units_is_refused(tmp_path):
+    """A scaling.json that says "units": "in-lbf-s" is refused; main's file (no units field) reads as SI."""
+    raw = json.loads(SCALING.read_text())
+    assert "units" not in raw
+    raw["units"] = "in-lbf-s"
+    path = tmp_path / "scaling.json"
+    path.write_text(json.dumps(raw))
+    with pytest.raises(InputError, match="only SI"):
+        read_scaling_law(path)

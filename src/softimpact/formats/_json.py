@@ -39,3 +39,20 @@ def json_text(obj) -> str:
     if isinstance(data, dict):
         data = {**data, "softimpact_version": __version__}
     return json.dumps(data, indent=2, allow_nan=False) + "\n"
+
+
+def check_si(data, path, argument: str) -> None:
+    """Refuse a file whose ``units`` field says anything but SI (absent: SI, as every file softimpact writes).
+
+    law.json and scaling.json name their keys with SI suffixes (``d_ref_m``, ``velocity_m_s``); a file
+    that says ``"units": "in-lbf-s"`` was written by hand or another tool, and reading its numbers as SI
+    would silently scale the law (a diameter in inches read as metres). An :class:`InputError` naming
+    ``argument`` instead."""
+    from ..errors import InputError
+
+    units = data.get("units", "SI") if isinstance(data, dict) else "SI"
+    if not isinstance(units, str) or units.strip().upper() != "SI":
+        raise InputError(
+            f"{argument}: {path} says units {units!r}: only SI files are read (the keys carry SI suffixes: _m, _m_s, _kg); "
+            'convert its lengths, velocities and masses to SI and set "units": "SI"'
+        )

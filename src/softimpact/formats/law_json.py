@@ -26,7 +26,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..workflows.identification import PARAMETERS, IdentifiedLaw
-from ._json import json_text
+from ._json import check_si, json_text
 
 __all__ = ["FAMILY", "projectile_record", "law_summary", "law_json", "read_law"]
 
@@ -97,6 +97,7 @@ def read_law(path, argument: str = "contact.law_file") -> IdentifiedLaw:
     except (ValueError, UnicodeDecodeError):
         raise InputError(f"{argument}: {path} is not JSON (expected a law.json from `softimpact identify`)") from None
     names = PARAMETERS
+    check_si(data, path, argument)
     try:
         if data["family"] != FAMILY:
             raise InputError(f"{argument}: {path} holds a {data['family']!r} law; only {FAMILY!r} laws are known")

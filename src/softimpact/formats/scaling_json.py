@@ -16,7 +16,7 @@ from pathlib import Path
 
 from ..errors import InputError
 from ..models.empirical import ScalingLaw
-from ._json import json_text
+from ._json import check_si, json_text
 
 __all__ = ["scaling_summary", "scaling_json", "read_scaling_law"]
 
@@ -41,6 +41,7 @@ def scaling_summary(fits) -> dict:
     return {
         "groups": {label: group(g) for label, g in fits.items() if label != "pooled"},
         "pooled": group(fits["pooled"]) if "pooled" in fits else group(next(iter(fits.values()))),
+        "units": "SI",
         "regressors": {"alpha1": "F0 = alpha1*m*V^2/(2d)", "alpha2": "T = alpha2*d/V", "alpha3": "tF0 = alpha3*T", "alpha4": "I = alpha4*2*m*V"},
     }
 
@@ -54,6 +55,12 @@ def read_scaling_law(path: Path, group: str = "pooled", argument: str = "--const
     """The α's of one group (a diameter such as ``"0.5 in"``, or ``"pooled"``) of a scaling.json."""
     try:
         data = json.loads(Path(path).read_text(encoding="utf-8"))
+    except OSError as exc:
+        raise InputError(f"{argument}: cannot read {path} ({exc.strerror})") from None
+    except (ValueError, UnicodeDecodeError):
+        raise InputError(f"{argument}: {path} is not a scaling.json with group {group!r}") from None
+    check_si(data, path, argument)
+    try:
         g = data["pooled"] if group == "pooled" else data["groups"][group]
         values = [float(g[f"alpha{i}"]["value"]) for i in range(1, 5)]
         fitted = g.get("fitted_on")  # absent from files written before it was recorded: not checked
