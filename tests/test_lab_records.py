@@ -314,6 +314,21 @@ def test_tab_delimited_text_with_sample_interval_only(tmp_path):
     check(read_lab_record(path, 0))
 
 
+@pytest.mark.parametrize("written", [f"{DT * 1e6!r} us", f"{DT * 1e9!r} ns", f"{DT * 1e6!r},us", f"{DT!r} s"])
+def test_vendor_header_sample_interval_with_its_unit(tmp_path, written):
+    """'Sample Interval,0.1 us' (unit in the cell or the next one) is 1e-7 s, not 0.1 s: the record's
+    time step equals the one written, converted by hand in the test."""
+    rows = [["Sample Interval", *written.split(",")], ["CH1 (V)"]] + [[repr(float(y))] for y in VOLTS]
+    rec = read_lab_record(write_csv(tmp_path / "scope.csv", csv_rows(rows)))
+    assert np.diff(rec.time) == pytest.approx(DT, rel=1e-9)
+
+
+def test_vendor_header_sample_interval_in_an_unknown_unit_is_refused(tmp_path):
+    """'Sample Interval,0.5 furlongs' names the unit it does not understand instead of reading seconds."""
+    rows = [["Sample Interval", "0.5 furlongs"], ["CH1 (V)"]] + [[repr(float(y))] for y in VOLTS]
+    one_line_error(write_csv(tmp_path / "scope.csv", csv_rows(rows)), match="furlongs")
+
+
 def test_microstrain_unit_kept(tmp_path):
     """A column labelled 'strain (µε)' reads as unit 'microstrain', values unchanged."""
     rows = [["time_us", "strain (µε)"]] + [[repr(float(t) * 1e6), repr(float(y) * 100)] for t, y in zip(TIME, VOLTS)]

@@ -134,6 +134,20 @@ def _meta_value(metadata, keys):
     return None
 
 
+def _header_time(path, text: str, what: str) -> float:
+    """A time in the header [s]: its number and the unit written after it in the same or the next cell
+    ("0.5 us", "0.5,us", "5E-07 s"; none: seconds, as the vendors write them); a unit that is not a time
+    unit is refused naming it, never read as seconds."""
+    cells = [c.strip() for c in str(text).split(",") if c.strip()]
+    words = cells[0].split() if cells else []
+    try:
+        value = float(words[0])
+    except (ValueError, IndexError):
+        _fail(path, f"{what} {text!r} in the header is not a number")
+    unit = " ".join(words[1:]) or (cells[1] if len(cells) > 1 else None)
+    return value * _time_factor(path, unit)
+
+
 def _read_text(path, channel, list_only=False):
     metadata, names, units, data, decimal_comma, line_numbers = _text_table(path)
     tcols = [j for j, n in enumerate(names) if _is_time_name(n, units[j])]
@@ -162,11 +176,8 @@ def _read_text(path, channel, list_only=False):
     else:
         dt_text = _meta_value(metadata, _DT_KEYS)
         t0_text = _meta_value(metadata, _T0_KEYS)
-        try:
-            dt = float(dt_text.split(",")[0].split()[0]) if dt_text else None
-            t0 = float(t0_text.split(",")[0].split()[0]) if t0_text else 0.0
-        except (ValueError, IndexError):
-            _fail(path, f"sample interval {dt_text!r} or start time {t0_text!r} in the header is not a number")
+        dt = _header_time(path, dt_text, "sample interval") if dt_text else None
+        t0 = _header_time(path, t0_text, "start time") if t0_text else 0.0
         t = _uniform_time(path, y.size, dt=dt, t0=t0)
         if t is None:
             _fail(path, "no time base: no time column and no sample interval in the header")
