@@ -80,7 +80,11 @@ class BeamStack:
     """Arms (top first) of width ``width`` [m] on nodes ``x`` [m] (increasing), tied by ``law``.
 
     ``cracked`` (n_arms − 1, n_elements) bool: the elements of each interface that start fully
-    damaged (a pre-crack, contact only). ``points`` Gauss–Lobatto points per element on the interface."""
+    damaged (a pre-crack, contact only). ``points`` Gauss–Lobatto points per element on the interface.
+    ``closure`` "contact" (the law's: separated faces carry only a compressive penalty) or "tied" (the normal
+    penalty holds in tension too and the law sees only the sliding and the closure: faces that never separate,
+    frictionless — a mode-II specimen, where the near-zero contact pressure along a closed crack would
+    otherwise make Newton chatter between open and closed)."""
 
     x: np.ndarray
     arms: tuple[Arm, ...]
@@ -88,6 +92,7 @@ class BeamStack:
     law: BilinearCohesive
     cracked: np.ndarray
     points: int = 3
+    closure: str = "contact"
 
     def __post_init__(self):
         x = np.asarray(self.x, float)
@@ -97,6 +102,8 @@ class BeamStack:
             raise InputError(f"a stack needs at least two arms, got {len(self.arms)}", "arms")
         if np.shape(self.cracked) != (len(self.arms) - 1, x.size - 1):
             raise InputError(f"cracked must have shape {(len(self.arms) - 1, x.size - 1)}, got {np.shape(self.cracked)}", "cracked")
+        if self.closure not in ("contact", "tied"):
+            raise InputError(f"closure must be 'contact' or 'tied', got {self.closure!r}", "closure")
         if self.points not in _LOBATTO:
             raise InputError(f"points must be one of {sorted(_LOBATTO)}, got {self.points!r}", "points")
 
@@ -226,7 +233,17 @@ class CohesiveInterfaces:
     def element_arrays(self, u: np.ndarray, damage: np.ndarray):
         """(f_int (n_dofs,), element tangents (n_int, n_el, 12, 12) in the order of :attr:`pattern`, new damage)."""
         delta = self.openings(u)
-        r = self.stack.law.traction(delta, damage)
+        law = self.stack.law
+        if self.stack.closure == "tied":
+            opening = delta[..., 0].copy()
+            delta[..., 0] = np.minimum(opening, 0.0)
+            r = law.traction(delta, damage)
+            t, T = r.traction.copy(), r.tangent.copy()
+            t[..., 0] += law.K * np.maximum(opening, 0.0)
+            T[..., 0, 0] = law.K
+            r = type(r)(t, r.damage, T)
+        else:
+            r = law.traction(delta, damage)
         w = self.weights[None, :, :, None, None]
         ni, ne, npt = self.B.shape[:3]
         Bf = self.B.reshape(ni, ne, 2 * npt, 12)  # the points' rows stacked: Σ_p B_pᵀ X_p = Bfᵀ Xf
@@ -242,7 +259,10 @@ class CohesiveInterfaces:
 
     def stored_energy(self, u: np.ndarray, damage: np.ndarray) -> float:
         """Recoverable energy in the interfaces [J]."""
-        e = self.stack.law.stored_energy(self.openings(u), damage)
+        delta = self.openings(u)
+        e = self.stack.law.stored_energy(delta, damage)
+        if self.stack.closure == "tied":  # the tie's tension is elastic whatever the damage
+            e = e + 0.5 * self.stack.law.K * np.asarray(damage) * np.maximum(delta[..., 0], 0.0) ** 2
         return float(np.sum(e * self.weights[None]))
 
 
@@ -320,6 +340,12 @@ def solve_quasistatic(spec: Specimen, targets) -> Curve:
     gi, ck = np.flatnonzero(g), np.flatnonzero(c)
     rows = np.concatenate([K0c.row, ri[keep], gi, np.full(ck.size, nf)])
     cols = np.concatenate([K0c.col, ci[keep], np.full(gi.size, nf), ck])
+    # Orient the control so that raising it loads the specimen (λ > 0 on the initial tangent): a local control
+    # (a crack-tip sliding) has no obvious sign.
+    _, ke0, _ = ifc.element_arrays(np.zeros(n), ifc.initial_damage())
+    K_init = (K0f + scipy.sparse.coo_matrix((ke0.ravel()[keep], (ri[keep], ci[keep])), shape=(nf, nf))).tocsc()
+    if c @ scipy.sparse.linalg.spsolve(K_init, g) < 0:
+        c = -c
     fixed_vals = (K0c.data, -g[gi], c[ck])
     u = np.zeros(n)
     lam = 0.0
@@ -433,9 +459,9 @@ def _mesh(length: float, a0: float, h_el: float, *, refine: tuple[float, float] 
     return x
 
 
-def _stack(x, E, h, width, law, a0, points) -> BeamStack:
+def _stack(x, E, h, width, law, a0, points, closure="contact") -> BeamStack:
     cracked = (0.5 * (x[:-1] + x[1:]) < a0)[None, :]
-    return BeamStack(x, (Arm(E, h), Arm(E, h)), width, law, cracked, points)
+    return BeamStack(x, (Arm(E, h), Arm(E, h)), width, law, cracked, points, closure)
 
 
 def dcb(*, E: float, h: float, width: float, length: float, a0: float, law: BilinearCohesive, element: float, points: int = 3, control: str = "load", refine=None) -> Specimen:
@@ -457,12 +483,12 @@ def enf(*, E: float, h: float, width: float, half_span: float, a0: float, law: B
     """End-notched flexure: span 2·``half_span`` = 2L simply supported under the lower arm at x = 0 and 2L, pre-crack
     from x = 0 to ``a0``, the load at midspan on the upper arm, downward. Load-point displacement = −w_top(L).
     ``control`` "load" (that displacement) or "sliding" (the sliding at the pre-crack tip, monotone through a
-    snap-back)."""
+    snap-back). The faces are tied in the normal direction (``closure="tied"``): the arms stay in contact."""
     L = half_span
     x = _mesh(2 * L, a0, element, refine=refine)
     if not np.any(np.isclose(x, L)):
         x = np.unique(np.concatenate([x, [L]]))
-    st = _stack(x, E, h, width, law, a0, points)
+    st = _stack(x, E, h, width, law, a0, points, closure="tied")
     n = st.size
     mid = int(np.argmin(np.abs(x - L)))
     g = np.zeros(n)
@@ -472,11 +498,14 @@ def enf(*, E: float, h: float, width: float, half_span: float, a0: float, law: B
     return Specimen(st, fixed, g, ctrl, "ENF")
 
 
-def mmb(*, E: float, h: float, width: float, half_span: float, a0: float, lever: float, law: BilinearCohesive, element: float, points: int = 3, refine=None) -> Specimen:
+def mmb(
+    *, E: float, h: float, width: float, half_span: float, a0: float, lever: float, law: BilinearCohesive, element: float, points: int = 3, control: str = "load", refine=None
+) -> Specimen:
     """Mixed-mode bending (Reeder & Crews 1990): the ENF set-up plus a rigid lever hinged to the upper arm at x = 0,
     bearing on the upper arm at midspan x = L and loaded by P at ``lever`` = c beyond midspan. Small rotations
     of the lever give its load point's downward displacement c/L·w_top(0) − (c + L)/L·w_top(L): the upper arm
-    is pulled up by P·c/L at x = 0 and pushed down by P·(c + L)/L at midspan. Control: that displacement."""
+    is pulled up by P·c/L at x = 0 and pushed down by P·(c + L)/L at midspan. ``control`` "load" (that
+    displacement) or "tip" (the opening plus the sliding at the pre-crack tip, monotone through a snap-back)."""
     L, c = half_span, lever
     x = _mesh(2 * L, a0, element, refine=refine)
     if not np.any(np.isclose(x, L)):
@@ -488,7 +517,8 @@ def mmb(*, E: float, h: float, width: float, half_span: float, a0: float, lever:
     g[dof(st, 0, 0, W)] = c / L
     g[dof(st, 0, mid, W)] = -(c + L) / L
     fixed = np.array([dof(st, 1, 0, W), dof(st, 1, len(x) - 1, W), dof(st, 1, 0, U)])
-    return Specimen(st, fixed, g, g, "MMB")
+    ctrl = g if control == "load" else tip_control(st, a0, opening=1.0, sliding=1.0)
+    return Specimen(st, fixed, g, ctrl, "MMB")
 
 
 def tip_control(st: BeamStack, xc: float, *, opening: float = 0.0, sliding: float = 0.0) -> np.ndarray:
