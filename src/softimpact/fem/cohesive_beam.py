@@ -84,7 +84,8 @@ class BeamStack:
     ``closure`` "contact" (the law's: separated faces carry only a compressive penalty) or "tied" (the normal
     penalty holds in tension too and the law sees only the sliding and the closure: faces that never separate,
     frictionless — a mode-II specimen, where the near-zero contact pressure along a closed crack would
-    otherwise make Newton chatter between open and closed)."""
+    otherwise make Newton chatter between open and closed) or "none" (fully separated faces carry nothing, not
+    even contact: a specimen whose crack is held open, where the caller checks that no opening is negative)."""
 
     x: np.ndarray
     arms: tuple[Arm, ...]
@@ -102,8 +103,8 @@ class BeamStack:
             raise InputError(f"a stack needs at least two arms, got {len(self.arms)}", "arms")
         if np.shape(self.cracked) != (len(self.arms) - 1, x.size - 1):
             raise InputError(f"cracked must have shape {(len(self.arms) - 1, x.size - 1)}, got {np.shape(self.cracked)}", "cracked")
-        if self.closure not in ("contact", "tied"):
-            raise InputError(f"closure must be 'contact' or 'tied', got {self.closure!r}", "closure")
+        if self.closure not in ("contact", "tied", "none"):
+            raise InputError(f"closure must be 'contact', 'tied' or 'none', got {self.closure!r}", "closure")
         if self.points not in _LOBATTO:
             raise InputError(f"points must be one of {sorted(_LOBATTO)}, got {self.points!r}", "points")
 
@@ -244,6 +245,13 @@ class CohesiveInterfaces:
             r = type(r)(t, r.damage, T)
         else:
             r = law.traction(delta, damage)
+            if self.stack.closure == "none":  # fully separated faces pass through each other
+                gone = (r.damage >= 1.0) & (delta[..., 0] < 0)
+                if np.any(gone):
+                    t, T = r.traction.copy(), r.tangent.copy()
+                    t[..., 0] = np.where(gone, 0.0, t[..., 0])
+                    T[..., 0, 0] = np.where(gone, 0.0, T[..., 0, 0])
+                    r = type(r)(t, r.damage, T)
         w = self.weights[None, :, :, None, None]
         ni, ne, npt = self.B.shape[:3]
         Bf = self.B.reshape(ni, ne, 2 * npt, 12)  # the points' rows stacked: Σ_p B_pᵀ X_p = Bfᵀ Xf
@@ -286,7 +294,8 @@ class Curve:
     (recoverable) energy and the arms' ``strain_energy`` [J], the ``crack_tip`` x [m] (the first interface's
     last fully damaged point), the ``process_zone`` length [m] (its points with 0 < d < 1) and
     ``elements_in_zone`` (that length over the element size), each (n_steps,); ``newton`` the iterations of
-    each step; ``damage`` the final damage (n_int, n_el, n_pts); ``u`` the final DOFs."""
+    each step; ``damage`` the final damage (n_int, n_el, n_pts); ``u`` the final DOFs; ``min_separated_opening`` the smallest
+    opening [m] of a fully separated point over the path (negative: the faces interpenetrated)."""
 
     displacement: np.ndarray
     force: np.ndarray
@@ -300,6 +309,7 @@ class Curve:
     newton: np.ndarray
     damage: np.ndarray
     u: np.ndarray
+    min_separated_opening: float = 0.0
 
     @property
     def dissipated(self) -> np.ndarray:
@@ -353,6 +363,7 @@ def solve_quasistatic(spec: Specimen, targets) -> Curve:
     Le = np.diff(np.asarray(stack.x, float))
     out = {k: [] for k in ("disp", "force", "ctrl", "work", "stored", "strain", "tip", "zone", "nz", "newton")}
     work = 0.0
+    min_sep = np.inf
     disp_prev = 0.0
     lam_prev = 0.0
     cbar = 0.0
@@ -434,8 +445,10 @@ def solve_quasistatic(spec: Specimen, targets) -> Curve:
         out["zone"].append(zone)
         out["nz"].append(zone / Le[min(max(el, 0), Le.size - 1)])
         out["newton"].append(iters)
+        sep = ifc.openings(u)[..., 0][dmg >= 1.0]
+        min_sep = min(min_sep, float(sep.min())) if sep.size else min_sep
     a = {k: np.asarray(v) for k, v in out.items()}
-    return Curve(a["disp"], a["force"], a["ctrl"], a["work"], a["stored"], a["strain"], a["tip"], a["zone"], a["nz"], a["newton"], dmg, u)
+    return Curve(a["disp"], a["force"], a["ctrl"], a["work"], a["stored"], a["strain"], a["tip"], a["zone"], a["nz"], a["newton"], dmg, u, min_sep)
 
 
 def _mesh(length: float, a0: float, h_el: float, *, refine: tuple[float, float] | None = None, coarse: float = 4.0) -> np.ndarray:
@@ -505,20 +518,38 @@ def mmb(
     bearing on the upper arm at midspan x = L and loaded by P at ``lever`` = c beyond midspan. Small rotations
     of the lever give its load point's downward displacement c/L·w_top(0) − (c + L)/L·w_top(L): the upper arm
     is pulled up by P·c/L at x = 0 and pushed down by P·(c + L)/L at midspan. ``control`` "load" (that
-    displacement) or "tip" (the opening plus the sliding at the pre-crack tip, monotone through a snap-back)."""
+    displacement) or "tip" (the opening plus the sliding at the pre-crack tip, monotone through a snap-back).
+    The lever holds the crack open (P_I > 0 for c > L/3): no contact is modelled (``closure="none"``); the
+    smallest opening of the separated faces (:attr:`Curve.min_separated_opening`) tells whether that held."""
     L, c = half_span, lever
     x = _mesh(2 * L, a0, element, refine=refine)
     if not np.any(np.isclose(x, L)):
         x = np.unique(np.concatenate([x, [L]]))
-    st = _stack(x, E, h, width, law, a0, points)
+    st = _stack(x, E, h, width, law, a0, points, closure="none")
     n = st.size
     mid = int(np.argmin(np.abs(x - L)))
     g = np.zeros(n)
     g[dof(st, 0, 0, W)] = c / L
     g[dof(st, 0, mid, W)] = -(c + L) / L
     fixed = np.array([dof(st, 1, 0, W), dof(st, 1, len(x) - 1, W), dof(st, 1, 0, U)])
-    ctrl = g if control == "load" else tip_control(st, a0, opening=1.0, sliding=1.0)
+    if control == "load":
+        ctrl = g
+    else:  # |δ_n| + |δ_s| at the tip: each component turned by its sign under the initial, elastic response
+        opening, sliding = tip_control(st, a0, opening=1.0), tip_control(st, a0, sliding=1.0)
+        u = _elastic_response(st, fixed, g)
+        ctrl = np.sign(opening @ u) * opening + np.sign(sliding @ u) * sliding
     return Specimen(st, fixed, g, ctrl, "MMB")
+
+
+def _elastic_response(st: BeamStack, fixed, load) -> np.ndarray:
+    """DOFs under the unit load ``load`` on the initial tangent (undamaged interfaces, the pre-crack open)."""
+    ifc = CohesiveInterfaces.of(st)
+    f, K, _ = ifc.assemble(np.zeros(st.size), ifc.initial_damage())
+    K = (beam_stiffness(st) + K).tocsr()
+    free = np.setdiff1d(np.arange(st.size), fixed)
+    u = np.zeros(st.size)
+    u[free] = scipy.sparse.linalg.spsolve(K[free][:, free].tocsc(), np.asarray(load, float)[free])
+    return u
 
 
 def tip_control(st: BeamStack, xc: float, *, opening: float = 0.0, sliding: float = 0.0) -> np.ndarray:
