@@ -217,9 +217,8 @@ def mmb_curve():
 
 
 def test_mmb_against_benzeggagh_kenane(mmb_curve):
-    """MMB at G_II/G = 0.5: the propagation branch lies 3 % below LEFM with G = G_c(B) of Benzeggagh-Kenane on
-    average, 4 % at worst (the local mixity varies through the process zone; the crack advances by whole
-    integration points)."""
+    """MMB at G_II/G = 0.5: the propagation branch within 3 % of LEFM with G = G_c(B) of Benzeggagh-Kenane (measured
+    2.0 % low on average, 2.4 % at worst: the local mixity varies through the process zone)."""
     L, a0, c_lever, mix, c = mmb_curve
     lefm = MMB(E, H, B_W, L, c_lever, LAW_MIXED.K)
     assert lefm.mode_mixity(a0) == pytest.approx(mix, abs=0.01)
@@ -229,5 +228,4 @@ def test_mmb_against_benzeggagh_kenane(mmb_curve):
     assert growing.sum() >= 5
     assert c.min_separated_opening > -1e-9  # the lever held the crack open: no contact was needed
     err = c.force[growing] / ref[growing] - 1
-    assert abs(np.mean(err)) < 0.03
-    assert np.max(np.abs(err)) < 0.04
+    assert np.max(np.abs(err)) < 0.03
