@@ -397,9 +397,8 @@ def solve_quasistatic(spec: Specimen, targets) -> Curve:
                 sol = scipy.sparse.linalg.spsolve(A, np.concatenate([r, [rc]]))
                 # Backtracking on the residual norm after LINE_SEARCH_AFTER plain iterations: the damage front switches
                 # points between loading and elastic unloading, and full Newton steps can cycle between the two (seen
-                # at a coarse DCB's onset); plain Newton is faster when it converges.
-                # After the full step the control constraint (linear) holds exactly, at any fraction of it the
-                # remainder is carried to the next iteration.
+                # at a coarse DCB's onset); plain Newton is faster when it converges. A partial step leaves part of
+                # the (linear) control constraint to the next iteration.
                 r0 = np.linalg.norm(r)
                 alpha = 1.0
                 while True:
@@ -422,7 +421,7 @@ def solve_quasistatic(spec: Specimen, targets) -> Curve:
                 continue
             u = np.zeros(n)
             u[idx] = uf
-            _, _, dmg, _ = residual(uf, lam_t, dmg)
+            dmg = d_new  # the damage at the converged u: committed
             disp = float(np.asarray(spec.load, float) @ u)
             work += 0.5 * (lam_t + lam_prev) * (disp - disp_prev)
             lam, lam_prev, disp_prev, cbar = lam_t, lam_t, disp, trial
@@ -448,6 +447,7 @@ def solve_quasistatic(spec: Specimen, targets) -> Curve:
         sep = ifc.openings(u)[..., 0][dmg >= 1.0]
         min_sep = min(min_sep, float(sep.min())) if sep.size else min_sep
     a = {k: np.asarray(v) for k, v in out.items()}
+    min_sep = min_sep if np.isfinite(min_sep) else float("nan")  # nothing separated
     return Curve(a["disp"], a["force"], a["ctrl"], a["work"], a["stored"], a["strain"], a["tip"], a["zone"], a["nz"], a["newton"], dmg, u, min_sep)
 
 
@@ -477,7 +477,9 @@ def _stack(x, E, h, width, law, a0, points, closure="contact") -> BeamStack:
     return BeamStack(x, (Arm(E, h), Arm(E, h)), width, law, cracked, points, closure)
 
 
-def dcb(*, E: float, h: float, width: float, length: float, a0: float, law: BilinearCohesive, element: float, points: int = 3, control: str = "load", refine=None) -> Specimen:
+def dcb(
+    *, E: float, h: float, width: float, length: float, a0: float, law: BilinearCohesive, element: float, points: int = 3, control: str = "load", refine=None
+) -> Specimen:
     """Double cantilever beam: two arms of thickness ``h`` [m] (each), pre-crack from x = 0 to ``a0``; the arms'
     ends at x = 0 pulled apart. Load-point displacement = opening w_top(0) − w_bottom(0); force = the pull P.
     Held: u_top(0), u_bottom(0) and w_top(length), which remove the three rigid motions and nothing more (a
@@ -492,7 +494,9 @@ def dcb(*, E: float, h: float, width: float, length: float, a0: float, law: Bili
     return Specimen(st, fixed, g, ctrl, "DCB")
 
 
-def enf(*, E: float, h: float, width: float, half_span: float, a0: float, law: BilinearCohesive, element: float, points: int = 3, control: str = "load", refine=None) -> Specimen:
+def enf(
+    *, E: float, h: float, width: float, half_span: float, a0: float, law: BilinearCohesive, element: float, points: int = 3, control: str = "load", refine=None
+) -> Specimen:
     """End-notched flexure: span 2·``half_span`` = 2L simply supported under the lower arm at x = 0 and 2L, pre-crack
     from x = 0 to ``a0``, the load at midspan on the upper arm, downward. Load-point displacement = −w_top(L).
     ``control`` "load" (that displacement) or "sliding" (the sliding at the pre-crack tip, monotone through a
@@ -512,7 +516,18 @@ def enf(*, E: float, h: float, width: float, half_span: float, a0: float, law: B
 
 
 def mmb(
-    *, E: float, h: float, width: float, half_span: float, a0: float, lever: float, law: BilinearCohesive, element: float, points: int = 3, control: str = "load", refine=None
+    *,
+    E: float,
+    h: float,
+    width: float,
+    half_span: float,
+    a0: float,
+    lever: float,
+    law: BilinearCohesive,
+    element: float,
+    points: int = 3,
+    control: str = "load",
+    refine=None,
 ) -> Specimen:
     """Mixed-mode bending (Reeder & Crews 1990): the ENF set-up plus a rigid lever hinged to the upper arm at x = 0,
     bearing on the upper arm at midspan x = L and loaded by P at ``lever`` = c beyond midspan. Small rotations
