@@ -19,10 +19,12 @@ from softimpact.models.delamination import (
     effective_bending_stiffness,
     isotropic_bending_stiffness,
     olsson_threshold,
+    onset_thresholds,
     response_regime,
     suemasu_threshold,
 )
 from softimpact.models.failure import davies_zhang_force
+from softimpact.models.laminate import Ply, Stack
 
 
 def _isotropic_D(E, nu, h):
@@ -68,6 +70,19 @@ def test_effective_stiffness_of_an_orthotropic_plate():
     D22 = 100, D12 = 20, D66 = 30 N·m: A = 80/200 = 0.4, D* = sqrt(40000·0.7) = 167.332 N·m."""
     D = np.array([[400.0, 20.0, 0.0], [20.0, 100.0, 0.0], [0.0, 0.0, 30.0]])
     assert effective_bending_stiffness(D) == pytest.approx(167.332, rel=3e-6)
+
+
+def test_laminate_thresholds_of_an_isotropic_stack():
+    """A stack of isotropic plies (E = 70 GPa, ν = 0.33, 8 × 0.5 mm, any angles) has D* = E·h³/(12(1 − ν²)) through
+    the laminate's D matrix, and its thresholds are the isotropic plate's."""
+    E, nu, t = 70e9, 0.33, 0.5e-3
+    G = E / (2 * (1 + nu))
+    ply = Ply("iso", E, E, E, G, G, G, nu, nu, nu, 2700.0, t)
+    th = onset_thresholds(Stack(ply, (0.0, 45.0, -45.0, 90.0, 90.0, -45.0, 45.0, 0.0)), 600.0)
+    D = E * (8 * t) ** 3 / (12 * (1 - nu**2))
+    assert th.D_star == pytest.approx(D, rel=1e-10)
+    assert th.olsson == pytest.approx(olsson_threshold(D, 600.0), rel=1e-10)
+    assert th.suemasu[0] == pytest.approx(davies_zhang_force(E, nu, 8 * t, 600.0), rel=1e-10)
 
 
 def test_response_regime_by_mass_ratio():

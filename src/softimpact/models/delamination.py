@@ -65,6 +65,8 @@ __all__ = [
     "isotropic_bending_stiffness",
     "response_regime",
     "REGIMES",
+    "OnsetThresholds",
+    "onset_thresholds",
     "DCB",
     "ENF",
     "MMB",
@@ -110,6 +112,25 @@ def suemasu_threshold(D: float, GIIc: float, n: int = 1) -> float:
 def davies_zhang_threshold(E: float, nu: float, thickness: float, GIIc: float) -> float:
     """Davies & Zhang (1995): π·sqrt(8·E·h³·G_IIc/(9·(1 − ν²))) [N]."""
     return math.pi * math.sqrt(8 * _positive("E", E) * _positive("thickness", thickness) ** 3 * _positive("GIIc", GIIc) / (9 * (1 - nu**2)))
+
+
+@dataclass(frozen=True)
+class OnsetThresholds:
+    """The onset thresholds of a laminate: Olsson's D* [N·m] and F_d [N], and Suemasu's F_dn [N] for
+    n = 1, 2, … (``suemasu[0]`` is n = 1, with D* for D: Davies–Zhang's form for an orthotropic plate)."""
+
+    D_star: float
+    olsson: float
+    suemasu: tuple[float, ...]
+
+
+def onset_thresholds(stack, GIIc: float, *, n_max: int = 3) -> OnsetThresholds:
+    """Thresholds of a :class:`softimpact.models.laminate.Stack` from its bending stiffnesses (the D of
+    :func:`softimpact.models.plate_laminate.plate_section`) and the mode-II toughness ``GIIc`` [J/m²]."""
+    from .plate_laminate import plate_section
+
+    D_star = effective_bending_stiffness(plate_section(stack).D)
+    return OnsetThresholds(D_star, olsson_threshold(D_star, GIIc), tuple(suemasu_threshold(D_star, GIIc, n) for n in range(1, n_max + 1)))
 
 
 REGIMES = ("wave-controlled", "intermediate", "quasi-static")
