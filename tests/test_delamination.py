@@ -9,7 +9,7 @@ import pytest
 from scipy.optimize import brentq
 
 from softimpact.errors import InputError
-from softimpact.fem.cohesive_beam import dcb, enf, mmb, solve_quasistatic
+from softimpact.fem.cohesive_beam import Arm, BeamStack, Specimen, dcb, dof, enf, mmb, solve_quasistatic
 from softimpact.models.cohesive import BilinearCohesive
 from softimpact.models.delamination import (
     DCB,
@@ -150,6 +150,20 @@ def test_law_refuses_a_penalty_too_soft_for_its_strength():
 # -- specimens against LEFM ---------------------------------------------------------------------------------------
 
 E, H, B_W = 120e9, 1.5e-3, 20e-3  # arms' modulus, thickness (each) and the width
+
+
+def test_bonded_sublaminates_bend_as_one_beam():
+    """Three 1 mm arms tied by two intact interfaces, clamped at x = 0 and loaded at the tip of the top arm, have
+    the compliance L³/(3·E·I) of one 3 mm cantilever, within 0.1 % (the penalty's slip is all that differs)."""
+    x = np.linspace(0, 60e-3, 121)
+    st = BeamStack(x, (Arm(E, 1e-3), Arm(E, 1e-3), Arm(E, 1e-3)), B_W, LAW, np.zeros((2, 120), bool))
+    fixed = np.array([dof(st, a, 0, c) for a in range(3) for c in range(3)])
+    g = np.zeros(st.size)
+    g[dof(st, 0, 120, 1)] = -1.0
+    c = solve_quasistatic(Specimen(st, fixed, g, g, "cantilever"), [1e-6])
+    assert c.displacement[0] / c.force[0] == pytest.approx(60e-3**3 / (3 * E * B_W * 3e-3**3 / 12), rel=1e-3)
+
+
 ELEMENT = 0.2e-3  # on the crack path: 9-13 elements in the process zone (asserted below)
 
 
