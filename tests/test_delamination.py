@@ -236,6 +236,22 @@ def test_enf_against_lefm(enf_curve):
     assert 0.93 < peak < 1.0
 
 
+@pytest.mark.slow
+def test_enf_peak_approaches_lefm_as_the_crack_outgrows_the_process_zone(enf_curve):
+    """The ENF's peak deficit is first order in (process zone)/a0: doubling the specimen (L = 100 mm, then 200 mm,
+    a0 = 0.7·L, the same 3 mm zone) halves it each time, and at a0 = 140 mm the peak is within 2 % of LEFM's P_c."""
+    L0, a00, c0 = enf_curve
+    deficits = [1 - c0.force.max() / float(ENF(E, H, B_W, L0).critical_load(a00, LAW.GIIc))]
+    for L in (100e-3, 200e-3):
+        a0 = 0.7 * L
+        spec = enf(E=E, h=H, width=B_W, half_span=L, a0=a0, law=LAW, element=0.25e-3, refine=(a0 - 1e-3, a0 + 8e-3), control="sliding")
+        c = solve_quasistatic(spec, np.linspace(0, 3e-5, 31)[1:])
+        deficits.append(1 - c.force.max() / float(ENF(E, H, B_W, L).critical_load(a0, LAW.GIIc)))
+    assert deficits[1] / deficits[0] == pytest.approx(0.5, abs=0.05)
+    assert deficits[2] / deficits[1] == pytest.approx(0.5, abs=0.05)
+    assert 0 < deficits[2] < 0.02
+
+
 @pytest.fixture(scope="module")
 def mmb_curve():
     L, a0, mix = 50e-3, 35e-3, 0.5

@@ -318,7 +318,7 @@ class Curve:
 
 
 NEWTON_MAX = 30  # iterations before a step is halved
-NEWTON_TOL = 1e-8  # residual norm relative to the largest of the load and the internal force
+NEWTON_TOL = 1e-7  # residual norm relative to the largest of the load and the internal force
 STEP_TOL = 1e-10  # a full Newton correction below this fraction of |u|: converged (the round-off floor)
 LINE_SEARCH_AFTER = 8  # plain Newton iterations before the backtracking starts
 LINE_SEARCH_MIN = 1.0 / 16  # smallest fraction of a Newton step the backtracking tries
