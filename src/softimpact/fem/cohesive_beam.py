@@ -110,10 +110,12 @@ class BeamStack:
 
     @property
     def n_nodes(self) -> int:
+        """Nodes along x."""
         return len(self.x)
 
     @property
     def size(self) -> int:
+        """DOFs: 3 per node and arm."""
         return 3 * len(self.arms) * len(self.x)
 
 
@@ -181,6 +183,7 @@ class CohesiveInterfaces:
 
     @classmethod
     def of(cls, stack: BeamStack) -> CohesiveInterfaces:
+        """The interfaces of ``stack``: the operator B at every integration point, the DOF map and the weights."""
         x = np.asarray(stack.x, float)
         Le = np.diff(x)
         n_el = Le.size

@@ -161,6 +161,7 @@ class DCB:
 
     @property
     def EI(self) -> float:
+        """An arm's bending stiffness E·b·h³/12 [N·m²]."""
         return self.E * self.b * self.h**3 / 12
 
     @property
