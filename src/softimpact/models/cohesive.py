@@ -8,7 +8,8 @@ sliding components; the damage state is one scalar per point, shape ``(...)``.
 
 The law (Camanho & Dávila 2002, NASA/TM-2002-211737, "Mixed-mode decohesion finite
 elements for the simulation of delamination in composite materials"; the same
-formulas as MOOSE's ``BiLinearMixedModeTraction``, which implements that report):
+formulas as MOOSE's ``BiLinearMixedModeTraction``, idaholab/moose
+modules/solid_mechanics/src/materials/cohesive_zone_model/BiLinearMixedModeTraction.C, which implements that report):
 
 - penalty stiffness K [N/m³] until onset, t = K·δ;
 - the mixed-mode displacement δ_m = sqrt(<δ_n>² + |δ_s|²), <·> the positive part, and
