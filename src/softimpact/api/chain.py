@@ -8,18 +8,20 @@ from __future__ import annotations
 import warnings
 from pathlib import Path
 
+from ..app.options import CALIBRATE, CONVERGE, PREDICT
 from ..errors import SoftimpactWarning
-from ._edge import _Heard, _one_line, _text
+from ._edge import _Heard, _one_line
+from ._options import given, python_terms, takes
 from .results import CommandResult, Record
 
 __all__ = ["reduce", "fit", "predict", "identify", "calibrate", "converge", "sweep", "read_record"]
 
 
-def _command(command: str, call) -> CommandResult:
+def _command(command: str, call, table=()) -> CommandResult:
     """``call()``, an app command's :class:`~softimpact.app.Outcome`, as a CommandResult: the warnings raised
     while it ran kept and warned again at the user's line, then the outcome's own warnings warned (the
-    command line shows both, in this order)."""
-    with _Heard() as heard:
+    command line shows both, in this order); its errors name the keywords of ``table`` (:func:`python_terms`)."""
+    with _Heard() as heard, python_terms(table):
         outcome = call()
     with _Heard():
         for text in outcome.warnings:
@@ -88,51 +90,13 @@ def fit(series, *, figures: bool = True) -> CommandResult:
     return _command("softimpact fit", lambda: command(series_name=str(series), figures=figures))
 
 
-def predict(
-    *,
-    velocity,
-    projectile: str | None = None,
-    mass=None,
-    diameter=None,
-    model: str = "empirical",
-    constants: str | None = None,
-    group: str = "pooled",
-    tail: bool = False,
-    material: str = "silicone rubber",
-    target: str = "Al 6061-T6",
-    bar: str | None = None,
-    beam: str | None = None,
-    units: str = "in-lbf-s",
-    figures: bool = True,
-) -> CommandResult:
+@takes(PREDICT)
+def predict(**options) -> CommandResult:
     """Force history of a projectile at a velocity: the empirical model (eqs 4–7, 15), Hertz or Wilbeck.
 
     Parameters
     ----------
-    velocity : str or pint.Quantity
-        Impact velocity [velocity], e.g. ``"1166 in/s"``.
-    projectile : str, optional
-        A named projectile (``"rubber-1/2in"``), or give ``mass`` and ``diameter``.
-    mass : str or pint.Quantity, optional
-        Projectile mass [mass].
-    diameter : str or pint.Quantity, optional
-        Projectile diameter [length].
-    model : str
-        ``"empirical"``, ``"hertz"`` or ``"wilbeck"``.
-    constants : str, optional
-        Scaling constants: a preset or a scaling.json path.
-    group : str
-        Group of a scaling.json.
-    tail : bool
-        Empirical model: add the tail carrying the rest of eq (7)'s impulse.
-    material, target : str
-        Projectile and target materials (hertz, wilbeck).
-    bar, beam : str, optional
-        A bar or beam case driven by the predicted force.
-    units : str
-        Display units of the line and figure.
-    figures : bool
-        Draw the figure.
+    {options}
 
     Returns
     -------
@@ -142,7 +106,7 @@ def predict(
     Raises
     ------
     softimpact.errors.InputError
-        A missing unit, an unknown projectile or preset.
+        A missing unit, an unknown projectile or preset (before anything is computed).
 
     Examples
     --------
@@ -153,23 +117,8 @@ def predict(
     """
     from ..app.predict import predict as command
 
-    outcome = lambda: command(  # noqa: E731
-        projectile=projectile,
-        mass=_text(mass, "mass", "mass"),
-        diameter=_text(diameter, "length", "diameter"),
-        velocity=_text(velocity, "velocity", "velocity"),
-        model=model,
-        constants=constants,
-        group=group,
-        tail=tail,
-        material=material,
-        target=target,
-        bar_case=bar,
-        beam_case=beam,
-        system=units,
-        figures=figures,
-    )
-    return _command("softimpact predict", outcome)
+    given_ = given(predict, options)
+    return _command("softimpact predict", lambda: command(**given_), PREDICT)
 
 
 def identify(series, *, figures: bool = True) -> CommandResult:
@@ -203,44 +152,15 @@ def identify(series, *, figures: bool = True) -> CommandResult:
     return _command("softimpact identify", lambda: command(series_name=str(series), figures=figures))
 
 
-def calibrate(
-    case,
-    *,
-    measured=None,
-    velocity=None,
-    method: str = "least-squares",
-    contact_radius=None,
-    contact_time=None,
-    fit_radius: bool = False,
-    projectile: str = "rubber-1/2in",
-    constants: str | None = None,
-    budget: float = 20.0,
-    figures: bool = True,
-) -> CommandResult:
+@takes(CALIBRATE, "case")
+def calibrate(case, **options) -> CommandResult:
     """Force history that makes a beam's computed gauge strains match measured ones.
 
     Parameters
     ----------
     case : str or Path
         A beam case (with ``measured`` and ``velocity``) or a calibration series.
-    measured : str or Path, optional
-        CSV of measured strains: ``time_s`` and ``strain_<gauge>`` columns.
-    velocity : str or pint.Quantity, optional
-        Impact velocity [velocity].
-    method : str
-        ``"least-squares"`` (eq 15), ``"paper"`` or ``"deconvolve"``.
-    contact_radius : str or pint.Quantity, optional
-        r0 [length] (default the case's).
-    contact_time : str or pint.Quantity, optional
-        First contact on the record's clock [time].
-    fit_radius : bool
-        Least squares: fit r0 too.
-    projectile, constants : str
-        The bar-model start.
-    budget : float
-        Seconds that refining the model may cost.
-    figures : bool
-        Draw the figures.
+    {options}
 
     Returns
     -------
@@ -259,37 +179,19 @@ def calibrate(
     """
     from ..app.calibrate import calibrate_command
 
-    outcome = lambda: calibrate_command(  # noqa: E731
-        case=str(case),
-        measured=None if measured is None else str(measured),
-        velocity=_text(velocity, "velocity", "velocity"),
-        method=method,
-        contact_radius=_text(contact_radius, "length", "contact_radius"),
-        contact_time=_text(contact_time, "time", "contact_time"),
-        fit_radius=fit_radius,
-        projectile=projectile,
-        constants=constants,
-        figures=figures,
-        budget=budget,
-    )
-    return _command("softimpact calibrate", outcome)
+    given_ = given(calibrate, options)
+    return _command("softimpact calibrate", lambda: calibrate_command(case=str(case), **given_), CALIBRATE)
 
 
-def converge(case, *, levels: int = 3, ratio: int = 2, history: int | None = None, figures: bool = True) -> CommandResult:
+@takes(CONVERGE, "case")
+def converge(case, **options) -> CommandResult:
     """Discretisation error of a bar, beam, plate or impact case by systematic refinement (Richardson).
 
     Parameters
     ----------
     case : str or Path
         A case file or built-in name.
-    levels : int
-        Number of discretisations (2 to 5): the case's own, then refined by ``ratio`` each.
-    ratio : int
-        Refinement ratio between levels (elements × ratio, time step / ratio).
-    history : int, optional
-        Beam cases: row N of the case's ``[[load.table]]``.
-    figures : bool
-        Draw the figures.
+    {options}
 
     Returns
     -------
@@ -309,7 +211,8 @@ def converge(case, *, levels: int = 3, ratio: int = 2, history: int | None = Non
     """
     from ..app.converge import converge as command
 
-    return _command("softimpact converge", lambda: command(case=str(case), levels=levels, ratio=ratio, history=history, figures=figures))
+    given_ = given(converge, options)
+    return _command("softimpact converge", lambda: command(case=str(case), **given_), CONVERGE)
 
 
 def sweep(spec, *, out, workers: int | None = 0, scheduler: str | None = None, figures: bool = True) -> CommandResult:
