@@ -8,6 +8,7 @@ from pathlib import Path
 
 from ..errors import InputError
 from ._edge import _Heard, _naming, _point, _si
+from ._options import python_terms
 from .results import BarResult, BeamResult, ImpactResult, PlateResult
 from .structures import Bar, Beam, Plate, Sphere
 
@@ -143,7 +144,7 @@ def impact(
     >>> 100 < res.peak_force < 1000  # N: a Hertz impact of a few hundred newtons
     True
     """
-    with _Heard() as heard:
+    with _Heard() as heard, python_terms():
         res = _impact(structure, at, impactor, law, time_step, duration, gauges, target_modulus, contact_radius, beta, gamma, units, title)
     return replace(res, warnings=tuple(heard.texts))
 
@@ -257,7 +258,7 @@ def load(case, *, history: int | None = None) -> Case:
     """
     from ..cases import case_kind
 
-    with _Heard() as heard:
+    with _Heard() as heard, python_terms():
         kind, _ = case_kind(str(case))
         problem, files = kind.load(str(case), history)
         kind.check(problem)
@@ -295,7 +296,7 @@ def run(problem, *, figures: bool = True):
     True
     """
     case = problem if isinstance(problem, Case) else Case(_kind_of(problem), problem)
-    with _Heard() as heard:
+    with _Heard() as heard, python_terms():
         res = _run(case, figures)
     return replace(res, warnings=(*case.warnings, *heard.texts))
 

@@ -92,6 +92,27 @@ def _unit_of(column: str) -> str:
     return "1"  # strains and other ratios
 
 
+def _read_only(value, depth: int = 3) -> None:
+    """Every numpy array reachable from ``value`` (through dataclass fields, tuples, lists and dict values,
+    ``depth`` levels down) made read-only in place: a result is frozen, its arrays too (``res.force *= 2``
+    raises instead of changing what ``write`` would write)."""
+    import dataclasses
+
+    if depth < 0 or value is None or isinstance(value, (str, bytes, int, float)):
+        return
+    if type(value).__module__ == "numpy" and hasattr(value, "setflags") and hasattr(value, "shape"):
+        value.setflags(write=False)
+    elif dataclasses.is_dataclass(value) and not isinstance(value, type):
+        for f in dataclasses.fields(value):
+            _read_only(getattr(value, f.name), depth - 1)
+    elif isinstance(value, (tuple, list)):
+        for v in value:
+            _read_only(v, depth - 1)
+    elif isinstance(value, dict):
+        for v in value.values():
+            _read_only(v, depth - 1)
+
+
 def _axes(ax):
     if ax is None:
         import matplotlib.pyplot as plt
@@ -136,6 +157,9 @@ class ImpactResult(_Written):
     warnings: tuple = field(repr=False, compare=False, default=())
     command = "softimpact impact"
 
+    def __post_init__(self):
+        _read_only(self.result)
+
     peak_force = property(lambda self: self.result.peak_force, doc="Peak force of the first contact [N].")
     time_of_peak = property(lambda self: self.result.time_of_peak, doc="Time of the peak force [s] from first contact.")
     contact_duration = property(lambda self: self.result.contact_duration, doc="Duration of the first contact [s] (nan: not separated).")
@@ -149,7 +173,9 @@ class ImpactResult(_Written):
         from ..studies.damage import split_damage
 
         _, result, _ = split_damage(self.problem, self.result)  # the damage indices' pseudo-gauges are not gauges
-        return dict(zip(result.strain_names, result.strain))
+        strain = dict(zip(result.strain_names, result.strain))
+        _read_only(strain)  # rows of a new array when the run had damage indices
+        return strain
 
     def inputs(self):
         return tuple(self.case_files)
@@ -220,6 +246,9 @@ class _Prescribed(_Written):
     model: object = field(repr=False, compare=False, default=None)
     case_files: tuple = field(repr=False, default=())
     warnings: tuple = field(repr=False, compare=False, default=())
+
+    def __post_init__(self):
+        _read_only(self.result)
 
     time = property(lambda self: self.result.time, doc="Time [s], (n_steps + 1,).")
     force = property(lambda self: self.result.force, doc="Applied force [N], (n_steps + 1,).")
@@ -364,6 +393,9 @@ class BarResult(_Written):
     warnings: tuple = field(repr=False, compare=False, default=())
     command = "softimpact bar"
 
+    def __post_init__(self):
+        _read_only((self.result, self.plain, self.inferred))
+
     peak_force = property(lambda self: self.result.peak_force, doc="Peak contact force [N].")
     time_of_peak = property(lambda self: self.result.time_of_peak, doc="Time of the peak force [s].")
     contact_duration = property(lambda self: self.result.contact_duration, doc="Contact duration [s].")
@@ -497,6 +529,9 @@ class Record:
     signal: object
     unit: str
     metadata: dict = field(default_factory=dict, compare=False)
+
+    def __post_init__(self):
+        _read_only((self.time, self.signal), 1)
 
     def to_frame(self):
         """The channel as a pandas DataFrame indexed by time [s]; its unit in ``df.attrs["units"]``."""
