@@ -523,6 +523,16 @@ class Record:
         ``"V"``, ``"strain"``, ``"microstrain"`` or the file's own unit text.
     metadata : dict
         File, format, channel, sample rate [Hz], trigger, the header's items.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import softimpact as si
+    >>> rec = si.Record(np.array([0.0, 1e-6]), np.array([1.0, 2.0]), "V")
+    >>> rec.signal[0] = 5.0  # frozen: its arrays too
+    Traceback (most recent call last):
+    ...
+    ValueError: assignment destination is read-only
     """
 
     time: object
