@@ -6,7 +6,7 @@ from pathlib import Path
 import pytest
 
 import softimpact as si
-from softimpact.app.options import CALIBRATE, CONVERGE, PREDICT
+from softimpact.app.options import CALIBRATE, CONVERGE, PREDICT, SERIES
 from softimpact.cli import main
 from softimpact.errors import InputError
 
@@ -55,13 +55,25 @@ def test_a_records_arrays_are_read_only():
 
 
 @pytest.mark.parametrize(
-    ("command", "function", "table"), [("predict", si.predict, PREDICT), ("calibrate", si.calibrate, CALIBRATE), ("converge", si.converge, CONVERGE)]
+    ("command", "function", "table"),
+    [
+        ("predict", si.predict, PREDICT),
+        ("calibrate", si.calibrate, CALIBRATE),
+        ("converge", si.converge, CONVERGE),
+        ("reduce", si.reduce, SERIES),
+        ("fit", si.fit, SERIES),
+        ("identify", si.identify, SERIES),
+    ],
 )
 def test_the_api_and_the_command_line_show_the_same_options_and_defaults(command, function, table):
     """`softimpact COMMAND --help` and si.COMMAND list the same options with the same defaults, the table's (out and the figure format are the command line's own)."""
     cli = {p.name: p.default for p in main.commands[command].params if p.name not in ("out", "accept_poor") and not p.opts[0].startswith("--figure-format")}
-    cli = {k: v for k, v in cli.items() if k != "case"}
-    api = {p.name: (None if p.default is inspect.Parameter.empty else p.default) for p in inspect.signature(function).parameters.values() if p.name != "case"}
+    cli = {k: v for k, v in cli.items() if k not in ("case", "series")}
+    api = {
+        p.name: (None if p.default is inspect.Parameter.empty else p.default)
+        for p in inspect.signature(function).parameters.values()
+        if p.name not in ("case", "series")
+    }
     assert api == cli
     assert api == {o.name: o.default for o in table}
     assert all(o.help.split()[0] in function.__doc__ for o in table)  # each option's help is in the Parameters

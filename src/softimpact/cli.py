@@ -34,7 +34,7 @@ import warnings
 import click
 
 from . import __version__
-from .app.options import CALIBRATE, CONVERGE, PREDICT
+from .app.options import CALIBRATE, CONVERGE, PREDICT, SERIES
 from .errors import EXIT_CHECK, EXIT_INPUT, EXIT_INTERNAL, CheckFailed, InputError, SoftimpactWarning, SolverFailed
 
 __all__ = ["main"]
@@ -408,7 +408,7 @@ def plate_cmd(case, history, out, figures, fields):
     _run(plate, out, case=case, history=history, figures=figures, fields=fields)
 
 
-@_command("reduce", "Bar strain records -> force histories (Fig 7).", accept_poor=True)
+@_command("reduce", "Bar strain records -> force histories (Fig 7).", options=SERIES, accept_poor=True)
 @click.argument("series")
 def reduce_cmd(series, out, figures, accept_poor):
     """Bar strain records of a SERIES file → force histories and pulse parameters.
@@ -421,7 +421,7 @@ def reduce_cmd(series, out, figures, accept_poor):
     _run(reduce, out, accept_poor, series_name=series, figures=figures)
 
 
-@_command("fit", "Reduce a series, then fit alpha1-alpha4 (Table I).", accept_poor=True)
+@_command("fit", "Reduce a series, then fit alpha1-alpha4 (Table I).", options=SERIES, accept_poor=True)
 @click.argument("series")
 def fit_cmd(series, out, figures, accept_poor):
     """Reduce a SERIES, then fit the scaling constants α1–α4 of eqs (4)–(7).
@@ -478,7 +478,7 @@ def impact_cmd(case, out, figures, fields):
     _run(impact, out, case=case, figures=figures, fields=fields)
 
 
-@_command("identify", "A soft projectile's contact law from bar tests (law.json).", accept_poor=True)
+@_command("identify", "A soft projectile's contact law from bar tests (law.json).", options=SERIES, accept_poor=True)
 @click.argument("series")
 def identify_cmd(series, out, figures, accept_poor):
     """Identify one contact law of a SERIES of bar tests (file or built-in name): reduce the

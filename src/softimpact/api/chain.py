@@ -8,7 +8,7 @@ from __future__ import annotations
 import warnings
 from pathlib import Path
 
-from ..app.options import CALIBRATE, CONVERGE, PREDICT
+from ..app.options import CALIBRATE, CONVERGE, PREDICT, SERIES
 from ..errors import SoftimpactWarning
 from ._edge import _Heard, _one_line
 from ._options import given, python_terms, takes
@@ -29,15 +29,15 @@ def _command(command: str, call, table=()) -> CommandResult:
     return CommandResult(command, outcome, tuple(heard.texts))
 
 
-def reduce(series, *, figures: bool = True) -> CommandResult:
+@takes(SERIES, "series")
+def reduce(series, **options) -> CommandResult:
     """Reduce the bar strain records of a series to force histories and eq-15 pulse parameters (Fig 7).
 
     Parameters
     ----------
     series : str or Path
         A series file or a built-in series name (quantities with their units inside).
-    figures : bool
-        Draw the figures.
+    {options}
 
     Returns
     -------
@@ -61,18 +61,19 @@ def reduce(series, *, figures: bool = True) -> CommandResult:
     """
     from ..app.series import reduce as command
 
-    return _command("softimpact reduce", lambda: command(series_name=str(series), figures=figures))
+    given_ = given(reduce, options)
+    return _command("softimpact reduce", lambda: command(series_name=str(series), **given_), SERIES)
 
 
-def fit(series, *, figures: bool = True) -> CommandResult:
+@takes(SERIES, "series")
+def fit(series, **options) -> CommandResult:
     """Reduce a series, then fit the scaling constants α1–α4 of eqs (4)–(7) (Table I).
 
     Parameters
     ----------
     series : str or Path
         A series file or a built-in series name.
-    figures : bool
-        Draw the figures (Figs 8–11).
+    {options}
 
     Returns
     -------
@@ -93,7 +94,8 @@ def fit(series, *, figures: bool = True) -> CommandResult:
     """
     from ..app.series import fit as command
 
-    return _command("softimpact fit", lambda: command(series_name=str(series), figures=figures))
+    given_ = given(fit, options)
+    return _command("softimpact fit", lambda: command(series_name=str(series), **given_), SERIES)
 
 
 @takes(PREDICT)
@@ -127,15 +129,15 @@ def predict(**options) -> CommandResult:
     return _command("softimpact predict", lambda: command(**given_), PREDICT)
 
 
-def identify(series, *, figures: bool = True) -> CommandResult:
+@takes(SERIES, "series")
+def identify(series, **options) -> CommandResult:
     """Identify a soft projectile's contact law from a series of bar tests (law.json).
 
     Parameters
     ----------
     series : str or Path
         A series file or a built-in series name.
-    figures : bool
-        Draw the figures.
+    {options}
 
     Returns
     -------
@@ -157,7 +159,8 @@ def identify(series, *, figures: bool = True) -> CommandResult:
     """
     from ..app.identify import identify as command
 
-    return _command("softimpact identify", lambda: command(series_name=str(series), figures=figures))
+    given_ = given(identify, options)
+    return _command("softimpact identify", lambda: command(series_name=str(series), **given_), SERIES)
 
 
 @takes(CALIBRATE, "case")

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["Option", "FIGURES", "PREDICT", "CALIBRATE", "CONVERGE", "DISPLAY_SYSTEMS", "defaults"]
+__all__ = ["Option", "FIGURES", "SERIES", "PREDICT", "CALIBRATE", "CONVERGE", "DISPLAY_SYSTEMS", "defaults"]
 
 
 @dataclass(frozen=True)
@@ -64,6 +64,8 @@ def defaults(table: tuple[Option, ...]) -> dict:
 DISPLAY_SYSTEMS = ("in-lbf-s", "SI")  # the display systems of :func:`softimpact.units.display`
 
 FIGURES = Option("figures", "Draw the figures (the numbers are written either way).", True, type=bool)
+
+SERIES = (FIGURES,)  # reduce, fit and identify: a series (file or built-in name) and the figures
 
 PREDICT = (
     Option("projectile", "A named projectile (rubber-1/2in, rubber-3/8in), or give the mass and the diameter."),
