@@ -5,10 +5,11 @@ import json
 import numpy as np
 import pytest
 from click.testing import CliRunner
-from test_fields import BEAM, PLATE  # the small beam and plate cases
 
 import softimpact as si
 from softimpact.cli import main
+
+from _support.small_cases import BEAM, PLATE  # the small beam and plate cases
 
 
 def _cli(args, out):

@@ -29,6 +29,13 @@ def test_sys_modules_after_import_has_no_heavy_module():
     assert out[1] == "True True"
 
 
+def test_importing_the_api_package_itself_stays_light():
+    """`import softimpact.api` (the package, its submodules and the options table) imports none of the heavy modules either: they load inside the calls."""
+    out = _run("import sys, softimpact.api; print(sorted({m.split('.')[0] for m in sys.modules}))").stdout
+    loaded = set(eval(out))  # a list literal printed by the child
+    assert not loaded & set(HEAVY), sorted(loaded & set(HEAVY))
+
+
 @pytest.mark.parametrize("name", ["Beam", "impact", "load", "run"])
 def test_lazy_name_resolves_to_the_api_object(name):
     """A lazy name is the api module's object itself, cached in the package after first use."""

@@ -34,6 +34,7 @@ import warnings
 import click
 
 from . import __version__
+from .app.options import CALIBRATE, CONVERGE, PREDICT, SERIES
 from .errors import EXIT_CHECK, EXIT_INPUT, EXIT_INTERNAL, CheckFailed, InputError, SoftimpactWarning, SolverFailed
 
 __all__ = ["main"]
@@ -224,8 +225,25 @@ def _out_option(command: str) -> click.Option:
     )
 
 
+def _option(o) -> click.Option:
+    """The click option of an :class:`softimpact.app.options.Option`: ``--name`` (``--name/--no-name`` for a
+    bool), its type or choices, default and help as the table writes them; its value reaches the command
+    under the option's name."""
+    if o.type is bool:
+        return click.Option([f"{o.flag}/--no-{o.flag[2:]}", o.name], default=o.default, show_default=True, help=o.help)
+    if o.choices:
+        kind = click.Choice(list(o.choices))
+    elif o.file:
+        kind = click.Path(dir_okay=False)
+    else:
+        kind = {str: click.STRING, int: click.INT, float: click.FLOAT}[o.type]
+    return click.Option([o.flag, o.name], type=kind, default=o.default, required=o.required, show_default=o.default is not None, help=o.help)
+
+
 def _figures_option() -> click.Option:
-    return click.Option(["--figures/--no-figures"], default=True, show_default=True, help="Draw the figures (the numbers are written either way).")
+    from .app.options import FIGURES
+
+    return _option(FIGURES)
 
 
 def _figure_format_option() -> click.Option:
@@ -266,15 +284,26 @@ def _fields_option() -> click.Option:
     )
 
 
-def _command(name: str, short_help: str, *, history: str | None = None, figures: bool = True, accept_poor: bool | str = False, fields: bool = False):
+def _command(
+    name: str,
+    short_help: str,
+    *,
+    options: tuple = (),
+    history: str | None = None,
+    figures: bool = True,
+    accept_poor: bool | str = False,
+    fields: bool = False,
+):
     """Register ``softimpact NAME``: the function's own arguments and options (its click
-    decorators), then the shared ones in this order: ``--history`` (with that help text, when
+    decorators), then the options of its table (``options``, :mod:`softimpact.app.options`; its
+    ``figures`` is the shared one), then the shared ones in this order: ``--history`` (with that help text, when
     given), ``--out`` (default ``softimpact-NAME``), ``--figures/--no-figures``,
     ``--accept-poor`` (when asked for; ``accept_poor="before-out"`` lists it before ``--out``,
     where calibrate has always had it) and ``--fields`` (when asked for); the function runs under :func:`_guarded`."""
 
     def decorate(fn):
         command = main.command(name, short_help=short_help)(_guarded(fn))
+        command.params.extend(_option(o) for o in options if o.name != "figures")
         shared = [_history_option(history)] if history is not None else []
         if accept_poor == "before-out":
             shared.append(_accept_poor_option())
@@ -330,11 +359,9 @@ def beam_cmd(case, history, out, figures, fields):
     _run(beam, out, case=case, history=history, figures=figures, fields=fields)
 
 
-@_command("converge", "Discretisation error of a case by systematic refinement.", history="Beam cases: row N of the case's [[load.table]].")
+@_command("converge", "Discretisation error of a case by systematic refinement.", options=CONVERGE)
 @click.argument("case")
-@click.option("--levels", type=int, default=3, show_default=True, help="Number of discretisations: the case's own, then refined by --ratio each (2 to 5).")
-@click.option("--ratio", type=int, default=2, show_default=True, help="Refinement ratio between levels (elements × ratio, time step / ratio).")
-def converge_cmd(case, levels, ratio, history, out, figures):
+def converge_cmd(case, out, **options):
     """Run a bar, beam or plate CASE on refined meshes and time steps; estimate the observed
     order and the discretisation error of each output by Richardson extrapolation.
 
@@ -348,7 +375,7 @@ def converge_cmd(case, levels, ratio, history, out, figures):
     """
     from .app.converge import converge
 
-    _run(converge, out, case=case, levels=levels, ratio=ratio, history=history, figures=figures)
+    _run(converge, out, case=case, **options)
 
 
 @_command("sweep", "Grids and Monte Carlo of a case, local or on Dask.")
@@ -381,7 +408,7 @@ def plate_cmd(case, history, out, figures, fields):
     _run(plate, out, case=case, history=history, figures=figures, fields=fields)
 
 
-@_command("reduce", "Bar strain records -> force histories (Fig 7).", accept_poor=True)
+@_command("reduce", "Bar strain records -> force histories (Fig 7).", options=SERIES, accept_poor=True)
 @click.argument("series")
 def reduce_cmd(series, out, figures, accept_poor):
     """Bar strain records of a SERIES file → force histories and pulse parameters.
@@ -394,7 +421,7 @@ def reduce_cmd(series, out, figures, accept_poor):
     _run(reduce, out, accept_poor, series_name=series, figures=figures)
 
 
-@_command("fit", "Reduce a series, then fit alpha1-alpha4 (Table I).", accept_poor=True)
+@_command("fit", "Reduce a series, then fit alpha1-alpha4 (Table I).", options=SERIES, accept_poor=True)
 @click.argument("series")
 def fit_cmd(series, out, figures, accept_poor):
     """Reduce a SERIES, then fit the scaling constants α1–α4 of eqs (4)–(7).
@@ -407,29 +434,8 @@ def fit_cmd(series, out, figures, accept_poor):
     _run(fit, out, accept_poor, series_name=series, figures=figures)
 
 
-@_command("predict", "Force history from a model, optionally driving a bar or beam.")
-@click.option("--projectile", help="A named projectile (rubber-1/2in, rubber-3/8in), or give --mass and --diameter.")
-@click.option("--mass", help='Projectile mass, e.g. "1.1 g".')
-@click.option("--diameter", help='Projectile diameter, e.g. "0.5 in".')
-@click.option("--velocity", required=True, help='Impact velocity, e.g. "1166 in/s".')
-@click.option(
-    "--model",
-    type=click.Choice(["empirical", "hertz", "wilbeck"]),
-    default="empirical",
-    show_default=True,
-    help="Empirical (eqs 4-7, 15), elastic Hertz (eqs 1-3) or hydrodynamic Wilbeck.",
-)
-@click.option("--constants", help="Scaling constants: a preset (silicone-1/2in, silicone-3/8in) or a scaling.json from `softimpact fit`.")
-@click.option("--group", default="pooled", show_default=True, help="Group of a scaling.json to use (a diameter such as '0.5 in', or pooled).")
-@click.option("--tail/--no-tail", default=False, show_default=True, help="Empirical model: add the tail that carries the rest of eq (7)'s impulse.")
-@click.option("--material", default="silicone rubber", show_default=True, help="Projectile material (hertz and wilbeck models).")
-@click.option("--target", default="Al 6061-T6", show_default=True, help="Target material (hertz model).")
-@click.option("--bar", "bar_case", help="Drive the bar of this bar case (file or built-in name) with the predicted force.")
-@click.option("--beam", "beam_case", help="Drive this beam case (file or built-in name) with the predicted force.")
-@click.option(
-    "--units", "system", type=click.Choice(["in-lbf-s", "SI"]), default="in-lbf-s", show_default=True, help="Display units of the line printed and the figure."
-)
-def predict_cmd(projectile, mass, diameter, velocity, model, constants, group, tail, material, target, bar_case, beam_case, system, out, figures):
+@_command("predict", "Force history from a model, optionally driving a bar or beam.", options=PREDICT)
+def predict_cmd(out, **options):
     """Force history of a projectile at a velocity, from the empirical model or a classical one.
 
     Writes history.csv (with the structure's gauge strains under --bar/--beam),
@@ -437,51 +443,12 @@ def predict_cmd(projectile, mass, diameter, velocity, model, constants, group, t
     """
     from .app.predict import predict
 
-    _run(
-        predict,
-        out,
-        projectile=projectile,
-        mass=mass,
-        diameter=diameter,
-        velocity=velocity,
-        model=model,
-        constants=constants,
-        group=group,
-        tail=tail,
-        material=material,
-        target=target,
-        bar_case=bar_case,
-        beam_case=beam_case,
-        system=system,
-        figures=figures,
-    )
+    _run(predict, out, **options)
 
 
-@_command("calibrate", "Force history that makes computed strains match measured ones.", accept_poor="before-out")
+@_command("calibrate", "Force history that makes computed strains match measured ones.", options=CALIBRATE, accept_poor="before-out")
 @click.argument("case")
-@click.option("--measured", type=click.Path(dir_okay=False), help="CSV of measured strains: time_s and strain_<gauge> columns.")
-@click.option("--velocity", help='Impact velocity, e.g. "1166 in/s" (sets the bar-model start).')
-@click.option(
-    "--method",
-    type=click.Choice(["least-squares", "paper", "deconvolve"]),
-    default="least-squares",
-    show_default=True,
-    help="Least squares on eq (15), the paper's iteration, or non-negative deconvolution.",
-)
-@click.option("--contact-radius", help='r0 from the imprint, e.g. "0.25 in" (default: the case\'s).')
-@click.option("--contact-time", help='First contact on the record\'s clock, e.g. "100 us" (default: estimated).')
-@click.option("--fit-radius/--no-fit-radius", default=False, show_default=True, help="Least squares: fit r0 too.")
-@click.option("--projectile", default="rubber-1/2in", show_default=True, help="Projectile of the bar-model start.")
-@click.option("--constants", help="Scaling constants of the start: a preset or a scaling.json (default: the projectile's).")
-@click.option(
-    "--budget",
-    type=float,
-    default=20.0,
-    show_default=True,
-    help="Seconds that refining the model may cost: the mesh is refined until its discretisation error moves no "
-    "parameter by more than half a noise standard error, or this budget is spent.",
-)
-def calibrate_cmd(case, measured, velocity, method, contact_radius, contact_time, fit_radius, projectile, constants, budget, accept_poor, out, figures):
+def calibrate_cmd(case, accept_poor, out, **options):
     """Force history that makes computed gauge strains match measured ones.
 
     CASE is a beam case (with --measured and --velocity) or a calibration series
@@ -493,22 +460,7 @@ def calibrate_cmd(case, measured, velocity, method, contact_radius, contact_time
     """
     from .app.calibrate import calibrate_command
 
-    _run(
-        calibrate_command,
-        out,
-        accept_poor,
-        case=case,
-        measured=measured,
-        velocity=velocity,
-        method=method,
-        contact_radius=contact_radius,
-        contact_time=contact_time,
-        fit_radius=fit_radius,
-        projectile=projectile,
-        constants=constants,
-        figures=figures,
-        budget=budget,
-    )
+    _run(calibrate_command, out, accept_poor, case=case, **options)
 
 
 @_command("impact", "Coupled impact of a rigid impactor on a beam or plate through a contact law.", fields=True)
@@ -526,7 +478,7 @@ def impact_cmd(case, out, figures, fields):
     _run(impact, out, case=case, figures=figures, fields=fields)
 
 
-@_command("identify", "A soft projectile's contact law from bar tests (law.json).", accept_poor=True)
+@_command("identify", "A soft projectile's contact law from bar tests (law.json).", options=SERIES, accept_poor=True)
 @click.argument("series")
 def identify_cmd(series, out, figures, accept_poor):
     """Identify one contact law of a SERIES of bar tests (file or built-in name): reduce the

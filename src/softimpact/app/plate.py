@@ -13,7 +13,7 @@ from ..units import display
 from ..workflows.plate_impact import PlateModel
 from . import Outcome, Progress, no_progress
 
-__all__ = ["plate"]
+__all__ = ["plate", "mirrored_loads"]
 
 
 def plate(*, case: str, history: int | None = None, figures: bool = True, fields: bool = False, progress: Progress = no_progress) -> Outcome:
@@ -34,10 +34,10 @@ def plate(*, case: str, history: int | None = None, figures: bool = True, fields
     peaks = "".join(f", {g.name} {eps[np.argmax(np.abs(eps))] * su.factor:.0f} {su.label}" for g, eps in zip(problem.gauges, result.strain))
     w = result.deflection[0]
     line = f"{model.fe.n} DOF, {steps} steps ({time.perf_counter() - t0:.1f} s); peak deflection {w[np.argmax(np.abs(w))] * lu.factor:.3g} {lu.label}{peaks}"
-    return Outcome(files, line, (path,), _mirrored_loads(problem) + plate_validity(result).flags)
+    return Outcome(files, line, (path,), mirrored_loads(problem) + plate_validity(result).flags)
 
 
-def _mirrored_loads(problem) -> tuple[str, ...]:
+def mirrored_loads(problem) -> tuple[str, ...]:
     """A warning per symmetry edge that misses the load point (:meth:`PlateProblem.mirrored_edges`)."""
     return tuple(
         f'plate.support.{edge} = "symmetry" does not pass through the load point: the model carries the load mirrored about it too'

@@ -6,57 +6,46 @@ import math
 
 import numpy as np
 
-from .. import units
 from ..errors import InputError
 from ..input.scaling_constants import scaling_law
 from ..models.empirical import PROJECTILES, HertzModel, WilbeckModel
 from ..models.materials import lookup
 from ..output.predict import predict_files
+from ..units import display, parse
 from . import Outcome, Progress, no_progress
+from .options import PREDICT
 
 __all__ = ["MODELS", "predict"]
 
-MODELS = ("empirical", "hertz", "wilbeck")  # eqs (4)-(7) with (15); elastic impact, eqs (1)-(3); steady flow ρV²A
+MODELS = next(o.choices for o in PREDICT if o.name == "model")  # eqs (4)-(7) with (15); elastic impact, eqs (1)-(3); steady flow ρV²A
 
 
 def predict(
     *,
-    projectile: str | None = None,
-    mass: str | None = None,
-    diameter: str | None = None,
+    projectile: str | None,
+    mass: str | None,
+    diameter: str | None,
     velocity: str,
-    model: str = "empirical",
-    constants: str | None = None,
-    group: str = "pooled",
-    tail: bool = False,
-    material: str = "silicone rubber",
-    target: str = "Al 6061-T6",
-    bar_case: str | None = None,
-    system: str = "in-lbf-s",
-    figures: bool = True,
-    beam_case: str | None = None,
+    model: str,
+    constants: str | None,
+    group: str,
+    tail: bool,
+    material: str,
+    target: str,
+    bar: str | None,
+    beam: str | None,
+    units: str,
+    figures: bool,
     progress: Progress = no_progress,
 ) -> Outcome:
-    """Force history of a projectile at a velocity; quantities are strings with units, as typed."""
+    """Force history of a projectile at a velocity; quantities are strings with units, as typed. The
+    options, their defaults and help: :data:`softimpact.app.options.PREDICT` (every one given here)."""
     if model not in MODELS:
         raise InputError(f"--model: {model!r} is not one of {', '.join(MODELS)}")
-    if bar_case is not None and beam_case is not None:
+    if bar is not None and beam is not None:
         raise InputError("--bar and --beam: drive one structure at a time")
-    proj = None
-    if projectile is not None:
-        if projectile not in PROJECTILES:
-            raise InputError(f"--projectile: unknown {projectile!r} (known: {', '.join(PROJECTILES)})")
-        if mass is not None or diameter is not None:
-            raise InputError("--projectile: give either a named projectile or --mass and --diameter, not both")
-        proj = PROJECTILES[projectile]
-        m, d = proj.mass, proj.diameter
-    else:
-        if mass is None or diameter is None:
-            raise InputError("--projectile or both --mass and --diameter are required")
-        m, d = units.parse(mass, "mass", "--mass"), units.parse(diameter, "length", "--diameter")
-        if not (m > 0 and d > 0):
-            raise InputError(f"--mass and --diameter must be positive, got {mass!r}, {diameter!r}")
-    V = units.parse(velocity, "velocity", "--velocity")
+    proj, m, d = _projectile(projectile, mass, diameter)
+    V = parse(velocity, "velocity", "--velocity")
     if not V > 0:
         raise InputError(f"--velocity must be positive, got {velocity!r}")
     sphere = lookup(proj.material if proj else material, "--material")
@@ -70,19 +59,7 @@ def predict(
     if model == "empirical" or constants is not None or proj is not None:
         law = scaling_law(constants, group, proj)
         models["empirical"] = law
-        if not law.in_range(V):
-            lo, hi = law.velocity_range
-            vu = units.display(system, "velocity")
-            notes.append(f"velocity {velocity} is outside the range of the constants ({lo * vu.factor:.4g}-{hi * vu.factor:.4g} {vu.label}): extrapolated")
-        dlo, dhi = law.diameter_range
-        if math.isfinite(dhi) and not 0.9 * dlo <= d <= 1.1 * dhi:
-            lu = units.display(system, "length")
-            notes.append(
-                f"diameter {d * lu.factor:.4g} {lu.label} is outside the diameters the constants were fitted on "
-                f"({dlo * lu.factor:.4g}-{dhi * lu.factor:.4g} {lu.label}): extrapolated"
-            )
-        if not math.isfinite(law.velocity_range[1]):
-            notes.append(f"the constants {law.name} do not record the velocities and diameters they were fitted on: the range cannot be checked")
+        notes.extend(_range_notes(law, velocity, V, d, units))
     if model == "hertz":  # Hertz's own envelope (models.validity): approach and contact radius against the ball
         from ..models.validity import contact_validity
 
@@ -92,26 +69,7 @@ def predict(
     chosen = models[model]
     pulse = chosen.pulse(m, d, V, tail=tail) if model == "empirical" else chosen.pulse(m, d, V)
     params = chosen.parameters(m, d, V)
-    inputs, driven, gauge_peak = [], None, ""
-    if bar_case is not None:
-        from ..input.bar_case import load_bar_case
-        from ..workflows.bar_impact import simulate_force
-
-        problem, path = load_bar_case(bar_case)
-        inputs.append(path)
-        res = simulate_force(problem.bar, problem.solver, problem.gauges, pulse)
-        driven, gauge_peak = (res.time, res.force, problem.gauges, res.strain), "compressive"
-    if beam_case is not None:
-        from dataclasses import replace
-
-        from ..input.beam_case import load_beam_case
-        from ..workflows.beam_impact import BeamLoad, BeamModel
-
-        problem, path = load_beam_case(beam_case)
-        inputs.append(path)
-        problem = replace(problem, load=BeamLoad(problem.load.position, problem.load.contact_radius, pulse))
-        res = BeamModel(problem).direct(energy=False)
-        driven, gauge_peak = (res.time, res.force, problem.gauges, res.strain), "absolute"
+    inputs, driven, gauge_peak = _driven(bar, beam, pulse)
     curves = []
     if figures:
         for name, mod in models.items():
@@ -128,12 +86,72 @@ def predict(
         curves=curves,
         driven=driven,
         gauge_peak=gauge_peak,
-        system=system,
+        system=units,
         figures=figures,
     )
-    fu, tu, iu = units.display(system, "force"), units.display(system, "time"), units.display(system, "impulse")
+    fu, tu, iu = display(units, "force"), display(units, "time"), display(units, "impulse")
     line = (
         f"{model}: F0 {params.peak_force * fu.factor:.4g} {fu.label} at {params.time_of_peak * tu.factor:.4g} {tu.label}, "
         f"T {params.duration * tu.factor:.4g} {tu.label}, I {params.impulse * iu.factor:.4g} {iu.label}"
     )
     return Outcome(files, line, tuple(inputs), tuple(notes))
+
+
+def _projectile(projectile: str | None, mass: str | None, diameter: str | None):
+    """(the named projectile or None, mass [kg], diameter [m]): a named projectile or a mass and a diameter."""
+    if projectile is not None:
+        if projectile not in PROJECTILES:
+            raise InputError(f"--projectile: unknown {projectile!r} (known: {', '.join(PROJECTILES)})")
+        if mass is not None or diameter is not None:
+            raise InputError("--projectile: give either a named projectile or --mass and --diameter, not both")
+        proj = PROJECTILES[projectile]
+        return proj, proj.mass, proj.diameter
+    if mass is None or diameter is None:
+        raise InputError("--projectile or both --mass and --diameter are required")
+    m, d = parse(mass, "mass", "--mass"), parse(diameter, "length", "--diameter")
+    if not (m > 0 and d > 0):
+        raise InputError(f"--mass and --diameter must be positive, got {mass!r}, {diameter!r}")
+    return None, m, d
+
+
+def _range_notes(law, velocity: str, V: float, d: float, units: str) -> list[str]:
+    """The notes when the velocity V [m/s] or the diameter d [m] lies outside what the scaling constants were
+    fitted on (10 % beyond their diameters), or when the constants do not record it; in display ``units``."""
+    notes = []
+    if not law.in_range(V):
+        lo, hi = law.velocity_range
+        vu = display(units, "velocity")
+        notes.append(f"velocity {velocity} is outside the range of the constants ({lo * vu.factor:.4g}-{hi * vu.factor:.4g} {vu.label}): extrapolated")
+    dlo, dhi = law.diameter_range
+    if math.isfinite(dhi) and not 0.9 * dlo <= d <= 1.1 * dhi:
+        lu = display(units, "length")
+        notes.append(
+            f"diameter {d * lu.factor:.4g} {lu.label} is outside the diameters the constants were fitted on "
+            f"({dlo * lu.factor:.4g}-{dhi * lu.factor:.4g} {lu.label}): extrapolated"
+        )
+    if not math.isfinite(law.velocity_range[1]):
+        notes.append(f"the constants {law.name} do not record the velocities and diameters they were fitted on: the range cannot be checked")
+    return notes
+
+
+def _driven(bar: str | None, beam: str | None, pulse):
+    """(the case files read, (time, force, gauges, strain) of the structure driven by ``pulse`` or None, the
+    gauges' peak sense): the bar of a bar case or the beam of a beam case under the predicted force."""
+    if bar is not None:
+        from ..input.bar_case import load_bar_case
+        from ..workflows.bar_impact import simulate_force
+
+        problem, path = load_bar_case(bar)
+        res = simulate_force(problem.bar, problem.solver, problem.gauges, pulse)
+        return [path], (res.time, res.force, problem.gauges, res.strain), "compressive"
+    if beam is not None:
+        from dataclasses import replace
+
+        from ..input.beam_case import load_beam_case
+        from ..workflows.beam_impact import BeamLoad, BeamModel
+
+        problem, path = load_beam_case(beam)
+        problem = replace(problem, load=BeamLoad(problem.load.position, problem.load.contact_radius, pulse))
+        res = BeamModel(problem).direct(energy=False)
+        return [path], (res.time, res.force, problem.gauges, res.strain), "absolute"
+    return [], None, ""

@@ -19,7 +19,7 @@ from ..formats.law_json import read_law
 from ..models.contact_laws import CONTACT_LAWS, HertzLaw, HuntCrossleyLaw, YangSunLaw
 from .toml import Table
 
-__all__ = ["CONTACT_LAWS", "CRITICAL_INDENTATION", "HUNT_CROSSLEY_FORMS", "read_contact_law"]
+__all__ = ["CONTACT_LAWS", "CRITICAL_INDENTATION", "HUNT_CROSSLEY_FORMS", "read_contact_law", "warn_outside"]
 
 CRITICAL_INDENTATION = 0.08e-3  # m: Yang & Sun (1982), graphite/epoxy struck by a 12.7 mm steel ball
 HUNT_CROSSLEY_FORMS = ("lankarani-nikravesh", "hunt-crossley")
@@ -33,7 +33,7 @@ def read_contact_law(c: Table, name: str, hertz: Callable[[], HertzLaw], mass: f
         path = Path(file) if Path(file).is_absolute() else base / file
         given = c.raw("parameters", None)  # read before the file, so a case's keys are all known even when the file is not
         identified = _with_parameters(read_law(path, c.key("law_file")), c, given)
-        _warn_outside(identified.identified_on, velocity, diameter, path, mass)
+        warn_outside(identified.identified_on, velocity, diameter, path, mass)
         return identified.law(mass, diameter, velocity), path
     h = hertz()
     if name == "hertz":
@@ -70,7 +70,7 @@ def _with_parameters(law, c: Table, given):
     return dataclasses.replace(law, values=values)
 
 
-def _warn_outside(ranges: dict | None, velocity: float, diameter: float, path: Path, mass: float | None = None) -> None:
+def warn_outside(ranges: dict | None, velocity: float, diameter: float, path: Path, mass: float | None = None) -> None:
     """Warnings when the impactor lies outside what the law was identified on (more than 10 % beyond the
     velocities, diameters or masses of its tests, or 20 % off their projectiles' density m/(π d³/6):
     another material; :mod:`softimpact.models.validity`): the law is then an extrapolation. A law.json

@@ -1,0 +1,355 @@
+"""Runs of the notebook API: :func:`impact` from objects, :func:`load` and :func:`run` of any case
+file or built-in name (through :data:`softimpact.cases.KINDS`)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+
+from ..errors import InputError
+from ._edge import _Heard, _naming, _point, _si
+from ._options import python_terms
+from .results import BarResult, BeamResult, ImpactResult, PlateResult
+from .structures import Bar, Beam, Plate, Sphere
+
+__all__ = ["Case", "impact", "load", "run"]
+
+
+# --- runs ---------------------------------------------------------------------------------------------
+
+
+def _beam_gauges(gauges: dict | None):
+    from ..workflows.beam_impact import BeamGauge
+
+    out = []
+    for name, g in (gauges or {}).items():
+        g = g if isinstance(g, dict) else {"position": g}
+        extra = set(g) - {"position", "surface", "length"}
+        if extra:
+            raise InputError(f"gauges[{name!r}]: unknown key {sorted(extra)[0]!r} (position, surface, length)")
+        length = _si(g["length"], "length", f"gauges[{name!r}].length") if "length" in g else BeamGauge.length
+        out.append(BeamGauge(str(name), _si(g["position"], "length", f"gauges[{name!r}].position"), g.get("surface", "bottom"), length))
+    return tuple(out)
+
+
+def _plate_gauges(gauges: dict | None):
+    from ..workflows.plate_impact import PlateGauge
+
+    out = []
+    for name, g in (gauges or {}).items():
+        g = g if isinstance(g, dict) else {"position": g}
+        extra = set(g) - {"position", "surface", "direction", "length"}
+        if extra:
+            raise InputError(f"gauges[{name!r}]: unknown key {sorted(extra)[0]!r} (position, surface, direction, length)")
+        length = _si(g["length"], "length", f"gauges[{name!r}].length") if "length" in g else PlateGauge.length
+        out.append(PlateGauge(str(name), _point(g["position"], f"gauges[{name!r}].position"), g.get("surface", "bottom"), g.get("direction", "x"), length))
+    return tuple(out)
+
+
+def _is_law_file(law) -> bool:
+    return isinstance(law, Path) or (isinstance(law, str) and law.endswith(".json"))
+
+
+def _law(law, hertz, sphere: Sphere):
+    """(name, law, the law file read or None): a name of :data:`CONTACT_LAWS` resolved by :func:`resolve_law`,
+    a law object, or a law.json path read by the one reader (:func:`softimpact.formats.law_json.read_law`,
+    its errors naming ``law``) with the warnings a case file's ``law_file`` gets when the sphere lies outside
+    what the law was identified on (:func:`softimpact.input.contact_law.warn_outside`)."""
+    from ..models.contact_laws import resolve_law
+
+    if _is_law_file(law):
+        from ..formats.law_json import read_law
+        from ..input.contact_law import warn_outside
+
+        path = Path(law)
+        identified = read_law(path, "law")
+        warn_outside(identified.identified_on, sphere.velocity, sphere.diameter, path, sphere.mass)
+        return "identified", identified.law(sphere.mass, sphere.diameter, sphere.velocity), path
+    resolved = resolve_law(law, hertz)
+    return (law if isinstance(law, str) else getattr(law, "name", type(law).__name__)), resolved, None
+
+
+def impact(
+    structure,
+    *,
+    at=None,
+    impactor: Sphere,
+    law="hertz",
+    time_step,
+    duration,
+    gauges: dict | None = None,
+    target_modulus=None,
+    contact_radius=None,
+    beta: float = 0.25,
+    gamma: float = 0.5,
+    units: str = "in-lbf-s",
+    title: str = "",
+):
+    """Coupled impact of a sphere on a beam, plate or bar: Newmark on the structure, Newton on the
+    scalar contact equation each step (:mod:`softimpact.fem.impact`, the one coupled stepper).
+
+    Parameters
+    ----------
+    structure : Beam, Plate or Bar
+        The target.
+    at : str, pint.Quantity or (x, y), optional
+        Impact point [length]: from the support along a beam, (x, y) on a plate; a bar is
+        struck on its end (leave ``at`` out).
+    impactor : Sphere
+        The sphere, its diameter [length] and velocity [velocity].
+    law : str, ContactLaw, HistoryLaw or path
+        ``"hertz"`` (eqs 1–3; Sun's laminate form with the ply's through-thickness modulus
+        E3 on a laminate), any contact law object (:mod:`softimpact.models.contact_laws`), or
+        the path of a law.json written by ``softimpact identify``.
+    time_step : str or pint.Quantity
+        Newmark time step [time], e.g. ``"0.5 us"``.
+    duration : str or pint.Quantity
+        Length of the run [time], e.g. ``"400 us"``; time zero is first contact.
+    gauges : dict, optional
+        ``{name: position}`` [length] (a beam: from the support, bottom face; a plate: (x, y),
+        strain along x; a bar: from the struck end), or ``{name: {"position": ...,
+        "surface": "top"|"bottom", "direction": "x"|"y"|degrees, "length": ...}}``.
+    target_modulus : str or pint.Quantity, optional
+        Hertz: the target's transverse modulus [stress] (default the ply's E3).
+    contact_radius : str or pint.Quantity, optional
+        Widest contact radius the beam or plate model must load [length] (default the
+        sphere's radius).
+    beta, gamma : float
+        Newmark parameters (default average acceleration, 1/4 and 1/2).
+    units : str
+        Display units of figures and tables, ``"in-lbf-s"`` (default) or ``"SI"``; numbers stay SI.
+    title : str
+        A title for the outputs.
+
+    Returns
+    -------
+    ImpactResult or BarResult
+        Frozen; ``peak_force`` [N], ``force`` [N], ``strain[name]``, ``.plot()``, ``.write(dir)``,
+        ``.to_frame()``, ``.write_fields(path)``; inputs in SI in ``.problem``.
+
+    Raises
+    ------
+    softimpact.errors.InputError
+        A missing unit, an impact point off the structure, gauges off it, an unknown law,
+        a problem too large for the machine.
+    softimpact.errors.SolverFailed
+        The contact iteration did not converge.
+
+    Examples
+    --------
+    >>> import softimpact as si
+    >>> beam = si.Beam(length="6 in", width="1 in", laminate=si.Laminate("T300/934", "[90/0]5s"), elements=(100, 4))
+    >>> res = si.impact(beam, at="3 in", impactor=si.Sphere("steel", "0.5 in", velocity="100 in/s"),
+    ...                 time_step="1 us", duration="200 us", gauges={"g1": "2 in"})
+    >>> 100 < res.peak_force < 1000  # N: a Hertz impact of a few hundred newtons
+    True
+    """
+    with _Heard() as heard, python_terms():
+        res = _impact(structure, at, impactor, law, time_step, duration, gauges, target_modulus, contact_radius, beta, gamma, units, title)
+    return replace(res, warnings=tuple(heard.texts))
+
+
+def _impact(structure, at, impactor, law, time_step, duration, gauges, target_modulus, contact_radius, beta, gamma, units, title):
+    """:func:`impact`, its warnings left to the caller."""
+    from ..fem.newmark import NewmarkParameters, SolverSpec
+    from ..models.contact_laws import HertzLaw
+
+    if not isinstance(impactor, Sphere):
+        raise InputError(f"impactor: expected a si.Sphere, got {type(impactor).__name__}")
+    with _naming():
+        solver = SolverSpec(_si(time_step, "time", "time_step"), _si(duration, "time", "duration"), NewmarkParameters(beta, gamma))
+    modulus = _si(target_modulus, "stress", "target_modulus") if target_modulus is not None else None
+
+    if isinstance(structure, Bar):
+        return _bar_impact(structure, at, impactor, law, solver, gauges, units, title)
+    if not isinstance(structure, (Beam, Plate)):
+        raise InputError(f"structure: expected a si.Beam, si.Plate or si.Bar, got {type(structure).__name__}")
+    spec = structure.spec
+    radius = _si(contact_radius, "length", "contact_radius") if contact_radius is not None else impactor.diameter / 2
+
+    def hertz():  # the reader's rule (softimpact.input.impact_case): Sun's form on a laminate
+        if modulus is not None or spec.stack is not None:
+            return HertzLaw.sphere_on_laminate(impactor.diameter / 2, impactor.material, modulus if modulus is not None else spec.stack.ply.E3)
+        return HertzLaw.sphere_on_flat(impactor.diameter / 2, impactor.material, spec.material)
+
+    name, resolved, law_file = _law(law, hertz, impactor)
+    if at is None:
+        raise InputError("at: give the impact point (a length along a beam, (x, y) on a plate)")
+    if isinstance(structure, Beam):
+        from ..workflows.beam_impact import BeamLoad, BeamProblem
+
+        with _naming():
+            target = BeamProblem(spec, BeamLoad(_si(at, "length", "at"), radius, None), solver, _beam_gauges(gauges), title, units)
+    else:
+        from ..workflows.plate_impact import PlateLoad, PlateProblem
+
+        with _naming():
+            target = PlateProblem(spec, PlateLoad(_point(at, "at"), radius, None, grow=True), solver, _plate_gauges(gauges), title=title, units=units)
+    from ..cases import KINDS
+    from ..workflows.coupled import ImpactProblem
+
+    problem = ImpactProblem(target, "(Python API)", impactor.impactor, impactor.material, name, resolved, title, units)
+    KINDS["impact"].check(problem)  # the resource guards of the command, before anything is built
+    return _run(Case("impact", problem, () if law_file is None else (law_file,)))
+
+
+def _bar_impact(bar: Bar, at, sphere: Sphere, law, solver, gauges, units: str, title: str) -> BarResult:
+    from ..models.specimens import Gauge, Projectile
+    from ..workflows.bar_impact import BarImpactProblem
+
+    if at is not None:
+        raise InputError("at: a bar is struck on its end (leave at out)")
+    law_file = None
+    if _is_law_file(law):
+        _, law, law_file = _law(law, None, sphere)
+    gs = tuple(Gauge(str(n), _si(p, "length", f"gauges[{n!r}]")) for n, p in (gauges or {}).items())
+    projectile = Projectile(sphere.material, sphere.diameter, sphere.velocity, sphere.mass)
+    return _run(Case("bar", BarImpactProblem(bar.spec, projectile, solver, gs, law, title, units), () if law_file is None else (law_file,)))
+
+
+@dataclass(frozen=True)
+class Case:
+    """A case read and checked (:func:`load`), ready for :func:`run`.
+
+    Parameters
+    ----------
+    kind : str
+        ``"bar"``, ``"beam"``, ``"plate"`` or ``"impact"`` (:data:`softimpact.cases.KINDS`).
+    problem : object
+        The resolved problem, SI.
+    files : tuple of Path
+        The files read (case first).
+    warnings : tuple of str
+        The warnings reading it raised (already shown; :func:`run` keeps them for manifest.json).
+    """
+
+    kind: str
+    problem: object
+    files: tuple = ()
+    warnings: tuple = field(default=(), compare=False)
+
+
+def load(case, *, history: int | None = None) -> Case:
+    """Read a case file or a built-in case by name, of any kind, and check it.
+
+    Parameters
+    ----------
+    case : str or Path
+        A case file (TOML, quantities with their units) or a built-in name (``softimpact cases``).
+    history : int, optional
+        Beam and plate cases: row N (1-based) of the case's ``[[load.table]]``.
+
+    Returns
+    -------
+    Case
+        The kind, the problem in SI and the files read.
+
+    Raises
+    ------
+    softimpact.errors.InputError
+        A missing file, a key without its unit, a problem too large for the machine.
+
+    Examples
+    --------
+    >>> import softimpact as si
+    >>> case = si.load("paper-long-beam-impact")
+    >>> case.kind, round(case.problem.impactor.velocity, 9)
+    ('impact', 2.54)
+    """
+    from ..cases import case_kind
+
+    with _Heard() as heard, python_terms():
+        kind, _ = case_kind(str(case))
+        problem, files = kind.load(str(case), history)
+        kind.check(problem)
+    return Case(kind.name, problem, tuple(Path(f) for f in (files if isinstance(files, tuple) else (files,))), tuple(heard.texts))
+
+
+def run(problem, *, figures: bool = True):
+    """Run a case (from :func:`load`) or a problem object as its command would.
+
+    Parameters
+    ----------
+    problem : Case or problem
+        A :class:`Case`, or an ImpactProblem, BeamProblem, PlateProblem or BarImpactProblem (SI).
+    figures : bool
+        Beam and plate: keep the displacement history the deformed-shape figures and
+        :meth:`write_fields` draw on (memory n_dofs × n_steps on a beam).
+
+    Returns
+    -------
+    ImpactResult, BeamResult, PlateResult or BarResult
+        The frozen result; its ``summary()`` holds the numbers of the command's summary.json.
+
+    Raises
+    ------
+    softimpact.errors.InputError
+        A problem too large for the machine, a contact that outgrows its room.
+    softimpact.errors.SolverFailed
+        A coupled run whose contact iteration did not converge.
+
+    Examples
+    --------
+    >>> import softimpact as si
+    >>> res = si.run(si.load("paper-calibration"))
+    >>> 900 < res.peak_force < 1300  # N: paper Fig 5, about 250 lbf (1100 N)
+    True
+    """
+    case = problem if isinstance(problem, Case) else Case(_kind_of(problem), problem)
+    with _Heard() as heard, python_terms():
+        res = _run(case, figures)
+    return replace(res, warnings=(*case.warnings, *heard.texts))
+
+
+def _run(case: Case, figures: bool = True):
+    """:func:`run`, its warnings left to the caller (each as the command warns it: the same functions)."""
+    from ..models.validity import Validity, warn
+
+    p, files = case.problem, case.files
+    if case.kind == "impact" and hasattr(p, "projectile"):  # an impact case on a bar target runs as the bar
+        case = Case("bar", p, files)
+    if case.kind == "impact":
+        from ..output.impact import snapshot_steps
+        from ..studies.damage import damage_problem
+        from ..workflows.coupled import impact_model, run_impact
+
+        p = damage_problem(p)  # as the command: + the pseudo-gauges of the damage indices (a layup with strengths)
+        model = impact_model(p)
+        snaps = snapshot_steps(p.solver.steps) if figures and p.on_plate else ()
+        model, result = run_impact(p, model, snapshots=snaps)
+        from ..app.impact import warn_validity
+        from ..output.impact import impact_summary
+
+        warn_validity(impact_summary(p, result, model))
+        return ImpactResult(p, result, model, files)
+    if case.kind == "beam":
+        from ..output.beam import beam_validity
+        from ..workflows.beam_impact import BeamModel
+
+        model = BeamModel(p)
+        result = model.direct(displacement=figures)
+        warn(beam_validity(result))
+        return BeamResult(p, result, model, files)
+    if case.kind == "plate":
+        from ..app.plate import mirrored_loads
+        from ..output.plate import plate_validity, snapshot_steps
+        from ..workflows.plate_impact import PlateModel
+
+        model = PlateModel(p)
+        result = model.direct(snapshots=snapshot_steps(p.solver.steps) if figures else ())
+        warn(Validity({}, mirrored_loads(p)) + plate_validity(result))  # the command's order
+        return PlateResult(p, result, model, files)
+    from ..app.bar import run_bar
+    from ..output.bar import bar_validity
+
+    result, plain, inferred = run_bar(p)
+    warn(bar_validity(result))
+    return BarResult(p, result, plain, inferred, files)
+
+
+def _kind_of(problem) -> str:
+    names = {"ImpactProblem": "impact", "BeamProblem": "beam", "PlateProblem": "plate", "BarImpactProblem": "bar"}
+    name = names.get(type(problem).__name__)
+    if name is None:
+        raise InputError(f"problem: expected a si.Case or a problem object, got {type(problem).__name__}")
+    return name

@@ -1,0 +1,334 @@
+"""The structures and the impactor of the notebook API: :class:`Laminate`, :class:`Beam`, :class:`Plate`,
+:class:`Bar` and :class:`Sphere`, their quantities parsed to SI once (:func:`softimpact.units.parse`)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from ..errors import InputError
+from ._edge import _elements, _material, _si
+
+__all__ = ["Laminate", "Beam", "Plate", "Bar", "Sphere"]
+
+
+@dataclass(frozen=True, init=False)
+class Laminate:
+    """A laminate: a ply of the catalogue and a stacking sequence.
+
+    Parameters
+    ----------
+    ply : str or softimpact.models.laminate.Ply
+        A catalogue ply (``"T300/934"``, :data:`softimpact.models.laminate.PLIES`) or a Ply
+        (moduli [Pa], density [kg/m³], ply thickness [m]).
+    layup : str
+        Stacking sequence in degrees from the x axis, ``"[90/0]5s"``, ``"[0/±45/90]s"``.
+
+    Attributes
+    ----------
+    stack : softimpact.models.laminate.Stack
+        The ply and its angles [°]; ``stack.thickness`` [m].
+
+    Raises
+    ------
+    softimpact.errors.InputError
+        An unknown ply or a layup that cannot be read.
+
+    Examples
+    --------
+    >>> import softimpact as si
+    >>> lam = si.Laminate("T300/934", "[90/0]5s")
+    >>> len(lam.stack.angles)
+    20
+    """
+
+    ply: str
+    layup: str
+    stack: object = field(repr=False, compare=False)
+
+    def __init__(self, ply, layup: str):
+        from ..models.laminate import PLIES, Ply, Stack, parse_layup
+
+        if isinstance(ply, str):
+            if ply not in PLIES:
+                raise InputError(f"ply: unknown ply {ply!r} (catalogue: {', '.join(PLIES)})")
+            resolved = PLIES[ply]
+        elif isinstance(ply, Ply):
+            resolved = ply
+        else:
+            raise InputError(f"ply: expected a catalogue name or a Ply, got {type(ply).__name__}")
+        if not isinstance(layup, str):
+            raise InputError(f"layup: expected a text such as '[90/0]5s', got {layup!r}")
+        object.__setattr__(self, "ply", resolved.name)
+        object.__setattr__(self, "layup", layup)
+        object.__setattr__(self, "stack", Stack(resolved, parse_layup(layup)))
+
+
+@dataclass(frozen=True, init=False)
+class Beam:
+    """A laminated (or isotropic) beam in plane strain, clamped at x = 0 (paper Figs 16–22).
+
+    Parameters
+    ----------
+    length : str or pint.Quantity
+        Free length [length], e.g. ``"6 in"``; x runs from the support (x = 0).
+    width : str or pint.Quantity
+        Width [length], e.g. ``"1 in"``.
+    laminate : Laminate, optional
+        The laminate (give this or ``material`` and ``thickness``).
+    material : str or Material, optional
+        An isotropic catalogue material (``"Al 6061-T6"``) instead of a laminate.
+    thickness : str or pint.Quantity, optional
+        Thickness [length] of an isotropic beam (a laminate's is its plies').
+    elements : (int, int)
+        Q4 elements along the length and through the thickness; default (200, 6).
+    support : str
+        ``"clamped-free"`` (default) or another of :data:`softimpact.fem.plane.SUPPORTS`.
+    model : str
+        ``"smeared"`` (homogenised laminate, default) or ``"layered"`` (ply group by ply group).
+    plane : str
+        ``"strain"`` (default) or ``"stress"`` across the width.
+    lumped : bool
+        Lumped instead of consistent mass matrix.
+
+    Attributes
+    ----------
+    spec : softimpact.workflows.beam_impact.BeamSpec
+        The beam in SI.
+
+    Raises
+    ------
+    softimpact.errors.InputError
+        A missing unit, a non-positive size, both or neither of laminate and material.
+
+    Examples
+    --------
+    >>> import softimpact as si
+    >>> beam = si.Beam(length="6 in", width="1 in", laminate=si.Laminate("T300/934", "[90/0]5s"), elements=(200, 6))
+    >>> round(beam.spec.length / 0.0254, 12)
+    6.0
+    """
+
+    spec: object
+
+    def __init__(
+        self,
+        *,
+        length,
+        width,
+        laminate: Laminate | None = None,
+        material=None,
+        thickness=None,
+        elements=(200, 6),
+        support: str = "clamped-free",
+        model: str = "smeared",
+        plane: str = "strain",
+        lumped: bool = False,
+    ):
+        from ..fem.plane import SUPPORTS
+        from ..workflows.beam_impact import BeamSpec
+
+        if (laminate is None) == (material is None):
+            raise InputError("Beam: give exactly one of laminate and material")
+        if support not in SUPPORTS:
+            raise InputError(f"support: {support!r} is not one of {', '.join(SUPPORTS)}")
+        nx, nz = _elements(elements, 2, "elements")
+        mat = _material(material, "material") if material is not None else None
+        if mat is not None and thickness is None:
+            raise InputError("thickness: an isotropic beam needs its thickness")
+        h = _si(thickness, "length", "thickness") if mat is not None else 0.0
+        spec = BeamSpec(
+            _si(length, "length", "length"),
+            _si(width, "length", "width"),
+            nx,
+            nz,
+            support,
+            laminate.stack if laminate is not None else None,
+            model,
+            mat,
+            h,
+            plane,
+            bool(lumped),
+        )
+        spec.plane_beam()  # checks sizes now, naming the argument
+        object.__setattr__(self, "spec", spec)
+
+
+@dataclass(frozen=True, init=False)
+class Plate:
+    """A rectangular laminated plate, first-order shear deformation theory (MITC9 or MITC4 elements).
+
+    Parameters
+    ----------
+    length : str or pint.Quantity
+        Length along x, the 0° fibres [length], e.g. ``"8 in"``.
+    width : str or pint.Quantity
+        Length along y [length].
+    laminate : Laminate
+        The laminate.
+    elements : (int, int)
+        Elements along x and y; default (48, 48).
+    support : str or dict
+        One support for all four edges, or ``{"x0": ..., "x1": ..., "y0": ..., "y1": ...}``;
+        each ``"clamped"``, ``"simply-supported"`` (default), ``"free"`` or ``"symmetry"``.
+    element : str
+        ``"mitc9"`` (default) or ``"mitc4"``.
+
+    Attributes
+    ----------
+    spec : softimpact.workflows.plate_impact.PlateSpec
+        The plate in SI.
+
+    Raises
+    ------
+    softimpact.errors.InputError
+        A missing unit, an unknown support, a plate left a mechanism.
+
+    Examples
+    --------
+    >>> import softimpact as si
+    >>> plate = si.Plate(length="8 in", width="8 in", laminate=si.Laminate("T300/934", "[90/0]5s"), elements=(8, 8))
+    >>> plate.spec.supports
+    ('simply-supported', 'simply-supported', 'simply-supported', 'simply-supported')
+    """
+
+    spec: object
+
+    def __init__(self, *, length, width, laminate: Laminate, elements=(48, 48), support="simply-supported", element: str = "mitc9"):
+        from ..input.plate_case import PLATE_SUPPORTS
+        from ..workflows.plate_impact import PlateSpec
+
+        edges = ("x0", "x1", "y0", "y1")
+        if isinstance(support, str):
+            supports = (support,) * 4
+        elif isinstance(support, dict) and set(support) == set(edges):
+            supports = tuple(support[e] for e in edges)
+        else:
+            raise InputError(f"support: expected one support or a dict of the edges {edges}, got {support!r}")
+        for s in supports:
+            if s not in PLATE_SUPPORTS:
+                raise InputError(f"support: {s!r} is not one of {', '.join(PLATE_SUPPORTS)}")
+        if not isinstance(laminate, Laminate):
+            raise InputError(f"laminate: expected a si.Laminate, got {type(laminate).__name__}")
+        spec = PlateSpec(
+            _si(length, "length", "length"), _si(width, "length", "width"), _elements(elements, 2, "elements"), laminate.stack, supports, element=element
+        )
+        object.__setattr__(self, "spec", spec)
+
+
+@dataclass(frozen=True, init=False)
+class Bar:
+    """A uniform circular bar struck on its end (the paper's instrumented bar, Figs 4–6).
+
+    Parameters
+    ----------
+    material : str or Material
+        A catalogue material, e.g. ``"Al 6061-T6"``.
+    length : str or pint.Quantity
+        Length [length], e.g. ``"36 in"``.
+    diameter : str or pint.Quantity
+        Diameter [length], e.g. ``"0.5 in"``.
+    elements : int
+        Hermite rod elements; default 39.
+    end_cap : dict, optional
+        A cap on the struck end, ``{"material": ..., "diameter": ..., "length": ...}`` [length].
+
+    Attributes
+    ----------
+    spec : softimpact.models.specimens.BarSpec
+        The bar in SI; gauge positions are measured from the struck end.
+
+    Raises
+    ------
+    softimpact.errors.InputError
+        A missing unit or an unknown material.
+
+    Examples
+    --------
+    >>> import softimpact as si
+    >>> bar = si.Bar("Al 6061-T6", length="36 in", diameter="0.5 in")
+    >>> bar.spec.elements
+    39
+    """
+
+    spec: object
+
+    def __init__(self, material, *, length, diameter, elements: int = 39, end_cap: dict | None = None):
+        from ..models.specimens import BarSpec, EndCap
+
+        cap = None
+        if end_cap is not None:
+            if not isinstance(end_cap, dict) or set(end_cap) != {"material", "diameter", "length"}:
+                raise InputError(f"end_cap: expected {{'material', 'diameter', 'length'}}, got {end_cap!r}")
+            cap = EndCap(
+                _material(end_cap["material"], "end_cap.material"),
+                _si(end_cap["diameter"], "length", "end_cap.diameter"),
+                _si(end_cap["length"], "length", "end_cap.length"),
+            )
+        (n,) = _elements(elements, 1, "elements")
+        spec = BarSpec(_material(material, "material"), _si(length, "length", "length"), _si(diameter, "length", "diameter"), n, cap)
+        object.__setattr__(self, "spec", spec)
+
+
+@dataclass(frozen=True, init=False)
+class Sphere:
+    """A rigid sphere striking the structure.
+
+    Parameters
+    ----------
+    material : str or Material
+        A catalogue material (``"steel"``); its elastic constants enter Hertz's law (eqs 1–3).
+    diameter : str or pint.Quantity
+        Diameter [length], e.g. ``"0.5 in"``.
+    velocity : str or pint.Quantity
+        Impact velocity toward the target [velocity], e.g. ``"100 in/s"``.
+    mass : str or pint.Quantity, optional
+        Mass [mass]; default that of a solid sphere of the material.
+
+    Attributes
+    ----------
+    material : Material
+    diameter : float
+        [m]
+    velocity : float
+        [m/s]
+    mass : float
+        [kg]
+
+    Raises
+    ------
+    softimpact.errors.InputError
+        A missing unit, a non-positive size, an unknown material.
+
+    Examples
+    --------
+    >>> import softimpact as si
+    >>> ball = si.Sphere("steel", "0.5 in", velocity="100 in/s")
+    >>> round(ball.velocity, 12)
+    2.54
+    """
+
+    material: object
+    diameter: float
+    velocity: float
+    mass: float
+
+    def __init__(self, material, diameter, *, velocity, mass=None):
+        from ..models.materials import sphere_mass
+        from ..models.specimens import Impactor
+
+        mat = _material(material, "material")
+        d = _si(diameter, "length", "diameter")
+        if not d > 0:  # before the mass it gives (the case file's check, naming the argument)
+            raise InputError(f"diameter: must be positive, got {diameter!r}")
+        v = _si(velocity, "velocity", "velocity")
+        m = sphere_mass(mat, d) if mass is None else _si(mass, "mass", "mass")
+        Impactor(m, d, v)  # the same checks as every other path
+        for k, value in (("material", mat), ("diameter", d), ("velocity", v), ("mass", m)):
+            object.__setattr__(self, k, value)
+
+    @property
+    def impactor(self):
+        """The rigid impactor of the coupled stepper (:class:`softimpact.models.specimens.Impactor`)."""
+        from ..models.specimens import Impactor
+
+        return Impactor(self.mass, self.diameter, self.velocity)

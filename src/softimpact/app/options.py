@@ -1,0 +1,116 @@
+"""The options of the commands, written once: each one's name, type or unit kind, default and help.
+
+Two edges read these tables: the command line (:mod:`softimpact.cli` builds its click options from
+them: ``--name``, ``--name/--no-name`` for a bool, a choice list, the default shown) and the Python API
+(:mod:`softimpact.api.chain` builds its keyword arguments, their checks and the Parameters section of
+its docstrings from them). An option's ``name`` is the keyword everywhere: of the app function, of
+the API function and of click's parameter (``--units`` → ``units``). The app functions that take a
+table's options take them keyword-only and all required (:func:`softimpact.app.predict.predict`):
+the defaults live here alone. No click here (only cli.py imports click).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = ["Option", "FIGURES", "SERIES", "PREDICT", "CALIBRATE", "CONVERGE", "DISPLAY_SYSTEMS", "defaults"]
+
+
+@dataclass(frozen=True)
+class Option:
+    """One option of a command.
+
+    Parameters
+    ----------
+    name : str
+        The keyword (Python identifier); the command line's flag is ``--name`` with ``_`` as ``-``.
+    help : str
+        One or two sentences, in words both edges can show (no flag names); units as examples.
+    default : object
+        The default (None: not given).
+    kind : str, optional
+        A unit kind of :data:`softimpact.units.SI_UNITS` (``"velocity"``): a quantity given with its
+        unit, ``"1166 in/s"``; the API also takes a pint quantity.
+    type : type
+        ``str`` (default), ``bool``, ``int`` or ``float``.
+    choices : tuple of str
+        The allowed values (empty: any).
+    required : bool
+        No default: the option must be given.
+    file : bool
+        A path to an existing file.
+    """
+
+    name: str
+    help: str
+    default: object = None
+    kind: str | None = None
+    type: type = str
+    choices: tuple[str, ...] = ()
+    required: bool = False
+    file: bool = False
+
+    @property
+    def flag(self) -> str:
+        """The command line's flag, ``--contact-radius``."""
+        return "--" + self.name.replace("_", "-")
+
+
+def defaults(table: tuple[Option, ...]) -> dict:
+    """The default of every option of ``table`` that has one, by name."""
+    return {o.name: o.default for o in table if not o.required}
+
+
+DISPLAY_SYSTEMS = ("in-lbf-s", "SI")  # the display systems of :func:`softimpact.units.display`
+
+FIGURES = Option("figures", "Draw the figures (the numbers are written either way).", True, type=bool)
+
+SERIES = (FIGURES,)  # reduce, fit and identify: a series (file or built-in name) and the figures
+
+PREDICT = (
+    Option("projectile", "A named projectile (rubber-1/2in, rubber-3/8in), or give the mass and the diameter."),
+    Option("mass", 'Projectile mass, e.g. "1.1 g".', kind="mass"),
+    Option("diameter", 'Projectile diameter, e.g. "0.5 in".', kind="length"),
+    Option("velocity", 'Impact velocity, e.g. "1166 in/s".', kind="velocity", required=True),
+    Option("model", "Empirical (eqs 4-7, 15), elastic Hertz (eqs 1-3) or hydrodynamic Wilbeck.", "empirical", choices=("empirical", "hertz", "wilbeck")),
+    Option("constants", "Scaling constants: a preset (silicone-1/2in, silicone-3/8in) or a scaling.json from `softimpact fit`."),
+    Option("group", "Group of a scaling.json to use (a diameter such as '0.5 in', or pooled).", "pooled"),
+    Option("tail", "Empirical model: add the tail that carries the rest of eq (7)'s impulse.", False, type=bool),
+    Option("material", "Projectile material (hertz and wilbeck models).", "silicone rubber"),
+    Option("target", "Target material (hertz model).", "Al 6061-T6"),
+    Option("bar", "Drive the bar of this bar case (file or built-in name) with the predicted force."),
+    Option("beam", "Drive this beam case (file or built-in name) with the predicted force."),
+    Option("units", "Display units of the line printed and the figure (the files stay SI).", "in-lbf-s", choices=DISPLAY_SYSTEMS),
+    FIGURES,
+)
+
+CALIBRATE = (
+    Option("measured", "CSV of measured strains: time_s and strain_<gauge> columns.", file=True),
+    Option("velocity", 'Impact velocity, e.g. "1166 in/s" (sets the bar-model start).', kind="velocity"),
+    Option(
+        "method",
+        "Least squares on eq (15), the paper's iteration, or non-negative deconvolution.",
+        "least-squares",
+        choices=("least-squares", "paper", "deconvolve"),
+    ),
+    Option("contact_radius", 'r0 from the imprint, e.g. "0.25 in" (default: the case\'s).', kind="length"),
+    Option("contact_time", 'First contact on the record\'s clock, e.g. "100 us" (default: estimated).', kind="time"),
+    Option("fit_radius", "Least squares: fit r0 too.", False, type=bool),
+    Option("projectile", "Projectile of the bar-model start.", "rubber-1/2in"),
+    Option("constants", "Scaling constants of the start: a preset or a scaling.json (default: the projectile's)."),
+    Option(
+        "budget",
+        "Seconds that refining the model may cost: the mesh is refined until its discretisation error moves no "
+        "parameter by more than half a noise standard error, or this budget is spent.",
+        20.0,
+        type=float,
+    ),
+    FIGURES,
+)
+
+CONVERGE = (
+    Option("levels", "Number of discretisations: the case's own, then refined by the ratio each (2 to 5).", 3, type=int),
+    Option("ratio", "Refinement ratio between levels (elements × ratio, time step / ratio).", 2, type=int),
+    Option("history", "Beam cases: row N of the case's [[load.table]].", type=int),
+    FIGURES,
+)
