@@ -193,31 +193,34 @@ def test_gelatin_on_a_rigid_target_impulse_and_hugoniot_pressure(d, V):
     assert t[F > 0][-1] == pytest.approx(d / V, rel=0.05)  # the flow lasts the length over the velocity
 
 
-def _bar_run(law, d, V, duration):
+def _bar_run(law, d, V, duration, steps):
+    """The bar workflow with ``law``: time step d/V/``steps`` (the crush's stop needs a fine step: at d/V/250 the
+    trapezoidal rule overshoots it into a rebound of ~2 % of V at 13 m/s), run for ``duration``·d/V."""
     base, _ = load_bar_case("paper-calibration")
     # The paper's 36-in aluminium bar, made 2 in wide (no end cap) so the 31.8-50.8 mm spheres crush on its face;
     # the published tests' bar dimensions were not retrieved.
     bar = replace(base.bar, diameter=2.0 * INCH, end_cap=None)
     p = Projectile.solid(ICE, d, V)
     T = d / V
-    problem = replace(base, bar=bar, projectile=p, law=law, solver=SolverSpec(T / 250, duration * T), snapshots=())
+    problem = replace(base, bar=bar, projectile=p, law=law, solver=SolverSpec(T / steps, duration * T), snapshots=())
     return simulate_impact(problem), p
 
 
 @pytest.mark.parametrize("d, V", ICE_POINTS)
 def test_ice_sphere_on_the_bar_impulse_within_published_band(d, V):
-    """An ice sphere crushing on the instrumented bar (the bar workflow, the crushing law object): impulse over m·V within the published 0.8-1.12."""
+    """An ice sphere crushing on the instrumented bar (the bar workflow, the crushing law object): impulse over m·V within the published 0.8-1.12, no rebound."""
     m = sphere_mass(ICE, d)
-    r, p = _bar_run(CrushingLaw.of(ICE, d, m, V), d, V, 0.8)
+    r, p = _bar_run(CrushingLaw.of(ICE, d, m, V), d, V, 0.6, 1000)
     assert r.separated
     assert IMPULSE_BAND[0] <= r.impulse / (p.mass * V) <= IMPULSE_BAND[1]
+    assert r.rebound_velocity >= -1e-3 * V  # no rebound (to the time discretisation)
 
 
 @pytest.mark.parametrize("d, V", [(0.0318, 105.0), (0.0508, 13.0)])
 def test_fragment_flow_on_the_bar_lasts_about_d_over_v(d, V):
     """Without crushing strength (the fragment-flow limit) an ice sphere on the bar: impulse over m·V within 0.8-1.12, contact duration within 30 % of d/V."""
     m = sphere_mass(ICE, d)
-    r, p = _bar_run(replace(CrushingLaw.of(ICE, d, m, V), strength=None), d, V, 1.5)
+    r, p = _bar_run(replace(CrushingLaw.of(ICE, d, m, V), strength=None), d, V, 1.5, 250)
     assert IMPULSE_BAND[0] <= r.impulse / (p.mass * V) <= IMPULSE_BAND[1]
     assert r.contact_duration == pytest.approx(d / V, rel=0.30)
 
