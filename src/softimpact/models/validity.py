@@ -195,3 +195,41 @@ def warn(validity: Validity) -> None:
     names = validity.names if len(validity.names) == len(validity.flags) else ("",) * len(validity.flags)
     for f, name in zip(validity.flags, names):
         warnings.warn(ValidityWarning(f, name), stacklevel=2)
+
+
+# --- Ice and gelatin projectiles (models/crushing_law.py, models/hydrodynamic_law.py) ---
+
+HYDRO_RELEASE_DEPTH_OVER_DIAMETER = 0.05  # s_c/d: the shock-detachment estimate a_c = R·V/U_s takes a shallow cap (s << d)
+
+FLAG_LABELS.update(
+    {
+        "extrapolated_strain_rate": "crushing strain rate outside the strength law's measured range",
+        "hydrodynamic_deep_release": f"shock release depth > {HYDRO_RELEASE_DEPTH_OVER_DIAMETER:g} d (hydrodynamic law)",
+    }
+)
+
+
+def ice_strength_validity(diameter: float, velocity: float, strength) -> Validity:
+    """The crushing law's strain rate V/d [1/s] against the range its strength law was measured on
+    (``strength.rate_range``, e.g. Jones 1997: 0.1-10 1/s): hail at 10-100 m/s crushes at 1e2-1e4 1/s, so the
+    published quasi-dynamic laws are extrapolated there and the flag says by how much."""
+    rate = velocity / diameter
+    return range_flags(f"the crushing strength ({strength.source or 'strength law'})", [("strain rate", rate, strength.rate_range, "1/s")])
+
+
+def hydrodynamic_validity(diameter: float, velocity: float, hugoniot) -> Validity:
+    """The hydrodynamic law's shock phase: the release depth s_c = d·V²/(4·U_s²) over d (its detachment
+    estimate holds for a shallow cap, :data:`HYDRO_RELEASE_DEPTH_OVER_DIAMETER`), and V/c0 reported."""
+    us = hugoniot.shock_speed(velocity)
+    depth = velocity**2 / (4.0 * us * us)
+    v = {"release_depth_over_diameter": depth, "velocity_over_sound_speed": velocity / hugoniot.c0}
+    flags = ()
+    if depth > HYDRO_RELEASE_DEPTH_OVER_DIAMETER:
+        flags = (
+            f"hydrodynamic: the shock releases at a depth of {depth:.3g} d (V {velocity:.4g} m/s, U_s {us:.4g} m/s), past the "
+            f"{HYDRO_RELEASE_DEPTH_OVER_DIAMETER:g} d where the shallow-cap estimate of its detachment holds",
+        )
+    return Validity(v, flags, ("hydrodynamic_deep_release",) * len(flags))
+
+
+__all__ += ["HYDRO_RELEASE_DEPTH_OVER_DIAMETER", "ice_strength_validity", "hydrodynamic_validity"]
