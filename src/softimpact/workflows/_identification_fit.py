@@ -7,7 +7,7 @@ Private part of :mod:`softimpact.workflows.identification` (import the names fro
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -29,6 +29,8 @@ ARM_START = (2.0, 0.3)  # κ, θ where the fit starts: an arm as stiff as the lo
 CLOSURE_SCALE = 0.05  # the closure target per test; scales the refinement's r·(|r|/s)³ residuals
 REFINE_NORM = 8  # the refinement's second stage minimises Σ r^8, close to the worst test's error
 REFINE_STEPS_PER_PULSE = 200  # refinement runs: F0, T, I within 1e-4 of the closure's 400 steps (measured)
+UNFIXED_HALF_WIDTH = 1.0  # a 95 % half-width beyond the value itself: the data do not fix the parameter
+UNFIXED_CORRELATION = 0.99  # |correlation| beyond which two parameters trade against each other
 Z95 = 1.959963984540054  # two-sided 95 % normal quantile (hundreds of samples: t ≈ z)
 
 
@@ -67,6 +69,7 @@ class Approach:
     end_displacement: np.ndarray
     end_velocity: np.ndarray
     main_pulse: np.ndarray  # bool mask: the samples used in the fit
+    fitted_force: np.ndarray | None = None  # the fitted law's force along α, α̇ over the main pulse [N] (:func:`fitted_force`), once there is one
 
 
 @dataclass(frozen=True)
@@ -93,6 +96,11 @@ class IdentifiedLaw:
             return base
         s = diameter / self.d_ref
         return ViscoelasticSoftLaw(base, ka * s**qka, th * s**qth)
+
+    @property
+    def unfixed_parameters(self) -> tuple[str, ...]:
+        """The free parameters the data do not fix, each as "name (reason)" (:func:`unfixed_parameters`)."""
+        return unfixed_parameters(self)
 
     @property
     def has_memory(self) -> bool:
@@ -225,7 +233,7 @@ def identify(tests, rod: Rod, d_ref: float | None = None, size_exponent: bool = 
     v, d = [float(t.velocity) for t in tests], [float(t.diameter) for t in tests]
     ranges = {"velocity_m_s": [min(v), max(v)], "diameter_m": [min(d), max(d)]}
     law = IdentifiedLaw(PARAMETERS, values, half, d_ref, rms, float(sol.cost), ranges, _embed(cov, free), _on_bounds(values, free))
-    return law, approaches
+    return law, tuple(replace(a, fitted_force=f) for a, f in zip(approaches, fits))
 
 
 BOUND_TOLERANCE = 0.01  # a free parameter within 1 % of the bound's size (of the range for a bound at 0) sits on it
@@ -247,4 +255,28 @@ def _on_bounds(values, free) -> tuple[str, ...]:
             if abs(values[i] - b) <= BOUND_TOLERANCE * scale:
                 out.append(PARAMETERS[i])
                 break
+    return tuple(out)
+
+
+def unfixed_parameters(law: IdentifiedLaw) -> tuple[str, ...]:
+    """Free parameters the data do not fix: 95 % half-width above UNFIXED_HALF_WIDTH × |value|, or
+    |correlation| above UNFIXED_CORRELATION with another parameter (they trade against each other;
+    their sum or ratio may be fixed, each alone is not). Each as "name (reason)"."""
+    out = []
+    C = law.covariance
+    sd = np.sqrt(np.maximum(np.diag(C), 0.0)) if C is not None else None
+    for i, (n, v, h) in enumerate(zip(law.names, law.values, law.half_widths)):
+        if not h > 0:
+            continue
+        reasons = []
+        if h > UNFIXED_HALF_WIDTH * abs(v):
+            reasons.append(f"±{h:.2g} on {v:.3g}")
+        if sd is not None and sd[i] > 0:
+            for j in range(len(law.names)):
+                if j != i and sd[j] > 0:
+                    r = C[i, j] / (sd[i] * sd[j])
+                    if abs(r) > UNFIXED_CORRELATION:
+                        reasons.append(f"correlation {r:+.3f} with {law.names[j]}")
+        if reasons:
+            out.append(f"{n} ({'; '.join(reasons)})")
     return tuple(out)

@@ -129,6 +129,11 @@ class OutputConvergence:
     message: str
 
     @property
+    def meaning(self) -> str:
+        """What the status says, in a sentence (:data:`STATUSES`)."""
+        return STATUSES[self.status]
+
+    @property
     def finest(self) -> float | np.ndarray:
         return self.values[-1]
 

@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from typing import ClassVar
 
 import numpy as np
 
@@ -64,6 +65,7 @@ from ._identification_fit import (  # steps 1 and 2: the approach and the F(α, 
     fitted_force,
     identify,
     reconstruct_approach,
+    unfixed_parameters,
 )
 
 __all__ = [
@@ -325,6 +327,7 @@ def identify_series(rod: Rod, reduced, refined: bool = True, progress=_silent):
     if refined:
         progress(1, 3, "refining on coupled bar runs")
         law = refine(law, tests, rod)
+        approaches = tuple(replace(a, fitted_force=fitted_force(law, a, t)) for a, t in zip(approaches, tests))  # the refined law's
     progress(2, 3, "closure")
     cl = closure(law, tests, rod)
     progress(3, 3, "closure")
@@ -336,8 +339,6 @@ def identify_series(rod: Rod, reduced, refined: bool = True, progress=_silent):
 __all__ += ["FIGURES", "PredictedPulse", "unfixed_parameters", "predict_pulses"]
 
 FIGURES = ("peak_force_N", "time_of_peak_s", "duration_s", "impulse_N_s")  # the order of PredictedPulse's arrays
-UNFIXED_HALF_WIDTH = 1.0  # a 95 % half-width beyond the value itself: the data do not fix the parameter
-UNFIXED_CORRELATION = 0.99  # |correlation| beyond which two parameters trade against each other
 
 
 @dataclass(frozen=True)
@@ -360,30 +361,7 @@ class PredictedPulse:
     values: np.ndarray
     half_widths: np.ndarray
     parameter_half_widths: np.ndarray
-
-
-def unfixed_parameters(law: IdentifiedLaw) -> tuple[str, ...]:
-    """Free parameters the data do not fix: 95 % half-width above UNFIXED_HALF_WIDTH × |value|, or
-    |correlation| above UNFIXED_CORRELATION with another parameter (they trade against each other;
-    their sum or ratio may be fixed, each alone is not). Each as "name (reason)"."""
-    out = []
-    C = law.covariance
-    sd = np.sqrt(np.maximum(np.diag(C), 0.0)) if C is not None else None
-    for i, (n, v, h) in enumerate(zip(law.names, law.values, law.half_widths)):
-        if not h > 0:
-            continue
-        reasons = []
-        if h > UNFIXED_HALF_WIDTH * abs(v):
-            reasons.append(f"±{h:.2g} on {v:.3g}")
-        if sd is not None and sd[i] > 0:
-            for j in range(len(law.names)):
-                if j != i and sd[j] > 0:
-                    r = C[i, j] / (sd[i] * sd[j])
-                    if abs(r) > UNFIXED_CORRELATION:
-                        reasons.append(f"correlation {r:+.3f} with {law.names[j]}")
-        if reasons:
-            out.append(f"{n} ({'; '.join(reasons)})")
-    return tuple(out)
+    figures: ClassVar[tuple[str, ...]] = FIGURES  # what ``values`` and the half-widths hold, in order
 
 
 def _point_test(tests, mass: float, diameter: float, velocity: float) -> tuple[BarTest, float]:
