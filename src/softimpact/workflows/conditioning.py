@@ -53,6 +53,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..models.noise import robust_sigma
+from ..models.sampling import series_problem
 
 __all__ = [
     "ConditioningSettings",
@@ -111,12 +112,9 @@ class Conditioned:
 def _arrays(t, y):
     t = np.asarray(t, dtype=float)
     y = np.asarray(y, dtype=float)
-    if t.ndim != 1 or t.shape != y.shape or t.size < 8:
-        raise InputError("conditioning: time and signal must be 1-D arrays of equal length >= 8")
-    if not (np.all(np.isfinite(t)) and np.all(np.isfinite(y))):
-        raise InputError("conditioning: time and signal must be finite")
-    if np.any(np.diff(t) <= 0):
-        raise InputError("conditioning: time must be strictly increasing")
+    problem = series_problem(t, y, min_samples=8)
+    if problem is not None:
+        raise InputError(f"conditioning: {problem}")
     return t, y
 
 

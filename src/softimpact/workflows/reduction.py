@@ -60,6 +60,7 @@ from ..models.dispersion import RoundBar, disperse, radial_band_edge, rayleigh_s
 from ..models.noise import white_noise_sigma
 from ..models.pulse_fit import MAIN_PULSE_CUTOFF, fit_main_pulse
 from ..models.pulses import SkewedPulse
+from ..models.sampling import series_problem
 from ..models.specimens import BarSpec
 from ._reduction_tails import TAIL_FAMILIES, TailShapeFit, fit_tail_shapes  # the tail-shape ambiguity, a step of its own
 
@@ -134,18 +135,10 @@ def _validate(record: Record) -> tuple[np.ndarray, np.ndarray, float]:
     """Checks and a uniform grid: returns t, y, dt."""
     t = np.asarray(record.time, dtype=float)
     y = np.asarray(record.strain, dtype=float)
-    name = record.name
-    if t.ndim != 1 or t.shape != y.shape:
-        _fail(name, "time and signal must be columns of equal length")
-    if t.size < MIN_SAMPLES:
-        _fail(name, f"too short: {t.size} samples (need at least {MIN_SAMPLES})")
-    bad = ~(np.isfinite(t) & np.isfinite(y))
-    if bad.any():
-        _fail(name, f"{bad.sum()} NaN or infinite values (first at row {int(np.argmax(bad)) + 1})")
+    problem = series_problem(t, y, min_samples=MIN_SAMPLES, what="strain")
+    if problem is not None:
+        _fail(record.name, problem)
     d = np.diff(t)
-    if np.any(d <= 0):
-        k = int(np.argmax(d <= 0))
-        _fail(name, f"time is not strictly increasing at row {k + 2} ({float(t[k]):.9g} s then {float(t[k + 1]):.9g} s)")
     dt = float(np.median(d))
     if np.max(np.abs(d - dt)) > 0.01 * dt:  # hand-digitised records: put them on a uniform grid
         grid = np.arange(t[0], t[-1] + 0.5 * dt, dt)
