@@ -443,7 +443,7 @@ def test_decreasing_time(tmp_path):
     """Time that goes backwards is an InputError naming the sample."""
     rows = [["Time (s)", "CH1 (V)"]] + data_rows()
     rows[300][0], rows[301][0] = rows[301][0], rows[300][0]
-    one_line_error(write_csv(tmp_path / "back.csv", csv_rows(rows)), match="not increasing")
+    one_line_error(write_csv(tmp_path / "back.csv", csv_rows(rows)), match="not strictly increasing")
 
 
 @pytest.mark.parametrize(

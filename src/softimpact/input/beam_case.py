@@ -152,15 +152,9 @@ def read_load_history(ld: Table, base: Path, history: int | None, radius: float)
     return pulse, radius
 
 
-def beam_problem(data: dict, base: Path = Path("."), history: int | None = None):
-    """A beam case (parsed TOML) as a BeamProblem; ``history`` picks a row of [[load.table]] (1-based)."""
-    top = Table(data)
-    title = top.string("title", "")
-    system = read_units(top)
-    b = top.table("beam")
-    elements = b.raw("elements", [200, 6])
-    if not (isinstance(elements, list) and len(elements) == 2 and all(isinstance(e, int) and not isinstance(e, bool) and e >= 1 for e in elements)):
-        raise InputError(f"beam.elements: expected [along the length, through the thickness], got {elements!r}")
+def _read_section(b: Table):
+    """The beam's cross-section: ``[beam.laminate]`` (a layup, or a blend of angle fractions) or
+    ``[beam.material]`` (isotropic, with its thickness), exactly one. Returns (stack, model, material, thickness)."""
     lam = b.table("laminate", optional=True)
     mat = b.table("material", optional=True)
     if (lam is None) == (mat is None):
@@ -195,6 +189,11 @@ def beam_problem(data: dict, base: Path = Path("."), history: int | None = None)
             )
         thickness = mat.quantity("thickness", "length")
         mat.done()
+    return stack, model, material, thickness
+
+
+def _read_damping(b: Table) -> tuple[float, float]:
+    """Rayleigh damping (α, β) of ``[beam.damping]``: ζ(ω) = α/(2ω) + βω/2 equal to ``ratio`` at its two ``frequencies``; (0, 0) without one."""
     damping = (0.0, 0.0)
     d = b.table("damping", optional=True)
     if d is not None:
@@ -206,6 +205,20 @@ def beam_problem(data: dict, base: Path = Path("."), history: int | None = None)
         # ζ(ω) = α/(2ω) + βω/2 equal to the ratio at both frequencies.
         damping = (2 * ratio * w1 * w2 / (w1 + w2), 2 * ratio / (w1 + w2))
         d.done()
+    return damping
+
+
+def beam_problem(data: dict, base: Path = Path("."), history: int | None = None):
+    """A beam case (parsed TOML) as a BeamProblem; ``history`` picks a row of [[load.table]] (1-based)."""
+    top = Table(data)
+    title = top.string("title", "")
+    system = read_units(top)
+    b = top.table("beam")
+    elements = b.raw("elements", [200, 6])
+    if not (isinstance(elements, list) and len(elements) == 2 and all(isinstance(e, int) and not isinstance(e, bool) and e >= 1 for e in elements)):
+        raise InputError(f"beam.elements: expected [along the length, through the thickness], got {elements!r}")
+    stack, model, material, thickness = _read_section(b)
+    damping = _read_damping(b)
     with naming({"stack": "beam", "model": "beam.laminate.model"}):
         spec = BeamSpec(
             b.quantity("length", "length"),

@@ -57,6 +57,7 @@ from functools import lru_cache
 import numpy as np
 
 from ..errors import InputError
+from .sampling import series_problem
 
 __all__ = [
     "RoundBar",
@@ -290,13 +291,10 @@ def propagate(t, signal, distance: float, bar, cutoff: float | None = None) -> n
     """
     t = np.asarray(t, dtype=float)
     y = np.asarray(signal, dtype=float)
-    if t.ndim != 1 or t.shape != y.shape or t.size < 4:
-        raise InputError("propagate: t and signal must be 1-D arrays of equal length >= 4")
-    if not (np.all(np.isfinite(t)) and np.all(np.isfinite(y))):
-        raise InputError("propagate: t and signal must be finite")
+    problem = series_problem(t, y, min_samples=4, uniform=True)
+    if problem is not None:
+        raise InputError(f"propagate: {problem}")
     dt = (t[-1] - t[0]) / (t.size - 1)
-    if not dt > 0 or np.max(np.abs(np.diff(t) - dt)) > 1e-6 * dt:
-        raise InputError("propagate: t must be uniform and increasing")
     if not math.isfinite(distance):
         raise InputError(f"propagate: distance must be finite, got {distance!r}")
     if distance == 0:

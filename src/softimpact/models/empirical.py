@@ -25,7 +25,17 @@ from .contact_laws import HertzLaw
 from .materials import Material
 from .pulses import SkewedPulse, TabulatedPulse, TailedPulse
 
-__all__ = ["PulseParameters", "ScalingLaw", "HertzModel", "WilbeckModel", "PRESETS", "PROJECTILES", "ProjectilePreset"]
+__all__ = ["PulseParameters", "ScalingLaw", "HertzModel", "WilbeckModel", "PRESETS", "PROJECTILES", "ProjectilePreset", "REGRESSORS"]
+
+
+# Regressor x and response y of each law of eqs (4)–(7) (y = α·x), read from a test point with m, d, V and
+# F0, t_F0, T, I (duck-typed: softimpact.workflows.scaling.TestPoint): its name, then x and y.
+REGRESSORS = {
+    "alpha1": ("mV²/(2d)", lambda p: p.mass * p.velocity**2 / (2 * p.diameter), lambda p: p.peak_force),
+    "alpha2": ("d/V", lambda p: p.diameter / p.velocity, lambda p: p.duration),
+    "alpha3": ("T", lambda p: p.duration, lambda p: p.time_of_peak),
+    "alpha4": ("2mV", lambda p: 2 * p.mass * p.velocity, lambda p: p.impulse),
+}
 
 
 @dataclass(frozen=True)

@@ -41,13 +41,15 @@ import numpy as np
 from ..errors import InputError
 from .pulses import SkewedPulse, TailedPulse
 
-__all__ = ["MainPulseFit", "PulseFit", "TailAwareFit", "fit_main_pulse", "fit_pulse", "fit_tail_aware", "skewed_shape"]
+__all__ = ["MainPulseFit", "PulseFit", "TailAwareFit", "fit_main_pulse", "fit_pulse", "fit_tail_aware", "skewed_shape", "TAIL_DELTA_AIC"]
 
 KNEE_MARGIN = 1.5  # the main-pulse window ends where the fall reaches 1.5·ℓ·F0 ...
 KNEE_GAP = 0.05  # ... or (ℓ + 0.05)·F0 if higher: clear of the knee's misfit
 FLAG_SIGMAS = 3.0  # the two fits "differ" beyond this many standard errors ...
 FLAG_FLOOR = 0.01  # ... plus this relative amount (model error of eq 15 on real pulses)
 MIN_WINDOW_SAMPLES = 12  # fewer samples cannot determine four parameters
+# tail families within this ΔAIC of the best are not rejected (Burnham & Anderson 2002: beyond 4, "considerably less support")
+TAIL_DELTA_AIC = 4.0
 MAIN_PULSE_CUTOFF = 0.15  # the seed window ends where the (smoothed) force falls to 15 % of its peak
 
 # Bounds of the eq-15 least squares, as multiples of the guess (F0, T); the one set for every fit.

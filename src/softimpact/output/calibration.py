@@ -32,6 +32,69 @@ class SeriesComparison:
     law: object
 
 
+def _model_check_entry(c, gauges) -> dict:
+    """calibration.json's ``model_check`` of one test: the discretisation check of its model (:class:`ModelCheck` fields)."""
+    k = c.check
+    return {
+        "level": k.level,
+        "refinement_factor": k.factor,
+        "time_step_s": float(c.time[1] - c.time[0]) if c.time is not None else None,
+        "model_error_to_noise_rms": {g: float(v) for g, v in zip(gauges, k.error_to_noise)},
+        "parameter_shifts_from_model_error": k.shifts,
+        "noise_standard_errors": k.noise_errors,
+        "shift_tolerance_in_noise_se": k.tolerance,
+        "meets_tolerance": k.meets,
+        "order_of_the_error": k.order,
+        "order_observed": k.order_observed,
+        "safety_factor": k.safety,
+        "parameter_convergence": {
+            n: {
+                "observed_order": k.parameter_orders.get(n),
+                "uncertainty_95": k.parameter_uncertainty_95.get(n),
+                "gci": k.parameter_gci.get(n),
+                "levels": k.parameter_levels.get(n),
+                "status": k.parameter_status.get(n),
+                "safety_factor": k.parameter_safety.get(n),
+            }
+            for n in k.parameter_orders
+        },
+        "message": k.message,
+        "standard_errors_include": (
+            "none"
+            if c.method != "least-squares"
+            else "noise and the discretisation error of the parameters' own three-level study (its Richardson estimate as one standard "
+            "uncertainty), in quadrature"
+            if k.parameter_status
+            else "noise and the check's discretisation shift with Roache's factor 3 (order assumed: fewer than three levels), in quadrature"
+        ),
+    }
+
+
+def _deconvolved_entry(d) -> dict:
+    """calibration.json's ``deconvolved`` of one test: the deconvolved history's figures and its choice of λ."""
+    out = {
+        "peak_force_N": d.peak_force,
+        "eq15_fit_time_of_peak_s": d.time_of_peak,
+        "eq15_fit_duration_s": d.duration,
+        "message": str(d.message),
+    }
+    if d.regularisation is not None:
+        ch = d.regularisation
+        out["regularisation"] = {
+            "rule": ch.method,
+            "lambda": ch.lam,
+            "reason": ch.reason,
+            "noise_level_in_sigma": ch.noise,
+            "curve": {
+                "lambda": ch.curve.lambdas,
+                "residual_norm": ch.curve.residual_norms,
+                "solution_seminorm": ch.curve.solution_norms,
+                "gcv": ch.curve.gcv,
+            },
+        }
+    return out
+
+
 def calibration_entry(item, gauges) -> dict:
     """One test of calibration.json."""
     t, c = item.test, item.calibration
@@ -65,64 +128,11 @@ def calibration_entry(item, gauges) -> dict:
         entry["parameter_correlations"] = c.correlations
         entry["weakly_identified"] = c.weakly_identified
     if c.check is not None:
-        k = c.check
-        entry["model_check"] = {
-            "level": k.level,
-            "refinement_factor": k.factor,
-            "time_step_s": float(c.time[1] - c.time[0]) if c.time is not None else None,
-            "model_error_to_noise_rms": {g: float(v) for g, v in zip(gauges, k.error_to_noise)},
-            "parameter_shifts_from_model_error": k.shifts,
-            "noise_standard_errors": k.noise_errors,
-            "shift_tolerance_in_noise_se": k.tolerance,
-            "meets_tolerance": k.meets,
-            "order_of_the_error": k.order,
-            "order_observed": k.order_observed,
-            "safety_factor": k.safety,
-            "parameter_convergence": {
-                n: {
-                    "observed_order": k.parameter_orders.get(n),
-                    "uncertainty_95": k.parameter_uncertainty_95.get(n),
-                    "gci": k.parameter_gci.get(n),
-                    "levels": k.parameter_levels.get(n),
-                    "status": k.parameter_status.get(n),
-                    "safety_factor": k.parameter_safety.get(n),
-                }
-                for n in k.parameter_orders
-            },
-            "message": k.message,
-            "standard_errors_include": (
-                "none"
-                if c.method != "least-squares"
-                else "noise and the discretisation error of the parameters' own three-level study (its Richardson estimate as one standard "
-                "uncertainty), in quadrature"
-                if k.parameter_status
-                else "noise and the check's discretisation shift with Roache's factor 3 (order assumed: fewer than three levels), in quadrature"
-            ),
-        }
+        entry["model_check"] = _model_check_entry(c, gauges)
     if c.method == "paper":
         entry["paper_iterations"] = [{"peak_force_N": a, "time_of_peak_s": b, "duration_s": d} for a, b, d in c.history]
     if item.deconvolved is not None:
-        d = item.deconvolved
-        entry["deconvolved"] = {
-            "peak_force_N": d.peak_force,
-            "eq15_fit_time_of_peak_s": d.time_of_peak,
-            "eq15_fit_duration_s": d.duration,
-            "message": str(d.message),
-        }
-        if d.regularisation is not None:
-            ch = d.regularisation
-            entry["deconvolved"]["regularisation"] = {
-                "rule": ch.method,
-                "lambda": ch.lam,
-                "reason": ch.reason,
-                "noise_level_in_sigma": ch.noise,
-                "curve": {
-                    "lambda": ch.curve.lambdas,
-                    "residual_norm": ch.curve.residual_norms,
-                    "solution_seminorm": ch.curve.solution_norms,
-                    "gcv": ch.curve.gcv,
-                },
-            }
+        entry["deconvolved"] = _deconvolved_entry(item.deconvolved)
     return entry
 
 
@@ -205,13 +215,9 @@ def _pm(c, key: str, unit) -> str:
     return f"{v * unit.factor:.3g}" + (f" ± {e * unit.factor:.2g}" if e else "")
 
 
-def calibration_section(model, series, items, comparison, prefix: str, figures: bool, paper_method=None) -> Section:
-    """Tables II/III: the paper's histories beside ours, with the bar model and the scaling of both.
-
-    ``comparison``: a :class:`SeriesComparison` computed by the caller.
-    """
-    system = model.problem.units
-    fu, tu, lu, vu, su = (display(system, k) for k in ("force", "time", "length", "velocity", "strain"))
+def _history_rows(items, series, comparison, units) -> list[list]:
+    """One row per test: the paper's history, ours with its standard errors, the bar model, the strains under the paper's history, the mesh."""
+    fu, tu, lu, vu, su = units
     ref = {round(r[0], 6): r for r in series.reference}
     rows = []
     for k, item in enumerate(items, 1):
@@ -240,6 +246,45 @@ def calibration_section(model, series, items, comparison, prefix: str, figures: 
                 _mesh(c),
             ]
         )
+    return rows
+
+
+def _fit_rows(comparison) -> list[list]:
+    """α1–α3 of each scaling fit through the origin with their 95 % intervals, then the bar's Table I law."""
+    fit_rows = []
+    for label, g in comparison.fits.items():
+        fit_rows.append(
+            [label] + [f"{g.origin[a].slope:.3f} [{g.origin[a].slope_ci[0]:.3f}, {g.origin[a].slope_ci[1]:.3f}]" for a in ("alpha1", "alpha2", "alpha3")]
+        )
+    law = comparison.law
+    fit_rows.append([f"bar, Table I ({law.name})", f"{law.alpha1:.3f}", f"{law.alpha2:.3f}", f"{law.alpha3:.3f} (assumed)"])
+    return fit_rows
+
+
+def _section_figures(items, prefix: str) -> list[tuple[str, str]]:
+    """The section's figures (path, caption): Figs 23-25, and the strains and forces of the first calibrated test."""
+    figs = [
+        (
+            prefix + "fig23-25-force-scaling.png",
+            "Figs 23-25: F0 against V², 1/T against V, tF0/T against V, calibrated and the paper's, with the fits through the origin",
+        )
+    ]
+    first = next((i for i in items if i.calibration is not None), None)
+    if first is not None:
+        name = stem(first.test.name)
+        figs.append((f"{prefix}strains-{name}.png", f"Figs 21-22 (calibrated): measured and computed strains, {first.test.name}"))
+        figs.append((f"{prefix}force-{name}.png", f"The calibrated, deconvolved and starting force histories, {first.test.name}"))
+    return figs
+
+
+def calibration_section(model, series, items, comparison, prefix: str, figures: bool, paper_method=None) -> Section:
+    """Tables II/III: the paper's histories beside ours, with the bar model and the scaling of both.
+
+    ``comparison``: a :class:`SeriesComparison` computed by the caller.
+    """
+    system = model.problem.units
+    fu, tu, lu, vu, su = units = tuple(display(system, k) for k in ("force", "time", "length", "velocity", "strain"))
+    rows = _history_rows(items, series, comparison, units)
     header = [
         "#",
         f"V [{vu.label}]",
@@ -255,14 +300,7 @@ def calibration_section(model, series, items, comparison, prefix: str, figures: 
         "model: refinement, its error / noise (RMS)",
     ]
     tables = [(f"{series.title}: force histories, the paper's beside ours", header, rows)]
-    fit_rows = []
-    for label, g in comparison.fits.items():
-        fit_rows.append(
-            [label] + [f"{g.origin[a].slope:.3f} [{g.origin[a].slope_ci[0]:.3f}, {g.origin[a].slope_ci[1]:.3f}]" for a in ("alpha1", "alpha2", "alpha3")]
-        )
-    law = comparison.law
-    fit_rows.append([f"bar, Table I ({law.name})", f"{law.alpha1:.3f}", f"{law.alpha2:.3f}", f"{law.alpha3:.3f} (assumed)"])
-    tables.append(("Scaling of the transverse histories (eqs 4-6 refitted, 1/2-in, 1.1-g ball)", ["source", "α1", "α2", "α3 = tF0/T"], fit_rows))
+    tables.append(("Scaling of the transverse histories (eqs 4-6 refitted, 1/2-in, 1.1-g ball)", ["source", "α1", "α2", "α3 = tF0/T"], _fit_rows(comparison)))
     paragraphs = [
         "SYNTHETIC MEASUREMENTS: " + series.synthetic + ". Calibration by least squares on all of both gauge records "
         "(F0, tF0, T and the time origin). The model's discretisation error is checked first: estimated by Richardson "
@@ -285,17 +323,5 @@ def calibration_section(model, series, items, comparison, prefix: str, figures: 
             f"F0 = {c.peak_force * fu.factor:.1f} {fu.label}, T = {c.duration * tu.factor:.0f} {tu.label}, {c.message}. It keeps the start's tF0/T and its "
             "T rests on a zero crossing that moves little with T, so it is less accurate than least squares."
         )
-    figs = []
-    if figures:
-        figs.append(
-            (
-                prefix + "fig23-25-force-scaling.png",
-                "Figs 23-25: F0 against V², 1/T against V, tF0/T against V, calibrated and the paper's, with the fits through the origin",
-            )
-        )
-        first = next((i for i in items if i.calibration is not None), None)
-        if first is not None:
-            name = stem(first.test.name)
-            figs.append((f"{prefix}strains-{name}.png", f"Figs 21-22 (calibrated): measured and computed strains, {first.test.name}"))
-            figs.append((f"{prefix}force-{name}.png", f"The calibrated, deconvolved and starting force histories, {first.test.name}"))
+    figs = _section_figures(items, prefix) if figures else []
     return Section(series.title, paragraphs, tables, figs)

@@ -11,7 +11,6 @@ from __future__ import annotations
 import numpy as np
 
 from ..units import display
-from ..workflows.convergence import STATUSES
 from .files import csv_text, figure_bytes, json_text
 from .report import Section
 
@@ -116,7 +115,7 @@ def _summary(result, sizes, problem, kind: str) -> dict:
             o.name: {
                 "kind": o.kind,
                 "status": o.status,
-                "meaning": STATUSES[o.status],
+                "meaning": o.meaning,
                 "observed_order": o.order,
                 "values": o.values.tolist() if o.kind == "scalar" else None,
                 "extrapolated": o.extrapolated if o.kind == "scalar" else None,

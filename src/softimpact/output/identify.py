@@ -23,9 +23,7 @@ PREDICTION_NOTE = (
 def predictions_summary(law, predictions) -> dict:
     """law.json's additions: ``covariance`` (names, matrix), ``unfixed_parameters``, ``predictions``
     (per point m, d, V, tested, and F0, t_F0, T, I each with value, ci95_half_width and its parameter part)."""
-    from ..workflows.identification import FIGURES, unfixed_parameters
-
-    out = {"unfixed_parameters": list(unfixed_parameters(law)), "at_bounds": list(law.at_bounds)}
+    out = {"unfixed_parameters": list(law.unfixed_parameters), "at_bounds": list(law.at_bounds)}
     if law.covariance is not None:
         out["covariance"] = {"names": list(law.names), "matrix": np.asarray(law.covariance).tolist()}
     if predictions:
@@ -38,7 +36,7 @@ def predictions_summary(law, predictions) -> dict:
                 "tested": p.tested,
                 **{
                     f: {"value": float(v), "ci95_half_width": float(h), "ci95_half_width_parameters": float(hp)}
-                    for f, v, h, hp in zip(FIGURES, p.values, p.half_widths, p.parameter_half_widths)
+                    for f, v, h, hp in zip(p.figures, p.values, p.half_widths, p.parameter_half_widths)
                 },
             }
             for p in predictions
@@ -48,15 +46,13 @@ def predictions_summary(law, predictions) -> dict:
 
 def prediction_columns(predictions) -> dict:
     """predictions.csv: one row per point, each figure's value and 95 % half-width."""
-    from ..workflows.identification import FIGURES
-
     cols = {
         "diameter_m": np.array([p.diameter for p in predictions]),
         "mass_kg": np.array([p.mass for p in predictions]),
         "velocity_m_s": np.array([p.velocity for p in predictions]),
         "tested": np.array([float(p.tested) for p in predictions]),
     }
-    for j, f in enumerate(FIGURES):
+    for j, f in enumerate(predictions[0].figures if len(predictions) else ()):
         cols[f] = np.array([p.values[j] for p in predictions])
         cols[f"{f}_ci95_half_width"] = np.array([p.half_widths[j] for p in predictions])
     return cols
@@ -106,7 +102,6 @@ def closure_figure(tests, closure, system: str, title: str = "Closure: measured 
 def force_approach_figure(tests, law, approaches, system: str):
     """Measured F against the reconstructed approach α/d (main pulses), and the fitted law on the same α, α̇
     (and, for a law with memory, the same α history)."""
-    from ..workflows.identification import fitted_force
     from .plots import _figure, curve_colors
 
     fu = display(system, "force")
@@ -116,7 +111,8 @@ def force_approach_figure(tests, law, approaches, system: str):
         c = colors[i]
         m = a.main_pulse
         ax.plot(a.approach[m] / t.diameter, a.force[m] * fu.factor, color=c, lw=1.0, label=t.name)
-        ax.plot(a.approach[m] / t.diameter, fitted_force(law, a, t) * fu.factor, color=c, lw=1.0, ls="--")
+        if a.fitted_force is not None:
+            ax.plot(a.approach[m] / t.diameter, a.fitted_force * fu.factor, color=c, lw=1.0, ls="--")
     ax.set_xlabel("approach α / d (impactor minus bar end, from the measured force)")
     ax.set_ylabel(f"contact force [{fu.label}]")
     ax.set_title("Force against approach: measured (solid), identified law (dashed)", fontsize=10)

@@ -176,7 +176,7 @@ def _groups(fits):
 
 def _through_origin(ax, fits, name: str, factor: float) -> float:
     """Points and fitted line y = α·x of one law of :data:`REGRESSORS`, per group; returns the largest x shown."""
-    from ..workflows.scaling import REGRESSORS
+    from ..models.empirical import REGRESSORS
 
     _, fx, fy = REGRESSORS[name]
     top = 0.0

@@ -8,101 +8,108 @@ import numpy as np
 
 from ..formats._json import json_text
 from ..formats.scaling_json import scaling_summary
+from ..models.pulse_fit import TAIL_DELTA_AIC
 from ..units import display
-from ..workflows.scaling import TAIL_DELTA_AIC
 from .files import csv_text, figure_bytes
 from .report import Section, stem
 
 __all__ = ["reduction_files", "scaling_files", "scaling_section", "scaling_text", "scaling_data", "tail_shape_spread", "TABLE_I"]
 
 
+# tests.csv's columns of a reduction (after the test's own record, velocity_m_s, mass_kg, diameter_m), in order
+REDUCTION_COLUMNS = (
+    "peak_force_N",
+    "time_of_peak_s",
+    "duration_s",
+    "impulse_N_s",
+    "valid_until_s",
+    "flags",
+    "duration_threshold_s",
+    "time_of_max_s",
+    "impulse_uncertainty_N_s",
+    "direct_until_s",
+    "fit_peak_force_N",
+    "fit_rms_N",
+    "first_contact_record_time_s",
+    "whole_record_peak_force_N",
+    "whole_record_time_of_peak_s",
+    "whole_record_duration_s",
+)
+RECORD_COLUMNS = {  # tests.csv column → the record's own metadata key (input/records/), as read
+    "record_format": "source_format",
+    "record_channel": "channel",
+    "record_unit": "unit",
+    "sample_rate_Hz": "sample_rate",
+    "record_start_s": "time_start",
+    "pretrigger_samples": "pretrigger_samples",
+    "trigger": "trigger",
+    "record_date": "date",
+}
+
+
+def _reduction_values(item, r):
+    """(column, value) of one reduced test's reduction columns and tail-shape columns, in tests.csv's order."""
+    return (
+        ("peak_force_N", r.peak_force),
+        ("time_of_peak_s", r.time_of_peak),
+        ("duration_s", r.duration),
+        ("impulse_N_s", r.impulse),
+        ("valid_until_s", r.valid_until),
+        ("flags", "; ".join(r.flags).replace(",", ";")),
+        ("duration_threshold_s", r.duration_threshold),
+        ("time_of_max_s", r.time_of_max),
+        ("impulse_uncertainty_N_s", r.impulse_uncertainty),
+        ("direct_until_s", r.direct_until),
+        ("fit_peak_force_N", r.fit.peak_force),
+        ("fit_rms_N", r.fit_rms),
+        ("first_contact_record_time_s", r.first_contact_record_time),
+        ("whole_record_peak_force_N", r.whole_fit.peak_force if r.whole_fit is not None else math.nan),
+        ("whole_record_time_of_peak_s", r.whole_fit.time_of_peak if r.whole_fit is not None else math.nan),
+        ("whole_record_duration_s", r.whole_fit.duration if r.whole_fit is not None else math.nan),
+        *tail_shape_spread(getattr(item, "tail_shapes", ())).items(),
+    )
+
+
+def _test_columns(cols: dict, item, series, corrected: bool) -> None:
+    """Append one test's own columns to ``cols``: what it is, its status, its record's metadata, the dispersion."""
+    t = item.test
+    cols["record"].append(str(t.record.name))
+    cols["velocity_m_s"].append(t.velocity)
+    cols["mass_kg"].append(t.mass)
+    cols["diameter_m"].append(t.diameter)
+    cols["status"].append(getattr(item, "status", "ok" if item.reduction is not None else "error"))
+    conditioned = getattr(item, "conditioning", None)
+    cols["rejected_because"].append(_text(getattr(item, "rejected", ())))
+    rejected = getattr(item, "rejected", ())
+    cols["conditioning_notes"].append(_text([f for f in (conditioned.flags if conditioned is not None else ()) if f not in rejected]))
+    meta = getattr(item, "metadata", {})
+    for k, m in RECORD_COLUMNS.items():
+        v = meta.get(m)
+        cols[k].append(v if isinstance(v, (int, float)) and not isinstance(v, bool) else ("" if v is None else _text([str(v)])))
+    cols["dispersion"].append(getattr(series, "dispersion", "none"))
+    if corrected:
+        u = getattr(item, "uncorrected", None)
+        cols["uncorrected_peak_force_N"].append(u.peak_force if u is not None else math.nan)
+
+
 def reduction_files(series, reduced, figures: bool = True, prefix: str = "") -> dict[str, bytes | str]:
     """tests.csv, history-<test>.csv per test, Fig 7 per test."""
     from . import plots
 
-    cols = {
-        k: []
-        for k in (
-            "record",
-            "velocity_m_s",
-            "mass_kg",
-            "diameter_m",
-            "peak_force_N",
-            "time_of_peak_s",
-            "duration_s",
-            "impulse_N_s",
-            "valid_until_s",
-            "flags",
-            "duration_threshold_s",
-            "time_of_max_s",
-            "impulse_uncertainty_N_s",
-            "direct_until_s",
-            "fit_peak_force_N",
-            "fit_rms_N",
-            "first_contact_record_time_s",
-            "whole_record_peak_force_N",
-            "whole_record_time_of_peak_s",
-            "whole_record_duration_s",
-            *TAIL_COLUMNS,
-        )
-    }
+    cols = {k: [] for k in ("record", "velocity_m_s", "mass_kg", "diameter_m", *REDUCTION_COLUMNS, *TAIL_COLUMNS)}
     reduction_cols = list(cols)[4:]
     corrected = getattr(series, "dispersion", "none") != "none"
-    record_cols = {  # the record's own metadata (input/records/), as read
-        "record_format": "source_format",
-        "record_channel": "channel",
-        "record_unit": "unit",
-        "sample_rate_Hz": "sample_rate",
-        "record_start_s": "time_start",
-        "pretrigger_samples": "pretrigger_samples",
-        "trigger": "trigger",
-        "record_date": "date",
-    }
-    for k in ("status", "rejected_because", "conditioning_notes", *record_cols, "dispersion") + (("uncorrected_peak_force_N",) if corrected else ()):
+    for k in ("status", "rejected_because", "conditioning_notes", *RECORD_COLUMNS, "dispersion") + (("uncorrected_peak_force_N",) if corrected else ()):
         cols[k] = []
     files: dict[str, bytes | str] = {}
     for item in reduced:
         t, r = item.test, item.reduction
-        cols["record"].append(str(t.record.name))
-        cols["velocity_m_s"].append(t.velocity)
-        cols["mass_kg"].append(t.mass)
-        cols["diameter_m"].append(t.diameter)
-        cols["status"].append(getattr(item, "status", "ok" if r is not None else "error"))
-        conditioned = getattr(item, "conditioning", None)
-        cols["rejected_because"].append(_text(getattr(item, "rejected", ())))
-        rejected = getattr(item, "rejected", ())
-        cols["conditioning_notes"].append(_text([f for f in (conditioned.flags if conditioned is not None else ()) if f not in rejected]))
-        meta = getattr(item, "metadata", {})
-        for k, m in record_cols.items():
-            v = meta.get(m)
-            cols[k].append(v if isinstance(v, (int, float)) and not isinstance(v, bool) else ("" if v is None else _text([str(v)])))
-        cols["dispersion"].append(getattr(series, "dispersion", "none"))
-        if corrected:
-            u = getattr(item, "uncorrected", None)
-            cols["uncorrected_peak_force_N"].append(u.peak_force if u is not None else math.nan)
+        _test_columns(cols, item, series, corrected)
         if r is None:
             for k in reduction_cols:
                 cols[k].append("error: " + item.error.replace(",", ";") if k == "flags" else math.nan)
             continue
-        for k, v in (
-            ("peak_force_N", r.peak_force),
-            ("time_of_peak_s", r.time_of_peak),
-            ("duration_s", r.duration),
-            ("impulse_N_s", r.impulse),
-            ("valid_until_s", r.valid_until),
-            ("flags", "; ".join(r.flags).replace(",", ";")),
-            ("duration_threshold_s", r.duration_threshold),
-            ("time_of_max_s", r.time_of_max),
-            ("impulse_uncertainty_N_s", r.impulse_uncertainty),
-            ("direct_until_s", r.direct_until),
-            ("fit_peak_force_N", r.fit.peak_force),
-            ("fit_rms_N", r.fit_rms),
-            ("first_contact_record_time_s", r.first_contact_record_time),
-            ("whole_record_peak_force_N", r.whole_fit.peak_force if r.whole_fit is not None else math.nan),
-            ("whole_record_time_of_peak_s", r.whole_fit.time_of_peak if r.whole_fit is not None else math.nan),
-            ("whole_record_duration_s", r.whole_fit.duration if r.whole_fit is not None else math.nan),
-            *tail_shape_spread(getattr(item, "tail_shapes", ())).items(),
-        ):
+        for k, v in _reduction_values(item, r):
             cols[k].append(v)
         files[f"{prefix}history-{stem(t.name)}.csv"] = csv_text({"time_s": r.time, "force_N": r.force})
         if figures:

@@ -34,235 +34,19 @@ noise with the same instant in the model.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 
 import numpy as np
 
 from ..errors import InputError
 from ..models.features import first_lobe_peak, first_zero_crossing
-from ..models.noise import white_noise_sigma
 from ..models.pulse_fit import fit_pulse as fit_eq15
 from ..models.pulses import SkewedPulse, TabulatedPulse
+from ._calibration_data import BOUND_TOLERANCE, Calibration, Measured, ModelCheck, Prepared, _residual_rms, on_bounds, prepare
 
 __all__ = ["Measured", "Prepared", "Calibration", "ModelCheck", "prepare", "calibrate", "calibrate_checked", "on_bounds", "METHODS", "BOUND_TOLERANCE"]
 
 METHODS = ("least-squares", "paper", "deconvolve")
-WEAK_CORRELATION = 0.9  # |correlation| of two estimates beyond which they are called weakly identifiable
-NOISE_FLOOR = 1e-4  # of a gauge's peak |strain|: the least noise assumed (a 14-bit digitiser's step)
-DEPARTURE_SIGMAS = 6.0  # a gauge "leaves the noise" at this many σ of its pre-impact part
-BOUND_TOLERANCE = 0.01  # a parameter within 1 % of a bound (of the bound's size, or of the range for a bound at 0) sits on it
-
-
-def on_bounds(names, x, lower, upper, active=None) -> tuple[str, ...]:
-    """The names of the parameters ``x`` that sit on a bound: flagged active by the optimiser
-    (``active``, scipy's ``active_mask``), or within BOUND_TOLERANCE of the bound (relative to
-    |bound|, or to the range when the bound is 0). An estimate on its bound is not a minimum
-    of the misfit but the edge of the search: its standard error means nothing."""
-    out = []
-    for i, n in enumerate(names):
-        lo, hi, v = float(lower[i]), float(upper[i]), float(x[i])
-        span = hi - lo if math.isfinite(hi - lo) else math.inf
-        hit = active is not None and active[i] != 0
-        for b in (lo, hi):
-            if math.isfinite(b):
-                scale = abs(b) if b != 0 else (span if math.isfinite(span) else 1.0)
-                hit = hit or abs(v - b) <= BOUND_TOLERANCE * scale
-        if hit:
-            out.append(n)
-    return tuple(out)
-
-
-@dataclass(frozen=True)
-class Measured:
-    """Measured strains: time [s] on the record's clock, strain per gauge name."""
-
-    name: str
-    time: np.ndarray
-    strains: dict
-
-
-@dataclass(frozen=True)
-class Prepared:
-    """Measured strains, offsets removed, on a clock from first contact."""
-
-    name: str
-    time: np.ndarray  # (n,) s from first contact (negative before)
-    strains: np.ndarray  # (n_gauges, n), model's gauge order
-    noise: np.ndarray  # (n_gauges,) σ of the pre-impact part
-    offsets: np.ndarray  # (n_gauges,) removed
-    contact_time: float  # first contact on the record's clock
-    window: np.ndarray  # (n,) bool: samples used (0 ≤ t ≤ end of the model's run)
-
-
-@dataclass(frozen=True)
-class ModelCheck:
-    """How good the calibration model is (:func:`calibrate_checked`).
-
-    ``level``: the refinement level used (0 = the case's own mesh, k = refined by
-    ratio^k); ``error_to_noise``: per gauge, the RMS of the model's estimated
-    discretisation error over the record's window divided by the gauge's noise σ;
-    ``shifts``: per parameter, how far the fit moves when the estimated model
-    error is corrected (defect correction toward the Richardson-extrapolated model);
-    ``noise_errors``: the standard errors from the noise alone; ``meets``:
-    whether every shift is within ``tolerance`` × its noise standard error.
-    """
-
-    level: int
-    factor: int
-    error_to_noise: np.ndarray
-    shifts: dict
-    noise_errors: dict
-    tolerance: float
-    meets: bool
-    message: str
-    order: float = math.nan  # of the discretisation error used in the estimate
-    order_observed: bool = False  # from three levels (else the formal order, assumed)
-    safety: float = math.nan  # Roache's factor applied to the shifts in the standard errors
-    level_fits: dict = field(default_factory=dict)  # level → (F0, t_F0, T) of its least-squares fit in the check
-    contact_time: float = math.nan  # first contact on the record's clock every later fit of the check started from (given, or the case-mesh fit's)
-    parameter_orders: dict = field(default_factory=dict)  # observed order of each parameter's convergence (app)
-    parameter_uncertainty_95: dict = field(default_factory=dict)  # 1.96 × its discretisation standard uncertainty (studies)
-    parameter_gci: dict = field(default_factory=dict)  # its GCI: Fs × the Richardson error estimate, the conservative bound (studies)
-    parameter_levels: dict = field(default_factory=dict)  # its values on the three levels, coarse → fine (studies)
-    parameter_status: dict = field(default_factory=dict)  # asymptotic, monotone, oscillatory, ... (app)
-    parameter_safety: dict = field(default_factory=dict)  # Roache's factor behind each parameter's uncertainty (1.25 or 3)
-
-
-@dataclass(frozen=True)
-class Calibration:
-    """A calibrated force history and how it was found."""
-
-    method: str
-    pulse: object  # SkewedPulse (paper, least-squares) or TabulatedPulse (deconvolve)
-    contact_radius: float
-    standard_errors: dict  # name → SE (SI); empty where not estimated
-    iterations: int
-    converged: bool
-    message: str
-    residual_rms: np.ndarray  # (n_gauges,) strain
-    computed: np.ndarray  # (n_gauges, n_model_steps + 1) on the model grid
-    prepared: Prepared
-    start: SkewedPulse
-    history: list = field(default_factory=list)  # per iteration (paper method): (F0, tF0, T)
-    fit_pulse: object = None  # deconvolve: the eq-15 least-squares pulse beside it
-    time: np.ndarray | None = None  # the model's grid of ``computed`` [s]
-    check: ModelCheck | None = None  # the discretisation check, when the model was checked
-    regularisation: object = None  # deconvolve: the LambdaChoice (λ, rule, curve, reason)
-    correlations: dict = field(default_factory=dict)  # least squares: "a~b" → correlation of the estimates, for |r| ≥ 0.5
-    at_bounds: tuple = ()  # least squares: the parameters that ended on (or within BOUND_TOLERANCE of) a bound of the fit
-
-    @property
-    def weakly_identified(self) -> list[str]:
-        """Parameters whose estimate trades against another (|correlation| ≥ WEAK_CORRELATION)."""
-        return [f"{pair.replace('~', ' trades against ')} (correlation {r:+.2f})" for pair, r in self.correlations.items() if abs(r) >= WEAK_CORRELATION]
-
-    @property
-    def peak_force(self) -> float:
-        """F0; for a deconvolved history, its maximum."""
-        if isinstance(self.pulse, TabulatedPulse):
-            return float(np.max(self.pulse.force))
-        return float(self.pulse.peak_force)
-
-    @property
-    def time_of_peak(self) -> float:
-        """t_F0; for a deconvolved history, that of its eq-15 fit (the regularised peak is rounded)."""
-        p = self.fit_pulse if isinstance(self.pulse, TabulatedPulse) else self.pulse
-        return math.nan if p is None else float(p.time_of_peak)
-
-    @property
-    def duration(self) -> float:
-        """T; for a deconvolved history, that of its eq-15 fit."""
-        p = self.fit_pulse if isinstance(self.pulse, TabulatedPulse) else self.pulse
-        return math.nan if p is None else float(p.duration)
-
-
-def _departure(t, y, sigma, level=None):
-    """First time |y| exceeds ``level`` (default DEPARTURE_SIGMAS·σ), linearly interpolated."""
-    level = DEPARTURE_SIGMAS * sigma if level is None else level
-    k = np.flatnonzero(np.abs(y) > level)
-    if k.size == 0:
-        return math.nan
-    k = k[0]
-    if k == 0:
-        return float(t[0])
-    a, b = abs(y[k - 1]), abs(y[k])
-    return float(t[k - 1] + (t[k] - t[k - 1]) * (level - a) / (b - a)) if b != a else float(t[k])
-
-
-def _to_model_rate(t: np.ndarray, Y: np.ndarray, dt_model: float):
-    """A record sampled much finer than the model, averaged over blocks of q samples
-    (q = ⌊dt_model/dt⌋ ≥ 2): the model cannot use the finer detail, and the block
-    mean is an anti-aliasing filter that leaves the noise white at the model's rate,
-    so the noise level and the first departure from it mean the same at any
-    sampling rate (an interpolated, oversampled record has correlated noise)."""
-    q = int(dt_model / float(np.median(np.diff(t))) + 1e-9)
-    if q < 2:
-        return t, Y
-    n = t.size // q
-    if n < 32:
-        return t, Y
-    return t[: n * q].reshape(n, q).mean(axis=1), Y[:, : n * q].reshape(Y.shape[0], n, q).mean(axis=2)
-
-
-def prepare(model, measured: Measured, start: SkewedPulse, contact_time: float | None = None, radius: float | None = None) -> Prepared:
-    """Offsets removed, gauges in the model's order, first contact located (module docstring)."""
-    names = [g.name for g in model.problem.gauges]
-    missing = [n for n in names if n not in measured.strains]
-    unknown = [n for n in measured.strains if n not in names]
-    if unknown:
-        raise InputError(f"{measured.name}: gauge(s) {', '.join(unknown)} are not in the case (its gauges: {', '.join(names)})")
-    if missing:
-        raise InputError(f"{measured.name}: no column strain_<name> for gauge(s) {', '.join(missing)}")
-    t = np.asarray(measured.time, float)
-    Y = np.array([np.asarray(measured.strains[n], float) for n in names])
-    if t.ndim != 1 or t.size < 32:
-        raise InputError(f"{measured.name}: too short ({t.size} samples)")
-    if not (np.all(np.isfinite(t)) and np.all(np.isfinite(Y))):
-        raise InputError(f"{measured.name}: contains NaN or infinite values")
-    if np.any(np.diff(t) <= 0):
-        raise InputError(f"{measured.name}: time is not strictly increasing")
-    t, Y = _to_model_rate(t, Y, model.problem.solver.time_step)
-    # Pre-impact part: before any gauge leaves a robust noise band around its first samples.
-    head = max(16, t.size // 20)
-    sig0 = white_noise_sigma(Y, axis=1)
-    sig0 = np.maximum(sig0, 1e-15)
-    starts = [_departure(t, y - np.median(y[:head]), s) for y, s in zip(Y, sig0)]
-    t_dep = np.nanmin(starts) if np.any(np.isfinite(starts)) else math.nan
-    if not math.isfinite(t_dep):
-        raise InputError(f"{measured.name}: no gauge leaves the noise: no impact in the record")
-    pre = t < t_dep - 0.1 * (t_dep - t[0])
-    if pre.sum() >= 10:
-        offsets = Y[:, pre].mean(axis=1)
-        noise = np.maximum(Y[:, pre].std(axis=1), 1e-15)
-    else:
-        offsets = np.median(Y[:, :head], axis=1)
-        noise = sig0
-    # A noise-free record (a model's own output) is weighted as if read by a fine digitiser.
-    noise = np.maximum(noise, NOISE_FLOOR * np.max(np.abs(Y - offsets[:, None]), axis=1))
-    Y = Y - offsets[:, None]
-    if contact_time is None:
-        # The model, driven by the starting history, leaves the same noise level at t_m after contact.
-        model_y = model.respond(start, radius).strain
-        tm = model.problem.solver.times()
-        lags = []
-        for y_meas, y_mod, s in zip(Y, model_y, noise):
-            level = max(DEPARTURE_SIGMAS * s, 0.05 * np.max(np.abs(y_mod)))
-            a, b = _departure(t, y_meas, s, level), _departure(tm, y_mod, s, level)
-            if math.isfinite(a) and math.isfinite(b):
-                lags.append(a - b)
-        if not lags:
-            raise InputError(f"{measured.name}: cannot locate first contact; give the contact time", "contact_time")
-        contact_time = float(lags[0])
-    rel = t - contact_time
-    end = model.problem.solver.duration
-    window = (rel >= 0) & (rel <= end)
-    return Prepared(measured.name, rel, Y, noise, offsets, contact_time, window)
-
-
-def _residual_rms(model, prep, computed):
-    tm = model.problem.solver.times()
-    w = prep.window
-    return np.array([np.sqrt(np.mean((np.interp(prep.time[w], tm, c) - y[w]) ** 2)) for c, y in zip(computed, prep.strains)])
 
 
 def calibrate(
@@ -455,12 +239,14 @@ def _least_squares(model, prep, start, r0, fit_radius, fit_origin, defect=None):
 RULES = ("discrepancy", "l-curve", "gcv", "gcv-floored")  # choices of the deconvolution's λ
 
 
-def _deconvolve(model, prep, start, r0, knots: int = 160, rule: str = "discrepancy", error_to_noise=None):
-    """Tikhonov-regularised, non-negative deconvolution through the impulse responses (module docstring).
-    ``rule`` chooses λ (:mod:`softimpact.models.regularisation`); ``error_to_noise`` (per gauge) raises
-    the discrepancy level by the model's estimated error."""
-    from ..models.regularisation import choose_discrepancy, choose_gcv, choose_l_curve
+def _hat_responses(model, r0, start, knots):
+    """The gauges' responses to hat functions of force on a coarse grid, the patch frozen at r0.
 
+    The hats span the window where the force may act (2.5 T of the start, at
+    most the run); F(0) = 0. Returns (h, Phi, A_full): the strain per unit force
+    at step 1 (n_g, N − 1), the basis on the model's grid (N, knots), and each
+    gauge's response to each hat, y = conv(h, φ) (n_g, N, knots).
+    """
     tm = model.problem.solver.times()
     N = tm.size
     # Patch frozen at r0: the load pattern of unit total force.
@@ -468,55 +254,72 @@ def _deconvolve(model, prep, start, r0, knots: int = 160, rule: str = "discrepan
     eng = model.engine()
     n_g = len(model.problem.gauges)
     h = np.tensordot(eng.kernel[model.gauge_rows()], shape, axes=([1], [0]))  # (n_g, N-1): strain per unit force at step 1
-    # Basis: hat functions on a coarse grid over the window where the force may act.
     span = min(tm[-1], 2.5 * start.duration)
     grid = np.linspace(0.0, span, knots + 1)
     Phi = np.clip(1.0 - np.abs(tm[:, None] - grid[None, 1:]) / (grid[1] - grid[0]), 0.0, None)  # (N, knots); F(0) = 0
-    # Columns: the gauge response to each hat, y = conv(h, φ).
     # Convolutions by real FFT along time (numpy's: scipy.signal costs a second to import).
     nfft = 1 << (2 * N - 1).bit_length()
     Hg = np.fft.rfft(h, nfft, axis=-1)  # (n_g, nfft/2 + 1)
     Pk = np.fft.rfft(Phi[1:], nfft, axis=0)  # (nfft/2 + 1, knots)
-
     cols = []
     for g in range(n_g):
         resp = np.fft.irfft(Hg[g][:, None] * Pk, nfft, axis=0)[: N - 1]
         cols.append(np.vstack((np.zeros((1, knots)), resp)))
-    A_full = np.stack(cols)  # (n_g, N, knots)
+    return h, Phi, np.stack(cols)
+
+
+def _noise_weighted(prep, tm, A_full):
+    """The hats' responses at the measured samples of the window and the measured strains, each gauge in units of its noise.
+
+    Linear interpolation from the model grid to the measured samples, as one
+    sparse-free matrix. Returns (A, y).
+    """
+    N = tm.size
     w = prep.window
     ts = prep.time[w]
-    # Linear interpolation from the model grid to the measured samples, as one sparse-free matrix.
     k = np.clip(np.searchsorted(tm, ts) - 1, 0, N - 2)
     frac = ((ts - tm[k]) / (tm[k + 1] - tm[k]))[:, None]
     rows, rhs = [], []
-    for g in range(n_g):
+    for g in range(A_full.shape[0]):
         rows.append(((1 - frac) * A_full[g, k] + frac * A_full[g, k + 1]) / prep.noise[g])
         rhs.append(prep.strains[g, w] / prep.noise[g])
-    A = np.vstack(rows)
-    y = np.concatenate(rhs)
+    return np.vstack(rows), np.concatenate(rhs)
+
+
+def _choose_lambda(A, y, knots, rule, error_to_noise):
+    """λ of the Tikhonov regularisation of the second difference, by ``rule``, and its non-negative solution.
+
+    The data are in units of each gauge's noise; with a model error estimate the
+    expected misfit per sample is √(1 + (e/σ)²) (the discrepancy principle's level).
+    """
+    from ..models.regularisation import choose_discrepancy, choose_gcv, choose_l_curve
+
     L = np.diff(np.eye(knots), 2, axis=0)
-    # The data are in units of each gauge's noise; with a model error estimate the
-    # expected misfit per sample is √(1 + (e/σ)²) (the discrepancy principle's level).
     level = 1.0 if error_to_noise is None else float(np.sqrt(1.0 + np.mean(np.square(error_to_noise))))
     scale = math.sqrt(np.trace(A.T @ A) / np.trace(L.T @ L))
     lambdas = scale * np.logspace(-4, 2, 31)
     if rule == "discrepancy":
-        choice = choose_discrepancy(A, y, L, lambdas, level)
-    elif rule == "l-curve":
-        choice = choose_l_curve(A, y, L, lambdas)
-    elif rule == "gcv":
-        choice = choose_gcv(A, y, L, lambdas, floor=False)
-    elif rule == "gcv-floored":
-        choice = choose_gcv(A, y, L, lambdas, level)
-    else:
-        raise InputError(f"rule: {rule!r} is not one of {', '.join(RULES)}", "rule")
-    lam = choice.lam
+        return choose_discrepancy(A, y, L, lambdas, level)
+    if rule == "l-curve":
+        return choose_l_curve(A, y, L, lambdas)
+    if rule == "gcv":
+        return choose_gcv(A, y, L, lambdas, floor=False)
+    if rule == "gcv-floored":
+        return choose_gcv(A, y, L, lambdas, level)
+    raise InputError(f"rule: {rule!r} is not one of {', '.join(RULES)}", "rule")
 
-    class _Solution:  # the chosen non-negative solution, as lsq_linear reported it before
-        x, nit, success, message = choice.solution, 0, True, choice.reason
 
-    sol = _Solution
-    F = Phi @ sol.x
+def _deconvolve(model, prep, start, r0, knots: int = 160, rule: str = "discrepancy", error_to_noise=None):
+    """Tikhonov-regularised, non-negative deconvolution through the impulse responses (module docstring).
+    ``rule`` chooses λ (:mod:`softimpact.models.regularisation`); ``error_to_noise`` (per gauge) raises
+    the discrepancy level by the model's estimated error."""
+    tm = model.problem.solver.times()
+    N = tm.size
+    n_g = len(model.problem.gauges)
+    h, Phi, A_full = _hat_responses(model, r0, start, knots)
+    A, y = _noise_weighted(prep, tm, A_full)
+    choice = _choose_lambda(A, y, knots, rule, error_to_noise)
+    F = Phi @ choice.solution
     pulse = TabulatedPulse(tm, F)
     computed = np.array([np.convolve(h[g], F[1:])[: N - 1] for g in range(n_g)])
     computed = np.hstack((np.zeros((n_g, 1)), computed))
@@ -532,9 +335,9 @@ def _deconvolve(model, prep, start, r0, knots: int = 160, rule: str = "discrepan
         pulse,
         r0,
         {},
-        int(sol.nit),
-        bool(sol.success),
-        f"λ = {lam:.3g} by {choice.method}: {choice.reason}",
+        0,  # the chosen non-negative solution: no iterations reported
+        True,
+        f"λ = {choice.lam:.3g} by {choice.method}: {choice.reason}",
         _residual_rms(model, prep, computed),
         computed,
         prep,
@@ -619,6 +422,55 @@ def _on_grid(t_to, t_from, y):
     return np.array([np.interp(t_to, t_from, yi) for yi in y])
 
 
+def _model_error(level_model, model, level, cal, ratio, order, max_level):
+    """The model's discretisation error e_L = y_L − y_∞ at the current fit, by Richardson (:func:`calibrate_checked`).
+
+    Three levels (the two around this one and one below) give the observed order
+    p, at most the formal ``order``; where it cannot be observed, the formal one.
+    Returns (error on the model's grid (n_g, n), p observed or None, p used).
+    """
+    tm = model.problem.solver.times()
+    y = model.respond(cal.pulse, cal.contact_radius).strain
+    low, mid, high = (-1, 0, 1) if level <= 1 else (level - 2, level - 1, level)
+    ys = {level: (tm, y)}
+    for k in (low, mid, high):
+        if k in ys:
+            continue
+        try:
+            m = level_model(k)
+        except InputError:  # a mesh that cannot be coarsened: the order stays assumed
+            continue
+        if k == level + 1 and max_level < 1:  # one direct run is cheaper than an engine used once
+            yk = m.direct(cal.pulse, energy=False, displacement=False, radius=cal.contact_radius).strain
+        else:  # an engine that a refined fit will reuse, or a coarse one that costs little
+            yk = m.respond(cal.pulse, cal.contact_radius).strain
+        ys[k] = (m.problem.solver.times(), yk)
+    p_obs = _observed_order(ys, low, mid, high, float(ratio), order)
+    p_used = p_obs if p_obs is not None else order
+    r_p = float(ratio) ** p_used
+    # e_L = y_L − y_∞ (the model's strains minus the converged ones), the defect subtracted by the caller
+    if level == 0:
+        error = (y - _on_grid(tm, *ys[1])) * r_p / (r_p - 1.0)
+    else:
+        error = (_on_grid(tm, *ys[level - 1]) - y) / (r_p - 1.0)
+    return error, p_obs, p_used
+
+
+def _error_to_noise(tm, prep: Prepared, error) -> np.ndarray:
+    """Per gauge, the RMS of the model's error ``error`` (on the model's grid ``tm``) over the record's window, in units of the gauge's noise σ."""
+    w = (prep.time >= 0) & (prep.time <= tm[-1])
+    err_w = _on_grid(prep.time[w], tm, error)
+    return np.sqrt(np.mean(err_w**2, axis=1)) / prep.noise
+
+
+def _shifts(cal: Calibration, corrected: Calibration) -> dict:
+    """How far the defect correction moves each parameter both fits estimated."""
+    names = [n for n in cal.standard_errors if n in corrected.standard_errors]
+    values = lambda c: {"peak_force": c.peak_force, "time_of_peak": c.time_of_peak, "duration": c.duration, "contact_radius": c.contact_radius}  # noqa: E731
+    v0, v1 = values(cal), values(corrected)
+    return {n: v1[n] - v0[n] for n in v0 if n in names}
+
+
 def calibrate_checked(
     level_model,
     measured: Measured,
@@ -662,46 +514,17 @@ def calibrate_checked(
     if contact_time is None:  # every later fit (other levels, defect correction) starts from this fit's first contact
         contact_time = cal.prepared.contact_time
     level_fits = {}
+    # The order observed is the strain histories'; a parameter's shift keeps the assumed-order
+    # safety (its own order is not observed here: the app's parameter_convergence does that).
+    safety = ASSUMED_ORDER_SAFETY
     while True:
         level_fits[level] = tuple(getattr(cal, n) for n in MAIN)
-        tm = model.problem.solver.times()
-        y = model.respond(cal.pulse, cal.contact_radius).strain
-        # Three levels (the two around this one and one below) give the observed order p.
-        low, mid, high = (-1, 0, 1) if level <= 1 else (level - 2, level - 1, level)
         note("estimating the model's error (refined and coarsened meshes)")
-        ys = {level: (tm, y)}
-        for k in (low, mid, high):
-            if k in ys:
-                continue
-            try:
-                m = level_model(k)
-            except InputError:  # a mesh that cannot be coarsened: the order stays assumed
-                continue
-            if k == level + 1 and max_level < 1:  # one direct run is cheaper than an engine used once
-                yk = m.direct(cal.pulse, energy=False, displacement=False, radius=cal.contact_radius).strain
-            else:  # an engine that a refined fit will reuse, or a coarse one that costs little
-                yk = m.respond(cal.pulse, cal.contact_radius).strain
-            ys[k] = (m.problem.solver.times(), yk)
-        p_obs = _observed_order(ys, low, mid, high, float(ratio), order)
-        # The order observed is the strain histories'; a parameter's shift keeps the assumed-order
-        # safety (its own order is not observed here: the app's parameter_convergence does that).
-        p_used, safety = (p_obs if p_obs is not None else order), ASSUMED_ORDER_SAFETY
-        r_p = float(ratio) ** p_used
-        # e_L = y_L − y_∞ (the model's strains minus the converged ones), the defect subtracted below
-        if level == 0:
-            error = (y - _on_grid(tm, *ys[1])) * r_p / (r_p - 1.0)
-        else:
-            error = (_on_grid(tm, *ys[level - 1]) - y) / (r_p - 1.0)
-        prep = cal.prepared
-        w = (prep.time >= 0) & (prep.time <= tm[-1])
-        err_w = _on_grid(prep.time[w], tm, error)
-        error_to_noise = np.sqrt(np.mean(err_w**2, axis=1)) / prep.noise
+        error, p_obs, p_used = _model_error(level_model, model, level, cal, ratio, order, max_level)
+        error_to_noise = _error_to_noise(model.problem.solver.times(), cal.prepared, error)
         note("correcting the model's error (defect correction)")
         corrected = calibrate(model, measured, cal.pulse, "least-squares", contact_time=contact_time, radius=radius, fit_radius=fit_radius, defect=error)
-        names = [n for n in cal.standard_errors if n in corrected.standard_errors]
-        values = lambda c: {"peak_force": c.peak_force, "time_of_peak": c.time_of_peak, "duration": c.duration, "contact_radius": c.contact_radius}  # noqa: E731
-        v0, v1 = values(cal), values(corrected)
-        shifts = {n: v1[n] - v0[n] for n in v0 if n in names}
+        shifts = _shifts(cal, corrected)
         noise = dict(cal.standard_errors)
         meets = all(abs(shifts[n]) <= tolerance * noise[n] for n in MAIN if n in shifts and noise.get(n))
         if meets or level >= max_level:

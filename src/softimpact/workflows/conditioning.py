@@ -53,6 +53,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..models.noise import robust_sigma
+from ..models.sampling import series_problem
 
 __all__ = [
     "ConditioningSettings",
@@ -111,12 +112,9 @@ class Conditioned:
 def _arrays(t, y):
     t = np.asarray(t, dtype=float)
     y = np.asarray(y, dtype=float)
-    if t.ndim != 1 or t.shape != y.shape or t.size < 8:
-        raise InputError("conditioning: time and signal must be 1-D arrays of equal length >= 8")
-    if not (np.all(np.isfinite(t)) and np.all(np.isfinite(y))):
-        raise InputError("conditioning: time and signal must be finite")
-    if np.any(np.diff(t) <= 0):
-        raise InputError("conditioning: time must be strictly increasing")
+    problem = series_problem(t, y, min_samples=8)
+    if problem is not None:
+        raise InputError(f"conditioning: {problem}")
     return t, y
 
 
@@ -220,6 +218,102 @@ def _onsets(t, dev, level, quiet_samples):
     return out
 
 
+def _pretrigger(t, y, pretrigger_end, dt, settings):
+    """Baseline, noise and first arrival, in two passes (module docstring).
+
+    Pass 1: a provisional pre-trigger; pass 2: everything before the arrival less
+    a margin. Returns (base, noise, arrival, i_det, sign, n_pre).
+    """
+    end = pretrigger_end if pretrigger_end is not None else (0.0 if t[0] < 0 else None)
+    first = np.arange(t.size) < MIN_PRETRIGGER  # provisional only: pass 2 takes all that precedes the arrival
+    pre = t < end if end is not None else first
+    if pre.sum() < MIN_PRETRIGGER:
+        pre = first
+    base, noise = baseline_and_noise(y[pre])
+    arrival, i_det, sign = first_arrival(t, y, base, noise, settings)
+    n_pre = int(pre.sum())
+    if math.isfinite(arrival):
+        margin = max(10 * dt, 1e-6)
+        pre2 = t < arrival - margin
+        if pretrigger_end is not None:
+            pre2 &= t < pretrigger_end
+        n_pre = int(pre2.sum())
+        if n_pre >= 3 and (n_pre >= pre.sum() or (pre & ~pre2).any()):
+            base, noise = baseline_and_noise(y[pre2])
+            arrival, i_det, sign = first_arrival(t, y, base, noise, settings)
+    return base, noise, arrival, i_det, sign, n_pre
+
+
+def _window_end(t, dev, i_det, arrival, tau, noise, quiet_samples) -> float:
+    """End of the incident window: back within 3σ for QUIET_TIME, at most until the first reflection."""
+    k_end = None
+    calm = np.abs(dev) < max(3 * noise, 0.01 * np.max(np.abs(dev)))
+    run = 0
+    for i in range(i_det, t.size):
+        run = run + 1 if calm[i] else 0
+        if run >= quiet_samples:
+            k_end = i - run + 1
+            break
+        if t[i] >= arrival + tau:
+            break
+    return float(t[k_end]) if k_end is not None else min(float(t[-1]), arrival + tau)
+
+
+def _later_onsets(t, dev, sign, arrival, window_end, level, noise, quiet_samples, geometry, settings, flags):
+    """Onsets after the incident window, each classified against the predicted arrivals of every impact so far.
+
+    ``geometry``: (gauge_position, bar_length, wave_speed, end_delay). A flag is
+    added to ``flags`` for each double hit. Returns (onsets, double).
+    """
+    dt = float(np.median(np.diff(t)))
+    onsets = []
+    double = False
+    start = int(np.searchsorted(t, window_end))
+    sources = [arrival]  # impacts so far: each one's reflections are expected
+    for i in _onsets(t[start:], dev[start:], level, quiet_samples):
+        i += start
+        s = 1 if dev[i] * sign > 0 else -1
+        t_on = _foot(t, s * sign * dev, i, level, noise)
+        predicted = []
+        for t_hit in sources:
+            p_same, p_opp = expected_arrivals(t_hit, geometry[0], geometry[1], geometry[2], settings.reflections, geometry[3])
+            # Either sign: a reflection off a mass-loaded or imperfect end starts with a lobe
+            # of the other sign, so an onset at a predicted time of either sign is explained.
+            predicted += [(p, max(5 * dt, 2e-6, 0.02 * (p - t_hit))) for p in p_same + p_opp]
+        explained = any(abs(t_on - p) <= tol for p, tol in predicted)
+        onsets.append((float(t_on), s, bool(explained)))
+        if s > 0 and not explained:
+            double = True
+            nearest = min((p for p, _ in predicted), key=lambda p: abs(p - t_on)) if predicted else math.nan
+            flags.append(
+                f"double hit: a second compressive arrival {(t_on - arrival) * 1e6:.1f} µs after the first is not a "
+                f"reflection (nearest predicted {(nearest - arrival) * 1e6:.1f} µs): a second impact; force after it is not the first impact's"
+            )
+            sources.append(t_on)
+    return onsets, double
+
+
+def _second_rise(t, s_dev, in_window, peak, noise, arrival, settings) -> str | None:
+    """A second rise inside the incident window (impacts overlapping): a dip, then a rise again by > event_fraction.
+
+    Returns the double-hit flag, or None.
+    """
+    if in_window.sum() <= 3:
+        return None
+    seg = s_dev[in_window]
+    running_max = np.maximum.accumulate(seg)
+    k_pk = int(np.argmax(seg))
+    after_min = np.minimum.accumulate(seg[k_pk:])
+    rebound = seg[k_pk:] - after_min
+    if rebound.size and rebound.max() > settings.event_fraction * peak + 3 * noise and after_min[int(np.argmax(rebound))] < 0.5 * running_max[-1]:
+        k = k_pk + int(np.argmax(rebound))
+        return (
+            f"double hit: the incident pulse falls to {after_min[int(np.argmax(rebound))] / peak:.0%} of its peak and rises "
+            f"again by {rebound.max() / peak:.0%} at {(t[in_window][k] - arrival) * 1e6:.1f} µs, before any reflection"
+        )
+    return None
+
+
 def condition_record(
     t,
     y,
@@ -245,25 +339,7 @@ def condition_record(
         raise InputError(f"conditioning: gauge_position {gauge_position!r} m must be less than bar_length {bar_length!r} m")
     flags: list[str] = []
     dt = float(np.median(np.diff(t)))
-
-    # Pass 1: a provisional pre-trigger; pass 2: everything before the arrival less a margin.
-    end = pretrigger_end if pretrigger_end is not None else (0.0 if t[0] < 0 else None)
-    first = np.arange(t.size) < MIN_PRETRIGGER  # provisional only: pass 2 takes all that precedes the arrival
-    pre = t < end if end is not None else first
-    if pre.sum() < MIN_PRETRIGGER:
-        pre = first
-    base, noise = baseline_and_noise(y[pre])
-    arrival, i_det, sign = first_arrival(t, y, base, noise, settings)
-    n_pre = int(pre.sum())
-    if math.isfinite(arrival):
-        margin = max(10 * dt, 1e-6)
-        pre2 = t < arrival - margin
-        if pretrigger_end is not None:
-            pre2 &= t < pretrigger_end
-        n_pre = int(pre2.sum())
-        if n_pre >= 3 and (n_pre >= pre.sum() or (pre & ~pre2).any()):
-            base, noise = baseline_and_noise(y[pre2])
-            arrival, i_det, sign = first_arrival(t, y, base, noise, settings)
+    base, noise, arrival, i_det, sign, n_pre = _pretrigger(t, y, pretrigger_end, dt, settings)
     if n_pre < MIN_PRETRIGGER:
         flags.append(f"only {n_pre} pre-trigger samples before the pulse: baseline and noise uncertain (record more pre-trigger)")
     if noise == 0:
@@ -280,19 +356,8 @@ def condition_record(
 
     tau = 2 * (bar_length - gauge_position) / wave_speed
     quiet_samples = max(3, int(math.ceil(QUIET_TIME / dt)))
-    # Incident window: until back within 3σ for QUIET_TIME, at most until the first reflection.
     s_dev = sign * dev
-    k_end = None
-    calm = np.abs(dev) < max(3 * noise, 0.01 * np.max(np.abs(dev)))
-    run = 0
-    for i in range(i_det, t.size):
-        run = run + 1 if calm[i] else 0
-        if run >= quiet_samples:
-            k_end = i - run + 1
-            break
-        if t[i] >= arrival + tau:
-            break
-    window_end = float(t[k_end]) if k_end is not None else min(float(t[-1]), arrival + tau)
+    window_end = _window_end(t, dev, i_det, arrival, tau, noise, quiet_samples)
     in_window = (t >= arrival) & (t <= window_end)
     peak = float(np.max(s_dev[in_window])) if in_window.any() else float(s_dev[i_det])
     overlapping = window_end >= arrival + tau - dt
@@ -301,49 +366,16 @@ def condition_record(
             f"incident pulse still going when the first reflection returns at {tau * 1e6:.0f} µs after arrival: "
             "the incident window is cut there (reflections overlap the pulse; later onsets not classified)"
         )
-
-    # Later onsets, classified against the predicted arrivals.
-    level = max(settings.detection_sigmas * noise, settings.event_fraction * peak)
-    onsets = []
-    double = False
-    start = int(np.searchsorted(t, window_end))
-    sources = [arrival]  # impacts so far: each one's reflections are expected
     # While the incident pulse overlaps its reflections, an onset is a mixture of
     # waves and cannot be told from a new impact by its time: none is classified.
-    for i in _onsets(t[start:], dev[start:], level, quiet_samples) if not overlapping else ():
-        i += start
-        s = 1 if dev[i] * sign > 0 else -1
-        t_on = _foot(t, s * sign * dev, i, level, noise)
-        predicted = []
-        for t_hit in sources:
-            p_same, p_opp = expected_arrivals(t_hit, gauge_position, bar_length, wave_speed, settings.reflections, end_delay)
-            # Either sign: a reflection off a mass-loaded or imperfect end starts with a lobe
-            # of the other sign, so an onset at a predicted time of either sign is explained.
-            predicted += [(p, max(5 * dt, 2e-6, 0.02 * (p - t_hit))) for p in p_same + p_opp]
-        explained = any(abs(t_on - p) <= tol for p, tol in predicted)
-        onsets.append((float(t_on), s, bool(explained)))
-        if s > 0 and not explained:
-            double = True
-            nearest = min((p for p, _ in predicted), key=lambda p: abs(p - t_on)) if predicted else math.nan
-            flags.append(
-                f"double hit: a second compressive arrival {(t_on - arrival) * 1e6:.1f} µs after the first is not a "
-                f"reflection (nearest predicted {(nearest - arrival) * 1e6:.1f} µs): a second impact; force after it is not the first impact's"
-            )
-            sources.append(t_on)
-    # A second rise inside the incident window (impacts overlapping): a dip and a rise again by > event_fraction.
-    if in_window.sum() > 3:
-        seg = s_dev[in_window]
-        running_max = np.maximum.accumulate(seg)
-        k_pk = int(np.argmax(seg))
-        after_min = np.minimum.accumulate(seg[k_pk:])
-        rebound = seg[k_pk:] - after_min
-        if rebound.size and rebound.max() > settings.event_fraction * peak + 3 * noise and after_min[int(np.argmax(rebound))] < 0.5 * running_max[-1]:
-            double = True
-            k = k_pk + int(np.argmax(rebound))
-            flags.append(
-                f"double hit: the incident pulse falls to {after_min[int(np.argmax(rebound))] / peak:.0%} of its peak and rises "
-                f"again by {rebound.max() / peak:.0%} at {(t[in_window][k] - arrival) * 1e6:.1f} µs, before any reflection"
-            )
+    onsets, double = [], False
+    if not overlapping:
+        level = max(settings.detection_sigmas * noise, settings.event_fraction * peak)
+        geometry = (gauge_position, bar_length, wave_speed, end_delay)
+        onsets, double = _later_onsets(t, dev, sign, arrival, window_end, level, noise, quiet_samples, geometry, settings, flags)
+    if (rise := _second_rise(t, s_dev, in_window, peak, noise, arrival, settings)) is not None:
+        double = True
+        flags.append(rise)
     return Conditioned(
         time=t,
         signal=dev,

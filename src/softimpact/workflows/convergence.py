@@ -65,6 +65,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -128,6 +129,11 @@ class OutputConvergence:
     message: str
 
     @property
+    def meaning(self) -> str:
+        """What the status says, in a sentence (:data:`STATUSES`)."""
+        return STATUSES[self.status]
+
+    @property
     def finest(self) -> float | np.ndarray:
         return self.values[-1]
 
@@ -188,6 +194,121 @@ def one_factor_agreement(base, space, time) -> tuple[bool, str]:
     return False, f"mesh-only and step-only refinements move it in opposite directions ({ns:.3g} vs {nt:.3g}): they cancel along the diagonal"
 
 
+@dataclass(frozen=True)
+class _Levels:
+    """The levels of one output, coarse → fine, checked, with their norm: |x| for a scalar, the RMS for a history."""
+
+    name: str
+    v: np.ndarray
+    ratio: float
+
+    @property
+    def history(self) -> bool:
+        return self.v.ndim == 2
+
+    def norm(self, x) -> float:
+        return _rms(x) if self.history else abs(float(x))
+
+    def inner(self, x, y) -> float:
+        return float(np.mean(x * y)) if self.history else float(x * y)
+
+    @cached_property
+    def scale(self) -> float:
+        """The norm of the finest level (of the largest level if it is zero; 1 if all are)."""
+        return self.norm(self.v[-1]) or max(self.norm(row) for row in self.v) or 1.0
+
+    def rel(self, x) -> float:
+        return self.norm(x) / self.scale
+
+    def result(self, order, ext, gci_f, gci_c, asym, fs, status, message) -> OutputConvergence:
+        """The OutputConvergence of these levels, their errors taken against ``ext``."""
+        errors = np.array([self.rel(row - ext) for row in self.v])
+        ext = ext if self.history else float(ext)
+        kind = "history" if self.history else "scalar"
+        return OutputConvergence(
+            self.name, kind, self.v, float(self.ratio), float(order), ext, errors, float(gci_f), float(gci_c), float(asym), float(fs), status, message
+        )
+
+
+def _levels(values, ratio: float, name: str) -> np.ndarray:
+    """``values`` as an array of 2 levels or more, scalars or histories; the ratio checked."""
+    v = np.asarray(values, dtype=float)
+    if v.ndim not in (1, 2):
+        raise InputError(f"{name or 'values'}: expected shape (n_levels,) or (n_levels, n_t), got {v.shape}")
+    if v.shape[0] < 2:
+        raise InputError(f"{name or 'values'}: need at least 2 levels, got {v.shape[0]}")
+    if not (math.isfinite(ratio) and ratio > 1):
+        raise InputError(f"ratio: the refinement ratio must exceed 1, got {ratio!r}")
+    return v
+
+
+def _undefined(name: str, v: np.ndarray, ratio: float) -> OutputConvergence:
+    """The result for levels of which some are not finite: every number nan."""
+    history = v.ndim == 2
+    bad = [i for i in range(v.shape[0]) if not np.all(np.isfinite(v[i]))]
+    nan = np.full(v.shape[1:], math.nan) if history else math.nan
+    kind = "history" if history else "scalar"
+    nans = (math.nan,) * 4
+    return OutputConvergence(name, kind, v, float(ratio), math.nan, nan, np.full(v.shape[0], math.nan), *nans, "undefined", f"not finite at level(s) {bad}")
+
+
+def _two_levels(lv: _Levels, ratio, formal_order) -> OutputConvergence:
+    """Two levels: the formal order assumed, Roache's safety factor for an assumed order."""
+    v = lv.v
+    if formal_order is None:
+        raise InputError(f"{lv.name or 'values'}: with two levels the formal order must be given")
+    e = v[1] - v[0]
+    rp = ratio**formal_order
+    ext = v[1] + e / (rp - 1)
+    gci = SAFETY_TWO_LEVELS * lv.rel(e) / (rp - 1)
+    message = f"order {formal_order:g} assumed; GCI {gci:.3g} with safety factor {SAFETY_TWO_LEVELS:g}"
+    return lv.result(formal_order, ext, gci, math.nan, math.nan, SAFETY_TWO_LEVELS, "two levels", message)
+
+
+def _not_monotone(lv: _Levels, ratio) -> OutputConvergence | None:
+    """The three finest levels when they do not converge monotonically (round-off, diverging,
+    oscillatory); None when they do."""
+    v, norm, rel, scale = lv.v, lv.norm, lv.rel, lv.scale
+    f1, f2, f3 = v[-3], v[-2], v[-1]
+    e21, e32 = f2 - f1, f3 - f2
+    n21, n32 = norm(e21), norm(e32)
+    fs = SAFETY_THREE_LEVELS
+    if n21 <= ROUNDOFF * scale and n32 <= ROUNDOFF * scale:
+        return lv.result(math.nan, f3, rel(e32), rel(e21), math.nan, fs, "converged to round-off", f"differences {rel(e21):.1e}, {rel(e32):.1e} of the value")
+    if n21 == 0:
+        message = "the two coarser levels agree but the finest departs: no order can be observed"
+        return lv.result(math.nan, f3, math.nan, math.nan, math.nan, fs, "diverging", message)
+    # Signed ratio of the differences; for a history its sign is that of ⟨ε32, ε21⟩.
+    R = math.copysign(n32 / n21, lv.inner(e32, e21)) if n32 else 0.0
+    if R == 0.0:
+        return lv.result(math.nan, f3, 0.0, rel(e21), math.nan, fs, "converged to round-off", "the two finest levels agree exactly")
+    p = math.log(n21 / n32) / math.log(ratio)
+    if abs(R) >= 1:
+        message = f"|ε32/ε21| = {abs(R):.3g} ≥ 1: the difference does not shrink (observed p = {p:.3g})"
+        return lv.result(p, f3, math.nan, math.nan, math.nan, fs, "diverging", message)
+    if R < 0:
+        half_range = 0.5 * norm(np.max(v[-3:], axis=0) - np.min(v[-3:], axis=0)) / scale
+        message = (
+            f"ε32/ε21 = {R:.3g} < 0: oscillatory convergence; finest level kept, uncertainty ±{half_range:.3g} (half the range); |R| would give p = {p:.3g}"
+        )
+        return lv.result(p, f3, half_range, math.nan, math.nan, fs, "oscillatory", message)
+    return None
+
+
+def _doubts(p, formal_order, f1, space, time, rise_steps) -> list[str]:
+    """Why a monotone sequence is not shown asymptotic (module docstring's rules); empty when it is."""
+    doubts = []
+    if formal_order is not None and abs(p - formal_order) > NEAR_FORMAL * formal_order:
+        doubts.append(f"observed order {p:.3g} far from the formal {formal_order:g}")
+    if space is not None and time is not None:
+        agree, why = one_factor_agreement(f1, space, time)
+        if not agree:
+            doubts.append(why)
+    if rise_steps is not None and rise_steps < MIN_RISE_STEPS:
+        doubts.append(f"the coarsest level has {rise_steps:.3g} time steps in the pulse rise (< {MIN_RISE_STEPS})")
+    return doubts
+
+
 def richardson(
     values,
     ratio: float,
@@ -208,117 +329,21 @@ def richardson(
     ``rise_steps``: time steps in the pulse rise on that level. With them the
     sequence is called asymptotic only by the rules of the module docstring.
     """
-    v = np.asarray(values, dtype=float)
-    if v.ndim not in (1, 2):
-        raise InputError(f"{name or 'values'}: expected shape (n_levels,) or (n_levels, n_t), got {v.shape}")
-    if v.shape[0] < 2:
-        raise InputError(f"{name or 'values'}: need at least 2 levels, got {v.shape[0]}")
-    if not (math.isfinite(ratio) and ratio > 1):
-        raise InputError(f"ratio: the refinement ratio must exceed 1, got {ratio!r}")
-    history = v.ndim == 2
-    kind = "history" if history else "scalar"
+    v = _levels(values, ratio, name)
     if not np.all(np.isfinite(v)):
-        bad = [i for i in range(v.shape[0]) if not np.all(np.isfinite(v[i]))]
-        nan = np.full(v.shape[1:], math.nan) if history else math.nan
-        return OutputConvergence(
-            name,
-            kind,
-            v,
-            float(ratio),
-            math.nan,
-            nan,
-            np.full(v.shape[0], math.nan),
-            math.nan,
-            math.nan,
-            math.nan,
-            math.nan,
-            "undefined",
-            f"not finite at level(s) {bad}",
-        )
-    norm = _rms if history else (lambda x: abs(float(x)))
-    inner = (lambda x, y: float(np.mean(x * y))) if history else (lambda x, y: float(x * y))
-    scale = norm(v[-1]) or max(norm(row) for row in v) or 1.0
-
-    def rel(x):
-        return norm(x) / scale
-
-    def result(order, ext, gci_f, gci_c, asym, fs, status, message):
-        errors = np.array([rel(row - ext) for row in v])
-        return OutputConvergence(
-            name,
-            kind,
-            v,
-            float(ratio),
-            float(order),
-            ext if history else float(ext),
-            errors,
-            float(gci_f),
-            float(gci_c),
-            float(asym),
-            float(fs),
-            status,
-            message,
-        )
-
+        return _undefined(name, v, ratio)
+    lv = _Levels(name, v, ratio)
     if v.shape[0] == 2:
-        if formal_order is None:
-            raise InputError(f"{name or 'values'}: with two levels the formal order must be given")
-        e = v[1] - v[0]
-        rp = ratio**formal_order
-        ext = v[1] + e / (rp - 1)
-        gci = SAFETY_TWO_LEVELS * rel(e) / (rp - 1)
-        return result(
-            formal_order,
-            ext,
-            gci,
-            math.nan,
-            math.nan,
-            SAFETY_TWO_LEVELS,
-            "two levels",
-            f"order {formal_order:g} assumed; GCI {gci:.3g} with safety factor {SAFETY_TWO_LEVELS:g}",
-        )
-
+        return _two_levels(lv, ratio, formal_order)
+    if (other := _not_monotone(lv, ratio)) is not None:
+        return other
+    norm, rel, scale = lv.norm, lv.rel, lv.scale
     f1, f2, f3 = v[-3], v[-2], v[-1]
     e21, e32 = f2 - f1, f3 - f2
-    n21, n32 = norm(e21), norm(e32)
-    fs = SAFETY_THREE_LEVELS
-    if n21 <= ROUNDOFF * scale and n32 <= ROUNDOFF * scale:
-        return result(math.nan, f3, rel(e32), rel(e21), math.nan, fs, "converged to round-off", f"differences {rel(e21):.1e}, {rel(e32):.1e} of the value")
-    if n21 == 0:
-        return result(
-            math.nan, f3, math.nan, math.nan, math.nan, fs, "diverging", "the two coarser levels agree but the finest departs: no order can be observed"
-        )
-    # Signed ratio of the differences; for a history its sign is that of ⟨ε32, ε21⟩.
-    R = math.copysign(n32 / n21, inner(e32, e21)) if n32 else 0.0
-    if R == 0.0:
-        return result(math.nan, f3, 0.0, rel(e21), math.nan, fs, "converged to round-off", "the two finest levels agree exactly")
-    p = math.log(n21 / n32) / math.log(ratio)
-    if abs(R) >= 1:
-        return result(
-            p, f3, math.nan, math.nan, math.nan, fs, "diverging", f"|ε32/ε21| = {abs(R):.3g} ≥ 1: the difference does not shrink (observed p = {p:.3g})"
-        )
+    p = math.log(norm(e21) / norm(e32)) / math.log(ratio)
     rp = ratio**p
-    if R < 0:
-        half_range = 0.5 * norm(np.max(v[-3:], axis=0) - np.min(v[-3:], axis=0)) / scale
-        return result(
-            p,
-            f3,
-            half_range,
-            math.nan,
-            math.nan,
-            fs,
-            "oscillatory",
-            f"ε32/ε21 = {R:.3g} < 0: oscillatory convergence; finest level kept, uncertainty ±{half_range:.3g} (half the range); |R| would give p = {p:.3g}",
-        )
-    doubts = []
-    if formal_order is not None and abs(p - formal_order) > NEAR_FORMAL * formal_order:
-        doubts.append(f"observed order {p:.3g} far from the formal {formal_order:g}")
-    if space is not None and time is not None:
-        agree, why = one_factor_agreement(f1, space, time)
-        if not agree:
-            doubts.append(why)
-    if rise_steps is not None and rise_steps < MIN_RISE_STEPS:
-        doubts.append(f"the coarsest level has {rise_steps:.3g} time steps in the pulse rise (< {MIN_RISE_STEPS})")
+    fs = SAFETY_THREE_LEVELS
+    doubts = _doubts(p, formal_order, f1, space, time, rise_steps)
     status = "monotone" if doubts else "asymptotic"
     if doubts:
         fs = SAFETY_TWO_LEVELS
@@ -332,7 +357,7 @@ def richardson(
     msg = f"observed order {p:.3g}; GCI of the finest level {gci_f:.3g}"
     if doubts:
         msg += f" with safety factor {fs:g}: not shown asymptotic ({'; '.join(doubts)})"
-    return result(p, ext, gci_f, gci_c, asym, fs, status, msg)
+    return lv.result(p, ext, gci_f, gci_c, asym, fs, status, msg)
 
 
 def convergence_study(

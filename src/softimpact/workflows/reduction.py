@@ -60,9 +60,22 @@ from ..models.dispersion import RoundBar, disperse, radial_band_edge, rayleigh_s
 from ..models.noise import white_noise_sigma
 from ..models.pulse_fit import MAIN_PULSE_CUTOFF, fit_main_pulse
 from ..models.pulses import SkewedPulse
+from ..models.sampling import series_problem
 from ..models.specimens import BarSpec
+from ._reduction_tails import TAIL_FAMILIES, TailShapeFit, fit_tail_shapes  # the tail-shape ambiguity, a step of its own
 
-__all__ = ["Record", "ReductionSettings", "Reduction", "reduce_record", "wave_separation", "dispersive_wave_separation", "two_gauge_separation"]
+__all__ = [
+    "Record",
+    "ReductionSettings",
+    "Reduction",
+    "reduce_record",
+    "wave_separation",
+    "dispersive_wave_separation",
+    "two_gauge_separation",
+    "TAIL_FAMILIES",
+    "TailShapeFit",
+    "fit_tail_shapes",
+]
 
 MIN_SAMPLES = 64  # fewer cannot hold a pre-trigger baseline and a pulse
 BASELINE_RESOLUTION = 1e-6  # of the peak strain: the finest resolution a record can claim (noise-free data)
@@ -122,18 +135,10 @@ def _validate(record: Record) -> tuple[np.ndarray, np.ndarray, float]:
     """Checks and a uniform grid: returns t, y, dt."""
     t = np.asarray(record.time, dtype=float)
     y = np.asarray(record.strain, dtype=float)
-    name = record.name
-    if t.ndim != 1 or t.shape != y.shape:
-        _fail(name, "time and signal must be columns of equal length")
-    if t.size < MIN_SAMPLES:
-        _fail(name, f"too short: {t.size} samples (need at least {MIN_SAMPLES})")
-    bad = ~(np.isfinite(t) & np.isfinite(y))
-    if bad.any():
-        _fail(name, f"{bad.sum()} NaN or infinite values (first at row {int(np.argmax(bad)) + 1})")
+    problem = series_problem(t, y, min_samples=MIN_SAMPLES, what="strain")
+    if problem is not None:
+        _fail(record.name, problem)
     d = np.diff(t)
-    if np.any(d <= 0):
-        k = int(np.argmax(d <= 0))
-        _fail(name, f"time is not strictly increasing at row {k + 2} ({float(t[k]):.9g} s then {float(t[k + 1]):.9g} s)")
     dt = float(np.median(d))
     if np.max(np.abs(d - dt)) > 0.01 * dt:  # hand-digitised records: put them on a uniform grid
         grid = np.arange(t[0], t[-1] + 0.5 * dt, dt)
@@ -269,6 +274,200 @@ def _late_baseline(y, tt, start, period):
     return float(np.mean(y[sel])), int(sel.sum())
 
 
+def _records(record: Record, x: float, L: float, dispersion: bool, second: Record | None, second_position: float | None):
+    """The gauge record validated and on a uniform grid, and the second gauge's on the same grid.
+
+    Returns (t, y, dt, y2); y2 is None without a second gauge.
+    """
+    name = record.name
+    t, y, dt = _validate(record)
+    _check_clipping(name, y)
+    y2 = None
+    if second is not None:
+        if dispersion:
+            _fail(name, "two-gauge separation with dispersion correction is not implemented: use one or the other")
+        if second_position is None or not x < second_position < L:
+            _fail(name, f"second gauge position {second_position!r} m must lie beyond the first ({x!r} m) on the bar")
+        t2, y2, _ = _validate(second)
+        _check_clipping(second.name, y2)
+        if t2[0] > t[0] + dt or t2[-1] < t[-1] - dt:
+            _fail(name, f"the second gauge's record ({second.name}) must cover the first's time span (same clock)")
+        y2 = np.interp(t, t2, y2)
+    return t, y, dt, y2
+
+
+def _arrival(name: str, t: np.ndarray, y: np.ndarray, dt: float, settings: ReductionSettings):
+    """The pulse detected above the noise and its rough arrival at the gauge.
+
+    The arrival extrapolates the rising edge (10 % to 40 % of the first peak)
+    back to zero. Returns (inverted, peak_dev, t_arrive, rise): ``inverted`` when
+    the first excursion is tensile (compression is assumed first: the caller
+    inverts the signal), ``peak_dev`` the largest excursion from the head's
+    median, ``rise`` the time from arrival to 90 % of the first peak (≥ 3 dt).
+    """
+    sigma = white_noise_sigma(y)
+    head = max(8, y.size // 20)
+    base0 = float(np.median(y[:head]))
+    dev = y - base0
+    peak_dev = dev[np.argmax(np.abs(dev))]
+    threshold = max(settings.detection_sigmas * sigma, settings.detection_fraction * abs(peak_dev))
+    if abs(peak_dev) < 10 * sigma or abs(peak_dev) <= threshold:
+        _fail(name, f"no pulse: largest excursion {abs(peak_dev):.3g} is within the noise (σ = {sigma:.3g})")
+    i_cross = int(np.argmax(np.abs(dev) > threshold))
+    inverted = bool(dev[i_cross] > 0)
+    if inverted:
+        dev = -dev
+    first = -dev
+    k90 = int(np.argmax(first >= 0.9 * first.max()))  # the incident pulse's first approach to its peak
+    local_peak = first[i_cross : k90 + 1].max()
+    low = np.flatnonzero(first[: k90 + 1] < 0.1 * local_peak)
+    i10 = int(low[-1]) + 1 if low.size else 0
+    i40 = i10 + int(np.argmax(first[i10 : k90 + 1] >= 0.4 * local_peak))
+    if i40 - i10 >= 2:
+        slope, icpt = np.polyfit(t[i10 : i40 + 1], first[i10 : i40 + 1], 1)
+        t_arrive = -icpt / slope if slope > 0 else t[i10]
+    else:
+        t_arrive = t[max(i10 - 1, 0)]
+    rise = max(t[k90] - t_arrive, 3 * dt)
+    return inverted, peak_dev, t_arrive, rise
+
+
+def _pretrigger(name, t, y, y2, before, x, second_position, c):
+    """Baseline and noise from the samples before ``before``; the second gauge's signal less its baseline.
+
+    Returns (baseline, noise, n_base, two); ``two`` is None without a second
+    gauge, else (its strain less its baseline, the delay Δ to it, c) for
+    :func:`_bar_force`.
+    """
+    pre = t < before
+    if pre.sum() < 10:
+        _fail(name, f"no pre-trigger baseline: only {pre.sum()} samples before the pulse arrives")
+    baseline = float(np.mean(y[pre]))
+    noise = float(np.std(y[pre]))
+    n_base = int(pre.sum())
+    two = None
+    if y2 is not None:  # the second gauge is further on: quiet at least as long
+        delay = (second_position - x) / c
+        two = (y2 - float(np.mean(y2[pre])), delay, c)
+    return baseline, noise, n_base, two
+
+
+def _pulse_parameters(name: str, F: np.ndarray, tt: np.ndarray, dt: float, rise: float, settings: ReductionSettings):
+    """Pulse parameters of a force history on the clock ``tt`` (module docstring).
+
+    Returns (fit, t0, rms, F0, t_pk, t_thr, aware): the main-pulse eq-15 fit, its
+    start, its rms residual; F0 and its time from the cubic over the crown; the
+    threshold duration (nan when the force never falls below the threshold); the
+    tail-aware fit (None when none was made).
+    """
+    Fs = _smooth(F, dt, 0.1 * rise)
+    Fs = _smooth(F, dt, 0.2 * max(tt[np.argmax(Fs)], 3 * dt))
+    k_pk = int(np.argmax(Fs))
+    F0_guess, t_pk_guess = float(Fs[k_pk]), float(tt[k_pk])
+    after = np.flatnonzero((np.arange(Fs.size) > k_pk) & (Fs < settings.fit_cutoff * F0_guess))
+    if after.size == 0:
+        _fail(name, "the record ends before the force falls to 15 % of its peak: the main pulse is truncated")
+    # The main pulse, wherever its tail starts (models/pulse_fit.fit_main_pulse, as identify):
+    # a fit down to the fixed cutoff seeds a tail-aware fit; the whole record's fit kept beside it.
+    try:
+        main = fit_main_pulse(tt, F, cutoff=settings.fit_cutoff)
+    except InputError as exc:
+        _fail(name, str(exc).removeprefix("pulse fit: "))
+    (fit, t0, rms), aware = main.fit.as_tuple(), main.aware
+    # F0: the maximum of a cubic fitted to the crown, where the eq-15 fit is within
+    # 10 % of its peak: it averages the noise over the whole crown (< 0.3 % model
+    # error on eq-15 shapes) and follows the data where they depart from eq 15.
+    crown = np.flatnonzero(fit(tt - t0) >= 0.9 * fit.peak_force)
+    if crown.size >= 7:
+        tc = tt[crown] - t0 - fit.time_of_peak
+        coef = np.polyfit(tc, F[crown], 3)
+        fine = np.linspace(tc[0], tc[-1], 2001)
+        vals = np.polyval(coef, fine)
+        F0, t_pk = float(vals.max()), float(t0 + fit.time_of_peak + fine[np.argmax(vals)])
+    else:
+        F0, t_pk = F0_guess, t_pk_guess
+    below = np.flatnonzero((np.arange(Fs.size) > k_pk) & (Fs < settings.duration_threshold * F0))
+    t_thr = float(tt[below[0]]) - t0 if below.size else math.nan
+    return fit, t0, rms, F0, t_pk, t_thr, aware
+
+
+def _pooled_baseline(y, tt, start, period, baseline, noise, n_base, peak_dev):
+    """The pre-trigger baseline pooled with the late one (:func:`_late_baseline`) when they agree.
+
+    A baseline error δ adds about δ·EA·L/(L − x) to F for the rest of the record,
+    so the impulse needs the baseline well. Where the record runs on for whole
+    periods P after the main pulse, their mean strain is a second estimate, pooled
+    when the two agree within three standard errors. Returns (pooled, baseline,
+    n_base, flag): the pooled values, or the pre-trigger ones and, when the two
+    disagree, a flag saying so.
+    """
+    late, n_late = _late_baseline(y, tt, start, period)
+    if not n_late:
+        return False, baseline, n_base, None
+    # The standard error of the difference, floored at the resolution a record can
+    # claim, so that a noise-free record (σ = 0) does not divide by zero.
+    se = max(noise * math.sqrt(1 / n_base + 1 / n_late), BASELINE_RESOLUTION * abs(peak_dev))
+    if abs(late - baseline) <= 3 * se:
+        return True, (n_base * baseline + n_late * late) / (n_base + n_late), n_base + n_late, None
+    flag = (
+        f"mean strain over the last {n_late} samples departs from the pre-trigger baseline by "
+        f"{abs(late - baseline) / se:.0f} standard errors: force not over (tail) or drift; pre-trigger baseline kept"
+    )
+    return False, baseline, n_base, flag
+
+
+def _from_contact(tt, t0, F, round_bar, x, c):
+    """The force from first contact (t0 on the clock ``tt``), with a first sample interpolated at 0.
+
+    With the dispersion correction the record's end is dropped: moving it back by
+    x needs it up to x(1/c_R − 1/c0) past each instant. Returns (time, force, flags).
+    """
+    time = tt - t0
+    keep = time >= 0
+    flags = []
+    if round_bar is not None:
+        lost = x * (1 / (rayleigh_speed_ratio(round_bar.poisson_ratio) * c) - 1 / c)
+        keep &= tt <= tt[-1] - lost
+        flags.append(
+            f"Pochhammer-Chree dispersion corrected (nu = {round_bar.poisson_ratio:g}; band to {radial_band_edge(round_bar) / 1e3:.0f} kHz); "
+            f"last {lost * 1e6:.0f} us of the record dropped (the correction needs the record beyond it)"
+        )
+    time, force = time[keep], F[keep]
+    force_start = float(np.interp(0.0, tt - t0, F))
+    return np.concatenate(([0.0], time)), np.concatenate(([force_start], force)), flags
+
+
+def _reach(valid_until, tau, period, t0, t_thr, two, EA, noise, n_base, L, x, F0, aware):
+    """How far the force is direct, the impulse's uncertainty, and the flags on the result's reach.
+
+    One gauge: direct up to the reflection's return τ; the baseline's error grows
+    the impulse's by EA·σ/√n·L/(L − x) per second of record. Two gauges: the
+    separation adds a term every 2Δ, and a baseline error δ grows the force by
+    δ·EA per 2Δ. The noise grows like the square root of the number of wave
+    terms summed. Returns (direct_until, impulse_sd, flags).
+    """
+    flags = []
+    if two is None:
+        direct_until = tau - t0 if tau - t0 < valid_until else valid_until
+        if not math.isfinite(t_thr) or t_thr > direct_until:
+            flags.append(f"pulse longer than the reflection return 2(L-x)/c = {tau * 1e6:.0f} µs: reflection-corrected beyond")
+        terms = 1 + int(valid_until // tau) + int(valid_until // period)
+        impulse_sd = EA * noise / math.sqrt(n_base) * L / (L - x) * valid_until
+    else:
+        spacing = 2 * two[1]
+        direct_until = valid_until  # the returning waves are measured, not inferred from the far end
+        terms = 2 + 2 * int(valid_until // spacing)
+        impulse_sd = EA * noise / math.sqrt(n_base) * math.sqrt(2) * valid_until * (1 + valid_until / (2 * spacing))
+    if not math.isfinite(t_thr):
+        flags.append("the force never falls below 5 % of F0 within the record: threshold duration undefined")
+    if aware is not None and aware.differs:
+        flags.append(aware.message)
+    end_noise = EA * noise * math.sqrt(terms)
+    if end_noise > 0.05 * F0:
+        flags.append(f"reflection corrections amplify the noise to {end_noise / F0:.0%} of F0 by the end")
+    return direct_until, impulse_sd, flags
+
+
 def reduce_record(
     record: Record,
     bar: BarSpec,
@@ -295,57 +494,14 @@ def reduce_record(
     c, EA, Z = rod.wave_speed, rod.axial_stiffness, rod.impedance
     tau, period = 2 * (L - x) / c, 2 * L / c
     round_bar = RoundBar(c, bar.material.poisson_ratio, bar.diameter / 2) if dispersion else None
-    t, y, dt = _validate(record)
-    _check_clipping(name, y)
+    t, y, dt, y2 = _records(record, x, L, dispersion, second, second_position)
     flags = []
-    y2 = None
-    if second is not None:
-        if dispersion:
-            _fail(name, "two-gauge separation with dispersion correction is not implemented: use one or the other")
-        if second_position is None or not x < second_position < L:
-            _fail(name, f"second gauge position {second_position!r} m must lie beyond the first ({x!r} m) on the bar")
-        t2, y2, _ = _validate(second)
-        _check_clipping(second.name, y2)
-        if t2[0] > t[0] + dt or t2[-1] < t[-1] - dt:
-            _fail(name, f"the second gauge's record ({second.name}) must cover the first's time span (same clock)")
-        y2 = np.interp(t, t2, y2)
-
-    sigma = white_noise_sigma(y)
-    head = max(8, y.size // 20)
-    base0 = float(np.median(y[:head]))
-    dev = y - base0
-    peak_dev = dev[np.argmax(np.abs(dev))]
-    threshold = max(settings.detection_sigmas * sigma, settings.detection_fraction * abs(peak_dev))
-    if abs(peak_dev) < 10 * sigma or abs(peak_dev) <= threshold:
-        _fail(name, f"no pulse: largest excursion {abs(peak_dev):.3g} is within the noise (σ = {sigma:.3g})")
-    i_cross = int(np.argmax(np.abs(dev) > threshold))
-    if dev[i_cross] > 0:
+    inverted, peak_dev, t_arrive, rise = _arrival(name, t, y, dt, settings)
+    if inverted:
         flags.append("first excursion tensile: signal inverted (compression assumed first)")
-        y, dev, base0 = -y, -dev, -base0
-        y2 = None if y2 is None else -y2
-    # Rough arrival: extrapolate the rising edge (10 % to 40 % of the first peak) back to zero.
-    first = -dev
-    k90 = int(np.argmax(first >= 0.9 * first.max()))  # the incident pulse's first approach to its peak
-    local_peak = first[i_cross : k90 + 1].max()
-    low = np.flatnonzero(first[: k90 + 1] < 0.1 * local_peak)
-    i10 = int(low[-1]) + 1 if low.size else 0
-    i40 = i10 + int(np.argmax(first[i10 : k90 + 1] >= 0.4 * local_peak))
-    if i40 - i10 >= 2:
-        slope, icpt = np.polyfit(t[i10 : i40 + 1], first[i10 : i40 + 1], 1)
-        t_arrive = -icpt / slope if slope > 0 else t[i10]
-    else:
-        t_arrive = t[max(i10 - 1, 0)]
-    rise = max(t[k90] - t_arrive, 3 * dt)
-    pre = t < t_arrive - 0.5 * rise
-    if pre.sum() < 10:
-        _fail(name, f"no pre-trigger baseline: only {pre.sum()} samples before the pulse arrives")
-    baseline = float(np.mean(y[pre]))
-    noise = float(np.std(y[pre]))
-    n_base = int(pre.sum())
-    two = None
-    if y2 is not None:  # the second gauge is further on: quiet at least as long
-        delay = (second_position - x) / c
-        two = (y2 - float(np.mean(y2[pre])), delay, c)
+        y, y2 = -y, (None if y2 is None else -y2)
+    baseline, noise, n_base, two = _pretrigger(name, t, y, y2, t_arrive - 0.5 * rise, x, second_position, c)
+    if two is not None:
         flags.append(f"two-gauge wave separation ({x * 1e3:.0f} and {second_position * 1e3:.0f} mm): far-end condition not used")
 
     # Force at the struck end, on a clock from the (rough) first contact.
@@ -354,96 +510,21 @@ def reduce_record(
     window = max(7, int(round(0.25 * rise / dt)) | 1)
     if cap_mass > 0:
         flags.append(f"end-cap inertia corrected (m = {cap_mass * 1e3:.2f} g, lag m/ρcA = {cap_mass / Z * 1e6:.1f} µs)")
-
-    def parameters(F):
-        Fs = _smooth(F, dt, 0.1 * rise)
-        Fs = _smooth(F, dt, 0.2 * max(tt[np.argmax(Fs)], 3 * dt))
-        k_pk = int(np.argmax(Fs))
-        F0_guess, t_pk_guess = float(Fs[k_pk]), float(tt[k_pk])
-        after = np.flatnonzero((np.arange(Fs.size) > k_pk) & (Fs < settings.fit_cutoff * F0_guess))
-        if after.size == 0:
-            _fail(name, "the record ends before the force falls to 15 % of its peak: the main pulse is truncated")
-        # The main pulse, wherever its tail starts (models/pulse_fit.fit_main_pulse, as identify):
-        # a fit down to the fixed cutoff seeds a tail-aware fit; the whole record's fit kept beside it.
-        try:
-            main = fit_main_pulse(tt, F, cutoff=settings.fit_cutoff)
-        except InputError as exc:
-            _fail(name, str(exc).removeprefix("pulse fit: "))
-        (fit, t0, rms), aware = main.fit.as_tuple(), main.aware
-        # F0: the maximum of a cubic fitted to the crown, where the eq-15 fit is within
-        # 10 % of its peak: it averages the noise over the whole crown (< 0.3 % model
-        # error on eq-15 shapes) and follows the data where they depart from eq 15.
-        crown = np.flatnonzero(fit(tt - t0) >= 0.9 * fit.peak_force)
-        if crown.size >= 7:
-            tc = tt[crown] - t0 - fit.time_of_peak
-            coef = np.polyfit(tc, F[crown], 3)
-            fine = np.linspace(tc[0], tc[-1], 2001)
-            vals = np.polyval(coef, fine)
-            F0, t_pk = float(vals.max()), float(t0 + fit.time_of_peak + fine[np.argmax(vals)])
-        else:
-            F0, t_pk = F0_guess, t_pk_guess
-        below = np.flatnonzero((np.arange(Fs.size) > k_pk) & (Fs < settings.duration_threshold * F0))
-        t_thr = float(tt[below[0]]) - t0 if below.size else math.nan
-        return fit, t0, rms, F0, t_pk, t_thr, aware
-
     F = _bar_force(y, baseline, tt, tau, period, EA, cap_mass, Z, window, dt, round_bar, x, L, two)
-    fit, t0, rms, F0, t_pk, t_thr, aware = parameters(F)
-
-    # A baseline error δ adds about δ·EA·L/(L − x) to F for the rest of the record,
-    # so the impulse needs the baseline well. Where the record runs on for whole
-    # periods P after the main pulse, their mean strain is a second estimate.
-    # (Not with an end cap: a mass-loaded end breaks the P-periodicity.)
-    late, n_late = _late_baseline(y, tt, t0 + 3.0 * fit.duration, period) if cap_mass == 0 and two is None else (math.nan, 0)
-    if n_late:
-        # The standard error of the difference, floored at the resolution a record can
-        # claim, so that a noise-free record (σ = 0) does not divide by zero.
-        se = max(noise * math.sqrt(1 / n_base + 1 / n_late), BASELINE_RESOLUTION * abs(peak_dev))
-        if abs(late - baseline) <= 3 * se:
-            baseline = (n_base * baseline + n_late * late) / (n_base + n_late)
-            n_base += n_late
+    fit, t0, rms, F0, t_pk, t_thr, aware = _pulse_parameters(name, F, tt, dt, rise, settings)
+    if cap_mass == 0 and two is None:  # a mass-loaded end breaks the P-periodicity the late baseline needs
+        pooled, baseline, n_base, flag = _pooled_baseline(y, tt, t0 + 3.0 * fit.duration, period, baseline, noise, n_base, peak_dev)
+        if pooled:
             F = _bar_force(y, baseline, tt, tau, period, EA, cap_mass, Z, window, dt, round_bar, x, L, two)
-            fit, t0, rms, F0, t_pk, t_thr, aware = parameters(F)
-        else:
-            flags.append(
-                f"mean strain over the last {n_late} samples departs from the pre-trigger baseline by "
-                f"{abs(late - baseline) / se:.0f} standard errors: force not over (tail) or drift; pre-trigger baseline kept"
-            )
+            fit, t0, rms, F0, t_pk, t_thr, aware = _pulse_parameters(name, F, tt, dt, rise, settings)
+        elif flag:
+            flags.append(flag)
 
-    time = tt - t0
-    keep = time >= 0
-    if round_bar is not None:
-        # Moving the record back by x needs it up to x(1/c_R − 1/c0) past each instant: the end is dropped.
-        lost = x * (1 / (rayleigh_speed_ratio(round_bar.poisson_ratio) * c) - 1 / c)
-        keep &= tt <= tt[-1] - lost
-        flags.append(
-            f"Pochhammer-Chree dispersion corrected (nu = {round_bar.poisson_ratio:g}; band to {radial_band_edge(round_bar) / 1e3:.0f} kHz); "
-            f"last {lost * 1e6:.0f} us of the record dropped (the correction needs the record beyond it)"
-        )
-    time, force = time[keep], F[keep]
-    force_start = float(np.interp(0.0, tt - t0, F))
-    time = np.concatenate(([0.0], time))
-    force = np.concatenate(([force_start], force))
-    impulse = float(np.trapezoid(force, time))
+    time, force, dropped = _from_contact(tt, t0, F, round_bar, x, c)
+    flags += dropped
     valid_until = float(time[-1])
-    if two is None:
-        direct_until = tau - t0 if tau - t0 < valid_until else valid_until
-        if not math.isfinite(t_thr) or t_thr > direct_until:
-            flags.append(f"pulse longer than the reflection return 2(L-x)/c = {tau * 1e6:.0f} µs: reflection-corrected beyond")
-        terms = 1 + int(valid_until // tau) + int(valid_until // period)
-        impulse_sd = EA * noise / math.sqrt(n_base) * L / (L - x) * valid_until
-    else:
-        # The separation adds a term every 2Δ; a baseline error δ grows the force by δ·EA per 2Δ.
-        spacing = 2 * two[1]
-        direct_until = valid_until  # the returning waves are measured, not inferred from the far end
-        terms = 2 + 2 * int(valid_until // spacing)
-        impulse_sd = EA * noise / math.sqrt(n_base) * math.sqrt(2) * valid_until * (1 + valid_until / (2 * spacing))
-    if not math.isfinite(t_thr):
-        flags.append("the force never falls below 5 % of F0 within the record: threshold duration undefined")
-    if aware is not None and aware.differs:
-        flags.append(aware.message)
-    end_noise = EA * noise * math.sqrt(terms)
-    if end_noise > 0.05 * F0:
-        flags.append(f"reflection corrections amplify the noise to {end_noise / F0:.0%} of F0 by the end")
+    direct_until, impulse_sd, more = _reach(valid_until, tau, period, t0, t_thr, two, EA, noise, n_base, L, x, F0, aware)
+    flags += more
     return Reduction(
         name=name,
         time=time,
@@ -453,7 +534,7 @@ def reduce_record(
         time_of_max=t_pk - t0,
         duration=fit.duration,
         duration_threshold=t_thr,
-        impulse=impulse,
+        impulse=float(np.trapezoid(force, time)),
         impulse_uncertainty=impulse_sd,
         valid_until=valid_until,
         direct_until=direct_until,
@@ -466,102 +547,3 @@ def reduce_record(
         flags=tuple(flags),
         whole_fit=None if aware is None else aware.whole.pulse,
     )
-
-
-# --- tail-shape ambiguity: several tail families, ranked by AIC -----------------------------------
-
-__all__ += ["TAIL_FAMILIES", "TailShapeFit", "fit_tail_shapes"]
-
-TAIL_FAMILIES = ("knee", "ramp-under", "linear", "power-law")
-
-
-def _eq15(x, F0, tp, T):
-    """Eq (15) from x = 0 (time since its start): quarter sine to tp, quarter cosine to T."""
-    rise = F0 * np.sin(np.pi * np.clip(x, 0, None) / (2 * tp))
-    fall = F0 * np.cos(np.pi * (x - tp) / (2 * (T - tp)))
-    return np.where(x <= 0, 0.0, np.where(x < tp, rise, np.where(x < T, fall, 0.0)))
-
-
-def _tail_model(family: str, x, F0, tp, T, q):
-    """The whole record of one tail family (x: time since the pulse's start; q: the tail's parameters).
-
-    - knee: eq 15 until its fall reaches level·F0, then level·F0·exp(−(x − x_k)/τ) (q = level, τ/T);
-    - ramp-under: eq 15 plus a tail rising linearly from s·T to L·F0 at T (under the falling main
-      pulse), then decaying as exp(−(x − T)/τ) (q = L, s, τ/T);
-    - linear: the same rise, then a linear fall to 0 at T + τ (q = L, s, τ/T);
-    - power-law: the same rise, then (1 + (x − T)/τ)^(−n) (q = L, s, τ/T, n).
-    """
-    if family == "knee":
-        level, tau = q[0], q[1] * T
-        xk = tp + 2 * (T - tp) / np.pi * math.acos(min(max(level, 0.0), 1.0))
-        return np.where(x < xk, _eq15(x, F0, tp, T), level * F0 * np.exp(-np.maximum(x - xk, 0.0) / tau))
-    L, s, tau = q[0], q[1], q[2] * T
-    rise = L * F0 * np.clip((x - s * T) / max(T - s * T, 1e-12 * T), 0.0, 1.0)
-    after = np.maximum(x - T, 0.0)
-    if family == "ramp-under":
-        decay = np.exp(-after / tau)
-    elif family == "linear":
-        decay = np.clip(1.0 - after / tau, 0.0, 1.0)
-    else:
-        decay = (1.0 + after / tau) ** (-q[3])
-    return _eq15(x, F0, tp, T) + np.where(x < T, rise, L * F0 * decay)
-
-
-@dataclass(frozen=True)
-class TailShapeFit:
-    """One tail family fitted to a whole force record: the main pulse's F0 [N], t_F0, T [s] and its
-    start [s], the residual sum of squares [N²] over n samples, k parameters, and
-    AIC = n·ln(RSS/n) + 2k (Akaike; Gaussian residuals of unknown variance)."""
-
-    family: str
-    peak_force: float
-    time_of_peak: float
-    duration: float
-    start: float
-    rss: float
-    samples: int
-    parameters: int
-
-    @property
-    def aic(self) -> float:
-        return self.samples * math.log(max(self.rss, 1e-300) / self.samples) + 2 * self.parameters
-
-
-def fit_tail_shapes(t, F, families=TAIL_FAMILIES) -> tuple[TailShapeFit, ...]:
-    """Each tail family (:func:`_tail_model`) fitted by least squares to the whole record (``t`` [s] from
-    about first contact, ``F`` [N]), started from the reduction's main-pulse fit. The main pulse's
-    parameters differ between families when the tail ramps in under the falling main pulse: the
-    record alone may not tell the shapes apart (their AICs then differ by little)."""
-    from scipy.optimize import least_squares
-
-    t, F = np.asarray(t, float), np.asarray(F, float)
-    main = fit_main_pulse(t, F).fit
-    m = main.pulse
-    F0s, T0 = m.peak_force, m.duration
-    after = t > main.start + T0
-    level0 = float(np.clip(np.mean(F[after]) / F0s * 2.0 if after.any() else 0.1, 0.02, 0.5))
-    tau0 = max(float(t[-1] - main.start - T0) / 3.0, 0.1 * T0) / T0
-    out = []
-    for family in families:
-        if family == "knee":
-            q0, qlo, qhi = [level0, tau0], [0.005, 0.01], [0.7, 50.0]
-        else:
-            q0, qlo, qhi = [level0, 0.5, tau0], [0.0, 0.0, 0.01], [0.7, 0.999, 50.0]
-            if family == "linear":
-                q0[2], qlo[2] = max(2 * tau0, 0.05), 0.05
-            if family == "power-law":
-                q0, qlo, qhi = q0 + [2.0], qlo + [0.2], qhi + [10.0]
-        p0 = np.array([main.start / T0, 1.0, m.time_of_peak / T0, 1.0, *q0])
-        lo = np.array([-0.2, 0.3, 1e-3, 0.2, *qlo])
-        hi = np.array([0.2, 3.0, 0.95, 5.0, *qhi])
-        p0 = np.clip(p0, lo + 1e-9, hi - 1e-9)
-
-        def residual(p, family=family):
-            t0, f0, tp, T = p[0] * T0, p[1] * F0s, p[2] * T0, p[3] * T0
-            return (_tail_model(family, t - t0, f0, min(tp, 0.999 * T), T, p[4:]) - F) / F0s
-
-        sol = least_squares(residual, p0, bounds=(lo, hi), x_scale=np.array([0.02, 1.0, 0.1, 1.0] + [0.1] * len(q0)))
-        t0, f0, tp, T = sol.x[0] * T0, sol.x[1] * F0s, sol.x[2] * T0, sol.x[3] * T0
-        rss = float(sol.fun @ sol.fun) * F0s**2
-        out.append(TailShapeFit(family, float(f0), float(min(tp, 0.999 * T)), float(T), float(t0), rss, int(t.size), len(p0)))
-    return tuple(out)

@@ -20,7 +20,8 @@ import numpy as np
 
 from ..errors import InputError
 from ..gates import Gate, at_least, at_most
-from ..models.empirical import ScalingLaw
+from ..models.empirical import REGRESSORS, ScalingLaw
+from ..models.pulse_fit import TAIL_DELTA_AIC
 from ..units import INCH
 
 __all__ = [
@@ -41,8 +42,6 @@ __all__ = [
 
 MIN_VELOCITY_SPREAD = 0.1  # (V_max − V_min)/mean V of a group: below, a law in V is not determined by its tests
 MAX_RELATIVE_RESIDUAL = 0.3  # RMS residual / RMS response of a law: above, the straight line does not describe the tests
-# tail families within this ΔAIC of the best are not rejected (Burnham & Anderson 2002: beyond 4, "considerably less support")
-TAIL_DELTA_AIC = 4.0
 
 
 @dataclass(frozen=True)
@@ -114,15 +113,6 @@ def fit_line(x, y, through_origin: bool = True) -> LineFit:
         icpt_ci = (icpt - ih, icpt + ih)
     r2 = 1.0 - float(res @ res) / ss_tot if ss_tot > 0 else math.nan
     return LineFit(slope, (slope - half, slope + half), icpt, icpt_ci, r2, res, through_origin)
-
-
-# Regressor x and response y of each law, from a test point.
-REGRESSORS = {
-    "alpha1": ("mV²/(2d)", lambda p: p.mass * p.velocity**2 / (2 * p.diameter), lambda p: p.peak_force),
-    "alpha2": ("d/V", lambda p: p.diameter / p.velocity, lambda p: p.duration),
-    "alpha3": ("T", lambda p: p.duration, lambda p: p.time_of_peak),
-    "alpha4": ("2mV", lambda p: 2 * p.mass * p.velocity, lambda p: p.impulse),
-}
 
 
 @dataclass(frozen=True)

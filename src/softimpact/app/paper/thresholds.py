@@ -228,18 +228,11 @@ def _ball_thresholds(case: str, label: str, draws: int, levels: int, case_data: 
     return rows
 
 
-def threshold_section(figures: bool, files: dict, prefix: str = "thresholds/"):
-    """The report section: threshold velocity curves of the paper's beams and of a plate
-    (first-ply failure, delamination), each as a CSV and a figure."""
+def _threshold_files(beams, plate, maps, figures: bool, files: dict, prefix: str, system: str) -> list[tuple[str, str]]:
+    """The threshold maps and curves written into ``files`` (CSV, and PNG with ``figures``); returns the figures' (path, caption)."""
     from ...output.files import figure_bytes
-    from ...output.report import Section
     from ...output.sweep import threshold_csv, threshold_figure, threshold_map_figure
-    from ...units import display
 
-    system = "in-lbf-s"
-    vu = display(system, "velocity")
-    beams, plate = paper_thresholds(), paper_plate_thresholds()
-    maps = paper_threshold_maps()
     figs = []
     files[f"{prefix}threshold-maps.csv"] = threshold_csv(maps)
     if figures:
@@ -277,27 +270,47 @@ def threshold_section(figures: bool, files: dict, prefix: str = "thresholds/"):
         if figures:
             files[f"{prefix}{name}.png"] = figure_bytes(threshold_figure(th, system, title))
             figs.append((f"{prefix}{name}.png", caption))
+    return figs
 
-    def cell(t):
-        if not t["draws_reaching_1"]:
-            return "above 8000"
-        m, lo, hi = (t[f"threshold_velocity_{q}_m_s"] * vu.factor for q in ("median", "p05", "p95"))
-        part = "" if t["draws_reaching_1"] == t["draws"] else f" ({t['draws_reaching_1']}/{t['draws']} draws)"
-        return f"{m:.0f} [{lo:.0f}-{hi:.0f}]{part}"
 
-    plate_h = f"{PAPER_PLATE_MESHES[-1]} × {PAPER_PLATE_MESHES[-1]}"
+def _threshold_cell(t: dict, vu) -> str:
+    """One threshold row as a table cell: median [5-95 %] in display units, and the draws reaching 1 when not all did."""
+    if not t["draws_reaching_1"]:
+        return "above 8000"
+    m, lo, hi = (t[f"threshold_velocity_{q}_m_s"] * vu.factor for q in ("median", "p05", "p95"))
+    part = "" if t["draws_reaching_1"] == t["draws"] else f" ({t['draws_reaching_1']}/{t['draws']} draws)"
+    return f"{m:.0f} [{lo:.0f}-{hi:.0f}]{part}"
+
+
+def _plate_error_text(plate) -> str:
+    """The plate's first-ply thresholds' discretisation errors and observed orders, as a phrase."""
     first_ply = [t for t in plate if t["index"] != "delamination" and math.isfinite(t["discretisation_error_m_s"])]
-    plate_err = (
+    if not first_ply:
+        return "not estimable (a threshold above the range on a mesh)"
+    return (
         "first-ply thresholds ± "
         + ", ".join(f"{t['discretisation_error_m_s'] / t['threshold_velocity_median_m_s']:.1%} ({t['index']}, {t['levels'].split(', ')[1]})" for t in first_ply)
         + f", observed orders {min(t['observed_order'] for t in first_ply):.2g}-{max(t['observed_order'] for t in first_ply):.2g}"
-        if first_ply
-        else "not estimable (a threshold above the range on a mesh)"
     )
+
+
+def threshold_section(figures: bool, files: dict, prefix: str = "thresholds/"):
+    """The report section: threshold velocity curves of the paper's beams and of a plate
+    (first-ply failure, delamination), each as a CSV and a figure."""
+    from ...output.report import Section
+    from ...units import display
+
+    system = "in-lbf-s"
+    vu = display(system, "velocity")
+    beams, plate = paper_thresholds(), paper_plate_thresholds()
+    maps = paper_threshold_maps()
+    figs = _threshold_files(beams, plate, maps, figures, files, prefix, system)
+    plate_h = f"{PAPER_PLATE_MESHES[-1]} × {PAPER_PLATE_MESHES[-1]}"
+    plate_err = _plate_error_text(plate)
     th = beams + plate
     labels = list(dict.fromkeys(t["levels"] for t in th))
     indices = list(dict.fromkeys(t["index"] for t in th))
-    rows = [[lab] + [cell(next(t for t in th if t["levels"] == lab and t["index"] == i)) for i in indices] for lab in labels]
+    rows = [[lab] + [_threshold_cell(next(t for t in th if t["levels"] == lab and t["index"] == i), vu) for i in indices] for lab in labels]
     map_table, map_text = _map_table(maps, vu)
     return Section(
         "Damage thresholds of the paper's beams and of a plate",

@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ...errors import InputError
+from ...models.sampling import series_problem
 
 __all__ = ["LabRecord", "MIN_SAMPLES", "TIME_NAMES", "DT_NAMES", "RATE_NAMES", "T0_NAMES", "UNIT_ATTRS"]
 
@@ -130,22 +131,11 @@ def _finish(path, fmt, name, t, y, written_unit, header=None, date=None, trigger
         y = np.asarray(y, dtype=float).squeeze()
     except (TypeError, ValueError):
         _fail(path, f"channel {name!r} is not numeric")
-    if t.ndim != 1 or y.ndim != 1:
-        _fail(path, f"channel {name!r}: expected 1-D data, got shape {y.shape}")
-    if t.size != y.size:
-        _fail(path, f"channel {name!r} has {y.size} samples but the time base {t.size}")
-    if y.size < MIN_SAMPLES:
-        _fail(path, f"channel {name!r} holds {y.size} sample(s)")
-    for what, arr in (("time", t), (f"channel {name!r}", y)):
-        bad = ~np.isfinite(arr)
-        if bad.any():
-            _fail(path, f"{what}: {int(bad.sum())} NaN or infinite values (first at sample {int(np.argmax(bad))})")
-    d = np.diff(t)
-    if np.any(d <= 0):
-        k = int(np.argmax(d <= 0))
-        _fail(path, f"time is not increasing at sample {k + 1} ({float(t[k]):.9g} s then {float(t[k + 1]):.9g} s): repeated or unordered time stamps")
+    problem = series_problem(t, y, min_samples=MIN_SAMPLES, what=f"channel {name!r}")
+    if problem is not None:
+        _fail(path, problem)
     unit, factor, stated = _unit(written_unit)
-    dt = float(np.median(d))
+    dt = float(np.median(np.diff(t)))
     if trigger is None:  # the header's own trigger item (Tektronix "Trigger Point", LeCroy "Trigger Time", ...)
         trigger = next((_one_line(v) for k, v in (header or {}).items() if "trig" in str(k).lower() and "date" not in str(k).lower()), None)
     meta = {
