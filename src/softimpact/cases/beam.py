@@ -13,10 +13,6 @@ from ._common import LOAD_KEYS, expand_ply, gauge_keys, gauge_outputs, without
 __all__ = ["BeamKind"]
 
 
-def _screenable(stack) -> bool:
-    return stack is not None and stack.ply.strength is not None and hasattr(stack, "angles")
-
-
 class BeamKind:
     """Beam cases. Sweep runs differing only in the force history share one BeamModel and its
     impulse responses (the response engine: one convolution a run)."""
@@ -38,15 +34,36 @@ class BeamKind:
 
         return beam_problem(data, base)
 
-    def check(self, problem):
-        from ..workflows.beam_impact import check_problem
+    def problem_class(self):
+        from ..workflows.beam_impact import BeamProblem
 
-        check_problem(problem)
+        return BeamProblem
+
+    def check(self, problem):
+        problem.check()
 
     def refine(self, problem, factor):
-        from ..workflows.refinement import refine_beam
+        return problem.refine(factor)
 
-        return refine_beam(problem, factor)
+    def execute(
+        self, problem, *, figures=False, fields=False, damage=True, method="direct", kernels=None, model=None, energy=True, stop_after=None, progress=None
+    ):
+        """The beam stepped directly (:func:`softimpact.cases.run.execute`), the whole displacement kept with
+        ``figures`` or ``fields`` (the frames of the fields: ``kept``); a coupled run's options do not apply."""
+        from ..output.beam import beam_summary, beam_validity
+        from ..output.fields import sampled_steps
+        from ..workflows.beam_impact import BeamModel
+        from .run import Run
+
+        model = model or BeamModel(problem)
+        result = model.direct(progress=progress, energy=energy, displacement=figures or fields)
+        kept = sampled_steps(problem.solver.steps) if fields else ()
+        return Run(result, model, beam_summary(model, result), beam_validity(result), problem, kept=kept)
+
+    def damage_refusal(self, problem):
+        from ..workflows.damage import damage_refusal
+
+        return damage_refusal(problem)
 
     def study(self, problem, stride, progress=None):
         """Deflection under the load, gauge peaks, first-lobe peaks, first zero crossings and histories; the model's size."""
@@ -98,7 +115,7 @@ class BeamKind:
             result = BeamResult(problem, problem.solver.times(), F, y[0 : 2 * ng : 2], 0.5 * (y[0 : 2 * ng : 2] - y[1 : 2 * ng : 2]), y[2 * ng])
         out = self.summary(problem, result)
         wanted = not outputs or any(o.startswith("damage.") for o in outputs)
-        if wanted and _screenable(problem.beam.stack):
+        if wanted and problem.has_damage_outputs:
             out["damage"] = self.damage(problem, result)
         return out
 
@@ -126,7 +143,7 @@ class BeamKind:
 
         keys = ["peak_force_N", "impulse_N_s", "peak_deflection_under_load_m", "validity.deflection_over_thickness"]
         keys += gauge_keys([g.name for g in problem.gauges])
-        if _screenable(problem.beam.stack):
+        if problem.has_damage_outputs:
             keys += [f"damage.{c}" for c in CRITERIA] + ["damage.delamination", "damage.threshold_force_N"]
         return tuple(keys)
 
