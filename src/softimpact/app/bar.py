@@ -32,7 +32,7 @@ def bar(*, case: str, figures: bool = True, progress: Progress = no_progress) ->
     t0 = time.perf_counter()
     run = execute(problem)
     result = run.result
-    files = bar_files(result, run.plain, run.inferred, figures)
+    files = bar_files(result, run.plain, run.inferred, figures, summary=run.summary)
     warn(run.warnings)
     fu, tu = display(problem.units, "force"), display(problem.units, "time")
     line = (

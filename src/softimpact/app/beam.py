@@ -25,7 +25,7 @@ def beam(*, case: str, history: int | None = None, figures: bool = True, fields:
     run = execute(problem, figures=figures, fields=fields, progress=lambda k: progress(k, steps, "stepping"))
     model, result = run.model, run.result
     progress(steps, steps, "stepping")
-    files = beam_files(model, result, figures)
+    files = beam_files(model, result, figures, summary=run.summary)
     if fields:
         kept = run.kept
         files.update(field_files(model, (kept, result.time[kept], result.displacement[:, kept])))

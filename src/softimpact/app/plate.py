@@ -25,7 +25,7 @@ def plate(*, case: str, history: int | None = None, figures: bool = True, fields
     run = execute(problem, figures=figures, fields=fields, progress=lambda k: progress(k, steps, "stepping"))
     model, result = run.model, run.result
     progress(steps, steps, "stepping")
-    files = plate_files(model, select_kept(result, run.shown) if fields else result, figures)
+    files = plate_files(model, select_kept(result, run.shown) if fields else result, figures, run.summary)
     if fields:
         files.update(field_files(model, kept_frames(result, run.kept)))
     su, lu = display(problem.units, "strain"), display(problem.units, "length")

@@ -61,7 +61,7 @@ class BarKind:
         from .run import Run
 
         result, plain, inferred = run_bar(problem)
-        return Run(result, None, bar_summary(result), bar_validity(result), problem, plain=plain, inferred=inferred)
+        return Run(result, None, bar_summary(result, plain), bar_validity(result), problem, plain=plain, inferred=inferred)
 
     def damage_refusal(self, problem):
         return None  # a bar has no damage outputs: the sweep's check of the outputs names it

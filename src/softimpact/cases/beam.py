@@ -10,7 +10,25 @@ import numpy as np
 from ..errors import InputError
 from ._common import LOAD_KEYS, expand_ply, gauge_keys, gauge_outputs, without
 
-__all__ = ["BeamKind"]
+__all__ = ["BeamKind", "beam_validity"]
+
+
+def beam_validity(result):
+    """The envelopes of a beam run (:mod:`softimpact.models.validity`): peak deflection under the load
+    against the thickness (linear theory), and on a layup with strengths the gauge sections' maximum-strain
+    index (:func:`softimpact.workflows.damage.beam_damage`) against 1."""
+    from ..models.validity import allowable_flags
+
+    p = result.problem
+    v = p.validity(float(np.max(np.abs(result.deflection))))
+    if p.has_damage_outputs and p.gauges and np.all(np.isfinite(result.bending)):
+        from ..workflows.damage import beam_damage
+
+        stack = p.beam.stack
+        other = result.strain - 2 * result.bending
+        dmg = beam_damage(stack, stack.ply.strength, p.beam.plane, result.strain, other, [g.surface for g in p.gauges], result.force)
+        v += allowable_flags("the beam's plies at the gauge sections", float(dmg.ply["max_strain"].max()))
+    return v
 
 
 class BeamKind:
@@ -50,7 +68,7 @@ class BeamKind:
     ):
         """The beam stepped directly (:func:`softimpact.cases.run.execute`), the whole displacement kept with
         ``figures`` or ``fields`` (the frames of the fields: ``kept``); a coupled run's options do not apply."""
-        from ..output.beam import beam_summary, beam_validity
+        from ..output.beam import beam_summary
         from ..output.fields import sampled_steps
         from ..workflows.beam_impact import BeamModel
         from .run import Run
@@ -58,7 +76,8 @@ class BeamKind:
         model = model or BeamModel(problem)
         result = model.direct(progress=progress, energy=energy, displacement=figures or fields)
         kept = sampled_steps(problem.solver.steps) if fields else ()
-        return Run(result, model, beam_summary(model, result), beam_validity(result), problem, kept=kept)
+        validity = beam_validity(result)
+        return Run(result, model, beam_summary(model, result, validity), validity, problem, kept=kept)
 
     def damage_refusal(self, problem):
         from ..workflows.damage import damage_refusal
@@ -122,8 +141,8 @@ class BeamKind:
     def summary(self, problem, result, model=None):
         """Peak force, impulse, deflection under the load (:func:`softimpact.output.beam.beam_scalars`, as
         ``softimpact beam``'s summary.json) and gauge peaks; ``validity_flags``: the names of the run's
-        validity flags (:func:`softimpact.output.beam.beam_validity`, as the command's)."""
-        from ..output.beam import beam_scalars, beam_validity
+        validity flags (:func:`beam_validity`, as the command's)."""
+        from ..output.beam import beam_scalars
 
         scalars = {**beam_scalars(result), **gauge_outputs(result.time, [g.name for g in problem.gauges], result.strain)}
         v = beam_validity(result)
