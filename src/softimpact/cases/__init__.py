@@ -13,9 +13,9 @@ kind (:data:`KINDS`, :func:`kind_of`). A kind provides
   and the size of the model that ran (its true DOF count);
 - ``structure_key(data)``: a text equal for two cases exactly when they share the
   expensive part (mesh, factorisation, impulse responses): sweep runs are grouped by it;
-- ``prepare(data, base, runs, outputs)`` / ``run(prepared, data, base, outputs)``: that
-  expensive part built once per group (it must pickle: it travels to Dask workers), and
-  one run → the kind's :meth:`summary`;
+- ``prepare(data, base, runs, outputs, cases)`` / ``run(prepared, data, base, outputs)``: that
+  expensive part built once per group, covering every run of the group (``cases``: their case
+  dicts; it must pickle: it travels to Dask workers), and one run → the kind's :meth:`summary`;
 - ``summary(problem, result, model)``: the ONE set of scalar outputs of the kind, as the
   command's summary.json names them (sweep outputs and converge read the same keys);
 - ``output_keys(problem)``: the dotted outputs a sweep may ask for;

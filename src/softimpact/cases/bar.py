@@ -97,7 +97,7 @@ class BarKind:
     def structure_key(self, data):
         return json.dumps(data, sort_keys=True, default=str)
 
-    def prepare(self, data, base, runs, outputs=()):
+    def prepare(self, data, base, runs, outputs=(), cases=()):
         return None
 
     def run(self, prepared, data, base, outputs=(), problem=None):

@@ -104,7 +104,7 @@ class BeamKind:
     def structure_key(self, data):
         return without(data, LOAD_KEYS)
 
-    def prepare(self, data, base, runs, outputs=()):
+    def prepare(self, data, base, runs, outputs=(), cases=()):
         from ..workflows.beam_impact import BeamModel
 
         model = BeamModel(self.problem(data, base))

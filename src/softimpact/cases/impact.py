@@ -263,11 +263,16 @@ class ImpactKind:
     def structure_key(self, data):
         return without(data, NOT_STRUCTURE)
 
-    def prepare(self, data, base, runs, outputs=()):
+    def prepare(self, data, base, runs, outputs=(), cases=()):
         """The group's shared model; contact kernels when the group has :data:`KERNEL_MIN_RUNS` runs or
-        more and none of ``outputs`` needs the structure's energies (kernel runs have none)."""
+        more and none of ``outputs`` needs the structure's energies (kernel runs have none), built here
+        for the widest impactor of the group's ``cases`` when they are given (else on first use)."""
         kernels = runs >= KERNEL_MIN_RUNS and not any(o in NEEDS_STRUCTURE for o in outputs)
-        return SharedModel(data, str(base), kernels, damage=_wants_damage(outputs))
+        shared = SharedModel(data, str(base), kernels, damage=_wants_damage(outputs))
+        if cases:
+            shared.widen(cases)
+            shared.build()
+        return shared
 
     def run(self, prepared, data, base, outputs=()):
         problem = self.problem(data, base)

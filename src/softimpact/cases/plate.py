@@ -102,7 +102,7 @@ class PlateKind:
     def structure_key(self, data):
         return without(data, LOAD_KEYS)
 
-    def prepare(self, data, base, runs, outputs=()):
+    def prepare(self, data, base, runs, outputs=(), cases=()):
         from ..workflows.plate_impact import PlateModel
 
         problem = self.problem(data, base)

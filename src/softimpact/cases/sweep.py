@@ -150,11 +150,8 @@ def prepare_group(kind: str, candidates, base: str, runs: int, outputs=()):
     for data in candidates:
         try:
             with _Caught():  # the runs read their cases again and keep their warnings (run_chunk)
-                prepared = KINDS[kind].prepare(data, Path(base), runs, tuple(outputs))
-                if hasattr(prepared, "widen"):  # a shared part that covers every run of the group (impact: the widest contact)
-                    prepared.widen(candidates)
-                    prepared.build()
-            return prepared
+                # the shared part covers every run of the group (an impact's kernels: the widest contact)
+                return KINDS[kind].prepare(data, Path(base), runs, tuple(outputs), tuple(candidates))
         except Exception as exc:  # a drawn structure can be invalid: its runs fail, the sweep goes on
             first = first or _Failed(_one_line(exc))
             if runs == 1:
