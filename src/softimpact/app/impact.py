@@ -35,7 +35,7 @@ def impact(*, case: str, figures: bool = True, fields: bool = False, progress: P
     steps = problem.solver.steps
     run = execute(problem, figures=figures, fields=fields, progress=lambda k: progress(k, steps, "stepping"))
     result, model = run.result, run.model
-    files = impact_files(problem, select_kept(result, run.shown) if fields else result, run.summary, figures, model=model)
+    files = impact_files(problem, select_kept(result, run.shown) if fields else result, figures, model=model, summary=run.summary)
     if fields:
         files.update(field_files(model, kept_frames(result, run.kept)))
     warn(run.warnings)

@@ -87,11 +87,11 @@ class BeamKind:
     def study(self, problem, stride, progress=None):
         """Deflection under the load, gauge peaks, first-lobe peaks, first zero crossings and histories; the model's size."""
         from ..models.features import first_lobe_peak, first_zero_crossing
-        from ..workflows.beam_impact import BeamModel
-
-        model = BeamModel(problem)
-        r = model.direct(progress=progress, energy=False, displacement=False)
         from ..output.beam import beam_scalars
+        from .run import execute
+
+        run = execute(problem, energy=False, progress=progress)
+        model, r = run.model, run.result
 
         out = {"peak_deflection_under_load_m": beam_scalars(r)["peak_deflection_under_load_m"]}
         for g, eps in zip(problem.gauges, r.strain):
@@ -99,7 +99,7 @@ class BeamKind:
             out[f"strain_{g.name}_first_lobe_peak"] = first_lobe_peak(r.time, eps)
             out[f"strain_{g.name}_first_zero_crossing_s"] = first_zero_crossing(r.time, eps)
             out[f"strain_{g.name}_history"] = eps[::stride]
-        return out, {"elements": [problem.beam.nx, problem.beam.nz], "time_step_s": problem.solver.time_step, "dofs": int(model.size)}
+        return out, {"elements": problem.elements, "time_step_s": problem.solver.time_step, "dofs": int(model.size)}
 
     def structure_key(self, data):
         return without(data, LOAD_KEYS)

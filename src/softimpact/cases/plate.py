@@ -97,7 +97,7 @@ class PlateKind:
 
         out = {"peak_deflection_at_load_m": plate_scalars(r)["peak_deflection_at_load_m"], "deflection_at_load_history_m": r.deflection[0][::stride]}
         magnitude_and_history(out, [g.name for g in problem.gauges], r.strain, stride)
-        return out, {"elements": list(problem.plate.elements), "time_step_s": problem.solver.time_step, "dofs": int(model.size)}
+        return out, {"elements": problem.elements, "time_step_s": problem.solver.time_step, "dofs": int(model.size)}
 
     def structure_key(self, data):
         return without(data, LOAD_KEYS)

@@ -197,7 +197,7 @@ def plate_impact_figures(problem, model, result, prefix: str = "") -> dict[str, 
     return out
 
 
-def impact_files(problem, result, summary: dict, figures: bool = True, prefix: str = "", model=None) -> dict[str, bytes | str]:
+def impact_files(problem, result, figures: bool = True, prefix: str = "", model=None, *, summary: dict) -> dict[str, bytes | str]:
     """history.csv, summary.json (``summary``: :func:`impact_summary`'s, from the run path) and (optionally) the
     figures; for a target that draws its deflected shapes (a plate, ``model`` its PlateModel) also its mesh and
     deflected shapes. ``result``'s gauges only: its other output groups (the damage strains) fed ``summary``."""
