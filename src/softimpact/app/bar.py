@@ -14,7 +14,7 @@ from ..output.bar import bar_files
 from ..units import display
 from . import Outcome, Progress, no_progress
 
-__all__ = ["bar", "run_bar"]  # run_bar: cases.bar's, here for the paper's bar section
+__all__ = ["bar", "run_bar"]  # run_bar: cases.bar's, re-exported (the Python API reads it here until it calls execute)
 
 
 def gauge_lag(result, inferred) -> tuple[float, float] | None:

@@ -13,7 +13,7 @@ from ..output.plate import plate_files
 from ..units import display
 from . import Outcome, Progress, no_progress
 
-__all__ = ["plate"]  # _mirrored_loads: cases.plate's, here for the Python API until it reads it there
+__all__ = ["plate"]
 
 
 def plate(*, case: str, history: int | None = None, figures: bool = True, fields: bool = False, progress: Progress = no_progress) -> Outcome:
