@@ -19,6 +19,7 @@ from softimpact.input.bar_case import load_bar_case
 from softimpact.input.impact_case import load_impact_case
 from softimpact.models.contact_laws import HertzLaw, HuntCrossleyLaw, SoftProjectileLaw, ViscoelasticSoftLaw, YangSunLaw
 from softimpact.workflows.coupled import impact_model
+from softimpact.workflows.plate_impact import PlateProblem
 
 TOL = 1e-6  # of the peak: issue 21's bar for "equal to direct coupled stepping"
 
@@ -37,7 +38,7 @@ def _target(case: str, elements, time_step: float, duration: float):
     """A built-in impact case made small: its target's mesh and the run coarsened (the physics kept)."""
     problem, _ = load_impact_case(case)
     t = problem.target
-    if problem.on_plate:
+    if isinstance(t, PlateProblem):
         t = replace(t, plate=replace(t.plate, elements=elements))
     else:
         t = replace(t, beam=replace(t.beam, nx=elements[0], nz=elements[1]))

@@ -56,17 +56,16 @@ def test_beam_gauge_table_puts_still_growing_on_the_peak_at_the_window_end():
     report's gauge table attaches "still growing?" to that peak, not to the compressive one."""
     import dataclasses
 
+    from softimpact.cases.run import execute
     from softimpact.input.beam_case import load_beam_case
-    from softimpact.output.beam import beam_section, beam_summary
-    from softimpact.workflows.beam_impact import BeamModel
+    from softimpact.output.beam import beam_section
 
     p, _ = load_beam_case("paper-long-beam")
     p = dataclasses.replace(p, solver=dataclasses.replace(p.solver, duration=60e-6))
-    model = BeamModel(p)
-    r = model.direct(energy=False, displacement=False)
-    at_end = {g: d["peak_at_window_end"] for g, d in beam_summary(model, r)["gauges"].items()}
+    run = execute(p, energy=False)
+    at_end = {g: d["peak_at_window_end"] for g, d in run.summary["gauges"].items()}
     assert at_end["g2"] == ["tensile"]
-    rows = {row[0]: row for row in beam_section(model, r, "").tables[1][2]}
+    rows = {row[0]: row for row in beam_section(run.model, run.result, "", run.summary).tables[1][2]}
     assert "still growing" in rows["g2"][2] and "still growing" not in rows["g2"][3]
     assert not any("still growing" in c for c in rows["g1"])
 

@@ -302,49 +302,19 @@ def run(problem, *, figures: bool = True):
 
 
 def _run(case: Case, figures: bool = True):
-    """:func:`run`, its warnings left to the caller (each as the command warns it: the same functions)."""
-    from ..models.validity import Validity, warn
+    """:func:`run`, its warnings left to the caller (each as the command warns it: the one run path,
+    :func:`softimpact.cases.run.execute`)."""
+    from ..cases import kind_for
+    from ..cases.run import execute
+    from ..models.validity import warn
 
-    p, files = case.problem, case.files
-    if case.kind == "impact" and hasattr(p, "projectile"):  # an impact case on a bar target runs as the bar
-        case = Case("bar", p, files)
-    if case.kind == "impact":
-        from ..output.impact import snapshot_steps
-        from ..studies.damage import damage_problem
-        from ..workflows.coupled import impact_model, run_impact
-
-        p = damage_problem(p)  # as the command: + the pseudo-gauges of the damage indices (a layup with strengths)
-        model = impact_model(p)
-        snaps = snapshot_steps(p.solver.steps) if figures and p.on_plate else ()
-        model, result = run_impact(p, model, snapshots=snaps)
-        from ..app.impact import warn_validity
-        from ..output.impact import impact_summary
-
-        warn_validity(impact_summary(p, result, model))
-        return ImpactResult(p, result, model, files)
-    if case.kind == "beam":
-        from ..output.beam import beam_validity
-        from ..workflows.beam_impact import BeamModel
-
-        model = BeamModel(p)
-        result = model.direct(displacement=figures)
-        warn(beam_validity(result))
-        return BeamResult(p, result, model, files)
-    if case.kind == "plate":
-        from ..app.plate import mirrored_loads
-        from ..output.plate import plate_validity, snapshot_steps
-        from ..workflows.plate_impact import PlateModel
-
-        model = PlateModel(p)
-        result = model.direct(snapshots=snapshot_steps(p.solver.steps) if figures else ())
-        warn(Validity({}, mirrored_loads(p)) + plate_validity(result))  # the command's order
-        return PlateResult(p, result, model, files)
-    from ..app.bar import run_bar
-    from ..output.bar import bar_validity
-
-    result, plain, inferred = run_bar(p)
-    warn(bar_validity(result))
-    return BarResult(p, result, plain, inferred, files)
+    run = execute(case.problem, figures=figures)
+    warn(run.warnings)
+    kind = kind_for(run.problem).name  # an impact case on a bar target reads as a bar problem, and runs as one
+    if kind == "bar":
+        return BarResult(run.problem, run.result, run.plain, run.inferred, case.files)
+    result_type = {"impact": ImpactResult, "beam": BeamResult, "plate": PlateResult}[kind]
+    return result_type(run.problem, run.result, run.model, case.files, run_summary=run.summary)
 
 
 def _kind_of(problem) -> str:

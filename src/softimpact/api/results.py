@@ -155,6 +155,7 @@ class ImpactResult(_Written):
     model: object = field(repr=False, compare=False, default=None)
     case_files: tuple = field(repr=False, default=())
     warnings: tuple = field(repr=False, compare=False, default=())
+    run_summary: dict = field(repr=False, compare=False, default=None)  # summary.json's content (cases.run.Run.summary)
     command = "softimpact impact"
 
     def __post_init__(self):
@@ -170,11 +171,8 @@ class ImpactResult(_Written):
     @property
     def strain(self) -> dict:
         """Gauge strain histories by gauge name, each (n_steps + 1,), tension +."""
-        from ..studies.damage import split_damage
-
-        _, result, _ = split_damage(self.problem, self.result)  # the damage indices' pseudo-gauges are not gauges
-        strain = dict(zip(result.strain_names, result.strain))
-        _read_only(strain)  # rows of a new array when the run had damage indices
+        strain = dict(zip(self.result.strain_names, self.result.strain))  # the gauges only: the damage strains are another output group
+        _read_only(strain)
         return strain
 
     def inputs(self):
@@ -184,16 +182,15 @@ class ImpactResult(_Written):
         """The files of ``softimpact impact`` (history.csv, summary.json, figures), by name."""
         from ..output.impact import impact_files
 
-        return impact_files(self.problem, self.result, figures, model=self.model)
+        return impact_files(self.problem, self.result, figures, model=self.model, summary=self.run_summary)
 
     def to_frame(self):
         """The histories of history.csv as a pandas DataFrame indexed by time [s]; units in ``df.attrs["units"]``.
 
         pandas rather than xarray: one dimension (time), and users know it (the ``table`` extra)."""
         from ..output.impact import impact_columns
-        from ..studies.damage import split_damage
 
-        cols = impact_columns(split_damage(self.problem, self.result)[1])
+        cols = impact_columns(self.result)
         return _frame(cols, {k: _unit_of(k) for k in cols})
 
     def plot(self, ax=None):
@@ -246,6 +243,7 @@ class _Prescribed(_Written):
     model: object = field(repr=False, compare=False, default=None)
     case_files: tuple = field(repr=False, default=())
     warnings: tuple = field(repr=False, compare=False, default=())
+    run_summary: dict = field(repr=False, compare=False, default=None)  # summary.json's content (cases.run.Run.summary)
 
     def __post_init__(self):
         _read_only(self.result)
@@ -287,7 +285,7 @@ class BeamResult(_Prescribed):
         """The files of ``softimpact beam``, by name."""
         from ..output.beam import beam_files
 
-        return beam_files(self.model, self.result, figures)
+        return beam_files(self.model, self.result, figures, summary=self.run_summary)
 
     def to_frame(self):
         """Force and gauge strains as a pandas DataFrame indexed by time [s]; units in ``df.attrs["units"]``."""
@@ -340,7 +338,7 @@ class PlateResult(_Prescribed):
         """The files of ``softimpact plate``, by name."""
         from ..output.plate import plate_files
 
-        return plate_files(self.model, self.result, figures)
+        return plate_files(self.model, self.result, figures, self.run_summary)
 
     def to_frame(self):
         """Force, deflection under the load and gauge strains, indexed by time [s]; units in ``df.attrs["units"]``."""

@@ -6,26 +6,15 @@ import time
 
 import numpy as np
 
+from ..cases.bar import run_bar
+from ..cases.run import execute
 from ..input.bar_case import load_bar_case
 from ..models.validity import warn
-from ..output.bar import bar_files, bar_validity
+from ..output.bar import bar_files
 from ..units import display
-from ..workflows.bar_impact import force_from_gauge, simulate_impact, without_end_cap
 from . import Outcome, Progress, no_progress
 
-__all__ = ["bar", "run_bar"]
-
-
-def run_bar(problem):
-    """The run, the same run without the end cap (None without one), and the force
-    read from the first gauge as (time, force, gauge name) (None without a gauge)."""
-    result = simulate_impact(problem)
-    plain = simulate_impact(without_end_cap(problem)) if problem.bar.end_cap is not None else None
-    inferred = None
-    if problem.gauges:
-        t, f = force_from_gauge(result, 0)
-        inferred = (t, f, problem.gauges[0].name)
-    return result, plain, inferred
+__all__ = ["bar", "run_bar"]  # run_bar: cases.bar's, re-exported (the Python API reads it here until it calls execute)
 
 
 def gauge_lag(result, inferred) -> tuple[float, float] | None:
@@ -41,9 +30,10 @@ def bar(*, case: str, figures: bool = True, progress: Progress = no_progress) ->
     """Run a bar case (file or built-in name)."""
     problem, path = load_bar_case(case)
     t0 = time.perf_counter()
-    result, plain, inferred = run_bar(problem)
-    files = bar_files(result, plain, inferred, figures)
-    warn(bar_validity(result))
+    run = execute(problem)
+    result = run.result
+    files = bar_files(result, run.plain, run.inferred, figures, summary=run.summary)
+    warn(run.warnings)
     fu, tu = display(problem.units, "force"), display(problem.units, "time")
     line = (
         f"peak force {result.peak_force * fu.factor:.1f} {fu.label} at {result.time_of_peak * tu.factor:.1f} {tu.label}, "

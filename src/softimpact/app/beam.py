@@ -6,11 +6,11 @@ import time
 
 import numpy as np
 
+from ..cases.run import execute
 from ..input.beam_case import load_beam_case
-from ..output.beam import beam_files, beam_validity
-from ..output.fields import field_files, sampled_steps
+from ..output.beam import beam_files
+from ..output.fields import field_files
 from ..units import display
-from ..workflows.beam_impact import BeamModel
 from . import Outcome, Progress, no_progress
 
 __all__ = ["beam"]
@@ -21,15 +21,15 @@ def beam(*, case: str, history: int | None = None, figures: bool = True, fields:
     ``fields``: also fields.xdmf/.h5, the displacement and strain fields (:mod:`softimpact.output.fields`)."""
     problem, path = load_beam_case(case, history)
     t0 = time.perf_counter()
-    model = BeamModel(problem)
     steps = problem.solver.steps
-    result = model.direct(progress=lambda k: progress(k, steps, "stepping"), displacement=figures or fields)
+    run = execute(problem, figures=figures, fields=fields, progress=lambda k: progress(k, steps, "stepping"))
+    model, result = run.model, run.result
     progress(steps, steps, "stepping")
-    files = beam_files(model, result, figures)
+    files = beam_files(model, result, figures, summary=run.summary)
     if fields:
-        kept = sampled_steps(steps)
+        kept = run.kept
         files.update(field_files(model, (kept, result.time[kept], result.displacement[:, kept])))
     su = display(problem.units, "strain")
     peaks = ", ".join(f"{g.name} {eps[np.argmax(np.abs(eps))] * su.factor:.0f} {su.label}" for g, eps in zip(problem.gauges, result.strain))
     line = f"{model.plane.n} DOF, {steps} steps ({time.perf_counter() - t0:.1f} s); peak strains {peaks}"
-    return Outcome(files, line, (path,), beam_validity(result).flags)
+    return Outcome(files, line, (path,), run.warnings.flags)

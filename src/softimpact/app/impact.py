@@ -2,33 +2,19 @@
 
 from __future__ import annotations
 
-import json
 import time
 
 import numpy as np
 
+from ..cases.run import execute
 from ..input.impact_case import load_impact_case
-from ..models.validity import Validity, warn
-from ..output.fields import field_files, kept_frames, sampled_steps, select_kept
-from ..output.impact import impact_files, snapshot_steps
-from ..studies.damage import damage_problem, split_damage
+from ..models.validity import warn
+from ..output.fields import field_files, kept_frames, select_kept
+from ..output.impact import impact_files
 from ..units import display
-from ..workflows.coupled import impact_model, run_impact
 from . import Outcome, Progress, no_progress
 
-__all__ = ["impact", "warn_validity"]
-
-
-def _validity(summary: dict) -> tuple[dict, tuple]:
-    """The validity ratios and flags of summary.json (computed once, where the summary is)."""
-    v = dict(summary["validity"])
-    return v, tuple(v.pop("flags"))
-
-
-def warn_validity(summary: dict) -> None:
-    """Each flag of summary.json's ``validity`` as a :class:`~softimpact.errors.SoftimpactWarning`: the one path
-    of the command and of the Python API (:func:`softimpact.api.run`) from a coupled run to its warnings."""
-    warn(Validity(*_validity(summary)))
+__all__ = ["impact"]
 
 
 def _damage_words(summary: dict) -> str:
@@ -45,21 +31,14 @@ def impact(*, case: str, figures: bool = True, fields: bool = False, progress: P
     """Run an impact case (file or built-in name) on a beam or plate target; ``fields``: also
     fields.xdmf/.h5, the target's displacement fields (:mod:`softimpact.output.fields`)."""
     problem, inputs = load_impact_case(case)
-    problem = damage_problem(problem)  # + the pseudo-gauges of the damage indices (a layup with strengths)
     t0 = time.perf_counter()
     steps = problem.solver.steps
-    model = impact_model(problem)
-    progress(0, steps, "stepping")
-    snaps = snapshot_steps(steps) if figures and problem.on_plate else ()
-    kept = sampled_steps(steps) if fields else ()
-    model, result = run_impact(problem, model, snapshots=np.union1d(snaps, kept).astype(int) if fields else snaps)
-    progress(steps, steps, "stepping")
-    files = impact_files(problem, select_kept(result, snaps) if fields else result, figures, model=model)
+    run = execute(problem, figures=figures, fields=fields, progress=lambda k: progress(k, steps, "stepping"))
+    result, model = run.result, run.model
+    files = impact_files(problem, select_kept(result, run.shown) if fields else result, figures, model=model, summary=run.summary)
     if fields:
-        files.update(field_files(model, kept_frames(result, kept)))
-    summary = json.loads(files["summary.json"])
-    warn_validity(summary)
-    problem, result, _ = split_damage(problem, result)
+        files.update(field_files(model, kept_frames(result, run.kept)))
+    warn(run.warnings)
     fu, tu, su = (display(problem.units, k) for k in ("force", "time", "strain"))
     peaks = ", ".join(f"{n} {eps[np.argmax(np.abs(eps))] * su.factor:.0f} {su.label}" for n, eps in zip(result.strain_names, result.strain))
     T = "not separated" if not np.isfinite(result.contact_duration) else f"T {result.contact_duration * tu.factor:.1f} {tu.label}"
@@ -71,9 +50,8 @@ def impact(*, case: str, figures: bool = True, fields: bool = False, progress: P
             "its duration and the rebound velocity are unknown (null in summary.json) and its peak may be later; lengthen solver.duration",
         )
     )
-    dofs = model.size
     line = (
         f"{problem.law_name}: F0 {result.peak_force * fu.factor:.1f} {fu.label} at {result.time_of_peak * tu.factor:.1f} {tu.label}, {T}, "
-        f"{len(result.contacts)} contact(s); peak strains {peaks}{_damage_words(summary)} ({dofs} DOF, {steps} steps, {time.perf_counter() - t0:.1f} s)"
+        f"{len(result.contacts)} contact(s); peak strains {peaks}{_damage_words(run.summary)} ({model.size} DOF, {steps} steps, {time.perf_counter() - t0:.1f} s)"
     )
     return Outcome(files, line, inputs, unfinished)

@@ -13,13 +13,17 @@ kind (:data:`KINDS`, :func:`kind_of`). A kind provides
   and the size of the model that ran (its true DOF count);
 - ``structure_key(data)``: a text equal for two cases exactly when they share the
   expensive part (mesh, factorisation, impulse responses): sweep runs are grouped by it;
-- ``prepare(data, base, runs, outputs)`` / ``run(prepared, data, base, outputs)``: that
-  expensive part built once per group (it must pickle: it travels to Dask workers), and
-  one run → the kind's :meth:`summary`;
+- ``prepare(data, base, runs, outputs, cases)`` / ``run(prepared, data, base, outputs)``: that
+  expensive part built once per group, covering every run of the group (``cases``: their case
+  dicts; it must pickle: it travels to Dask workers), and one run → the kind's :meth:`summary`;
 - ``summary(problem, result, model)``: the ONE set of scalar outputs of the kind, as the
   command's summary.json names them (sweep outputs and converge read the same keys);
 - ``output_keys(problem)``: the dotted outputs a sweep may ask for;
-- ``expand(data, key)``: make ``key`` settable (a catalogue ply turned into its inline table).
+- ``expand(data, key)``: make ``key`` settable (a catalogue ply turned into its inline table);
+- ``problem_class()``: the type of its problems (:func:`kind_for` finds a problem's kind by it);
+- ``execute(problem, *, figures, fields, damage, method, kernels, model, energy, stop_after, progress) -> Run``:
+  the one run of a problem (:func:`softimpact.cases.run.execute`, which dispatches here);
+- ``damage_refusal(problem)``: why the problem has no damage outputs (None when it has them, or has none to give).
 
 This package sits below app: it imports input, output, workflows, fem and models.
 """
@@ -35,7 +39,7 @@ from .beam import BeamKind
 from .impact import ImpactKind
 from .plate import PlateKind
 
-__all__ = ["CaseKind", "KINDS", "kind_of", "case_kind", "builtin_listing", "flatten", "BarKind", "BeamKind", "PlateKind", "ImpactKind"]
+__all__ = ["CaseKind", "KINDS", "kind_of", "kind_for", "case_kind", "builtin_listing", "flatten", "BarKind", "BeamKind", "PlateKind", "ImpactKind"]
 
 # Order matters only for files holding several tables: an impact case names its target in [target].
 KINDS: dict[str, CaseKind] = {"impact": ImpactKind(), "beam": BeamKind(), "plate": PlateKind(), "bar": BarKind()}
@@ -52,6 +56,15 @@ def kind_of(data: dict, where: str = "case") -> CaseKind:
             return kind
     tables = ", ".join(f"[{k.table}]" for k in KINDS.values())
     raise InputError(f"{where}: not a case: none of the tables {tables} is present")
+
+
+def kind_for(problem) -> CaseKind:
+    """The kind whose problems ``problem`` is (by its type, :meth:`CaseKind.problem_class`): an impact case
+    on a bar target reads as a bar problem, and runs as one."""
+    for kind in KINDS.values():
+        if isinstance(problem, kind.problem_class()):
+            return kind
+    raise InputError(f"problem: expected a bar, beam, plate or impact problem, got {type(problem).__name__}")
 
 
 def case_kind(case: str) -> tuple[CaseKind, Path]:

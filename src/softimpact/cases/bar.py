@@ -8,7 +8,21 @@ from pathlib import Path
 from ..errors import InputError
 from ._common import GAUGE_FIELDS, magnitude_and_history
 
-__all__ = ["BarKind"]
+__all__ = ["BarKind", "run_bar"]
+
+
+def run_bar(problem):
+    """The run, the same run without the end cap (None without one), and the force
+    read from the first gauge as (time, force, gauge name) (None without a gauge)."""
+    from ..workflows.bar_impact import force_from_gauge, simulate_impact, without_end_cap
+
+    result = simulate_impact(problem)
+    plain = simulate_impact(without_end_cap(problem)) if problem.bar.end_cap is not None else None
+    inferred = None
+    if problem.gauges:
+        t, f = force_from_gauge(result, 0)
+        inferred = (t, f, problem.gauges[0].name)
+    return result, plain, inferred
 
 
 class BarKind:
@@ -32,6 +46,25 @@ class BarKind:
         from ..input.bar_case import bar_problem
 
         return bar_problem(data)
+
+    def problem_class(self):
+        from ..workflows.bar_impact import BarImpactProblem
+
+        return BarImpactProblem
+
+    def execute(
+        self, problem, *, figures=False, fields=False, damage=True, method="direct", kernels=None, model=None, energy=True, stop_after=None, progress=None
+    ):
+        """The bar run (:func:`softimpact.cases.run.execute`; :func:`run_bar`: also the run without the end cap and
+        the force read from the first gauge); the stepping options of an impact do not apply."""
+        from ..output.bar import bar_summary, bar_validity
+        from .run import Run
+
+        result, plain, inferred = run_bar(problem)
+        return Run(result, None, bar_summary(result, plain), bar_validity(result), problem, plain=plain, inferred=inferred)
+
+    def damage_refusal(self, problem):
+        return None  # a bar has no damage outputs: the sweep's check of the outputs names it
 
     def check(self, problem):
         from ..workflows.bar_impact import check_problem
@@ -64,7 +97,7 @@ class BarKind:
     def structure_key(self, data):
         return json.dumps(data, sort_keys=True, default=str)
 
-    def prepare(self, data, base, runs, outputs=()):
+    def prepare(self, data, base, runs, outputs=(), cases=()):
         return None
 
     def run(self, prepared, data, base, outputs=(), problem=None):

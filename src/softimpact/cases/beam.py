@@ -10,11 +10,25 @@ import numpy as np
 from ..errors import InputError
 from ._common import LOAD_KEYS, expand_ply, gauge_keys, gauge_outputs, without
 
-__all__ = ["BeamKind"]
+__all__ = ["BeamKind", "beam_validity"]
 
 
-def _screenable(stack) -> bool:
-    return stack is not None and stack.ply.strength is not None and hasattr(stack, "angles")
+def beam_validity(result):
+    """The envelopes of a beam run (:mod:`softimpact.models.validity`): peak deflection under the load
+    against the thickness (linear theory), and on a layup with strengths the gauge sections' maximum-strain
+    index (:func:`softimpact.workflows.damage.beam_damage`) against 1."""
+    from ..models.validity import allowable_flags
+
+    p = result.problem
+    v = p.validity(float(np.max(np.abs(result.deflection))))
+    if p.has_damage_outputs and p.gauges and np.all(np.isfinite(result.bending)):
+        from ..workflows.damage import beam_damage
+
+        stack = p.beam.stack
+        other = result.strain - 2 * result.bending
+        dmg = beam_damage(stack, stack.ply.strength, p.beam.plane, result.strain, other, [g.surface for g in p.gauges], result.force)
+        v += allowable_flags("the beam's plies at the gauge sections", float(dmg.ply["max_strain"].max()))
+    return v
 
 
 class BeamKind:
@@ -38,24 +52,46 @@ class BeamKind:
 
         return beam_problem(data, base)
 
-    def check(self, problem):
-        from ..workflows.beam_impact import check_problem
+    def problem_class(self):
+        from ..workflows.beam_impact import BeamProblem
 
-        check_problem(problem)
+        return BeamProblem
+
+    def check(self, problem):
+        problem.check()
 
     def refine(self, problem, factor):
-        from ..workflows.refinement import refine_beam
+        return problem.refine(factor)
 
-        return refine_beam(problem, factor)
+    def execute(
+        self, problem, *, figures=False, fields=False, damage=True, method="direct", kernels=None, model=None, energy=True, stop_after=None, progress=None
+    ):
+        """The beam stepped directly (:func:`softimpact.cases.run.execute`), the whole displacement kept with
+        ``figures`` or ``fields`` (the frames of the fields: ``kept``); a coupled run's options do not apply."""
+        from ..output.beam import beam_summary
+        from ..output.fields import sampled_steps
+        from ..workflows.beam_impact import BeamModel
+        from .run import Run
+
+        model = model or BeamModel(problem)
+        result = model.direct(progress=progress, energy=energy, displacement=figures or fields)
+        kept = sampled_steps(problem.solver.steps) if fields else ()
+        validity = beam_validity(result)
+        return Run(result, model, beam_summary(model, result, validity), validity, problem, kept=kept)
+
+    def damage_refusal(self, problem):
+        from ..workflows.damage import damage_refusal
+
+        return damage_refusal(problem)
 
     def study(self, problem, stride, progress=None):
         """Deflection under the load, gauge peaks, first-lobe peaks, first zero crossings and histories; the model's size."""
         from ..models.features import first_lobe_peak, first_zero_crossing
-        from ..workflows.beam_impact import BeamModel
-
-        model = BeamModel(problem)
-        r = model.direct(progress=progress, energy=False, displacement=False)
         from ..output.beam import beam_scalars
+        from .run import execute
+
+        run = execute(problem, energy=False, progress=progress)
+        model, r = run.model, run.result
 
         out = {"peak_deflection_under_load_m": beam_scalars(r)["peak_deflection_under_load_m"]}
         for g, eps in zip(problem.gauges, r.strain):
@@ -63,12 +99,12 @@ class BeamKind:
             out[f"strain_{g.name}_first_lobe_peak"] = first_lobe_peak(r.time, eps)
             out[f"strain_{g.name}_first_zero_crossing_s"] = first_zero_crossing(r.time, eps)
             out[f"strain_{g.name}_history"] = eps[::stride]
-        return out, {"elements": [problem.beam.nx, problem.beam.nz], "time_step_s": problem.solver.time_step, "dofs": int(model.size)}
+        return out, {"elements": problem.elements, "time_step_s": problem.solver.time_step, "dofs": int(model.size)}
 
     def structure_key(self, data):
         return without(data, LOAD_KEYS)
 
-    def prepare(self, data, base, runs, outputs=()):
+    def prepare(self, data, base, runs, outputs=(), cases=()):
         from ..workflows.beam_impact import BeamModel
 
         model = BeamModel(self.problem(data, base))
@@ -98,15 +134,15 @@ class BeamKind:
             result = BeamResult(problem, problem.solver.times(), F, y[0 : 2 * ng : 2], 0.5 * (y[0 : 2 * ng : 2] - y[1 : 2 * ng : 2]), y[2 * ng])
         out = self.summary(problem, result)
         wanted = not outputs or any(o.startswith("damage.") for o in outputs)
-        if wanted and _screenable(problem.beam.stack):
+        if wanted and problem.has_damage_outputs:
             out["damage"] = self.damage(problem, result)
         return out
 
     def summary(self, problem, result, model=None):
         """Peak force, impulse, deflection under the load (:func:`softimpact.output.beam.beam_scalars`, as
         ``softimpact beam``'s summary.json) and gauge peaks; ``validity_flags``: the names of the run's
-        validity flags (:func:`softimpact.output.beam.beam_validity`, as the command's)."""
-        from ..output.beam import beam_scalars, beam_validity
+        validity flags (:func:`beam_validity`, as the command's)."""
+        from ..output.beam import beam_scalars
 
         scalars = {**beam_scalars(result), **gauge_outputs(result.time, [g.name for g in problem.gauges], result.strain)}
         v = beam_validity(result)
@@ -126,7 +162,7 @@ class BeamKind:
 
         keys = ["peak_force_N", "impulse_N_s", "peak_deflection_under_load_m", "validity.deflection_over_thickness"]
         keys += gauge_keys([g.name for g in problem.gauges])
-        if _screenable(problem.beam.stack):
+        if problem.has_damage_outputs:
             keys += [f"damage.{c}" for c in CRITERIA] + ["damage.delamination", "damage.threshold_force_N"]
         return tuple(keys)
 

@@ -9,11 +9,8 @@ from pathlib import Path
 import numpy as np
 
 from ._common import GAUGE_FIELDS, magnitude_and_history, without
-from .bar import BarKind
 
 __all__ = ["ImpactKind", "SharedModel", "bar_target", "KERNEL_MIN_RUNS"]
-
-_BAR = BarKind()  # a bar target runs as the bar case with the impact case's impactor and law
 
 # Keys of an impact case that leave the target's model (mesh, step, factorisation) unchanged: the
 # impactor's velocity, mass, material and diameter and the contact law. The diameter sets only the
@@ -31,8 +28,8 @@ VALIDITY_RATIOS = ("approach_over_diameter", "contact_radius_over_projectile_rad
 
 
 def _wants_damage(outputs) -> bool:
-    """Whether a run must carry the damage indices' pseudo-gauges: no outputs named (all of them), a ``damage.*`` one
-    or the maximum-strain index of the validity envelope."""
+    """Whether a run computes the damage indices (its target's ``"damage"`` output group): no outputs named (all
+    of them), a ``damage.*`` one or the maximum-strain index of the validity envelope."""
     return not outputs or any(o.startswith("damage.") or o == "validity.max_strain_index" for o in outputs)
 
 
@@ -72,11 +69,7 @@ class SharedModel:
             return
         try:
             problem = ImpactKind().problem(self.data, self.base)
-            if not _is_bar(problem):
-                if self.damage:  # the runs carry the damage indices' pseudo-gauges: so must the kernels' outputs
-                    from ..studies.damage import damage_problem
-
-                    problem = damage_problem(problem)
+            if _other_kind(problem) is None:  # the kernels' outputs: the model's, with the damage group when the runs want it
                 self.kernels(problem, self.data)
         except InputError:  # the runs meet it again and record it, one by one
             return
@@ -95,10 +88,9 @@ class SharedModel:
                 continue
 
     def get(self, problem):
-        from ..workflows.coupled import impact_model
-
+        """The group's model (with the target's ``"damage"`` output group when the runs compute damage), built once."""
         if self.model is None:
-            self.model = impact_model(problem)
+            self.model = problem.model(damage=self.damage)
         return self.model
 
     def kernels(self, problem, data: dict):
@@ -155,8 +147,13 @@ def bar_target(data: dict, base: Path):
     return problem, path
 
 
-def _is_bar(problem) -> bool:
-    return hasattr(problem, "projectile")
+def _other_kind(problem):
+    """The kind that runs ``problem`` when it is not an impact problem (an impact case on a bar target reads
+    as that bar case, :func:`bar_target`), None for an impact problem."""
+    from . import kind_for
+
+    kind = kind_for(problem)
+    return None if isinstance(kind, ImpactKind) else kind
 
 
 class ImpactKind:
@@ -193,29 +190,27 @@ class ImpactKind:
         bar = bar_target(data, Path(base))
         return bar[0] if bar is not None else impact_problem(data, Path(base))[0]
 
-    def check(self, problem):
-        if _is_bar(problem):
-            return _BAR.check(problem)
-        from ..workflows.beam_impact import check_problem as check_beam
-        from ..workflows.plate_impact import check_problem as check_plate
+    def problem_class(self):
+        from ..workflows.coupled import ImpactProblem
 
-        (check_plate if problem.on_plate else check_beam)(problem.target)
+        return ImpactProblem
+
+    def check(self, problem):
+        other = _other_kind(problem)
+        return other.check(problem) if other else problem.target.check()
 
     def refine(self, problem, factor):
-        """The target refined (mesh and step; see :mod:`softimpact.workflows.refinement`); impactor and law unchanged."""
-        from ..workflows.refinement import refine_beam, refine_plate
-
-        if _is_bar(problem):
-            return _BAR.refine(problem, factor)
-        return dataclasses.replace(problem, target=(refine_plate if problem.on_plate else refine_beam)(problem.target, factor))
+        """The target refined (mesh and step, :meth:`~softimpact.models.protocols.Target.refine`); impactor and law unchanged."""
+        other = _other_kind(problem)
+        return other.refine(problem, factor) if other else dataclasses.replace(problem, target=problem.target.refine(factor))
 
     def study(self, problem, stride, progress=None):
         """First contact's scalars, the force history, gauge peaks and histories; the target model's size."""
-        from ..workflows.coupled import run_impact
-
-        if _is_bar(problem):
-            return _BAR.study(problem, stride, progress)
-        model, r = run_impact(problem, energy=False)
+        other = _other_kind(problem)
+        if other:
+            return other.study(problem, stride, progress)
+        run = self.execute(problem, damage=False, energy=False)
+        r = run.result
         out = {
             "peak_force_N": r.peak_force,
             "time_of_peak_s": r.time_of_peak,
@@ -224,63 +219,93 @@ class ImpactKind:
             "contact_force_history_N": r.force[::stride],
         }
         magnitude_and_history(out, r.strain_names, r.strain, stride)
-        t = problem.target
-        elements = list(t.plate.elements) if problem.on_plate else [t.beam.nx, t.beam.nz]
-        return out, {"elements": elements, "time_step_s": problem.solver.time_step, "dofs": int(model.size)}
+        return out, {"elements": problem.target.elements, "time_step_s": problem.solver.time_step, "dofs": int(run.model.size)}
+
+    def execute(
+        self, problem, *, figures=False, fields=False, damage=True, method="direct", kernels=None, model=None, energy=True, stop_after=None, progress=None
+    ):
+        """The coupled run (:func:`softimpact.cases.run.execute`): the target's model (with its ``"damage"`` output
+        group when ``damage`` and its laminate allow the indices), the snapshots the figures and fields draw, the run
+        (``method``: direct stepping, or kernel runs), the damage indices, the validity and summary.json's content."""
+        from ..output.fields import sampled_steps
+        from ..output.impact import snapshot_steps
+        from ..workflows.coupled import run_impact
+
+        damage = damage and problem.target.has_damage_outputs
+        steps = problem.solver.steps
+        shown = snapshot_steps(steps) if figures and problem.target.deflected_shapes else ()
+        kept = sampled_steps(steps) if fields else ()
+        snaps = np.union1d(shown, kept).astype(int) if fields else shown
+        model = model or problem.model(damage=damage)
+        if progress is not None:
+            progress(0)
+        model, result = run_impact(problem, model, energy, stop_after, snaps, method=method, kernels=kernels)
+        if progress is not None:
+            progress(steps)
+        return self._finish(problem, result, model, damage, shown, kept)
+
+    def _finish(self, problem, result, model, damage, shown=(), kept=()):
+        """The :class:`~softimpact.cases.run.Run` of a coupled ``result``: its output groups split (the gauges
+        from the damage strains), the damage indices (with ``damage``), the validity, summary.json's content."""
+        from ..fem.contact import group_outputs
+        from ..output.impact import impact_summary
+        from ..workflows.damage import coupled_damage, damage_refusal
+        from .run import Run, impact_validity
+
+        target = problem.target
+        result = group_outputs(result, model.contact_groups())
+        dmg = coupled_damage(target, result).summary() if damage else None
+        note = None if dmg is not None else damage_refusal(target, "target.case: ")
+        validity = impact_validity(problem, result, dmg)
+        summary = impact_summary(problem, result, validity, dmg, note, target.summary_extras(model, result))
+        return Run(result, model, summary, validity, problem, shown, kept)
 
     def structure_key(self, data):
         return without(data, NOT_STRUCTURE)
 
-    def prepare(self, data, base, runs, outputs=()):
+    def prepare(self, data, base, runs, outputs=(), cases=()):
         """The group's shared model; contact kernels when the group has :data:`KERNEL_MIN_RUNS` runs or
-        more and none of ``outputs`` needs the structure's energies (kernel runs have none)."""
+        more and none of ``outputs`` needs the structure's energies (kernel runs have none), built here
+        for the widest impactor of the group's ``cases`` when they are given (else on first use)."""
         kernels = runs >= KERNEL_MIN_RUNS and not any(o in NEEDS_STRUCTURE for o in outputs)
-        return SharedModel(data, str(base), kernels, damage=_wants_damage(outputs))
+        shared = SharedModel(data, str(base), kernels, damage=_wants_damage(outputs))
+        if cases:
+            shared.widen(cases)
+            shared.build()
+        return shared
 
     def run(self, prepared, data, base, outputs=()):
-        from ..workflows.coupled import run_impact
-
         problem = self.problem(data, base)
-        if _is_bar(problem):
-            return _BAR.run(None, None, base, outputs, problem)
-        if _wants_damage(outputs):
-            from ..studies.damage import damage_problem
-
-            problem = damage_problem(problem)  # + the pseudo-gauges of the damage indices (the kernels' outputs too)
+        other = _other_kind(problem)
+        if other:
+            return other.run(None, data, base, outputs, problem)
+        damage = _wants_damage(outputs)
         shared = isinstance(prepared, SharedModel)
         model = prepared.get(problem) if shared else None
         if shared and prepared.use_kernels:
-            model, result = run_impact(problem, model, energy=False, method="kernels", kernels=prepared.kernels(problem, data))
+            run = self.execute(problem, damage=damage, model=model, energy=False, method="kernels", kernels=prepared.kernels(problem, data))
         else:
-            model, result = run_impact(problem, model, method="direct")
-        return self.summary(problem, result, model)
+            run = self.execute(problem, damage=damage, model=model, method="direct")
+        return _scalars(run)
 
     def summary(self, problem, result, model=None):
-        """The scalars of ``softimpact impact``'s summary.json (:func:`softimpact.output.impact.impact_summary`):
-        lists, texts and the resolved case left out, null (not separated) as NaN; ``validity_flags``: the names of
-        the run's validity flags (:func:`softimpact.output.impact.impact_validity`, as the command's)."""
-        from ..output.impact import impact_summary, impact_validity
-        from ..studies.damage import split_damage
+        """The scalars of ``softimpact impact``'s summary.json (:meth:`execute`'s) of a coupled ``result`` of
+        ``model``: lists, texts and the resolved case left out, null (not separated) as NaN; ``validity_flags``:
+        the names of the run's validity flags (as the command's)."""
+        damage = len(model.contact_groups().get("damage", ())) > 0  # the model ran with the damage group
+        return _scalars(self._finish(problem, result, model, damage))
 
-        def scalars(tree):
-            out = {}
-            for k, v in tree.items():
-                if isinstance(v, dict):
-                    out[k] = scalars(v)
-                elif v is None:
-                    out[k] = float("nan")
-                elif isinstance(v, (int, float, np.floating, np.integer)) and not isinstance(v, bool):
-                    out[k] = v
-            return out
+    def damage_refusal(self, problem):
+        """Why an impact has no damage outputs (its target's laminate), None when it has them."""
+        from ..workflows.damage import damage_refusal
 
-        s = impact_summary(problem, result, model)
-        s.pop("case_SI", None)
-        own, run, _ = split_damage(problem, result)  # impact_summary's split: the envelopes of the impact itself
-        return {**scalars(s), "validity_flags": impact_validity(own, run, s.get("damage")).names}
+        other = _other_kind(problem)
+        return other.damage_refusal(problem) if other else damage_refusal(problem.target, "target.case: ")
 
     def output_keys(self, problem):
-        if _is_bar(problem):
-            return _BAR.output_keys(problem)
+        other = _other_kind(problem)
+        if other:
+            return other.output_keys(problem)
         keys = [
             "peak_force_N",
             "time_of_peak_s",
@@ -299,14 +324,33 @@ class ImpactKind:
         ]
         for g in problem.target.gauges:
             keys += [f"gauges.{g.name}.{f}" for f in GAUGE_FIELDS] + [f"gauges.{g.name}.peak_abs_strain"]
-        if problem.on_plate:
-            keys += ["target.peak_deflection_at_impact_m", "target.time_of_peak_deflection_s"]
+        keys += list(problem.target.summary_keys)
         from ..output.impact import damage_keys
 
         # the envelopes' ratios (summary.json's validity, models.validity): a sweep may keep them per run
         keys += [f"validity.{k}" for k in VALIDITY_RATIOS]
-        damage = damage_keys(problem)
+        damage = damage_keys(problem.target.damage_points()) if problem.target.has_damage_outputs else ()
         return tuple(keys) + damage + (("validity.max_strain_index",) if damage else ())
 
     def expand(self, data, key):
         pass
+
+
+def _scalars(run) -> dict:
+    """The sweep's scalars of an impact :class:`~softimpact.cases.run.Run`: its summary.json's numbers (lists, texts
+    and the resolved case left out, null as NaN) and ``validity_flags``, the names of its validity flags."""
+
+    def scalars(tree):
+        out = {}
+        for k, v in tree.items():
+            if isinstance(v, dict):
+                out[k] = scalars(v)
+            elif v is None:
+                out[k] = float("nan")
+            elif isinstance(v, (int, float, np.floating, np.integer)) and not isinstance(v, bool):
+                out[k] = v
+        return out
+
+    s = dict(run.summary)
+    s.pop("case_SI", None)
+    return {**scalars(s), "validity_flags": run.warnings.names}

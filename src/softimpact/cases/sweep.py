@@ -107,9 +107,7 @@ def plan_sweep(spec: SweepSpec) -> SweepPlan:
     known = kind.output_keys(problem)
     for o in spec.outputs:
         if o not in known and o.startswith("damage."):
-            from ..workflows.damage import damage_refusal
-
-            why = damage_refusal(problem)
+            why = kind.damage_refusal(problem)
             if why is not None:
                 raise InputError(f"sweep.outputs: {o!r}: {why}")
         if o not in known:
@@ -124,7 +122,7 @@ def plan_sweep(spec: SweepSpec) -> SweepPlan:
         for k in range(0, len(members), spec.chunk):
             part = members[k : k + spec.chunk]
             chunks.append(Chunk(f"chunk-{g:05d}-{k // spec.chunk:05d}", g, len(members), tuple((i, cases[i]) for i in part)))
-    # An impact's strains are checked against the ply allowables only on the damage pseudo-gauges, which its
+    # An impact's strains are checked against the ply allowables only on its damage output group, which its
     # runs carry when a damage output (or the index itself) is asked for.
     unchecked = ()
     if "validity.max_strain_index" in known and not any(o.startswith("damage.") or o == "validity.max_strain_index" for o in spec.outputs):
@@ -152,11 +150,8 @@ def prepare_group(kind: str, candidates, base: str, runs: int, outputs=()):
     for data in candidates:
         try:
             with _Caught():  # the runs read their cases again and keep their warnings (run_chunk)
-                prepared = KINDS[kind].prepare(data, Path(base), runs, tuple(outputs))
-                if hasattr(prepared, "widen"):  # a shared part that covers every run of the group (impact: the widest contact)
-                    prepared.widen(candidates)
-                    prepared.build()
-            return prepared
+                # the shared part covers every run of the group (an impact's kernels: the widest contact)
+                return KINDS[kind].prepare(data, Path(base), runs, tuple(outputs), tuple(candidates))
         except Exception as exc:  # a drawn structure can be invalid: its runs fail, the sweep goes on
             first = first or _Failed(_one_line(exc))
             if runs == 1:

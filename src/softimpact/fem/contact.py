@@ -21,7 +21,7 @@ from ..errors import InputError
 from .impact import ContactStructure
 from .plate_loads import CircularPatch, DiscShares
 
-__all__ = ["mid_surface_row", "plane_contact_structure", "plate_contact_structure", "plate_reach", "rod_contact_structure"]
+__all__ = ["mid_surface_row", "plane_contact_structure", "plate_contact_structure", "plate_reach", "rod_contact_structure", "output_groups", "group_outputs"]
 
 
 def mid_surface_row(plane, x: float) -> np.ndarray:
@@ -49,12 +49,37 @@ def mid_surface_row(plane, x: float) -> np.ndarray:
     return np.mean(rows, axis=0)
 
 
-def plane_contact_structure(plane, position: float, reach: float, outputs: np.ndarray, names=(), C=None) -> ContactStructure:
+def output_groups(**sizes: int) -> dict[str, tuple[int, ...]]:
+    """Named groups of consecutive output rows, in the order given: ``output_groups(gauges=2, damage=4)``
+    → {"gauges": (0, 1), "damage": (2, 3, 4, 5)}."""
+    out, start = {}, 0
+    for name, size in sizes.items():
+        out[name] = tuple(range(start, start + size))
+        start += size
+    return out
+
+
+def group_outputs(result, groups: dict[str, tuple[int, ...]] | None):
+    """A :class:`~softimpact.fem.impact.CoupledResult` whose ``strain`` holds the ``"gauges"`` group of its output
+    rows only, the other groups in ``result.groups`` (name → (row names, (n_rows, n))); unchanged when ``groups``
+    is None (every row a gauge) or the result is grouped already."""
+    from dataclasses import replace
+
+    if groups is None or result.groups is not None:
+        return result
+    names, rows = result.strain_names, result.strain
+    gauges = list(groups.get("gauges", ()))
+    other = {g: (tuple(names[i] for i in idx), rows[list(idx)]) for g, idx in groups.items() if g != "gauges"}
+    return replace(result, strain=rows[gauges], strain_names=tuple(names[i] for i in gauges), groups=other)
+
+
+def plane_contact_structure(plane, position: float, reach: float, outputs: np.ndarray, names=(), C=None, groups=None) -> ContactStructure:
     """The plane model struck downward on its top face at ``position`` [m].
 
     ``reach`` [m]: the widest contact radius the run may need; top-face nodes
     within reach (plus one node spacing) of the impact point are loadable.
-    ``outputs`` (n_out, n): rows of the output histories (gauge strains).
+    ``outputs`` (n_out, n): rows of the output histories (gauge strains), ``groups`` their named
+    groups (:func:`output_groups`; None: all gauges).
     """
     top = plane.top_nodes
     xs = plane.node_x[top]
@@ -74,15 +99,16 @@ def plane_contact_structure(plane, position: float, reach: float, outputs: np.nd
         outputs=np.asarray(outputs, float).reshape(-1, plane.n),
         output_names=tuple(names),
         C=C,
+        groups=groups,
     )
 
 
-def plate_contact_structure(fe, position: tuple[float, float], max_radius: float, outputs: np.ndarray, names=(), C=None) -> ContactStructure:
+def plate_contact_structure(fe, position: tuple[float, float], max_radius: float, outputs: np.ndarray, names=(), C=None, groups=None) -> ContactStructure:
     """A plate (:class:`softimpact.fem.plate.PlateFE`) struck downward (−z) on its top face at
     ``position`` (x, y) [m]: contact discs up to ``max_radius`` [m] spread by the cosine pressure
     of eq (11) over the nodes (exact integrals, :class:`softimpact.fem.plate_loads.DiscShares`);
     the approach is measured on the mid-surface deflection there; ``outputs`` (n_out, n) rows of
-    the output histories (gauge strains), ``C`` the damping or None."""
+    the output histories (gauge strains) and ``groups`` their named groups, ``C`` the damping or None."""
     patch = CircularPatch(fe, position, max_radius, grow=True)
     return ContactStructure(
         M=fe.M,
@@ -96,6 +122,7 @@ def plate_contact_structure(fe, position: tuple[float, float], max_radius: float
         output_names=tuple(names),
         C=C,
         patch=DiscShares(patch),
+        groups=groups,
     )
 
 

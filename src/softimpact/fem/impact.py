@@ -97,6 +97,8 @@ class ContactStructure:
     ``approach_row`` (n,): w = approach_row·u, the displacement along the impact
     direction used in α (mid-surface for beams and plates).
     ``outputs`` (n_out, n): rows for output histories (gauge strains); ``output_names``.
+    ``groups``: named groups of those rows, name → row indices (``"gauges"``: the user's gauges;
+    ``"damage"``: the strains the damage indices need); None: every row is a gauge.
     ``patch``: the shares of the surface nodes for a two-dimensional contact (an object
     with ``shares(a) -> (s, ds/da)``, ``half_spacing`` and ``_point``, e.g. a plate's
     disc, :class:`softimpact.fem.plate_loads.DiscShares`); None: the cosine line patch
@@ -114,6 +116,7 @@ class ContactStructure:
     output_names: tuple[str, ...] = ()
     C: object = None
     patch: object = None
+    groups: dict[str, tuple[int, ...]] | None = None
 
     def __post_init__(self):
         n = self.M.shape[0]
@@ -503,6 +506,7 @@ class CoupledResult:
     solves: int
     displacement: np.ndarray | None = None  # (n_dofs, n_kept) snapshots of the structure, if asked for
     kept: np.ndarray | None = None  # their step indices
+    groups: dict[str, tuple[tuple[str, ...], np.ndarray]] | None = None  # output groups besides the gauges: name → (row names, (n_rows, n))
 
     @property
     def total_impulse(self) -> float:

@@ -223,6 +223,11 @@ class LinearModel:
         (:class:`softimpact.fem.impact.ContactStructure`), loadable within ``reach`` [m]."""
         raise NotImplementedError
 
+    def contact_groups(self) -> dict[str, tuple[int, ...]] | None:
+        """The named groups of the contact structure's output rows (:func:`softimpact.fem.contact.output_groups`:
+        ``"gauges"``, and ``"damage"`` when the model was built with its damage outputs); None: all gauges."""
+        return None
+
     def contact_reach(self, point, diameter: float) -> float:
         """The widest contact radius [m] the model loads about ``point`` for an impactor of
         ``diameter`` [m]: the diameter (a Hertz radius sqrt(R·α) and a flattened sphere's

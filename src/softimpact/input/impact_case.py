@@ -15,37 +15,20 @@ its ply, Sun's form, for a beam or a plate; an isotropic beam: Hertz with its ma
 
 from __future__ import annotations
 
-from dataclasses import replace
 from pathlib import Path
 
 from ..errors import InputError
 from ..models.contact_laws import HertzLaw
 from ..models.materials import Material, sphere_mass
-from ..workflows.beam_impact import BeamLoad, BeamProblem
+from ..workflows.beam_impact import BeamProblem
 from ..workflows.coupled import Impactor, ImpactProblem
-from ..workflows.plate_impact import PlateLoad, PlateProblem
+from ..workflows.plate_impact import PlateProblem
 from .beam_case import beam_problem, read_beam_gauges
 from .contact_law import CONTACT_LAWS, read_contact_law
 from .plate_case import plate_problem, read_plate_gauges
 from .toml import Table, load_case_toml, load_toml, locate, naming, read_material, read_solver, read_units
 
 __all__ = ["CONTACT_LAWS", "ImpactProblem", "impact_problem", "load_impact_case"]
-
-
-def _target(tbl: Table, base: Path) -> tuple[BeamProblem | PlateProblem, Path]:
-    """The target case: a plate case (it has a [plate] table) or a beam case."""
-    case = tbl.string("case")
-    path = base / case if (base / case).is_file() else locate(case)
-    try:
-        data = load_toml(path)
-        if "projectile" in data:  # a bar case: cases.impact.bar_target runs it for sweep and converge
-            raise InputError(
-                "a bar case: `softimpact impact` strikes beams and plates (run a bar with `softimpact bar`; sweep and converge take this impact case)"
-            )
-        problem = plate_problem(data, path.parent) if "plate" in data else beam_problem(data, path.parent)
-    except InputError as exc:
-        raise InputError(f"{tbl.key('case')} ({path}): {exc}") from None
-    return problem, path
 
 
 def _mirrors_through_impact(target: PlateProblem, where: str) -> None:
@@ -59,13 +42,34 @@ def _mirrors_through_impact(target: PlateProblem, where: str) -> None:
         )
 
 
+# The target cases an impact strikes, by the table only that kind of case has: its reader, the reader of an
+# impact case's own [[gauges]] for it, and a check of the target as struck (None: nothing more to check).
+TARGETS = (("plate", plate_problem, read_plate_gauges, _mirrors_through_impact), ("beam", beam_problem, read_beam_gauges, None))
+
+
+def _target(tbl: Table, base: Path):
+    """The target case (a plate or beam case, by its table: :data:`TARGETS`) as a problem, its path and its row of :data:`TARGETS`."""
+    case = tbl.string("case")
+    path = base / case if (base / case).is_file() else locate(case)
+    try:
+        data = load_toml(path)
+        if "projectile" in data:  # a bar case: cases.impact.bar_target runs it for sweep and converge
+            raise InputError(
+                "a bar case: `softimpact impact` strikes beams and plates (run a bar with `softimpact bar`; sweep and converge take this impact case)"
+            )
+        row = next((r for r in TARGETS if r[0] in data), TARGETS[-1])  # no [plate]: a beam case (its reader names what is missing)
+        problem = row[1](data, path.parent)
+    except InputError as exc:
+        raise InputError(f"{tbl.key('case')} ({path}): {exc}") from None
+    return problem, path, row
+
+
 def _hertz(c: Table, target: BeamProblem | PlateProblem, radius: float, sphere: Material) -> HertzLaw:
-    beam = target.plate if isinstance(target, PlateProblem) else target.beam
-    if "target_modulus" in c or beam.stack is not None:
-        default = beam.stack.ply.E3 if beam.stack is not None else None
+    if "target_modulus" in c or target.stack is not None:
+        default = target.stack.ply.E3 if target.stack is not None else None
         with naming({"transverse modulus E2": c.key("target_modulus")}):
             return HertzLaw.sphere_on_laminate(radius, sphere, c.quantity("target_modulus", "stress", default=default))
-    return HertzLaw.sphere_on_flat(radius, sphere, beam.material)
+    return HertzLaw.sphere_on_flat(radius, sphere, target.material)
 
 
 def impact_problem(data: dict, base: Path = Path(".")) -> tuple[ImpactProblem, tuple[Path, ...]]:
@@ -74,9 +78,9 @@ def impact_problem(data: dict, base: Path = Path(".")) -> tuple[ImpactProblem, t
     title = top.string("title", "")
     system = read_units(top)
     t = top.table("target")
-    target, target_path = _target(t, base)
-    if isinstance(target, PlateProblem):
-        _mirrors_through_impact(target, f"{t.key('case')} ({target_path})")
+    target, target_path, (_, _, read_gauges, check) = _target(t, base)
+    if check is not None:
+        check(target, f"{t.key('case')} ({target_path})")
     t.done()
     i = top.table("impactor")
     material = read_material(i)
@@ -90,16 +94,10 @@ def impact_problem(data: dict, base: Path = Path(".")) -> tuple[ImpactProblem, t
     law, law_path = read_contact_law(c, name, lambda: _hertz(c, target, diameter / 2, material), impactor.mass, diameter, velocity, base)
     c.done()
     solver = read_solver(top.table("solver"))
-    plate = isinstance(target, PlateProblem)
-    gauges = (read_plate_gauges(top) if plate else read_beam_gauges(top)) if "gauges" in top else target.gauges
+    gauges = read_gauges(top) if "gauges" in top else target.gauges
     top.done()
-    # the force comes from the contact
-    if plate:
-        load = PlateLoad(target.load.position, target.load.contact_radius, None, grow=True)
-    else:
-        load = BeamLoad(target.load.position, target.load.contact_radius, None)
     with naming({"gauges": "gauges", "time_step": "solver.time_step", "position": f"target.case ({target_path}): load.position"}):
-        resolved = replace(target, load=load, solver=solver, gauges=gauges)
+        resolved = target.for_impact(solver, gauges)  # the force comes from the contact
     files = (target_path,) if law_path is None else (target_path, law_path)
     return ImpactProblem(resolved, str(target_path), impactor, material, name, law, title, system), files
 

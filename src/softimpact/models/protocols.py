@@ -107,3 +107,74 @@ class StructureModel(Protocol):
     def contact_structure(self, point, reach: float): ...
 
     def for_workers(self): ...
+
+
+@runtime_checkable
+class Target(Protocol):
+    """The structure an impactor strikes, at problem level (:class:`softimpact.workflows.beam_impact.BeamProblem`,
+    :class:`softimpact.workflows.plate_impact.PlateProblem`): everything above ``fem`` asks it, never its type.
+
+    - ``load`` (its ``position``: the impact point, ``contact_radius``), ``solver``, ``gauges``, ``units``, ``title``;
+    - ``model(patch_radius, damage=False)`` its :class:`StructureModel` (with ``damage``, the contact structure's
+      outputs carry the ``"damage"`` group after the ``"gauges"``); ``check()`` resolution and resource guards;
+      ``refine(factor)`` the same target with mesh and time step refined; ``elements`` its mesh (a list);
+      ``for_impact(solver, gauges)`` the target of a coupled run (force history dropped);
+    - ``stack`` its laminate (or None), ``material`` its isotropic material (or None), ``thickness`` [m],
+      ``laminate_key`` where a case gives the laminate's ply;
+    - damage: ``has_damage_outputs`` (a layup with strengths), ``damage_points()`` where the indices are
+      read ("at_load", "at_<gauge>"), ``damage_gauges()`` the ``"damage"`` output group, ``damage_faces(gauges, damage)`` each damage point's (top, bottom) face strains,
+      ``damage_section`` (plane, width) of a beam section or (None, None);
+    - ``validity(max_deflection)`` the deflection envelope of its theory (``theory``: its label);
+    - summary.json: ``gauge_summary(gauge)`` a gauge's entries, ``summary_extras(model, result)`` the target's
+      own block (a plate's ``target``), ``summary_keys`` its sweep outputs; ``deflected_shapes`` whether the
+      impact command draws its deflected shapes.
+    """
+
+    load: object
+    solver: object
+    gauges: tuple
+    theory: str
+    laminate_key: str
+    deflected_shapes: bool
+    summary_keys: tuple
+
+    def model(self, patch_radius: float | None = None, damage: bool = False) -> StructureModel: ...
+
+    def check(self) -> None: ...
+
+    def refine(self, factor: int): ...
+
+    def for_impact(self, solver, gauges=None): ...
+
+    @property
+    def elements(self) -> list[int]: ...
+
+    @property
+    def stack(self): ...
+
+    @property
+    def material(self): ...
+
+    @property
+    def thickness(self) -> float: ...
+
+    @property
+    def has_damage_outputs(self) -> bool: ...
+
+    def damage_points(self) -> dict: ...
+
+    def damage_gauges(self) -> tuple: ...
+
+    def damage_faces(self, gauges: np.ndarray, damage: dict) -> dict: ...
+
+    @property
+    def damage_section(self) -> tuple: ...
+
+    def validity(self, max_deflection: float): ...
+
+    def gauge_summary(self, gauge) -> dict: ...
+
+    def summary_extras(self, model, result) -> dict: ...
+
+
+__all__ += ["Target"]  # appended here, not in the list above, so this block stays apart from the contact laws' part

@@ -24,14 +24,15 @@ def bar_validity(result):
     return contact_validity(p.law_name, float(np.max(result.approach)), float(np.max(result.contact_radius)), p.projectile.diameter, p.bar.diameter / 2)
 
 
-def bar_summary(result) -> dict:
-    """The scalars of a bar run, SI with unit-suffixed keys, and the resolved case."""
+def bar_summary(result, plain=None) -> dict:
+    """The scalars of a bar run, SI with unit-suffixed keys, and the resolved case; with ``plain`` (the same run
+    without the end cap) also its first-contact scalars (``without_end_cap``)."""
     p = result.problem
     gauges = {}
     for g, eps in zip(p.gauges, result.strain):
         gauges[g.name] = {"position_m": g.position, **strain_peaks(result.time, eps)}
     e = result.energies.mechanical
-    return {
+    out = {
         "title": p.title,
         "peak_force_N": result.peak_force,
         "time_of_peak_s": result.time_of_peak,
@@ -50,6 +51,13 @@ def bar_summary(result) -> dict:
         "validity": bar_validity(result).summary(),
         "case_SI": _case(p),
     }
+    if plain is not None:
+        out["without_end_cap"] = {
+            "peak_force_N": plain.peak_force,
+            "time_of_peak_s": plain.time_of_peak,
+            "contact_duration_s": plain.contact_duration,
+        }
+    return out
 
 
 def _case(p) -> dict:
@@ -68,24 +76,19 @@ def _case(p) -> dict:
     }
 
 
-def bar_files(result, plain=None, inferred=None, figures: bool = True, prefix: str = "") -> dict[str, bytes | str]:
+def bar_files(result, plain=None, inferred=None, figures: bool = True, prefix: str = "", summary: dict | None = None) -> dict[str, bytes | str]:
     """history.csv, summary.json, strain-along-bar.csv and (optionally) Figs 4–6 and the energy plot.
 
     ``plain``: the same run without the end cap (Fig 5); ``inferred``: (time, force,
-    gauge name), the force read from a gauge (Fig 5).
+    gauge name), the force read from a gauge (Fig 5); ``summary``: the run path's :func:`bar_summary`
+    (made here when None).
     """
     from . import plots
 
     p = result.problem
     cols = impact_columns(result, target=False, energies=False)
     cols["energy_total_J"] = result.energies.mechanical
-    summary = bar_summary(result)
-    if plain is not None:
-        summary["without_end_cap"] = {
-            "peak_force_N": plain.peak_force,
-            "time_of_peak_s": plain.time_of_peak,
-            "contact_duration_s": plain.contact_duration,
-        }
+    summary = bar_summary(result, plain) if summary is None else summary
     files = {prefix + "history.csv": csv_text(cols), prefix + "summary.json": json_text(summary)}
     L_over_c = p.bar.length / Rod.of(p.bar).wave_speed
     chosen = [t for t in p.snapshots if t <= result.time[-1]]

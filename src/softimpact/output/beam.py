@@ -9,29 +9,12 @@ from ..units import display
 from .files import csv_text, energy_balance, figure_bytes, json_text, strain_peaks
 from .report import Section
 
-__all__ = ["beam_validity", "beam_summary", "beam_scalars", "beam_files", "beam_section"]
+__all__ = ["beam_summary", "beam_scalars", "beam_files", "beam_section"]
 
 
-def beam_validity(result):
-    """The envelopes of a beam run (:mod:`softimpact.models.validity`): peak deflection under the load
-    against the thickness (linear theory), and on a layup with strengths the gauge sections' maximum-strain
-    index (:func:`softimpact.workflows.damage.beam_damage`) against 1."""
-    from ..models.validity import allowable_flags, deflection_validity
-
-    p = result.problem
-    v = deflection_validity("linear beam theory", float(np.max(np.abs(result.deflection))), p.beam.thickness)
-    stack = p.beam.stack
-    if stack is not None and hasattr(stack, "angles") and stack.ply.strength is not None and p.gauges and np.all(np.isfinite(result.bending)):
-        from ..workflows.damage import beam_damage
-
-        other = result.strain - 2 * result.bending
-        dmg = beam_damage(stack, stack.ply.strength, p.beam.plane, result.strain, other, [g.surface for g in p.gauges], result.force)
-        v += allowable_flags("the beam's plies at the gauge sections", float(dmg.ply["max_strain"].max()))
-    return v
-
-
-def beam_summary(model, result) -> dict:
-    """The scalars of a beam run, SI with unit-suffixed keys, and the resolved case.
+def beam_summary(model, result, validity) -> dict:
+    """The scalars of a beam run, SI with unit-suffixed keys, its ``validity`` (a
+    :class:`~softimpact.models.validity.Validity`, :func:`softimpact.cases.beam.beam_validity`) and the resolved case.
 
     A gauge's peak is the extreme within the run's window; when it sits on the
     window's last sample the strain may still be growing, and the summary says so
@@ -53,7 +36,7 @@ def beam_summary(model, result) -> dict:
         "effective_moduli_Pa": model.moduli(),
         **beam_scalars(result),
         "gauges": gauges,
-        "validity": beam_validity(result).summary(),
+        "validity": validity.summary(),
         "case_SI": p,
     }
     if result.energies:
@@ -71,8 +54,8 @@ def beam_scalars(result) -> dict:
     }
 
 
-def beam_files(model, result, figures: bool = True, prefix: str = "") -> dict[str, bytes | str]:
-    """history.csv, summary.json and Figs 18, 20–22 and the deformed beam."""
+def beam_files(model, result, figures: bool = True, prefix: str = "", *, summary: dict) -> dict[str, bytes | str]:
+    """history.csv, summary.json (``summary``: :func:`beam_summary`'s, from the run path) and Figs 18, 20–22 and the deformed beam."""
     p = result.problem
     cols = {"time_s": result.time, "force_N": result.force}
     for g, eps in zip(p.gauges, result.strain):
@@ -80,7 +63,7 @@ def beam_files(model, result, figures: bool = True, prefix: str = "") -> dict[st
     for g, bend in zip(p.gauges, result.bending):
         cols[f"bending_strain_{g.name}"] = bend
     cols["deflection_under_load_m"] = result.deflection
-    files = {prefix + "history.csv": csv_text(cols), prefix + "summary.json": json_text(beam_summary(model, result))}
+    files = {prefix + "history.csv": csv_text(cols), prefix + "summary.json": json_text(summary)}
     if figures:
         from . import plots
 
@@ -95,12 +78,11 @@ def beam_files(model, result, figures: bool = True, prefix: str = "") -> dict[st
     return files
 
 
-def beam_section(model, result, prefix: str) -> Section:
-    """The report section of a beam run: moduli, gauge strains, Figs 18, 20–22."""
+def beam_section(model, result, prefix: str, summary: dict) -> Section:
+    """The report section of a beam run (``summary``: :func:`beam_summary`'s): moduli, gauge strains, Figs 18, 20–22."""
     p = result.problem
     su, tu = display(p.units, "strain"), display(p.units, "time")
     lu, fu, pu = display(p.units, "length"), display(p.units, "force"), display(p.units, "stress")
-    summary = beam_summary(model, result)
     bs = summary["effective_moduli_Pa"].get("bending_stiffness_per_width_N_m", {})
     moduli = summary["effective_moduli_Pa"]
     rows = [

@@ -6,23 +6,10 @@ import math
 
 import numpy as np
 
-from ..studies.damage import DAMAGE_PREFIX, _bar, _opposite, damage_problem, split_damage
 from ..units import display
 from .files import csv_text, figure_bytes, json_text, strain_peaks
 
-__all__ = [
-    "DAMAGE_PREFIX",
-    "damage_problem",
-    "damage_keys",
-    "split_damage",
-    "impact_damage_summary",
-    "impact_summary",
-    "impact_columns",
-    "impact_files",
-    "impact_figures",
-    "snapshot_steps",
-    "SNAPSHOTS",
-]
+__all__ = ["damage_keys", "impact_summary", "impact_columns", "impact_files", "impact_figures", "snapshot_steps", "SNAPSHOTS"]
 
 SNAPSHOTS = 6  # instants of a plate's deflected-shape figure
 
@@ -33,67 +20,13 @@ def snapshot_steps(steps: int) -> np.ndarray:
     return np.unique(np.maximum(np.round(steps / 2.0 ** np.arange(SNAPSHOTS - 1, -1, -1)).astype(int), 1))
 
 
-def damage_keys(problem) -> tuple[str, ...]:
-    """The dotted damage outputs of an impact problem (sweeps): none unless :func:`damage_problem` adds its gauges."""
+def damage_keys(points) -> tuple[str, ...]:
+    """The dotted ``damage`` outputs of summary.json (sweeps) for damage ``points`` ("at_load", "at_<gauge>"):
+    the worst of each criterion, the delamination and interlaminar scalars, and each point's criteria."""
     from ..models.failure import CRITERIA
 
-    if _bar(problem) or damage_problem(problem) is problem:
-        return ()
-    points = ["at_load"] + [f"at_{g.name}" for g in problem.target.gauges]
     keys = [f"damage.{c}" for c in CRITERIA] + [f"damage.{k}" for k in ("delamination", "threshold_force_N", "interlaminar_shear_max_Pa", "interlaminar_index")]
     return tuple(keys + [f"damage.{p}.{c}" for p in points for c in CRITERIA])
-
-
-def _no_damage(problem) -> dict:
-    """``damage_note``: why an impact has no damage outputs, when its target's laminate is the reason
-    (no layup, or a ply without strengths); empty otherwise (the run was not asked for them)."""
-    from ..workflows.damage import damage_refusal
-
-    why = None if _bar(problem) else damage_refusal(problem)
-    return {} if why is None else {"damage_note": why}
-
-
-def impact_damage_summary(problem, result, pseudo: dict) -> dict:
-    """summary.json's ``damage`` of a coupled impact (:func:`softimpact.workflows.damage.impact_damage`):
-    indices at the load point and at each gauge, Davies–Zhang against the peak force, interlaminar shear."""
-    from ..workflows.damage import impact_damage, section_strains, strain_tensor
-
-    target = problem.target
-    stack = target.plate.stack if problem.on_plate else target.beam.stack
-    points = {}
-    if problem.on_plate:
-        for name in ["at_load"] + [f"at_{g.name}" for g in target.gauges]:
-            top, bottom = (strain_tensor(*(pseudo[f"{DAMAGE_PREFIX}.{name}.{f}.{d}"] for d in ("x", "y", "45.0"))) for f in ("top", "bottom"))
-            points[name] = (0.5 * (top + bottom), (top - bottom) / stack.thickness)
-        width = None
-    else:
-        plane = target.beam.plane
-        points["at_load"] = section_strains(stack, plane, pseudo[f"{DAMAGE_PREFIX}.at_load.top"], pseudo[f"{DAMAGE_PREFIX}.at_load.bottom"])
-        for j, g in enumerate(target.gauges):
-            other = pseudo[f"{DAMAGE_PREFIX}.at_{g.name}.{_opposite(g.surface)}"]
-            top, bottom = (result.strain[j], other) if g.surface == "top" else (other, result.strain[j])
-            points[f"at_{g.name}"] = section_strains(stack, plane, top, bottom)
-        width = target.beam.width
-    peak = max(c.peak_force for c in result.contacts)  # every contact's refined peak (parabola through the top samples)
-    dmg = impact_damage(stack, stack.ply.strength, points, result.force, result.contact_radius, width, peak)
-    return dmg.summary()
-
-
-def impact_validity(problem, result, damage: dict | None = None):
-    """The envelopes of a coupled run (:mod:`softimpact.models.validity`): the contact law's approach and
-    contact radius against the impactor's size, the target's deflection against its thickness (linear
-    theory), and with ``damage`` (summary.json's) the strains against the ply allowables."""
-    from ..models.validity import allowable_flags, contact_validity, deflection_validity
-
-    d = problem.impactor.diameter
-    v = contact_validity(problem.law_name, float(np.max(result.approach)), float(np.max(result.contact_radius)), d)
-    if problem.on_plate:
-        v += deflection_validity("linear plate theory (FSDT)", float(np.max(np.abs(result.deflection))), problem.target.plate.stack.thickness)
-    else:
-        v += deflection_validity("linear beam theory", float(np.max(np.abs(result.deflection))), problem.target.beam.thickness)
-    if damage is not None:
-        v += allowable_flags("the target's plies", damage["max_strain"])
-    return v
 
 
 def _contact(c) -> dict:
@@ -107,37 +40,15 @@ def _contact(c) -> dict:
     }
 
 
-def _plate_target(problem, model, result) -> dict:
-    """What a plate user reads besides the impact's scalars: the model, and the mid-surface
-    deflection under the impact point (along the impact direction, down +)."""
-    p = problem.target
-    w = result.deflection
-    k = int(np.argmax(np.abs(w)))
-    return {
-        "model": f"fsdt ({p.plate.element.upper()})",
-        "dofs": model.fe.n,
-        "elements": list(p.plate.elements),
-        "supports": dict(zip(("x0", "x1", "y0", "y1"), p.plate.supports)),
-        "impact_point_m": list(p.load.position),
-        "peak_deflection_at_impact_m": float(w[k]),
-        "time_of_peak_deflection_s": float(result.time[k]),
-        "deflection_note": "mid-surface deflection under the impact point, positive along the impact direction (into the plate)",
-    }
-
-
-def impact_summary(problem, result, model=None) -> dict:
-    """The scalars of a coupled run (first contact), every contact, gauge peaks and the resolved case; SI.
-    On a plate (``model`` a PlateModel) also ``target``: the plate model and its deflection under the impact.
-    With the damage pseudo-gauges (:func:`damage_problem`) also ``damage`` (:func:`impact_damage_summary`)."""
-    problem, result, pseudo = split_damage(problem, result)
-    damage = impact_damage_summary(problem, result, pseudo) if pseudo else None
-    plate = getattr(problem, "on_plate", False)
+def impact_summary(problem, result, validity, damage: dict | None = None, damage_note: str | None = None, extras: dict | None = None) -> dict:
+    """summary.json of a coupled run: the scalars of the first contact, every contact, gauge peaks (with each
+    gauge's own entries, :meth:`~softimpact.models.protocols.Target.gauge_summary`), the target's ``extras``
+    (:meth:`~softimpact.models.protocols.Target.summary_extras`), ``damage`` (``ImpactDamage.summary()``) or the
+    ``damage_note`` saying why there is none, the run's ``validity`` and the resolved case; SI. Computes nothing:
+    the run path (:func:`softimpact.cases.run.execute`) gives them."""
     gauges = {}
-    for j, (name, eps) in enumerate(zip(result.strain_names, result.strain)):
-        gauges[name] = {**strain_peaks(result.time, eps), "peak_abs_strain": float(np.max(np.abs(eps)))}
-        if plate:
-            g = problem.target.gauges[j]
-            gauges[name].update(position_m=list(g.position), surface=g.surface, direction=g.direction, length_m=g.length)
+    for g, (name, eps) in zip(problem.target.gauges, zip(result.strain_names, result.strain)):
+        gauges[name] = {**strain_peaks(result.time, eps), "peak_abs_strain": float(np.max(np.abs(eps))), **problem.target.gauge_summary(g)}
     first = result.contacts[0]
     sel = result.time <= (first.end if math.isfinite(first.end) else result.time[-1])
     E = result.energies
@@ -171,9 +82,9 @@ def impact_summary(problem, result, model=None) -> dict:
         "energy error: its largest value over the run, and its value at the end of the first contact",
         "newton_iterations": result.newton_iterations,
         "gauges": gauges,
-        **({"target": _plate_target(problem, model, result)} if plate and model is not None else {}),
-        **({"damage": damage} if damage is not None else _no_damage(problem)),
-        "validity": impact_validity(problem, result, damage).summary(),
+        **(extras or {}),
+        **({"damage": damage} if damage is not None else {"damage_note": damage_note} if damage_note is not None else {}),
+        "validity": validity.summary(),
         "case_SI": problem,
     }
 
@@ -286,15 +197,13 @@ def plate_impact_figures(problem, model, result, prefix: str = "") -> dict[str, 
     return out
 
 
-def impact_files(problem, result, figures: bool = True, prefix: str = "", model=None) -> dict[str, bytes | str]:
-    """history.csv, summary.json and (optionally) the figures; on a plate (``model`` its PlateModel)
-    also the plate's mesh and deflected shapes. The damage pseudo-gauges (:func:`damage_problem`) feed
-    summary.json's ``damage`` only."""
-    summary = json_text(impact_summary(problem, result, model))
-    problem, result, _ = split_damage(problem, result)
-    files = {prefix + "history.csv": csv_text(impact_columns(result)), prefix + "summary.json": summary}
+def impact_files(problem, result, figures: bool = True, prefix: str = "", model=None, *, summary: dict) -> dict[str, bytes | str]:
+    """history.csv, summary.json (``summary``: :func:`impact_summary`'s, from the run path) and (optionally) the
+    figures; for a target that draws its deflected shapes (a plate, ``model`` its PlateModel) also its mesh and
+    deflected shapes. ``result``'s gauges only: its other output groups (the damage strains) fed ``summary``."""
+    files = {prefix + "history.csv": csv_text(impact_columns(result)), prefix + "summary.json": json_text(summary)}
     if figures:
         files.update(impact_figures(problem, result, prefix))
-        if getattr(problem, "on_plate", False) and model is not None:
+        if problem.target.deflected_shapes and model is not None:
             files.update(plate_impact_figures(problem, model, result, prefix))
     return files

@@ -78,13 +78,14 @@ def plate_scalars(result) -> dict:
     }
 
 
-def plate_files(model, result, figures: bool = True) -> dict[str, bytes | str]:
-    """history.csv, summary.json and, with figures, plate-mesh.png, deflection.png, histories.png."""
+def plate_files(model, result, figures: bool = True, summary: dict | None = None) -> dict[str, bytes | str]:
+    """history.csv, summary.json (``summary``: the run path's :func:`plate_summary`, made here when None) and,
+    with figures, plate-mesh.png, deflection.png, histories.png."""
     p = result.problem
     cols = {"time_s": result.time, "force_N": result.force, "deflection_m": result.deflection[0]}
     for g, eps in zip(p.gauges, result.strain):
         cols[f"strain_{g.name}"] = eps
-    files = {"history.csv": csv_text(cols), "summary.json": json_text(plate_summary(model, result))}
+    files = {"history.csv": csv_text(cols), "summary.json": json_text(plate_summary(model, result) if summary is None else summary)}
     if figures:
         from . import plate_plots
 

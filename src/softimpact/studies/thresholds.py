@@ -46,13 +46,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
+from ..fem.contact import group_outputs
 from ..fem.newmark import SolverSpec
 from ..models.materials import Material
 from ..models.specimens import Impactor
-from ..workflows.coupled import ImpactProblem, impact_kernels, impact_model, run_impact
-from ..workflows.damage import delamination_force, impact_damage, section_strains, strain_tensor
-from .damage import DAMAGE_PREFIX as _PREFIX
-from .damage import damage_problem, split_damage
+from ..workflows.coupled import ImpactProblem, impact_kernels, run_impact
+from ..workflows.damage import coupled_damage, delamination_force
 
 __all__ = ["INDICES", "ThresholdStructure", "MapRow", "structure", "damage_index", "threshold_velocity", "threshold_map", "law_draws", "gci_two_meshes"]
 
@@ -106,8 +105,8 @@ class MapRow:
 
 @dataclass
 class ThresholdStructure:
-    """A structure ready for threshold runs: its impact problem (with the damage pseudo-gauges),
-    its model and its contact kernels (built once, for the widest diameter). Not frozen: the
+    """A structure ready for threshold runs: its impact problem, its model (with the target's
+    ``"damage"`` output group) and its contact kernels (built once, for the widest diameter). Not frozen: the
     kernels keep a cache of the smaller impactors' contact discs."""
 
     name: str
@@ -124,50 +123,30 @@ class ThresholdStructure:
 
 
 def structure(name: str, target, widest: float, density: float, time_step: float, duration: float, law) -> ThresholdStructure:
-    """A :class:`ThresholdStructure` from a resolved beam or plate problem ``target`` (its load
-    position and contact radius used; its force history dropped), for balls up to ``widest`` [m]
-    of ``density`` [kg/m³], stepped at ``time_step`` [s] for ``duration`` [s]; ``law``: the
-    identified law (its mean; any law serves for the build, the kernels hold none)."""
-    from ..workflows.beam_impact import BeamLoad
-    from ..workflows.plate_impact import PlateLoad
-
-    plate = hasattr(target, "plate")
-    if plate:
-        load = PlateLoad(target.load.position, target.load.contact_radius, None, grow=True)
-    else:
-        load = BeamLoad(target.load.position, target.load.contact_radius, None)
-    solver = SolverSpec(time_step, duration)
-    resolved = dataclasses.replace(target, load=load, solver=solver, gauges=())
+    """A :class:`ThresholdStructure` from a resolved target ``target`` (a :class:`~softimpact.models.protocols.Target`:
+    its load position and contact radius used, its force history dropped, :meth:`~softimpact.models.protocols.Target.for_impact`),
+    for balls up to ``widest`` [m] of ``density`` [kg/m³], stepped at ``time_step`` [s] for ``duration`` [s];
+    ``law``: the identified law (its mean; any law serves for the build, the kernels hold none)."""
+    resolved = target.for_impact(SolverSpec(time_step, duration), ())
     rubber = Material("ball", 5.0e6, 0.49, density, "threshold-map impactor (the law carries the contact)")
     mass = density * math.pi / 6.0 * widest**3
     problem = ImpactProblem(resolved, name, Impactor(mass, widest, 1.0), rubber, "identified", law.law(mass, widest, 1.0), name)
-    problem = damage_problem(problem)
-    if problem.target.gauges == ():
+    if not resolved.has_damage_outputs:
         raise InputError(f"{name}: no damage outputs (the laminate needs a layup and a ply with strengths)")
-    model = impact_model(problem)
+    model = problem.model(damage=True)
     kernels = impact_kernels(problem, model)
     return ThresholdStructure(name, problem, model, kernels, density)
 
 
 def damage_index(problem: ImpactProblem, result, index: str, scale: float = 1.0) -> float:
-    """The damage ``index`` of a coupled run (:data:`INDICES`): Tsai–Wu at the load point or the
-    Davies–Zhang delamination index (peak force / P_c); ``scale`` multiplies every strength
-    (and P_c): the index is divided by it (homogeneous of degree −1)."""
-    problem, result, pseudo = split_damage(problem, result)
-    target = problem.target
-    stack = target.plate.stack if problem.on_plate else target.beam.stack
+    """The damage ``index`` of a coupled run (:data:`INDICES`; ``result`` with its ``"damage"`` output group):
+    Tsai–Wu at the load point or the Davies–Zhang delamination index (peak force / P_c); ``scale``
+    multiplies every strength (and P_c): the index is divided by it (homogeneous of degree −1)."""
+    stack = problem.target.stack
     if index == "delamination":
         peak = max(c.peak_force for c in result.contacts)
         return peak / delamination_force(stack, stack.ply.strength.GIIc) / scale
-    if problem.on_plate:
-        top, bottom = (strain_tensor(*(pseudo[f"{_PREFIX}.at_load.{f}.{d}"] for d in ("x", "y", "45.0"))) for f in ("top", "bottom"))
-        points = {"at_load": (0.5 * (top + bottom), (top - bottom) / stack.thickness)}
-        width = None
-    else:
-        points = {"at_load": section_strains(stack, target.beam.plane, pseudo[f"{_PREFIX}.at_load.top"], pseudo[f"{_PREFIX}.at_load.bottom"])}
-        width = target.beam.width
-    dmg = impact_damage(stack, stack.ply.strength, points, result.force, result.contact_radius, width)
-    return dmg.points["at_load"].peak[index] / scale
+    return coupled_damage(problem.target, result, ("at_load",)).points["at_load"].peak[index] / scale
 
 
 def _run(s: ThresholdStructure, law, diameter: float, velocity: float, method: str = "kernels"):
@@ -176,7 +155,7 @@ def _run(s: ThresholdStructure, law, diameter: float, velocity: float, method: s
         _, result = run_impact(problem, s.model, energy=False, method="kernels", kernels=s.kernels)
     else:
         _, result = run_impact(problem, s.model, energy=False, method="direct")
-    return problem, result
+    return problem, group_outputs(result, s.model.contact_groups())
 
 
 def index_at(s: ThresholdStructure, law, diameter: float, velocity: float, index: str, method: str = "kernels", runs: dict | None = None) -> float:

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
-from ..fem.contact import plane_contact_structure
+from ..fem.contact import output_groups, plane_contact_structure
 from ..fem.energies import Energies
 from ..fem.linear import MIN_STEPS_PER_RISE, LinearModel
 from ..fem.loads import PatchLoad
@@ -29,6 +29,7 @@ from ..fem.plane import PlaneBeam, PlaneModel
 from ..models.laminate import Stack, engineering_constants, plane_matrix
 from ..models.materials import Material
 from ..models.specimens import GAUGE_LENGTH
+from ..models.validity import Validity, deflection_validity
 
 __all__ = ["LAMINATE_MODELS", "BeamGauge", "BeamSpec", "BeamLoad", "BeamProblem", "BeamModel", "BeamResult", "isotropic_matrix", "check_problem"]
 
@@ -113,9 +114,17 @@ class BeamLoad:
     history: object
 
 
+def _opposite(surface: str) -> str:
+    return "top" if surface == "bottom" else "bottom"
+
+
 @dataclass(frozen=True)
 class BeamProblem:
-    """Everything that defines a beam run (SI); checks that the load, gauges and time step fit."""
+    """Everything that defines a beam run (SI); checks that the load, gauges and time step fit.
+
+    A :class:`~softimpact.models.protocols.Target` of a coupled impact: its model, checks and
+    refinement, laminate, damage outputs (the load point's two faces and the face opposite each
+    gauge), validity (linear beam theory) and summary extras (none)."""
 
     beam: BeamSpec
     load: BeamLoad
@@ -139,9 +148,107 @@ class BeamProblem:
                 "time_step",
             )
 
-    def model(self, patch_radius: float | None = None) -> BeamModel:
-        """The assembled :class:`BeamModel` of this problem (``patch_radius``: the widest contact radius it loads)."""
-        return BeamModel(self, patch_radius)
+    def model(self, patch_radius: float | None = None, damage: bool = False) -> BeamModel:
+        """The assembled :class:`BeamModel` of this problem (``patch_radius``: the widest contact radius it loads;
+        ``damage``: its contact structure also outputs the ``"damage"`` group, :meth:`damage_gauges`)."""
+        return BeamModel(self, patch_radius, damage=damage)
+
+    # --- the Target protocol (softimpact.models.protocols.Target) ---
+
+    theory = "linear beam theory"  # the deflection envelope's label (models.validity.deflection_validity)
+    laminate_key = "beam.laminate.ply"  # where a case gives the laminate's ply (messages)
+    deflected_shapes = False  # the impact command draws no deflected shapes of a beam
+    summary_keys = ()  # the sweep outputs of its summary extras (none)
+
+    @property
+    def stack(self) -> Stack | None:
+        return self.beam.stack
+
+    @property
+    def material(self) -> Material | None:
+        return self.beam.material
+
+    @property
+    def thickness(self) -> float:
+        return self.beam.thickness
+
+    @property
+    def elements(self) -> list[int]:
+        """The mesh: [along, through the thickness]."""
+        return [self.beam.nx, self.beam.nz]
+
+    def check(self) -> None:
+        """:func:`check_problem`."""
+        check_problem(self)
+
+    def refine(self, factor: int) -> BeamProblem:
+        """Factor × the elements along and through the thickness and dt/factor (load, gauges unchanged)."""
+        from dataclasses import replace
+
+        return replace(self, beam=replace(self.beam, nx=self.beam.nx * factor, nz=self.beam.nz * factor), solver=_finer(self.solver, factor))
+
+    def for_impact(self, solver: SolverSpec, gauges: tuple[BeamGauge, ...] | None = None) -> BeamProblem:
+        """This beam as the target of a coupled impact: its load point and contact radius kept, the
+        force history dropped (the contact gives it), ``solver`` and ``gauges`` (default its own)."""
+        from dataclasses import replace
+
+        load = BeamLoad(self.load.position, self.load.contact_radius, None)
+        return replace(self, load=load, solver=solver, gauges=self.gauges if gauges is None else gauges)
+
+    @property
+    def has_damage_outputs(self) -> bool:
+        """Its laminate is a layup (ply stacking) whose ply has strengths: the damage indices apply."""
+        stack = self.beam.stack
+        return stack is not None and getattr(stack, "angles", None) is not None and stack.ply.strength is not None
+
+    def damage_points(self) -> dict[str, float]:
+        """Where the damage indices are read: the section under the load and each gauge's section (x [m])."""
+        return {"at_load": self.load.position, **{f"at_{g.name}": g.position for g in self.gauges}}
+
+    def damage_gauges(self) -> tuple[BeamGauge, ...]:
+        """The ``"damage"`` output group: the axial strain on the load point's two faces and, over each
+        gauge's length, on the face opposite it (a section's two faces give its CLT strains); none
+        without :attr:`has_damage_outputs`."""
+        if not self.has_damage_outputs:
+            return ()
+        x = self.load.position
+        out = (BeamGauge("at_load.top", x, "top"), BeamGauge("at_load.bottom", x, "bottom"))
+        return out + tuple(BeamGauge(f"at_{g.name}.{_opposite(g.surface)}", g.position, _opposite(g.surface), g.length) for g in self.gauges)
+
+    def damage_faces(self, gauges: np.ndarray, damage: dict) -> dict:
+        """Per damage point ("at_load", "at_<gauge>"): (top, bottom) axial face strains (n,), from the
+        gauges' strains (n_gauges, n) and the ``"damage"`` group's by name."""
+        faces = {"at_load": (damage["at_load.top"], damage["at_load.bottom"])}
+        for j, g in enumerate(self.gauges):
+            other = damage[f"at_{g.name}.{_opposite(g.surface)}"]
+            faces[f"at_{g.name}"] = (gauges[j], other) if g.surface == "top" else (other, gauges[j])
+        return faces
+
+    @property
+    def damage_section(self) -> tuple[str, float]:
+        """(plane, width [m]): a face strain is the axial ε_x of a section in plane strain or stress across the width."""
+        return self.beam.plane, self.beam.width
+
+    def validity(self, max_deflection: float) -> Validity:
+        """The deflection envelope of linear beam theory (:func:`~softimpact.models.validity.deflection_validity`)."""
+        return deflection_validity(self.theory, max_deflection, self.beam.thickness)
+
+    def gauge_summary(self, gauge: BeamGauge) -> dict:
+        """A gauge's entries in an impact's summary.json besides its peaks: none (its case names it)."""
+        return {}
+
+    def summary_extras(self, model, result) -> dict:
+        """An impact's summary.json entries of the target: none for a beam."""
+        return {}
+
+
+def _finer(solver: SolverSpec, factor: int) -> SolverSpec:
+    """The solver with dt/factor and the same duration."""
+    from dataclasses import replace
+
+    if isinstance(factor, bool) or not isinstance(factor, int) or factor < 1:
+        raise InputError(f"refinement factor must be a positive integer, got {factor!r}")
+    return replace(solver, time_step=solver.time_step / factor)
 
 
 OUTPUTS = ("all", "strain")  # what a BeamModel observes (BeamModel's ``outputs``)
@@ -165,14 +272,16 @@ class BeamModel(LinearModel):
     """Assembled beam with its stepper, patch and output rows, for one (mesh, dt): the plane model
     as a :class:`softimpact.fem.linear.LinearModel` (the structure protocol)."""
 
-    def __init__(self, problem: BeamProblem, patch_radius: float | None = None, outputs: str = "all"):
-        """``patch_radius``: the widest contact radius the model must load (for fits of r0).
+    def __init__(self, problem: BeamProblem, patch_radius: float | None = None, outputs: str = "all", damage: bool = False):
+        """``patch_radius``: the widest contact radius the model must load (for fits of r0);
+        ``damage``: the contact structure also outputs the ``"damage"`` group (:meth:`BeamProblem.damage_gauges`).
         ``outputs``: "all" (gauge strains, bending strains, deflection under the load) or
         "strain" (the gauge strains only: the response engine then costs one right-hand
         side per gauge instead of two per gauge and one; bending and deflection are NaN)."""
         if outputs not in OUTPUTS:
             raise InputError(f"outputs: {outputs!r} is not one of {', '.join(OUTPUTS)}", "outputs")
         self.problem, self.outputs = problem, outputs
+        self.damage = problem.damage_gauges() if damage else ()
         self.plane = pm = PlaneModel(problem.beam.plane_beam())
         a, b = problem.beam.damping
         C = None if a == 0 and b == 0 else a * pm.M + b * pm.K
@@ -226,10 +335,14 @@ class BeamModel(LinearModel):
 
     def contact_structure(self, point: float, reach: float):
         """The beam struck downward on its top face at ``point`` [m] (:func:`softimpact.fem.contact.plane_contact_structure`),
-        with the gauge strains (each on its own face) as outputs and the model's damping."""
-        pm, gauges = self.plane, self.problem.gauges
+        with the gauge strains (each on its own face) as outputs, then the ``"damage"`` group's, and the model's damping."""
+        pm, gauges = self.plane, self.problem.gauges + self.damage
         outputs = np.array([pm.surface_strain(g.position, g.surface, g.length) for g in gauges]).reshape(len(gauges), pm.n)
-        return plane_contact_structure(pm, point, reach, outputs, tuple(g.name for g in gauges), self.C)
+        return plane_contact_structure(pm, point, reach, outputs, tuple(g.name for g in gauges), self.C, self.contact_groups())
+
+    def contact_groups(self) -> dict[str, tuple[int, ...]]:
+        """``"gauges"`` (the problem's) and ``"damage"`` (:meth:`BeamProblem.damage_gauges`, when built with it)."""
+        return output_groups(gauges=len(self.problem.gauges), damage=len(self.damage))
 
     def _drop_mesh(self, light) -> None:
         light.plane = None

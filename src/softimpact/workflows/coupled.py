@@ -49,10 +49,11 @@ METHODS = ("auto", "kernels", "direct")  # run_impact's ways to step a coupled i
 
 @dataclass(frozen=True)
 class ImpactProblem:
-    """A coupled impact case, resolved (SI): the target beam or plate (its solver and gauges those
-    of the impact run, its force history dropped), the impactor, its material and the contact law."""
+    """A coupled impact case, resolved (SI): the target (its solver and gauges those of the impact run,
+    its force history dropped: :meth:`~softimpact.models.protocols.Target.for_impact`), the impactor, its
+    material and the contact law."""
 
-    target: object  # a BeamProblem or PlateProblem: anything with load, solver, gauges and model(patch_radius)
+    target: object  # a Target (softimpact.models.protocols): a BeamProblem or PlateProblem
     target_case: str
     impactor: Impactor
     impactor_material: Material
@@ -70,9 +71,18 @@ class ImpactProblem:
         """The impact point: x [m] along a beam, (x, y) [m] on a plate."""
         return self.target.load.position
 
-    @property
-    def on_plate(self) -> bool:
-        return hasattr(self.target, "plate")
+    def model(self, damage: bool = False) -> StructureModel:
+        """The target's model for the impact run (:meth:`~softimpact.models.protocols.Target.model`), checked
+        for room about the impact point (errors name the target case's load.position); ``damage``: its
+        contact structure also outputs the target's ``"damage"`` group."""
+        try:
+            model = self.target.model(patch_radius=min(self.target.load.contact_radius, self.impactor.diameter), damage=damage)
+            model.contact_reach(self.position, self.impactor.diameter)
+        except InputError as exc:
+            if "patch" not in str(exc) and "contact disc" not in str(exc):
+                raise
+            raise InputError(f"target.case ({self.target_case}): load.position {tuple(self.position)!r} m: {exc}") from None
+        return model
 
 
 def impact_model(problem: ImpactProblem) -> StructureModel:

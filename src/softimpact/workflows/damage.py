@@ -42,6 +42,8 @@ __all__ = [
     "ImpactDamage",
     "point_damage",
     "impact_damage",
+    "face_points",
+    "coupled_damage",
 ]
 
 
@@ -171,16 +173,10 @@ def damage_unavailable(stack, where: str) -> str | None:
     return None
 
 
-def damage_refusal(problem) -> str | None:
-    """:func:`damage_unavailable` for a beam, plate or impact problem (its target's laminate); None for
-    anything else (a bar has no damage outputs: the sweep's own check names it)."""
-    prefix = ""
-    if hasattr(problem, "target"):
-        problem, prefix = problem.target, "target.case: "
-    for table in ("beam", "plate"):
-        if hasattr(problem, table):
-            return damage_unavailable(getattr(problem, table).stack, f"{prefix}{table}.laminate.ply")
-    return None
+def damage_refusal(target, prefix: str = "") -> str | None:
+    """:func:`damage_unavailable` for a target (a beam or plate problem, :class:`~softimpact.models.protocols.Target`):
+    its laminate's ply named by the target's ``laminate_key`` after ``prefix`` (an impact case's "target.case: ")."""
+    return damage_unavailable(target.stack, f"{prefix}{target.laminate_key}")
 
 
 @functools.lru_cache(maxsize=64)  # pure function of frozen inputs; a sweep asks again for every run
@@ -280,3 +276,33 @@ def impact_damage(
         j = int(np.argmax(ils.index))
         best = max(best, (float(ils.index[j] * q), float(tau.max()), float(ils.z[j])))
     return ImpactDamage(out, delamination_force(stack, strength.GIIc), float(np.max(force) if peak_force is None else peak_force), best[1], best[0], best[2])
+
+
+def face_points(stack, faces: dict, plane: str | None) -> dict:
+    """Mid-plane strains and curvatures (3, n) per point from its two faces' strains, ``faces``: name →
+    (top, bottom). A face strain is either the axial ε_x (n,) of a beam section (``plane`` "strain" or
+    "stress" across the width, :func:`section_strains`) or the normal strains along x, y and 45° (3, n) of
+    a plate point (``plane`` None: the in-plane tensors, :func:`strain_tensor`, mean and difference over h)."""
+    out = {}
+    for name, (top, bottom) in faces.items():
+        if plane is not None:
+            out[name] = section_strains(stack, plane, top, bottom)
+        else:
+            t, b = strain_tensor(*top), strain_tensor(*bottom)
+            out[name] = (0.5 * (t + b), (t - b) / stack.thickness)
+    return out
+
+
+def coupled_damage(target, result, points: tuple[str, ...] | None = None) -> ImpactDamage:
+    """Damage of a coupled impact (:func:`impact_damage`) on ``target`` (a :class:`~softimpact.models.protocols.Target`
+    whose laminate has strengths) from ``result`` (a CoupledResult with its ``"damage"`` output group): first-ply
+    failure at the target's damage points (``points``: only these, e.g. ("at_load",)), Davies–Zhang against the
+    largest refined peak of every contact, interlaminar shear under the load."""
+    names, rows = result.groups["damage"]
+    faces = target.damage_faces(result.strain, dict(zip(names, rows)))
+    if points is not None:
+        faces = {p: faces[p] for p in points}
+    plane, width = target.damage_section
+    stack = target.stack
+    peak = max(c.peak_force for c in result.contacts)  # every contact's refined peak (parabola through the top samples)
+    return impact_damage(stack, stack.ply.strength, face_points(stack, faces, plane), result.force, result.contact_radius, width, peak)

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
-from ..fem.contact import plate_contact_structure, plate_reach
+from ..fem.contact import output_groups, plate_contact_structure, plate_reach
 from ..fem.energies import Energies
 from ..fem.linear import MIN_STEPS_PER_RISE, LinearModel
 from ..fem.newmark import SolverSpec
@@ -33,8 +33,11 @@ from ..fem.plate_loads import CircularPatch
 from ..models.laminate import Stack
 from ..models.plate_laminate import SHEAR_CORRECTION, PlateSection, plate_section
 from ..models.specimens import GAUGE_LENGTH
+from ..models.validity import Validity, deflection_validity
 
-__all__ = ["PlateSpec", "PlateLoad", "PlateGauge", "PlateProblem", "PlateResult", "PlateModel", "check_problem"]
+__all__ = ["PlateSpec", "PlateLoad", "PlateGauge", "PlateProblem", "PlateResult", "PlateModel", "check_problem", "DAMAGE_DIRECTIONS"]
+
+DAMAGE_DIRECTIONS = ("x", "y", 45.0)  # three normal strains give a point's in-plane strain tensor
 
 
 def _positive(name: str, value) -> None:
@@ -134,6 +137,10 @@ class PlateProblem:
 
     ``points``: extra points (x, y) [m] where the deflection is recorded, after
     the impact point.
+
+    A :class:`~softimpact.models.protocols.Target` of a coupled impact: its model, checks and
+    refinement, laminate, damage outputs (point strains in x, y and 45° on both faces under the
+    load and at each gauge), validity (linear plate theory) and summary extras (its ``target`` block).
     """
 
     plate: PlateSpec
@@ -174,9 +181,117 @@ class PlateProblem:
                 f"{rise * 1e6:.3g} us (need at most time_of_peak/{MIN_STEPS_PER_RISE})"
             )
 
-    def model(self, patch_radius: float | None = None) -> PlateModel:
-        """The assembled :class:`PlateModel` of this problem (``patch_radius``: the widest contact radius it loads)."""
-        return PlateModel(self, patch_radius)
+    def model(self, patch_radius: float | None = None, damage: bool = False) -> PlateModel:
+        """The assembled :class:`PlateModel` of this problem (``patch_radius``: the widest contact radius it loads;
+        ``damage``: it also outputs the ``"damage"`` group, :meth:`damage_gauges`)."""
+        return PlateModel(self, patch_radius, damage=damage)
+
+    # --- the Target protocol (softimpact.models.protocols.Target) ---
+
+    theory = "linear plate theory (FSDT)"  # the deflection envelope's label (models.validity.deflection_validity)
+    laminate_key = "plate.laminate.ply"  # where a case gives the laminate's ply (messages)
+    deflected_shapes = True  # the impact command draws the plate's mesh and deflected shapes
+    summary_keys = ("target.peak_deflection_at_impact_m", "target.time_of_peak_deflection_s")  # the sweep outputs of its summary extras
+
+    @property
+    def stack(self) -> Stack:
+        return self.plate.stack
+
+    @property
+    def material(self) -> None:
+        """A plate is a laminate: no isotropic material."""
+        return None
+
+    @property
+    def thickness(self) -> float:
+        return self.plate.stack.thickness
+
+    @property
+    def elements(self) -> list[int]:
+        """The mesh: [along x, along y]."""
+        return list(self.plate.elements)
+
+    def check(self) -> None:
+        """:func:`check_problem`."""
+        check_problem(self)
+
+    def refine(self, factor: int) -> PlateProblem:
+        """Factor × the elements along x and y and dt/factor (load patch, gauges and points unchanged)."""
+        from dataclasses import replace
+
+        if isinstance(factor, bool) or not isinstance(factor, int) or factor < 1:
+            raise InputError(f"refinement factor must be a positive integer, got {factor!r}")
+        nx, ny = self.plate.elements
+        solver = replace(self.solver, time_step=self.solver.time_step / factor)
+        return replace(self, plate=replace(self.plate, elements=(nx * factor, ny * factor)), solver=solver)
+
+    def for_impact(self, solver: SolverSpec, gauges: tuple[PlateGauge, ...] | None = None) -> PlateProblem:
+        """This plate as the target of a coupled impact: its load point and contact radius kept, the
+        force history dropped (the contact gives it; the disc grows with the force), ``solver`` and
+        ``gauges`` (default its own)."""
+        from dataclasses import replace
+
+        load = PlateLoad(self.load.position, self.load.contact_radius, None, grow=True)
+        return replace(self, load=load, solver=solver, gauges=self.gauges if gauges is None else gauges)
+
+    @property
+    def has_damage_outputs(self) -> bool:
+        """Its laminate is a layup (ply stacking) whose ply has strengths: the damage indices apply."""
+        stack = self.plate.stack
+        return stack is not None and getattr(stack, "angles", None) is not None and stack.ply.strength is not None
+
+    def damage_points(self) -> dict[str, tuple[float, float]]:
+        """Where the damage indices are read: under the impact point and at each gauge's centre."""
+        return {"at_load": tuple(self.load.position), **{f"at_{g.name}": tuple(g.position) for g in self.gauges}}
+
+    def damage_gauges(self) -> tuple[PlateGauge, ...]:
+        """The ``"damage"`` output group: point strains (length 0) along :data:`DAMAGE_DIRECTIONS` on both
+        faces at each of :meth:`damage_points` (the in-plane strain tensor of each face); none without
+        :attr:`has_damage_outputs`."""
+        if not self.has_damage_outputs:
+            return ()
+        return tuple(
+            PlateGauge(f"{n}.{face}.{d}", xy, face, d, 0.0) for n, xy in self.damage_points().items() for face in ("top", "bottom") for d in DAMAGE_DIRECTIONS
+        )
+
+    def damage_faces(self, gauges: np.ndarray, damage: dict) -> dict:
+        """Per damage point: (top, bottom), each the normal strains along x, y and 45° (3, n) of that
+        face, from the ``"damage"`` group's strains by name (``gauges``, the gauges' own, unused)."""
+        return {
+            p: tuple(np.array([damage[f"{p}.{face}.{d}"] for d in DAMAGE_DIRECTIONS]) for face in ("top", "bottom"))
+            for p in self.damage_points()
+            if f"{p}.top.x" in damage
+        }
+
+    @property
+    def damage_section(self) -> tuple[None, None]:
+        """(plane, width): none on a plate (a face strain is a point's in-plane tensor)."""
+        return None, None
+
+    def validity(self, max_deflection: float) -> Validity:
+        """The deflection envelope of linear plate theory (:func:`~softimpact.models.validity.deflection_validity`)."""
+        return deflection_validity(self.theory, max_deflection, self.plate.stack.thickness)
+
+    def gauge_summary(self, gauge: PlateGauge) -> dict:
+        """A gauge's entries in an impact's summary.json besides its peaks: where it is and what it reads."""
+        return {"position_m": list(gauge.position), "surface": gauge.surface, "direction": gauge.direction, "length_m": gauge.length}
+
+    def summary_extras(self, model, result) -> dict:
+        """An impact's summary.json ``target``: the plate model, and the mid-surface deflection under the
+        impact point (along the impact direction, down +) of ``result`` (a CoupledResult)."""
+        w = result.deflection
+        k = int(np.argmax(np.abs(w)))
+        target = {
+            "model": f"fsdt ({self.plate.element.upper()})",
+            "dofs": model.fe.n,
+            "elements": list(self.plate.elements),
+            "supports": dict(zip(("x0", "x1", "y0", "y1"), self.plate.supports)),
+            "impact_point_m": list(self.load.position),
+            "peak_deflection_at_impact_m": float(w[k]),
+            "time_of_peak_deflection_s": float(result.time[k]),
+            "deflection_note": "mid-surface deflection under the impact point, positive along the impact direction (into the plate)",
+        }
+        return {"target": target}
 
     def mirrored_edges(self) -> tuple[str, ...]:
         """The symmetry edges (of x0, x1, y0, y1) that miss the load point: about each, the model
@@ -200,6 +315,7 @@ class PlateResult:
     displacement: np.ndarray | None = None  # (n_dofs, n_kept), free DOFs, direct stepping only
     energies: Energies | None = None  # kinetic, strain, work [J] at every step, direct stepping only
     kept: np.ndarray | None = None  # step indices of the columns of ``displacement``
+    damage: np.ndarray | None = None  # (n_damage, n): the "damage" output group (PlateModel(damage=True)), rows of PlateProblem.damage_gauges()
 
 
 def check_problem(problem: PlateProblem) -> None:
@@ -231,22 +347,25 @@ class PlateModel(LinearModel):
     """Assembled plate with its stepper, contact patch and output rows, for one (mesh, dt): the
     plate as a :class:`softimpact.fem.linear.LinearModel` (the structure protocol)."""
 
-    def __init__(self, problem: PlateProblem, patch_radius: float | None = None):
-        """``patch_radius``: the widest contact radius the model must load (for fits of r0)."""
+    def __init__(self, problem: PlateProblem, patch_radius: float | None = None, damage: bool = False):
+        """``patch_radius``: the widest contact radius the model must load (for fits of r0); ``damage``: it also
+        outputs the ``"damage"`` group (:meth:`PlateProblem.damage_gauges`), after the gauges."""
         self.problem = problem
+        self.damage = problem.damage_gauges() if damage else ()
         self.fe = fe = PlateFE(problem.plate.plate())
         a, b = problem.plate.damping
         C = None if a == 0 and b == 0 else a * fe.M + b * fe.K
         load = problem.load
         patch = CircularPatch(fe, load.position, patch_radius or load.contact_radius, grow=load.grow)
-        rows = [fe.surface_strain(*g.position, g.surface, g.direction, g.length) for g in problem.gauges]
+        rows = [fe.surface_strain(*g.position, g.surface, g.direction, g.length) for g in problem.gauges + self.damage]
         rows += [fe.deflection(*p) for p in (load.position,) + tuple(problem.points)]
         # Patch loads push the plate down (−z).
         super().__init__(fe.M, fe.K, C, problem.solver, patch.dofs, -1.0, np.array(rows), patch, load.contact_radius)
 
     def _split(self, y: np.ndarray):
-        ng = len(self.problem.gauges)
-        return y[:ng], y[ng:]
+        """(gauge strains, deflections, the damage group or None) of the output rows."""
+        ng, nd = len(self.problem.gauges), len(self.damage)
+        return y[:ng], y[ng + nd :], (y[ng : ng + nd] if nd else None)
 
     def respond(self, history=None, radius: float | None = None) -> PlateResult:
         """Gauge strains and deflections for a force history through the response engine.
@@ -261,8 +380,8 @@ class PlateModel(LinearModel):
                 raise InputError("the force must be zero at first contact (t = 0)", "history")
             r0 = self.load_radius if radius is None else radius
             y = self.engine().respond_pattern(self.nodal_loads(np.ones(1), r0)[:, 0], F)
-        strain, defl = self._split(y)
-        return PlateResult(self.problem, self.solver.times(), F, strain, defl)
+        strain, defl, damage = self._split(y)
+        return PlateResult(self.problem, self.solver.times(), F, strain, defl, damage=damage)
 
     def direct(self, history=None, progress=None, energy: bool = True, snapshots=None) -> PlateResult:
         """Direct Newmark stepping of all DOFs (:meth:`LinearModel.march`); with ``energy``, the
@@ -271,14 +390,18 @@ class PlateModel(LinearModel):
         F = self.force_samples(history)
         keep = np.arange(self.steps + 1) if snapshots is None else np.asarray(snapshots, int)
         y, energies, saved = self.march(F, None, energy, None, keep, progress)
-        strain, defl = self._split(y)
-        return PlateResult(self.problem, self.solver.times(), F, strain, defl, saved, energies, keep)
+        strain, defl, damage = self._split(y)
+        return PlateResult(self.problem, self.solver.times(), F, strain, defl, saved, energies, keep, damage)
 
     def contact_structure(self, point: tuple[float, float], reach: float):
         """The plate struck downward on its top face at ``point`` (x, y) [m], contact discs up to
-        ``reach`` [m] (:func:`softimpact.fem.contact.plate_contact_structure`), the gauges as outputs."""
-        ng = len(self.problem.gauges)
-        return plate_contact_structure(self.fe, point, reach, self.O[:ng], tuple(g.name for g in self.problem.gauges), self.C)
+        ``reach`` [m] (:func:`softimpact.fem.contact.plate_contact_structure`), the gauges as outputs, then the ``"damage"`` group's."""
+        gauges = self.problem.gauges + self.damage
+        return plate_contact_structure(self.fe, point, reach, self.O[: len(gauges)], tuple(g.name for g in gauges), self.C, self.contact_groups())
+
+    def contact_groups(self) -> dict[str, tuple[int, ...]]:
+        """``"gauges"`` (the problem's) and ``"damage"`` (:meth:`PlateProblem.damage_gauges`, when built with it)."""
+        return output_groups(gauges=len(self.problem.gauges), damage=len(self.damage))
 
     def contact_reach(self, point: tuple[float, float], diameter: float) -> float:
         """The impactor's diameter cut by the plate's edges (:func:`softimpact.fem.contact.plate_reach`)."""

@@ -6,6 +6,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from ...cases.run import execute
 from ...fem.bar import Rod
 from ...fem.newmark import SolverSpec
 from ...input.beam_case import load_beam_case
@@ -23,7 +24,7 @@ from ...studies.references import synthetic_series_records
 from ...studies.series import reduce_series
 from ...units import INCH, display
 from ...workflows.beam_impact import BeamLoad, BeamModel
-from ...workflows.coupled import Impactor, ImpactProblem, run_impact
+from ...workflows.coupled import Impactor, ImpactProblem
 from ...workflows.identification import identify_series, predict_pulses, pulse_figures, unfixed_parameters
 from .thresholds import paper_identification
 
@@ -199,7 +200,7 @@ def _predicted_rows(cs, law):
             model = BeamModel(target)  # row 1's r0 serves the prescribed-force runs of the strain figure
         ip = ImpactProblem(target, cs.case, Impactor(P.mass, P.diameter, V), lookup(P.material), "identified", law.law(P.mass, P.diameter, V), "", SYSTEM)
         # the strain figure shows row 1 over the whole window; the others need the pulse only
-        _, res = run_impact(ip, model, energy=False, stop_after=None if not curves else QUESTION_AFTER)
+        res = execute(ip, damage=False, model=model, energy=False, stop_after=None if not curves else QUESTION_AFTER).result
         F0c, Tc, _ = pulse_figures(res.time, res.force)
         bar = start_pulse(cs.projectile, cs.constants, V)
         r_max = float(np.max(res.contact_radius[res.time <= Tc]))
@@ -295,7 +296,7 @@ def _coupled_figures(law, models) -> list[np.ndarray]:
                 problem, load=BeamLoad(problem.load.position, r0p, None), solver=SolverSpec(QUESTION_STEP, QUESTION_WINDOW, problem.solver.newmark)
             )
             ip = ImpactProblem(target, cs.case, Impactor(P.mass, P.diameter, V), lookup(P.material), "identified", law.law(P.mass, P.diameter, V), "", SYSTEM)
-            _, res = run_impact(ip, model, energy=False, stop_after=QUESTION_AFTER)
+            res = execute(ip, damage=False, model=model, energy=False, stop_after=QUESTION_AFTER).result
             F0c, Tc, _ = pulse_figures(res.time, res.force)
             figs.append((F0c, res.time_of_peak, Tc))
         out.append(np.array(figs))

@@ -1,0 +1,98 @@
+"""One run path: :func:`execute` runs a problem of any kind (bar, beam, plate, impact) and returns a :class:`Run`.
+
+The command line (``softimpact bar|beam|plate|impact``), the Python API (:func:`softimpact.run`), sweeps,
+``converge`` and the paper all run a case through it, so what a run computes is decided here once, by the
+kind of its problem (:func:`softimpact.cases.kind_for`, each kind's ``execute``):
+
+- the damage indices of an impact, from the target's ``"damage"`` output group (a layup with strengths;
+  ``damage=False`` leaves them out: a sweep that asks for none);
+- the snapshots of the structure's displacement (``figures``: a plate's deflected shapes; ``fields``: the
+  frames of fields.xdmf, :func:`softimpact.output.fields.sampled_steps`);
+- how an impact is stepped (``method``: "direct", or "kernels" on contact kernels built once; ``energy``).
+
+A :class:`Run` carries the result, the model that ran, summary.json's content and the run's
+:class:`~softimpact.models.validity.Validity` (its warnings, as objects: the caller warns or lists them).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..models.validity import Validity
+
+__all__ = ["Run", "execute", "impact_validity"]
+
+
+@dataclass(frozen=True)
+class Run:
+    """One run of a case: ``result`` (the kind's: CoupledResult, BeamResult, PlateResult, the bar's
+    result), ``model`` that ran (None for a bar), ``summary`` (the command's summary.json content, SI),
+    ``warnings`` (the run's :class:`~softimpact.models.validity.Validity`: ratios and flags, in the
+    command's order), ``problem`` as run; ``shown`` the step indices of the deflected-shape figure and
+    ``kept`` those of the fields (both among the result's snapshots); a bar's ``plain`` (the same run
+    without the end cap, None without one) and ``inferred`` ((time, force, gauge name) read from the
+    first gauge, None without a gauge)."""
+
+    result: object
+    model: object
+    summary: dict
+    warnings: Validity
+    problem: object = None
+    shown: np.ndarray | tuple = ()
+    kept: np.ndarray | tuple = ()
+    plain: object = None
+    inferred: tuple | None = None
+
+
+def execute(
+    problem,
+    *,
+    figures: bool = False,
+    fields: bool = False,
+    damage: bool = True,
+    method: str = "direct",
+    kernels=None,
+    model=None,
+    energy: bool = True,
+    stop_after: float | None = None,
+    progress: Callable[[int], None] | None = None,
+) -> Run:
+    """Run ``problem`` (a BarImpactProblem, BeamProblem, PlateProblem or ImpactProblem) through its kind.
+
+    ``figures``: keep what the figures draw (a plate's deflected shapes); ``fields``: keep the frames of the
+    displacement fields; ``damage``: an impact's damage indices (when its target's laminate allows them);
+    ``method``, ``kernels``, ``energy``, ``stop_after``: how an impact is stepped
+    (:func:`softimpact.workflows.coupled.run_impact`); ``model``: a model of the same structure and step to
+    reuse; ``progress(k)``: called with the step index while stepping a beam or plate directly."""
+    from . import kind_for
+
+    return kind_for(problem).execute(
+        problem,
+        figures=figures,
+        fields=fields,
+        damage=damage,
+        method=method,
+        kernels=kernels,
+        model=model,
+        energy=energy,
+        stop_after=stop_after,
+        progress=progress,
+    )
+
+
+def impact_validity(problem, result, damage: dict | None = None) -> Validity:
+    """The envelopes of a coupled run (:mod:`softimpact.models.validity`): the contact law's approach and
+    contact radius against the impactor's size, the target's deflection against its thickness (its theory,
+    :meth:`~softimpact.models.protocols.Target.validity`), and with ``damage`` (summary.json's) the strains
+    against the ply allowables."""
+    from ..models.validity import allowable_flags, contact_validity
+
+    d = problem.impactor.diameter
+    v = contact_validity(problem.law_name, float(np.max(result.approach)), float(np.max(result.contact_radius)), d)
+    v += problem.target.validity(float(np.max(np.abs(result.deflection))))
+    if damage is not None:
+        v += allowable_flags("the target's plies", damage["max_strain"])
+    return v
