@@ -53,9 +53,9 @@ import scipy.sparse
 
 from ..errors import InputError
 from .newmark import NewmarkParameters
-from .plate import EDGES, PHI_X, PHI_Y, U, V, W, Plate, PlateFE, _gauss01, _lagrange
+from .plate import EDGES, PHI_X, PHI_Y, Plate, PlateFE, U, V, W, _gauss01, _lagrange
 
-__all__ = ["IN_PLANE", "KINEMATICS", "PlateVK", "StaticResult", "VonKarmanNewmark", "solve_static"]
+__all__ = ["DynamicResult", "IN_PLANE", "KINEMATICS", "PlateVK", "StaticResult", "VonKarmanNewmark", "solve_static"]
 
 KINEMATICS = ("linear", "von-karman")
 IN_PLANE = ("immovable", "movable")
@@ -293,17 +293,22 @@ class StaticResult:
     message: str
 
 
-def solve_static(model: PlateVK, load: np.ndarray, *, load_steps: int = 10, rtol: float = 1e-10, max_iterations: int = 30, kinematics: str = "von-karman") -> StaticResult:
-    """Static equilibrium f_int(u) = λ·load at λ = k/load_steps, k = 1 … load_steps, by full
-    Newton with the consistent tangent from the previous step's solution. A step has converged
-    when the residual is below ``rtol`` of the load's norm (and of the internal force's). With
-    ``kinematics="linear"``: one solve with K."""
+def solve_static(
+    model: PlateVK, load: np.ndarray, *, load_steps: int = 10, load_factors=None, rtol: float = 1e-10, max_iterations: int = 30, kinematics: str = "von-karman"
+) -> StaticResult:
+    """Static equilibrium f_int(u) = λ·load at λ = k/load_steps, k = 1 … load_steps (or at the
+    increasing ``load_factors`` given), by full Newton with the consistent tangent, each step
+    starting from the previous step's solution. A step has converged when the residual is below
+    ``rtol`` of the load's norm. With ``kinematics="linear"``: one solve with K."""
     if kinematics not in KINEMATICS:
         raise InputError(f"kinematics: {kinematics!r} is not one of {', '.join(KINEMATICS)}")
     if not (isinstance(load_steps, (int, np.integer)) and load_steps >= 1):
         raise InputError(f"load_steps must be a positive integer, got {load_steps!r}")
     load = np.asarray(load, float)
-    lams = np.arange(1, load_steps + 1) / load_steps
+    lams = np.arange(1, load_steps + 1) / load_steps if load_factors is None else np.asarray(load_factors, float)
+    if lams.ndim != 1 or lams.size == 0 or np.any(np.diff(lams) <= 0) or lams[0] <= 0:
+        raise InputError(f"load_factors must increase from a positive value, got {load_factors!r}")
+    load_steps = lams.size
     if kinematics == "linear":
         u1 = _factor_solve(model.K, load)
         return StaticResult(np.outer(lams, u1), lams, np.ones(load_steps, int), np.zeros(load_steps), True, "linear")
@@ -313,7 +318,9 @@ def solve_static(model: PlateVK, load: np.ndarray, *, load_steps: int = 10, rtol
     for lam in lams:
         f = lam * load
         scale = max(np.linalg.norm(f), 1e-300)
-        for it in range(1, max_iterations + 1):
+        it = 0
+        while it < max_iterations:
+            it += 1
             r = f - model.internal_force(u)
             u = u + _factor_solve(model.tangent(u), r)
             rel = np.linalg.norm(f - model.internal_force(u)) / scale
@@ -373,7 +380,17 @@ class VonKarmanNewmark:
 
     MODIFIED_RATE = 0.25  # a kept factor must cut the residual at least 4× per iteration
 
-    def __init__(self, model: PlateVK, dt: float, C=None, params: NewmarkParameters = NewmarkParameters(), *, rtol: float = 1e-9, max_iterations: int = 30, tangent: str = "newton"):
+    def __init__(
+        self,
+        model: PlateVK,
+        dt: float,
+        C=None,
+        params: NewmarkParameters = NewmarkParameters(),
+        *,
+        rtol: float = 1e-9,
+        max_iterations: int = 30,
+        tangent: str = "newton",
+    ):
         if not (math.isfinite(dt) and dt > 0):
             raise InputError(f"time_step must be positive, got {dt!r}", "time_step")
         if tangent not in ("newton", "modified"):
