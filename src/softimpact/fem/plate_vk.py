@@ -52,7 +52,7 @@ import numpy as np
 import scipy.sparse
 
 from ..errors import InputError
-from .newmark import NewmarkParameters
+from .newmark import NewmarkParameters, spd_factor
 from .plate import EDGES, PHI_X, PHI_Y, Plate, PlateFE, U, V, W, _gauss01, _lagrange
 
 __all__ = ["DynamicResult", "IN_PLANE", "KINEMATICS", "PlateVK", "StaticResult", "VonKarmanNewmark", "solve_static"]
@@ -272,11 +272,23 @@ class PlateVK:
         return int(self._index[self.fe.basis.nodal_dofs[component, node]])
 
 
-def _factor_solve(A, b):
-    """A⁻¹ b for a sparse A (SuperLU: the tangent need not be definite under compressive membrane forces)."""
+def _factor(A):
+    """A factor of the sparse symmetric A with a ``solve``: :func:`~softimpact.fem.newmark.spd_factor`
+    (band or minimum-degree Cholesky-like) while A is positive definite, SuperLU with pivoting on
+    the minimum-degree ordering of A + Aᵀ otherwise (compressive membrane forces can make the
+    static tangent indefinite)."""
     import scipy.sparse.linalg
 
-    return scipy.sparse.linalg.splu(scipy.sparse.csc_matrix(A)).solve(b)
+    csc = scipy.sparse.csc_matrix(A)
+    try:
+        return spd_factor(csc)
+    except np.linalg.LinAlgError:
+        return scipy.sparse.linalg.splu(csc, permc_spec="MMD_AT_PLUS_A")
+
+
+def _factor_solve(A, b):
+    """A⁻¹ b (see :func:`_factor`)."""
+    return _factor(A).solve(b)
 
 
 @dataclass(frozen=True)
@@ -368,7 +380,8 @@ class VonKarmanNewmark:
     ``tangent="newton"`` refactors J at every iteration (quadratic convergence);
     ``tangent="modified"`` keeps a factor while each iteration cuts the residual by at least
     ``MODIFIED_RATE`` (so most steps of a small-amplitude run reuse one factor) and refactors
-    otherwise. A step has converged when ‖r‖ ≤ ``rtol``·max(‖f_{n+1}‖, ‖M a_{n+1}‖, ‖f_int‖).
+    otherwise. A step has converged when ‖r‖ ≤ ``rtol``·max(‖f_{n+1}‖, ‖M a_{n+1}‖, ‖f_int‖),
+    or when a correction after the first is below ``rtol`` of the step's increment.
 
     Contact (the coupled stepper contract): :meth:`step` takes an optional ``extra(u) ->
     (force, stiffness)``, a load depending on u (the contact force, a sparse stiffness or
@@ -403,15 +416,13 @@ class VonKarmanNewmark:
         self.factorisations = 0
 
     def _jacobian(self, u, extra_k):
-        import scipy.sparse.linalg
-
         J = self.model.tangent(u) + self.a0 * self.model.M
         if self.C is not None:
             J = J + self.a1 * self.C
         if extra_k is not None:
             J = J + extra_k
         self.factorisations += 1
-        self._lu = scipy.sparse.linalg.splu(scipy.sparse.csc_matrix(J))
+        self._lu = _factor(J)
 
     def initial_acceleration(self, u, v, f):
         """a_0 from M a = f − C v − f_int(u)."""
@@ -440,12 +451,18 @@ class VonKarmanNewmark:
             if self._lu is None or self.tangent_kind == "newton" or norm > self.MODIFIED_RATE * last:
                 self._jacobian(u1, ek)
             last = norm
-            u1 = u1 + self._lu.solve(r)
+            du = self._lu.solve(r)
+            u1 = u1 + du
+            if it > 1 and np.linalg.norm(du) <= self.rtol * np.linalg.norm(u1 - u):
+                # a correction at round-off of the step's increment (Bathe's displacement criterion): no further force evaluation
+                a1 = self.a0 * (u1 - u) - self.a2 * v - self.a3 * a
+                return u1, v + dt * ((1 - g) * a + g * a1), a1, it
         raise RuntimeError(f"Newmark–Newton did not converge in {self.max_iterations} iterations (residual {norm:.3g})")
 
-    def run(self, load, steps: int, rows: np.ndarray | None = None, u0=None, v0=None) -> DynamicResult:
+    def run(self, load, steps: int, rows: np.ndarray | None = None, u0=None, v0=None, energies: bool = True) -> DynamicResult:
         """March ``steps`` steps; ``load(t)`` -> force vector (or None for free vibration);
-        ``rows`` (k, n) the outputs recorded (default: none)."""
+        ``rows`` (k, n) the outputs recorded (default: none); ``energies=False`` skips the
+        strain energy (one more pass over the elements per step) and leaves it zero."""
         n = self.model.n
         u = np.zeros(n) if u0 is None else np.asarray(u0, float).copy()
         v = np.zeros(n) if v0 is None else np.asarray(v0, float).copy()
@@ -468,5 +485,6 @@ class VonKarmanNewmark:
             work[k + 1] = work[k] + 0.5 * (u1 - u) @ (f + f1)
             u, v, a, f = u1, v1, a1, f1
             out[:, k + 1] = rows @ u
-            kin[k + 1], strain[k + 1] = 0.5 * v @ (self.model.M @ v), self.model.strain_energy(u)
+            kin[k + 1] = 0.5 * v @ (self.model.M @ v)
+            strain[k + 1] = self.model.strain_energy(u) if energies else 0.0
         return DynamicResult(t, out, kin, strain, work, its, self.factorisations, u, v, a)
