@@ -12,6 +12,7 @@ import math
 
 import numpy as np
 import pytest
+import scipy.sparse
 
 from softimpact.errors import InputError
 from softimpact.fem.newmark import NewmarkParameters
@@ -136,17 +137,17 @@ def test_static_input_errors():
         solve_static(model, model.load_vector(1.0), load_factors=[0.5, 0.2])
 
 
-def _pulse_run(steps, n=2, tangent="newton"):
+def _pulse_run(steps, n=2, tangent="newton", rtol=1e-9, extra=None, model=None):
     """A half-sine uniform pressure of 2 ms peaking at q a⁴/(E h⁴) = 300 on the SS quarter plate, then 2 ms free: Newmark–Newton."""
-    model = quarter("simply-supported", n=n)
+    model = model or quarter("simply-supported", n=n)
     f1 = 300 * LOAD_UNIT * model.load_vector(1.0)
     T = 2e-3
 
     def load(t):
         return f1 * (math.sin(math.pi * t / T) if t < T else 0.0)
 
-    stepper = VonKarmanNewmark(model, 4e-3 / steps, params=NewmarkParameters(), tangent=tangent)
-    return model, stepper.run(load, steps, rows=model.deflection(0, 0))
+    stepper = VonKarmanNewmark(model, 4e-3 / steps, params=NewmarkParameters(), tangent=tangent, rtol=rtol)
+    return model, stepper.run(load, steps, rows=model.deflection(0, 0), extra=extra)
 
 
 def test_newmark_newton_energy_balance_converges_at_second_order():
@@ -164,10 +165,27 @@ def test_newmark_newton_energy_balance_converges_at_second_order():
 
 def test_modified_newton_reaches_the_same_answer():
     """Keeping the factor while it converges fast ('modified') gives the full-Newton history to the iteration tolerance, with fewer factorisations."""
-    _, full = _pulse_run(100)
-    _, mod = _pulse_run(100, tangent="modified")
+    _, full = _pulse_run(100, rtol=1e-10)
+    _, mod = _pulse_run(100, tangent="modified", rtol=1e-10)
     np.testing.assert_allclose(mod.outputs, full.outputs, atol=1e-7 * np.abs(full.outputs).max())
     assert mod.factorisations < full.factorisations
+
+
+def test_extra_load_joins_the_newton_iterations():
+    """A centre spring given as ``extra`` (force and stiffness, as contact would be) gives the history of the model whose K holds the spring."""
+    import copy
+
+    model = quarter("simply-supported")
+    e = model.deflection(0, 0)
+    k = 20 * E * H**3 / SIDE**2  # a stiff spring: the centre's motion changes markedly
+    with_spring = copy.copy(model)
+    with_spring.K = (model.K + scipy.sparse.csr_matrix(k * np.outer(e, e))).tocsr()
+    spring = scipy.sparse.csr_matrix(k * np.outer(e, e))
+    _, hooked = _pulse_run(100, rtol=1e-10, extra=lambda u: (-k * (e @ u) * e, spring), model=model)
+    _, built_in = _pulse_run(100, rtol=1e-10, model=with_spring)
+    _, free = _pulse_run(100, rtol=1e-10, model=model)
+    np.testing.assert_allclose(hooked.outputs, built_in.outputs, atol=1e-6 * np.abs(built_in.outputs).max())
+    assert np.abs(free.outputs).max() > 1.3 * np.abs(hooked.outputs).max()
 
 
 def test_fundamental_frequency_hardens_with_amplitude():
