@@ -380,8 +380,8 @@ class VonKarmanNewmark:
     ``tangent="newton"`` refactors J at every iteration (quadratic convergence);
     ``tangent="modified"`` keeps a factor while each iteration cuts the residual by at least
     ``MODIFIED_RATE`` (so most steps of a small-amplitude run reuse one factor) and refactors
-    otherwise. A step has converged when ‖r‖ ≤ ``rtol``·max(‖r_0‖, ‖f_{n+1}‖), r_0 the residual
-    at the predictor, or when a correction after the first is below ``rtol`` of the step's
+    otherwise. A step has converged when ‖r‖ ≤ ``rtol``·max(‖r_0‖, ‖f_{n+1}‖, ‖M a_n‖), r_0 the
+    residual at the predictor, or when a correction after the first is below ``rtol`` of the step's
     increment. The default
     1e-6 leaves the energy balance to the time integrator (the balance error does not move between
     1e-9 and 1e-6 on the tests' impulsive load) and, with ``"modified"``, takes two solves a step
@@ -433,6 +433,8 @@ class VonKarmanNewmark:
     def initial_acceleration(self, u, v, f):
         """a_0 from M a = f − C v − f_int(u)."""
         rhs = f - self.model.internal_force(u) - (0.0 if self.C is None else self.C @ v)
+        if not np.any(rhs):
+            return np.zeros_like(rhs)  # at rest and unloaded (an impact's first contact): no factor of M needed
         return _factor_solve(self.model.M, rhs)
 
     def _finish(self, u1, u, v, a):
@@ -445,7 +447,8 @@ class VonKarmanNewmark:
         M, C, model = self.model.M, self.C, self.model
         u1 = u + dt * v + dt * dt * (0.5 - self.params.beta) * a  # zero new acceleration: the Newmark predictor
         # M a1 + C v1 + K u1 = K_eff u1 − p with p from the step's start (Newmark's a1, v1 are affine in u1)
-        p = M @ (self.a0 * u + self.a2 * v + self.a3 * a)
+        ma = M @ a
+        p = M @ (self.a0 * u + self.a2 * v) + self.a3 * ma
         if C is not None:
             p = p - C @ (v + dt * (1 - g) * a - dt * g * (self.a0 * u + self.a2 * v + self.a3 * a))
         rhs = f1 + p
@@ -458,7 +461,8 @@ class VonKarmanNewmark:
                 r = r + fe
             norm = np.linalg.norm(r)
             if it == 1:
-                scale = max(norm, np.linalg.norm(f1), 1e-300)  # the predictor's out-of-balance force, or the load
+                # the forces in balance: load, inertia (at the step's start), the predictor's out-of-balance force
+                scale = max(norm, np.linalg.norm(f1), np.linalg.norm(ma), 1e-300)
             elif norm <= self.rtol * scale:
                 return self._finish(u1, u, v, a) + (it - 1,)
             if self._lu is None or self.tangent_kind == "newton" or norm > self.MODIFIED_RATE * last:
