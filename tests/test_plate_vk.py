@@ -181,9 +181,9 @@ def test_extra_load_joins_the_newton_iterations():
     with_spring = copy.copy(model)
     with_spring.K = (model.K + scipy.sparse.csr_matrix(k * np.outer(e, e))).tocsr()
     spring = scipy.sparse.csr_matrix(k * np.outer(e, e))
-    _, hooked = _pulse_run(100, rtol=1e-10, extra=lambda u: (-k * (e @ u) * e, spring), model=model)
-    _, built_in = _pulse_run(100, rtol=1e-10, model=with_spring)
-    _, free = _pulse_run(100, rtol=1e-10, model=model)
+    _, hooked = _pulse_run(60, tangent="modified", rtol=1e-10, extra=lambda u: (-k * (e @ u) * e, spring), model=model)
+    _, built_in = _pulse_run(60, tangent="modified", rtol=1e-10, model=with_spring)
+    _, free = _pulse_run(60, tangent="modified", rtol=1e-10, model=model)
     np.testing.assert_allclose(hooked.outputs, built_in.outputs, atol=1e-6 * np.abs(built_in.outputs).max())
     assert np.abs(free.outputs).max() > 1.3 * np.abs(hooked.outputs).max()
 
