@@ -41,8 +41,13 @@ between the work of F on the loaded (top) surface nodes and on the mid-surface,
 Σ½(F_k + F_{k+1})·(s̄·Δu_patch − Δw): the structure's own through-thickness
 squeeze under the patch, reported as ``surface_mismatch``.
 
-The one coupled stepper of softimpact: bar, beam and plate all run through
-:func:`simulate_coupled`, which returns one :class:`CoupledResult`. One separation
+This module holds what every way of stepping shares: the structure's contract (:class:`ContactStructure`,
+the line :class:`ContactPatch`), the contact Newton (:func:`newton_contact`) and the results. The loop
+itself is written once, :class:`softimpact.fem.stepping.CoupledStepper`; direct stepping
+(:class:`softimpact.fem.direct.DirectStepper`) and the contact kernels
+(:class:`softimpact.fem.kernel_stepping.KernelStepper`) implement it, by name in
+:data:`softimpact.fem.steppers.STEPPERS`. Bar, beam and plate all run through
+:func:`simulate_coupled` (direct) or the kernels, and get one :class:`CoupledResult`. One separation
 rule (:func:`contact_intervals`: a contact ends where α crosses zero within the
 step, else where F reaches zero, for laws clipped at F = 0), one peak refinement
 (:func:`refine_peak`, the parabola through three samples). A Newton iteration that
@@ -251,28 +256,35 @@ class LawCapabilities:
 
 
 def newton_contact(
-    law, comp, hm: float, kappa: float, q: float, target: float, guess: float, index: int, dt: float, *, try_top: bool = False, caps: LawCapabilities | None = None
+    law,
+    comp,
+    hm: float,
+    kappa: float,
+    q: float,
+    target: float,
+    guess: float,
+    index: int,
+    dt: float,
+    *,
+    try_top: bool = False,
+    caps: LawCapabilities | None = None,
 ):
-    """Root of R(α) = α − α̃ + F(α, κα + q)·(β·dt²/m + h_s(a(α))) in (0, α̃] (module docstring), at step
-    ``index``: Newton safeguarded by bisection on plain floats, the one contact iteration of direct
-    stepping and of the contact kernels.
+    """Root of R(α) = α − α̃ + F(α, κα + q)·(β·dt²/m + h_s(a(α))) in (0, α̃] (module docstring) at step
+    ``index``: Newton safeguarded by bisection on plain floats, the one contact iteration of every stepper.
 
-    ``comp(r) -> (h_s, dh_s/dr)``: the patch compliance c·G·s(r) and its derivative, with
-    ``comp.half_spacing`` (:class:`PatchCompliance`, or the kernels' exact evaluators). Where the patch
-    also offers ``comp.value(r) -> h_s`` (the kernels' line patch; else ``comp.value`` is None), iterates after the first full
-    evaluation take h_s from it, exact, and keep that evaluation's dh_s/dr: the slope only shapes the
-    Newton step (whose size is the convergence test), while the residual R, which locates the root,
-    is exact at every iterate. Starts from
-    ``guess`` (the linear extrapolation of α) when it lies in the bracket, else α̃; ends at the first iterate
-    whose Newton step is within the tolerance (its force and radius are returned as evaluated), or at the
-    midpoint of a bracket closed by bisection. ``caps``: the law's :class:`LawCapabilities` (asked here
-    when None; a stepper asks once per run): a law whose contact radius is a = c·α^n says so with
-    ``radius_power`` n (da/dα = n·a/α), else da/dα is a central difference. ``try_top``: a
-    Newton step landing exactly on α̃ is tried once (an iterate where the force is clipped to zero
-    steps there, and the root is there when the clipped force stays zero) instead of bisecting
-    (the kernels take it; direct stepping keeps the plain bracket test, so its iteration counts in
-    summary.json do not move). Returns (α, F, contact radius — 0 where F is, no disc pressed — iterations); :class:`SolverFailed`
-    (time, step, residual and bracket) after :data:`NEWTON_MAXITER` iterations."""
+    ``comp(r) -> (h_s, dh_s/dr)``: the patch compliance c·G·s(r), with ``comp.half_spacing`` and ``comp.value``
+    (:mod:`softimpact.fem.compliance`). Where ``comp.value(r) -> h_s`` exists (the kernels' line patch; else
+    None), iterates after the first full evaluation take the exact h_s from it and keep that evaluation's
+    slope, which only shapes the Newton step; the residual R, which locates the root, is exact at every
+    iterate. Starts from ``guess`` (α's linear extrapolation) when in the bracket, else α̃; ends at the first
+    iterate whose Newton step is within the tolerance (its force and radius as evaluated), or at the midpoint
+    of a bracket closed by bisection. ``caps``: the law's :class:`LawCapabilities` (asked here when None; a
+    stepper asks once per run): with ``radius_power`` n, da/dα = n·a/α, else a central difference.
+    ``try_top``: a Newton step landing exactly on α̃ is tried once (an iterate where the force is clipped to
+    zero steps there; the root is there when it stays zero) instead of bisecting (the kernels take it; direct
+    stepping keeps the plain bracket test, so its iteration counts in summary.json do not move). Returns (α,
+    F, contact radius — 0 where F is — iterations); :class:`SolverFailed` (time, step, residual and
+    bracket) after :data:`NEWTON_MAXITER` iterations."""
     lo, hi = 0.0, target
     a = guess if 0.0 < guess < target else target
     half = comp.half_spacing

@@ -70,12 +70,11 @@ class KernelStepper(CoupledStepper):
         self.total = None  # the spectrum of the response to the loads of the contacts ended so far
 
     def free_approach(self, k: int) -> float:
-        w = self.old[k + 1]
         start = self.start
-        if start is not None:  # the current contact's loads, lags 1 … k + 1 − start: one dot product
-            L, p, N = k + 1 - start, self.p, self.steps
-            w += float(np.dot(self.gflat[p : (L + 1) * p], self.Qflat[(N - k) * p : (N - k + L) * p]))
-        return w
+        if start is None:
+            return self.old[k + 1]
+        L, p, N = k + 1 - start, self.p, self.steps  # the current contact's loads, lags 1 … k + 1 − start: one dot product
+        return self.old[k + 1] + float(np.dot(self.gflat[p : (L + 1) * p], self.Qflat[(N - k) * p : (N - k + L) * p]))
 
     def apply(self, k: int, f: float, r: float) -> None:
         """The step's loads f·s(r) into the contact's; when a contact ends, the free response to its loads, once."""

@@ -10,8 +10,9 @@ where w is the approach row's displacement (the mid-surface under the impactor),
 y the outputs (gauge strains), and g_i (p,), H_i (q, p) the structure's discrete
 impulse responses at lag i (:class:`softimpact.fem.response.ImpulseResponse`,
 computed once by reciprocity: 1 + q right-hand sides a step). g_0 is the
-direct stepper's c·G. A coupled run then steps only the scalar contact equation
-of :func:`softimpact.fem.impact.integrate_impact`,
+direct stepper's c·G. A coupled run (:class:`softimpact.fem.kernel_stepping.KernelStepper`, one implementation
+of the coupled loop :class:`softimpact.fem.stepping.CoupledStepper`) then steps only the scalar contact
+equation of :func:`softimpact.fem.impact.integrate_impact`,
 
     R(α) = α − α̃ + F(α, α̇(α))·h(a(α)) = 0,   α̃ = x̃ − Σ_{j≤k} g_{k+1−j}·q_j,
 
@@ -37,11 +38,12 @@ the response to its loads is one FFT product with the kernels' cached spectra, k
 (the run's outputs are the sum over its contacts: one inverse transform at the end). While apart, no
 load is added, the impactor flies at constant speed, and the next contact is found by one vectorised
 test; the steps between carry only the scalar recursions of α̇, α̈, and a law's memory in one call
-where the law offers it (``apart``; ``settle`` gives a converged step's state, branch and energy at
-once: :class:`softimpact.models.contact_laws.ViscoelasticSoftLaw`).
+where the law offers it (:class:`softimpact.models.protocols.SettlingLaw`, e.g.
+:class:`softimpact.models.contact_laws.ViscoelasticSoftLaw`).
 
 A smaller impactor (a smaller contact reach, its loadable nodes among the kernels') runs on the same
-kernels with its own patch (:meth:`ContactKernels.compliance_for`). Kernels pickle without the
+kernels with its own patch (:meth:`ContactKernels.compliance_for`); the kernels know the widest reach they
+were built for and keep the last smaller impactor's structure (:meth:`ContactKernels.structure_for`). Kernels pickle without the
 factorised stepper and the mesh (to a Dask worker).
 
 The structure's own energies (kinetic, strain, the work on the patch nodes) need

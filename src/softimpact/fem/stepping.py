@@ -134,13 +134,17 @@ class CoupledStepper:
         self.xv[0] = self.ald[0] = self.velocity
         self.xa = self.ala = 0.0  # ẍ, α̈
         self.clock = None if self.stop_after is None else SeparationClock(self.stop_after)
+        self._lists = (self.F, self.al, self.ald, self.rad, self.x, self.xv, self.cwork, self.cen)
+        self._const = (dt, self.kappa, self.hm, self.r1, self.r2, self.c2, self.bdt2, gamma, self.mass)
+        self._own_acceleration = type(self).approach_acceleration is not CoupledStepper.approach_acceleration
 
     def run(self) -> ImpactHistory:
         """Step to the end of the run (or to the separation clock's stop); the histories."""
         self._begin()
         N, k, last = self.steps, 0, self.steps
+        F, al, step = self.F, self.al, self._step
         while k < N:
-            if k > 0 and self.F[k] == 0.0 and self.al[k] <= 0.0:  # apart: no force now, none pressing
+            if k > 0 and F[k] == 0.0 and al[k] <= 0.0:  # apart: no force now, none pressing
                 flight = self.flight(k)
                 if flight is not None:
                     k, stopped = self._coast(k, *flight)
@@ -150,19 +154,19 @@ class CoupledStepper:
                     if k >= N:
                         break
             k += 1
-            if self._step(k - 1):
+            if step(k - 1):
                 last = k
                 break
         return self.history(last)
 
     def _step(self, k: int) -> bool:
         """Step k → k + 1; True when the separation clock stops the run there."""
-        al, ald, F = self.al, self.ald, self.F
-        dt, kappa = self.dt, self.kappa
-        ak, adk, fk = al[k], ald[k], F[k]
-        x_pred = self.x[k] + dt * self.xv[k] + self.c2 * self.xa
+        F, al, ald, rad, x, xv, cwork, cen = self._lists
+        dt, kappa, hm, r1, r2, c2, bdt2, gamma, mass = self._const  # (plain locals: a kernel step costs microseconds)
+        ak, adk, fk, ala = al[k], ald[k], F[k], self.ala
+        x_pred = x[k] + dt * xv[k] + c2 * self.xa
         target = x_pred - self.free_approach(k)
-        q = self.r1 * adk + self.r2 * self.ala - kappa * ak  # α̇_{k+1} = κ·α + q
+        q = r1 * adk + r2 * ala - kappa * ak  # α̇_{k+1} = κ·α + q
         if target <= 0.0:
             a_new, f, r = target, 0.0, 0.0  # apart
         elif self.TAKE_TOP and fk == 0.0 and self._force(target, kappa * target + q) == 0.0:
@@ -171,17 +175,29 @@ class CoupledStepper:
             a_new, f, r = target, 0.0, 0.0  # no contact disc where no force presses
         else:
             guess = 2.0 * ak - al[k - 1] if k >= 1 else target
-            a_new, f, r, its = newton_contact(self.branch, self.compliance, self.hm, kappa, q, target, guess, k + 1, dt, try_top=self.TAKE_TOP, caps=self.caps)
+            a_new, f, r, its = newton_contact(self.branch, self.compliance, hm, kappa, q, target, guess, k + 1, dt, try_top=self.TAKE_TOP, caps=self.caps)
             self.newton_iterations += its
         self.apply(k, f, r)
-        xa, xa1 = self.xa, -f / self.mass
-        self.x[k + 1] = x_pred - self.hm * f
-        self.xv[k + 1] = self.xv[k] + dt * ((1.0 - self.gamma) * xa + self.gamma * xa1)
+        xa, xa1 = self.xa, -f / mass
+        x[k + 1] = x_pred - hm * f
+        xv[k + 1] = xv[k] + dt * ((1.0 - gamma) * xa + gamma * xa1)
         ad_new = kappa * a_new + q
-        F[k + 1], al[k + 1], self.rad[k + 1], ald[k + 1] = f, a_new, r, ad_new
-        self.ala = self.approach_acceleration(k, a_new, xa1)
-        self.cwork[k + 1] = self.cwork[k] + 0.5 * (fk + f) * (a_new - ak)
-        self._remember(k + 1, a_new, ad_new)
+        F[k + 1], al[k + 1], rad[k + 1], ald[k + 1] = f, a_new, r, ad_new
+        if self._own_acceleration:
+            self.ala = self.approach_acceleration(k, a_new, xa1)
+        else:  # Newmark's displacement rule on α (:meth:`approach_acceleration`), inline
+            self.ala = (a_new - ak - dt * adk - c2 * ala) / bdt2
+        cwork[k + 1] = cwork[k] + 0.5 * (fk + f) * (a_new - ak)
+        # the law's memory after the converged step, and the contact energy at k + 1 (the step's branch's: its
+        # stress at α_{k+1} is the converged one)
+        if self.settles:
+            self.state, self.branch, cen[k + 1] = self.law.settle(self.state, a_new, ad_new)
+        elif self.memory:
+            cen[k + 1] = self.branch.energy(a_new)
+            self.state = self.law.advance(self.state, a_new, ad_new)
+            self.branch = self.law.branch(self.state)
+        else:
+            cen[k + 1] = float(self.branch.energy(a_new))
         self.xa = xa1
         clock = self.clock
         return clock is not None and clock.done((k + 1) * dt, f == 0.0 and a_new < 0.0 and self.receding(k + 1))
@@ -189,18 +205,6 @@ class CoupledStepper:
     def _force(self, alpha: float, rate: float) -> float:
         """The step's branch's force at (α, α̇) [N]."""
         return self.branch.response(alpha, rate)[0] if self.caps.responds else self.branch.force(alpha, rate)
-
-    def _remember(self, k: int, a_new: float, ad_new: float) -> None:
-        """The law's memory after the converged step to k, and the contact energy there (the step's branch's:
-        its stress at α_k is the converged one)."""
-        if self.settles:
-            self.state, self.branch, self.cen[k] = self.law.settle(self.state, a_new, ad_new)
-        elif self.memory:
-            self.cen[k] = self.branch.energy(a_new)
-            self.state = self.law.advance(self.state, a_new, ad_new)
-            self.branch = self.law.branch(self.state)
-        else:
-            self.cen[k] = float(self.branch.energy(a_new))
 
     def _coast(self, k: int, positions: list, approaches: list) -> tuple[int, int | None]:
         """Record the ballistic steps k + 1 … j of :meth:`flight` (no force: the impactor at constant speed;
