@@ -23,8 +23,11 @@ class DirectStepper(CoupledStepper):
     """:class:`CoupledStepper` of ``structure`` (a :class:`ContactStructure`) by its Newmark stepper ``engine``
     (a :class:`NewmarkStepper` already factored for (M, K, C, dt) to reuse; None: factored here). ``energy``:
     record the structure's kinetic and strain energies (else NaN); ``snapshots``: step indices at which to
-    keep the displacement of all DOFs (those past an early stop are dropped). The kernels' options
-    (``structure`` other than the run's) do not apply: the structure is the one stepped.
+    keep the displacement of all DOFs (those past an early stop are dropped).
+
+    ``TAKE_TOP`` stays off: direct stepping keeps the contact Newton's plain bracket test, so that its
+    iteration counts (summary.json's ``newton_iterations``) and its histories stay those of the runs before
+    the loop was shared; the roots agree with the kernels' to the Newton tolerance.
     """
 
     def __init__(

@@ -85,9 +85,8 @@ class CoupledStepper:
         self.law, self.mass, self.velocity, self.stop_after = law, float(mass), float(velocity), stop_after
         self.memory = isinstance(law, HistoryLaw)  # (a runtime protocol check costs microseconds: once, not per step)
         self.settles = self.memory and isinstance(law, SettlingLaw)
-        self.state = law.initial_state() if self.memory else None
-        self.branch = law.branch(self.state) if self.memory else law
-        self.caps = LawCapabilities.of(self.branch)  # every branch of a law is of one class (models.protocols)
+        branch = law.branch(law.initial_state()) if self.memory else law
+        self.caps = LawCapabilities.of(branch)  # every branch of a law is of one class (models.protocols)
         self.newton_iterations = 0  # the contact Newton's iterations, summed over the run
         self.coasted = 0  # steps taken at once while apart (:meth:`flight`)
 
@@ -133,13 +132,16 @@ class CoupledStepper:
         self.F, self.al, self.ald, self.rad, self.x, self.xv, self.cwork, self.cen = ([0.0] * (N + 1) for _ in range(8))
         self.xv[0] = self.ald[0] = self.velocity
         self.xa = self.ala = 0.0  # ẍ, α̈
+        self.state = self.law.initial_state() if self.memory else None
+        self.branch = self.law.branch(self.state) if self.memory else self.law
+        self.newton_iterations = self.coasted = 0
         self.clock = None if self.stop_after is None else SeparationClock(self.stop_after)
         self._lists = (self.F, self.al, self.ald, self.rad, self.x, self.xv, self.cwork, self.cen)
         self._const = (dt, self.kappa, self.hm, self.r1, self.r2, self.c2, self.bdt2, gamma, self.mass)
         self._own_acceleration = type(self).approach_acceleration is not CoupledStepper.approach_acceleration
 
     def run(self) -> ImpactHistory:
-        """Step to the end of the run (or to the separation clock's stop); the histories."""
+        """Step from first contact to the end of the run (or to the separation clock's stop); the histories."""
         self._begin()
         N, k, last = self.steps, 0, self.steps
         F, al, step = self.F, self.al, self._step
