@@ -138,75 +138,76 @@ class CoupledStepper:
         self.clock = None if self.stop_after is None else SeparationClock(self.stop_after)
         self._lists = (self.F, self.al, self.ald, self.rad, self.x, self.xv, self.cwork, self.cen)
         self._const = (dt, self.kappa, self.hm, self.r1, self.r2, self.c2, self.bdt2, gamma, self.mass)
-        self._own_acceleration = type(self).approach_acceleration is not CoupledStepper.approach_acceleration
+        own_acceleration = type(self).approach_acceleration is not CoupledStepper.approach_acceleration
+        self._fixed = (self.TAKE_TOP, own_acceleration, self.settles, self.memory, self.law, self.caps, self.compliance, self.clock)
 
     def run(self) -> ImpactHistory:
-        """Step from first contact to the end of the run (or to the separation clock's stop); the histories."""
+        """Step from first contact to the end of the run (or to the separation clock's stop); the histories.
+
+        Step k → k + 1: the impactor's predictor x̃, the bracket's top α̃ = x̃ − w̃ (:meth:`free_approach`), the
+        contact Newton (none where α̃ ≤ 0: apart), the force applied (:meth:`apply`), the impactor's corrector,
+        α's rate and acceleration, the contact work, the law's memory and stored energy, the separation clock.
+        The constants and histories are plain locals (a kernel step costs microseconds)."""
         self._begin()
+        F, al, ald, rad, x, xv, cwork, cen = self._lists
+        dt, kappa, hm, r1, r2, c2, bdt2, gamma, mass = self._const
+        take_top, own_acceleration, settles, memory, law, caps, comp, clock = self._fixed
+        free_approach, apply, responds = self.free_approach, self.apply, caps.responds
+        ala, xa, state, branch = self.ala, self.xa, self.state, self.branch  # (kept on self across a coast only)
         N, k, last = self.steps, 0, self.steps
-        F, al, step = self.F, self.al, self._step
         while k < N:
             if k > 0 and F[k] == 0.0 and al[k] <= 0.0:  # apart: no force now, none pressing
                 flight = self.flight(k)
                 if flight is not None:
+                    self.ala, self.state, self.branch = ala, state, branch
                     k, stopped = self._coast(k, *flight)
-                    if stopped is not None:
-                        last = stopped
+                    ala, state, branch = self.ala, self.state, self.branch
+                    if stopped is not None or k >= N:
+                        last = N if stopped is None else stopped
                         break
-                    if k >= N:
-                        break
+            ak, adk, fk = al[k], ald[k], F[k]
+            x_pred = x[k] + dt * xv[k] + c2 * xa
+            target = x_pred - free_approach(k)
+            q = r1 * adk + r2 * ala - kappa * ak  # α̇_{k+1} = κ·α + q
+            if target <= 0.0:
+                a_new, f, r = target, 0.0, 0.0  # apart
+            elif take_top and fk == 0.0 and (branch.response(target, kappa * target + q)[0] if responds else branch.force(target, kappa * target + q)) == 0.0:
+                # no force at the bracket's top α̃ (a force clipped to zero, as by the Maxwell arm's negative
+                # stress while unloading): R(α̃) = 0 there, the root (R increases with α), without a Newton iteration
+                a_new, f, r = target, 0.0, 0.0  # no contact disc where no force presses
+            else:
+                guess = 2.0 * ak - al[k - 1] if k >= 1 else target
+                a_new, f, r, its = newton_contact(branch, comp, hm, kappa, q, target, guess, k + 1, dt, try_top=take_top, caps=caps)
+                self.newton_iterations += its
+            apply(k, f, r)
             k += 1
-            if step(k - 1):
+            xa1 = -f / mass
+            x[k] = x_pred - hm * f
+            xv[k] = xv[k - 1] + dt * ((1.0 - gamma) * xa + gamma * xa1)
+            ad_new = kappa * a_new + q
+            F[k], al[k], rad[k], ald[k] = f, a_new, r, ad_new
+            if own_acceleration:
+                self.ala = ala
+                ala = self.approach_acceleration(k - 1, a_new, xa1)
+            else:  # Newmark's displacement rule on α (:meth:`approach_acceleration`), inline
+                ala = (a_new - ak - dt * adk - c2 * ala) / bdt2
+            cwork[k] = cwork[k - 1] + 0.5 * (fk + f) * (a_new - ak)
+            # the law's memory after the converged step, and the contact energy at k (the step's branch's: its
+            # stress at α_k is the converged one)
+            if settles:
+                state, branch, cen[k] = law.settle(state, a_new, ad_new)
+            elif memory:
+                cen[k] = branch.energy(a_new)
+                state = law.advance(state, a_new, ad_new)
+                branch = law.branch(state)
+            else:
+                cen[k] = float(branch.energy(a_new))
+            xa = xa1
+            if clock is not None and clock.done(k * dt, f == 0.0 and a_new < 0.0 and self.receding(k)):
                 last = k
                 break
+        self.ala, self.xa, self.state, self.branch = ala, xa, state, branch
         return self.history(last)
-
-    def _step(self, k: int) -> bool:
-        """Step k → k + 1; True when the separation clock stops the run there."""
-        F, al, ald, rad, x, xv, cwork, cen = self._lists
-        dt, kappa, hm, r1, r2, c2, bdt2, gamma, mass = self._const  # (plain locals: a kernel step costs microseconds)
-        ak, adk, fk, ala = al[k], ald[k], F[k], self.ala
-        x_pred = x[k] + dt * xv[k] + c2 * self.xa
-        target = x_pred - self.free_approach(k)
-        q = r1 * adk + r2 * ala - kappa * ak  # α̇_{k+1} = κ·α + q
-        if target <= 0.0:
-            a_new, f, r = target, 0.0, 0.0  # apart
-        elif self.TAKE_TOP and fk == 0.0 and self._force(target, kappa * target + q) == 0.0:
-            # no force at the bracket's top α̃ (a force clipped to zero, as by the Maxwell arm's negative
-            # stress while unloading): R(α̃) = 0 there, the root (R increases with α), without a Newton iteration
-            a_new, f, r = target, 0.0, 0.0  # no contact disc where no force presses
-        else:
-            guess = 2.0 * ak - al[k - 1] if k >= 1 else target
-            a_new, f, r, its = newton_contact(self.branch, self.compliance, hm, kappa, q, target, guess, k + 1, dt, try_top=self.TAKE_TOP, caps=self.caps)
-            self.newton_iterations += its
-        self.apply(k, f, r)
-        xa, xa1 = self.xa, -f / mass
-        x[k + 1] = x_pred - hm * f
-        xv[k + 1] = xv[k] + dt * ((1.0 - gamma) * xa + gamma * xa1)
-        ad_new = kappa * a_new + q
-        F[k + 1], al[k + 1], rad[k + 1], ald[k + 1] = f, a_new, r, ad_new
-        if self._own_acceleration:
-            self.ala = self.approach_acceleration(k, a_new, xa1)
-        else:  # Newmark's displacement rule on α (:meth:`approach_acceleration`), inline
-            self.ala = (a_new - ak - dt * adk - c2 * ala) / bdt2
-        cwork[k + 1] = cwork[k] + 0.5 * (fk + f) * (a_new - ak)
-        # the law's memory after the converged step, and the contact energy at k + 1 (the step's branch's: its
-        # stress at α_{k+1} is the converged one)
-        if self.settles:
-            self.state, self.branch, cen[k + 1] = self.law.settle(self.state, a_new, ad_new)
-        elif self.memory:
-            cen[k + 1] = self.branch.energy(a_new)
-            self.state = self.law.advance(self.state, a_new, ad_new)
-            self.branch = self.law.branch(self.state)
-        else:
-            cen[k + 1] = float(self.branch.energy(a_new))
-        self.xa = xa1
-        clock = self.clock
-        return clock is not None and clock.done((k + 1) * dt, f == 0.0 and a_new < 0.0 and self.receding(k + 1))
-
-    def _force(self, alpha: float, rate: float) -> float:
-        """The step's branch's force at (α, α̇) [N]."""
-        return self.branch.response(alpha, rate)[0] if self.caps.responds else self.branch.force(alpha, rate)
 
     def _coast(self, k: int, positions: list, approaches: list) -> tuple[int, int | None]:
         """Record the ballistic steps k + 1 … j of :meth:`flight` (no force: the impactor at constant speed;
