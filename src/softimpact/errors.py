@@ -6,6 +6,8 @@ layer maps arguments to the keys of its files (``solver.time_step``), and the
 command line turns the error into a one-line message and an exit code:
 
 - :class:`InputError` — bad input, nothing computed or written: exit 2.
+  Two kinds are told apart by type: :class:`NoContactRoom` (no room for the contact about the
+  impact point) and :class:`ContactOutgrewRoom` (a run's contact grew past its loadable nodes).
 - :class:`CheckFailed` — the run finished but its answer failed a quality gate
   (:mod:`softimpact.gates`): exit 3, its diagnostics still written and marked
   ``"status": "failed"``.
@@ -17,7 +19,19 @@ command line turns the error into a one-line message and an exit code:
 
 import warnings
 
-__all__ = ["InputError", "TooLarge", "CheckFailed", "SolverFailed", "SoftimpactWarning", "HeldWarnings", "EXIT_INPUT", "EXIT_CHECK", "EXIT_INTERNAL"]
+__all__ = [
+    "InputError",
+    "TooLarge",
+    "NoContactRoom",
+    "ContactOutgrewRoom",
+    "CheckFailed",
+    "SolverFailed",
+    "SoftimpactWarning",
+    "HeldWarnings",
+    "EXIT_INPUT",
+    "EXIT_CHECK",
+    "EXIT_INTERNAL",
+]
 
 EXIT_INPUT = 2  # bad input: a one-line reason, nothing written
 EXIT_CHECK = 3  # ran, but the answer failed its checks (diagnostics written, marked failed)
@@ -39,6 +53,18 @@ class InputError(ValueError):
 class TooLarge(InputError):
     """A problem the memory/time guard refuses (:func:`softimpact.guards.require_resources`): still
     bad input (exit 2), told apart so that a study can say which smaller study fits."""
+
+
+class NoContactRoom(InputError):
+    """The contact patch or disc does not fit about the impact point (off the structure, or over a
+    supported edge): still bad input (exit 2), told apart so that an impact run can name the case's
+    impact position (:func:`softimpact.workflows.coupled.impact_model`)."""
+
+
+class ContactOutgrewRoom(InputError):
+    """The contact radius of a coupled run grew past the loadable surface nodes (or disc) about the
+    impact point: bad input (exit 2), told apart so that an impact run can say the contact outgrew
+    its room (:func:`softimpact.workflows.coupled.run_impact`)."""
 
 
 class CheckFailed(RuntimeError):

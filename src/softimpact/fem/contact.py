@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import NoContactRoom
 from .impact import ContactStructure
 from .plate_loads import CircularPatch, DiscShares
 
@@ -139,7 +139,7 @@ def plate_reach(fe, supports: tuple[str, str, str, str], position: tuple[float, 
             continue
         room = min(room, dist - (1.01 * hh if kind in ("clamped", "simply-supported") else 0.0))
     if not room > 0:
-        raise InputError("the impact point is within one element of a supported edge: no room for the contact disc")
+        raise NoContactRoom("the impact point is within one element of a supported edge: no room for the contact disc")
     return room
 
 

@@ -41,8 +41,13 @@ between the work of F on the loaded (top) surface nodes and on the mid-surface,
 Σ½(F_k + F_{k+1})·(s̄·Δu_patch − Δw): the structure's own through-thickness
 squeeze under the patch, reported as ``surface_mismatch``.
 
-The one coupled stepper of softimpact: bar, beam and plate all run through
-:func:`simulate_coupled`, which returns one :class:`CoupledResult`. One separation
+This module holds what every way of stepping shares: the structure's contract (:class:`ContactStructure`,
+the line :class:`ContactPatch`), the contact Newton (:func:`newton_contact`) and the results. The loop
+itself is written once, :class:`softimpact.fem.stepping.CoupledStepper`; direct stepping
+(:class:`softimpact.fem.direct.DirectStepper`) and the contact kernels
+(:class:`softimpact.fem.kernel_stepping.KernelStepper`) implement it, by name in
+:data:`softimpact.fem.steppers.STEPPERS`. Bar, beam and plate all run through
+:func:`simulate_coupled` (direct) or the kernels, and get one :class:`CoupledResult`. One separation
 rule (:func:`contact_intervals`: a contact ends where α crosses zero within the
 step, else where F reaches zero, for laws clipped at F = 0), one peak refinement
 (:func:`refine_peak`, the parabola through three samples). A Newton iteration that
@@ -57,14 +62,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InputError, SolverFailed
-from ..models.protocols import HistoryLaw
+from ..errors import ContactOutgrewRoom, InputError, SolverFailed
+from ..models.protocols import PowerRadiusLaw, RespondingLaw
 from ..models.specimens import Impactor
 from .energies import Energies
 from .newmark import NewmarkParameters, NewmarkStepper, SolverSpec
 
 __all__ = [
     "PatchCompliance",
+    "LawCapabilities",
     "newton_contact",
     "ContactStructure",
     "ContactPatch",
@@ -157,7 +163,7 @@ class ContactPatch:
         if a < self.half_spacing:
             return self._point, np.zeros(self.n)
         if -a < self.extent[0] - 1e-12 * a or a > self.extent[1] + 1e-12 * a:
-            raise InputError(f"contact radius {a:.4g} m runs past the loadable surface nodes")
+            raise ContactOutgrewRoom(f"contact radius {a:.4g} m runs past the loadable surface nodes")
         lo, hi = np.clip(self.lo, -a, a), np.clip(self.hi, -a, a)
         w = math.pi / (2.0 * a)
         s = 0.5 * (np.sin(w * hi) - np.sin(w * lo))
@@ -204,7 +210,8 @@ def integrate_impact(
     stop_after: float | None = None,
     snapshots=(),
 ) -> ImpactHistory:
-    """March the impactor and the structure together (module docstring).
+    """March the impactor and the structure together (module docstring): the direct stepper,
+    :class:`softimpact.fem.direct.DirectStepper`, of the one coupled loop (:mod:`softimpact.fem.stepping`).
 
     Time zero is first contact: α = 0, impactor at ``velocity`` > 0 toward the
     structure, structure at rest. ``law``: a ContactLaw or a HistoryLaw.
@@ -214,157 +221,18 @@ def integrate_impact(
     ``snapshots``: step indices at which to keep the displacement of all DOFs
     (for figures of the deflected shape); those past an early stop are dropped.
     """
-    Impactor(mass, 1.0, velocity)  # validates mass and velocity (> 0, toward the structure): one rule on every path
-    if not (isinstance(steps, (int, np.integer)) and steps >= 1):
-        raise InputError(f"steps must be a positive integer, got {steps!r}")
-    dt = float(time_step)
-    if hasattr(law, "for_time_step"):  # a law whose memory evolves in time needs the step
-        law = law.for_time_step(dt)
-    st = stepper or NewmarkStepper(structure.M, structure.K, dt, C=structure.C, params=newmark)
-    if not math.isclose(st.dt, dt, rel_tol=1e-12):
-        raise InputError(f"stepper time step {st.dt!r} differs from time_step {dt!r}")
-    beta, gamma = st.params.beta, st.params.gamma
-    n = st.n
-    c = np.asarray(structure.approach_row, float)
-    dofs = np.asarray(structure.surface_dofs, int)
-    sign = float(structure.load_sign)
-    patch = ContactPatch(structure.surface_x, structure.center) if structure.patch is None else structure.patch
-    B = np.zeros((n, dofs.size))
-    B[dofs, np.arange(dofs.size)] = sign
-    G = st.solve(B)  # (n, p): displacement per unit force on each patch node, solved once
-    G = G.reshape(n, dofs.size)
-    cG = c @ G  # (p,)
-    hm = beta * dt * dt / mass
-    kappa = gamma / (beta * dt)
-    r1, r2 = 1.0 - gamma / beta, dt * (1.0 - gamma / (2.0 * beta))
-    O = np.asarray(structure.outputs, float)
-    M, K = st.M, st.K
+    from .direct import DirectStepper  # (it steps with this module's contact Newton: imported here, not above)
 
-    N = int(steps)
-    keep = np.unique(np.asarray(snapshots, int))
-    if keep.size and (keep.min() < 0 or keep.max() > N):
-        raise InputError(f"snapshots: step indices must lie in 0 … {N}, got {snapshots!r}")
-    slot = {int(k): i for i, k in enumerate(keep)}
-    saved = np.zeros((n, keep.size))
-    t = np.arange(N + 1) * dt
-    F = np.zeros(N + 1)
-    al = np.zeros(N + 1)
-    ald = np.zeros(N + 1)
-    rad = np.zeros(N + 1)
-    x = np.zeros(N + 1)
-    xv = np.zeros(N + 1)
-    w = np.zeros(N + 1)
-    y = np.zeros((O.shape[0], N + 1))
-    ek = np.full(N + 1, np.nan)
-    es = np.full(N + 1, np.nan)
-    if energy:
-        ek[0] = es[0] = 0.0
-    work = np.zeros(N + 1)
-    cwork = np.zeros(N + 1)
-    cen = np.zeros(N + 1)
-    mism = np.zeros(N + 1)
-
-    xv[0] = velocity
-    ald[0] = velocity
-    u = np.zeros(n)
-    v = np.zeros(n)
-    acc = np.zeros(n)
-    xa = 0.0
-    ala = 0.0  # α̈
-    memory = isinstance(law, HistoryLaw)  # (a runtime protocol check costs microseconds: once, not per step)
-    state = law.initial_state() if memory else None
-    s_prev = np.zeros(dofs.size)  # shares × F at the previous step (nodal forces / sign)
-    iterations = 0
-    last = N
-    clock = None if stop_after is None else SeparationClock(stop_after)
-    for k in range(N):
-        branch = law.branch(state) if memory else law
-        u_free = st.solve(st.predictor(u, v, acc))
-        x_pred = x[k] + dt * xv[k] + dt * dt * (0.5 - beta) * xa
-        target = x_pred - float(c @ u_free)
-        q = r1 * ald[k] + r2 * ala - kappa * al[k]  # α̇_{k+1} = κ·α + q
-        if target > 0.0:
-            guess = 2.0 * al[k] - al[k - 1] if k >= 1 else target
-            a_new, f, sh, its = _solve_contact(branch, patch, cG, hm, kappa, q, target, guess, k + 1, dt)
-            iterations += its
-            r = branch.radius(a_new) if f != 0.0 else 0.0  # the contact disc of a pressing force (none while a clipped force is zero)
-        else:
-            a_new, f, sh, r = target, 0.0, patch._point, 0.0
-        fs = f * sh
-        u1 = u_free + G @ fs if f != 0.0 else u_free
-        v1, acc1 = st.correct(u1, u, v, acc)
-        x[k + 1] = x_pred - hm * f
-        xa1 = -f / mass
-        xv[k + 1] = xv[k] + dt * ((1.0 - gamma) * xa + gamma * xa1)
-        F[k + 1], al[k + 1], rad[k + 1] = f, a_new, r
-        ald[k + 1] = kappa * a_new + q
-        ala = xa1 - float(c @ acc1)
-        w[k + 1] = float(c @ u1)
-        y[:, k + 1] = O @ u1
-        du = u1[dofs] - u[dofs]
-        work[k + 1] = work[k] + 0.5 * sign * float((s_prev + fs) @ du)
-        mid = 0.5 * (F[k] + f)
-        cwork[k + 1] = cwork[k] + mid * (a_new - al[k])
-        mism[k + 1] = mism[k] + 0.5 * sign * float((s_prev + fs) @ du) - mid * (w[k + 1] - w[k])
-        if energy:
-            ek[k + 1] = 0.5 * float(v1 @ (M @ v1))
-            es[k + 1] = 0.5 * float(u1 @ (K @ u1))
-        cen[k + 1] = branch.energy(a_new)  # the step's branch: its stress at α_{k+1} is the converged σ_{k+1}
-        if state is not None:
-            state = law.advance(state, a_new, ald[k + 1])
-        u, v, acc, xa, s_prev = u1, v1, acc1, xa1, fs
-        if k + 1 in slot:
-            saved[:, slot[k + 1]] = u1
-        if clock is not None and clock.done(t[k + 1], f == 0.0 and a_new < 0.0 and xv[k + 1] < float(c @ v1)):
-            last = k + 1
-            break
-    sl = slice(0, last + 1)
-    return ImpactHistory(
-        time=t[sl],
-        force=F[sl],
-        approach=al[sl],
-        approach_rate=ald[sl],
-        contact_radius=rad[sl],
-        impactor_displacement=x[sl],
-        impactor_velocity=xv[sl],
-        target_displacement=w[sl],
-        outputs=y[:, sl],
-        structure_kinetic=ek[sl],
-        structure_strain=es[sl],
-        structure_work=work[sl],
-        contact_work=cwork[sl],
-        contact_energy=cen[sl],
-        surface_mismatch=mism[sl],
-        newton_iterations=iterations,
-        solves=st.nsolve,
-        displacement=saved[:, keep <= last] if keep.size else None,
-        kept=keep[keep <= last] if keep.size else None,
-    )
-
-
-class SeparationClock:
-    """When a run may stop (``stop_after`` [s]): the impactor moving away from the target (no force,
-    α < 0, α̇ < 0: slower than the struck point) without a break for ``stop_after``. The one rule of
-    direct stepping and of the contact kernels (in contact and apart)."""
-
-    __slots__ = ("stop_after", "left_at")
-
-    def __init__(self, stop_after: float):
-        self.stop_after, self.left_at = stop_after, None
-
-    def done(self, t: float, away: bool) -> bool:
-        """Record the state at time ``t`` [s]; True once the impactor has been moving away for ``stop_after``."""
-        if not away:
-            self.left_at = None
-            return False
-        if self.left_at is None:
-            self.left_at = t
-        return t - self.left_at >= self.stop_after
+    return DirectStepper(
+        structure, law, mass, velocity, time_step, steps, newmark, engine=stepper, stop_after=stop_after, energy=energy, snapshots=snapshots
+    ).run()
 
 
 class PatchCompliance:
     """h_s(r) = c·G·s(r) and dh_s/dr of a patch (``shares(r) -> (s, ds/dr)``, ``half_spacing``), by two
     dot products with the structure's response c·G to unit loads on the patch nodes."""
+
+    value = None  # no cheaper h_s alone (:func:`newton_contact`): every iterate takes the full evaluation
 
     def __init__(self, patch, cG: np.ndarray):
         self.patch, self.half_spacing, self.cG = patch, float(patch.half_spacing), np.asarray(cG, float)
@@ -374,35 +242,62 @@ class PatchCompliance:
         return float(self.cG @ s), float(self.cG @ ds)
 
 
-def newton_contact(law, comp, hm: float, kappa: float, q: float, target: float, guess: float, index: int, dt: float, *, try_top: bool = False):
-    """Root of R(α) = α − α̃ + F(α, κα + q)·(β·dt²/m + h_s(a(α))) in (0, α̃] (module docstring), at step
-    ``index``: Newton safeguarded by bisection on plain floats, the one contact iteration of direct
-    stepping and of the contact kernels.
+@dataclass(frozen=True)
+class LawCapabilities:
+    """What the contact Newton may use of a memoryless law beyond :class:`ContactLaw` (its optional
+    capabilities, declared in :mod:`softimpact.models.protocols`), asked once per run: ``responds``
+    (:class:`RespondingLaw`: F, ∂F/∂α and ∂F/∂α̇ in one call) and ``radius_power`` n
+    (:class:`PowerRadiusLaw`: a = c·α^n), None where the law has none."""
 
-    ``comp(r) -> (h_s, dh_s/dr)``: the patch compliance c·G·s(r) and its derivative, with
-    ``comp.half_spacing`` (:class:`PatchCompliance`, or the kernels' exact evaluators). Where the patch
-    also offers ``comp.value(r) -> h_s`` (the kernels' line patch), iterates after the first full
-    evaluation take h_s from it, exact, and keep that evaluation's dh_s/dr: the slope only shapes the
-    Newton step (whose size is the convergence test), while the residual R, which locates the root,
-    is exact at every iterate. Starts from
-    ``guess`` (the linear extrapolation of α) when it lies in the bracket, else α̃; ends at the first iterate
-    whose Newton step is within the tolerance (its force and radius are returned as evaluated), or at the
-    midpoint of a bracket closed by bisection. A law whose contact radius is a = c·α^n says so with
-    ``radius_power`` n (da/dα = n·a/α); else da/dα is a central difference. ``try_top``: a
-    Newton step landing exactly on α̃ is tried once (an iterate where the force is clipped to zero
-    steps there, and the root is there when the clipped force stays zero) instead of bisecting
-    (the kernels take it; direct stepping keeps the plain bracket test, so its iteration counts in
-    summary.json do not move). Returns (α, F, contact radius — 0 where F is, no disc pressed — iterations); :class:`SolverFailed`
-    (time, step, residual and bracket) after :data:`NEWTON_MAXITER` iterations."""
+    responds: bool
+    radius_power: float | None
+
+    @classmethod
+    def of(cls, law) -> LawCapabilities:
+        """The capabilities ``law`` (a ContactLaw, or the branch of a HistoryLaw) declares."""
+        return cls(isinstance(law, RespondingLaw), law.radius_power if isinstance(law, PowerRadiusLaw) else None)
+
+
+def newton_contact(
+    law,
+    comp,
+    hm: float,
+    kappa: float,
+    q: float,
+    target: float,
+    guess: float,
+    index: int,
+    dt: float,
+    *,
+    try_top: bool = False,
+    caps: LawCapabilities | None = None,
+):
+    """Root of R(α) = α − α̃ + F(α, κα + q)·(β·dt²/m + h_s(a(α))) in (0, α̃] (module docstring) at step
+    ``index``: Newton safeguarded by bisection on plain floats, the one contact iteration of every stepper.
+
+    ``comp(r) -> (h_s, dh_s/dr)``: the patch compliance c·G·s(r), with ``comp.half_spacing`` and ``comp.value``
+    (:mod:`softimpact.fem.compliance`). Where ``comp.value(r) -> h_s`` exists (the kernels' line patch; else
+    None), iterates after the first full evaluation take the exact h_s from it and keep that evaluation's
+    slope, which only shapes the Newton step; the residual R, which locates the root, is exact at every
+    iterate. Starts from ``guess`` (α's linear extrapolation) when in the bracket, else α̃; ends at the first
+    iterate whose Newton step is within the tolerance (its force and radius as evaluated), or at the midpoint
+    of a bracket closed by bisection. ``caps``: the law's :class:`LawCapabilities` (asked here when None; a
+    stepper asks once per run): with ``radius_power`` n, da/dα = n·a/α, else a central difference.
+    ``try_top``: a Newton step landing exactly on α̃ is tried once (an iterate where the force is clipped to
+    zero steps there; the root is there when it stays zero) instead of bisecting (the kernels take it; direct
+    stepping keeps the plain bracket test, so its iteration counts in summary.json do not move). Returns (α,
+    F, contact radius — 0 where F is — iterations); :class:`SolverFailed` (time, step, residual and
+    bracket) after :data:`NEWTON_MAXITER` iterations."""
     lo, hi = 0.0, target
     a = guess if 0.0 < guess < target else target
     half = comp.half_spacing
     its = 0
     R = math.nan
     top = False  # α̃ evaluated
-    response = getattr(law, "response", None)  # (F, ∂F/∂α, ∂F/∂α̇) at once, where the law offers it
-    power = getattr(law, "radius_power", None)  # a = c·α^n: da/dα = n·a/α exactly (else a central difference)
-    value = getattr(comp, "value", None)  # h_s(r) alone, where the patch offers it
+    caps = caps or LawCapabilities.of(law)
+    response = law.response if caps.responds else None  # (F, ∂F/∂α, ∂F/∂α̇) at once, where the law offers it
+    power = caps.radius_power  # a = c·α^n: da/dα = n·a/α exactly (else a central difference)
+    value = comp.value  # h_s(r) alone, where the patch offers it
     slope = None  # dh_s/dr of the last full evaluation
     for its in range(1, NEWTON_MAXITER + 1):  # noqa: B007 (the count is returned after the loop)
         rate = kappa * a + q
@@ -454,13 +349,6 @@ def newton_contact(law, comp, hm: float, kappa: float, q: float, target: float, 
         )
     f = float(law.force(a, kappa * a + q))  # the bracket closed: its midpoint
     return a, f, law.radius(a) if f != 0.0 else 0.0, its
-
-
-def _solve_contact(law, patch: ContactPatch, cG, hm, kappa, q, target, guess, index: int, dt: float):
-    """:func:`newton_contact` on ``patch``'s shares; returns (α, F, shares s(a), iterations)."""
-    a, f, r, its = newton_contact(law, PatchCompliance(patch, cG), hm, kappa, q, target, guess, index, dt)
-    s, _ = patch.shares(r)
-    return a, f, s, its
 
 
 @dataclass(frozen=True)

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, NoContactRoom
 
 __all__ = ["PatchLoad"]
 
@@ -38,7 +38,9 @@ class PatchLoad:
         if not radius > 0:
             raise InputError(f"contact radius must be positive, got {radius!r}", "contact_radius")
         if center - radius < x[0] - 1e-12 or center + radius > x[-1] + 1e-12:
-            raise InputError(f"load: the contact patch {center - radius:.4g} to {center + radius:.4g} m is wider than the beam ({x[0]:.4g} to {x[-1]:.4g} m)")
+            raise NoContactRoom(
+                f"load: the contact patch {center - radius:.4g} to {center + radius:.4g} m is wider than the beam ({x[0]:.4g} to {x[-1]:.4g} m)"
+            )
         lo, hi = _tributaries(x)
         self.nodes = np.flatnonzero((hi > center - radius) & (lo < center + radius))
         self.lo, self.hi = lo[self.nodes] - center, hi[self.nodes] - center

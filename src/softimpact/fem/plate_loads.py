@@ -33,7 +33,7 @@ import math
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import ContactOutgrewRoom, InputError, NoContactRoom
 from .plate import PlateFE, W
 
 __all__ = ["CircularPatch", "DiscShares", "cosine_pressure"]
@@ -76,14 +76,14 @@ class CircularPatch:
             "y1": cy + radius <= ys[-1] + tol,
         }
         if not all(inside[e] or mirror[e] for e in inside):
-            raise InputError(f"contact patch of radius {radius!r} m about ({cx!r}, {cy!r}) m does not fit on the plate")
+            raise NoContactRoom(f"contact patch of radius {radius!r} m about ({cx!r}, {cy!r}) m does not fit on the plate")
         self.share = (0.5 if mirror["x0"] or mirror["x1"] else 1.0) * (0.5 if mirror["y0"] or mirror["y1"] else 1.0)
         self.fe, self.center, self.radius, self.grow = fe, (cx, cy), float(radius), grow
         # Nodes of every element the largest disc overlaps: the smaller discs load a subset.
         self.nodes = self._candidate_nodes()
         self.dofs = np.array([fe.dof(n, W) for n in self.nodes])
         if np.any(self.dofs < 0):
-            raise InputError(f"contact patch about ({cx!r}, {cy!r}) m reaches a supported edge")
+            raise NoContactRoom(f"contact patch about ({cx!r}, {cy!r}) m reaches a supported edge")
         self._table_r = self.radius * np.linspace(0.0, 1.0, TABLE) if grow else None
         self._table = None
         self._full = None
@@ -204,7 +204,7 @@ class DiscShares:
     def shares(self, a: float) -> tuple[np.ndarray, np.ndarray]:
         """(s, ds/da), each of shape (n_nodes,)."""
         if a > self.patch.radius * (1 + 1e-12):
-            raise InputError(f"contact radius {a:.4g} m runs past the loadable disc ({self.patch.radius:.4g} m)")
+            raise ContactOutgrewRoom(f"contact radius {a:.4g} m runs past the loadable disc ({self.patch.radius:.4g} m)")
         pos = min(max(a / self.step, 0.0), TABLE - 1)
         k = min(int(pos), TABLE - 2)
         frac = pos - k

@@ -4,6 +4,11 @@
   bodies overlap) and its rate α̇ [m/s] to a compressive force F ≥ 0 [N]
   (:mod:`softimpact.models.contact_laws`).
 - :class:`HistoryLaw` — a contact law with memory, kept in an explicit frozen state.
+- A law's optional capabilities, each a small protocol a law has by having its members (the coupled
+  steppers, :mod:`softimpact.fem.stepping`, ask ``isinstance`` once per run, never probe a law):
+  :class:`RespondingLaw` (F, ∂F/∂α, ∂F/∂α̇ in one call), :class:`PowerRadiusLaw` (a = c·α^n),
+  :class:`StepBoundLaw` (memory that evolves in time, bound to the solver's step) and
+  :class:`SettlingLaw` (a history law's converged step and free flight in one call each).
 - :class:`Pulse` — a force history F(t) [N] of a given impulse and duration
   (:mod:`softimpact.models.pulses`).
 - :class:`ContactPatch` — how a unit contact force of half-width a [m] is shared among
@@ -21,7 +26,7 @@ from typing import Protocol, runtime_checkable
 
 import numpy as np
 
-__all__ = ["ContactLaw", "HistoryLaw", "Pulse", "ContactPatch", "StructureModel"]
+__all__ = ["ContactLaw", "HistoryLaw", "RespondingLaw", "PowerRadiusLaw", "StepBoundLaw", "SettlingLaw", "Pulse", "ContactPatch", "StructureModel"]
 
 
 @runtime_checkable
@@ -54,6 +59,50 @@ class HistoryLaw(Protocol):
     def branch(self, state) -> ContactLaw: ...
 
     def advance(self, state, alpha: float, rate: float): ...
+
+
+# A law's optional capabilities. Why small protocols rather than optional members of ContactLaw or a
+# ``capabilities`` attribute: a law written as five plain methods stays a ContactLaw (nothing to declare,
+# ``resolve_law`` accepts it as before), a capability is stated by the members that provide it (a type
+# checker verifies them where a law subclasses the protocol), and the steppers ask ``isinstance`` once
+# per run instead of reading attributes that may be missing. For a HistoryLaw the capabilities of
+# :class:`ContactLaw` are those of its branches: every branch of one law is of one class.
+
+
+@runtime_checkable
+class RespondingLaw(Protocol):
+    """``response(alpha, rate) -> (F [N], ∂F/∂α [N/m], ∂F/∂α̇ [N·s/m])``: the values of ``force``,
+    ``stiffness`` and ``damping`` in one call (one evaluation of a power law; the contact Newton's need)."""
+
+    def response(self, alpha: float, rate: float = 0.0) -> tuple[float, float, float]: ...
+
+
+@runtime_checkable
+class PowerRadiusLaw(Protocol):
+    """A contact radius a = c·α^n: ``radius_power`` n, so that da/dα = n·a/α exactly (without it the
+    contact Newton takes a central difference of ``radius``)."""
+
+    radius_power: float
+
+
+@runtime_checkable
+class StepBoundLaw(Protocol):
+    """A law whose memory evolves in time: ``for_time_step(dt)`` [s], the same law bound to the solver's
+    step, called once before stepping."""
+
+    def for_time_step(self, dt: float): ...
+
+
+@runtime_checkable
+class SettlingLaw(Protocol):
+    """A :class:`HistoryLaw` that does a step's bookkeeping in one call, the same arithmetic as the
+    general path: ``settle(state, alpha, rate) -> (advance(state, α, α̇), branch of it, the contact
+    energy at the end of the step [J], the step's own branch's ``energy(α)``)``; ``apart(state, steps)
+    -> (state, energies)``: ``steps`` steps with the bodies apart (α ≤ 0), the energy after each."""
+
+    def settle(self, state, alpha: float, rate: float) -> tuple[object, ContactLaw, float]: ...
+
+    def apart(self, state, steps: int) -> tuple[object, list[float]]: ...
 
 
 @runtime_checkable

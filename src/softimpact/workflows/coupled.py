@@ -24,7 +24,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 
-from ..errors import InputError
+from ..errors import ContactOutgrewRoom, InputError, NoContactRoom
 from ..fem.impact import ContactInterval, CoupledResult, contact_intervals, coupled_result, simulate_coupled
 from ..fem.newmark import SolverSpec
 from ..models.materials import Material
@@ -91,10 +91,8 @@ def impact_model(problem: ImpactProblem) -> StructureModel:
     try:
         model = problem.target.model(patch_radius=min(problem.target.load.contact_radius, problem.impactor.diameter))
         model.contact_reach(problem.position, problem.impactor.diameter)
-    except InputError as exc:
-        if "patch" not in str(exc) and "contact disc" not in str(exc):
-            raise
-        raise InputError(f"target.case ({problem.target_case}): load.position {tuple(problem.position)!r} m: {exc}") from None
+    except NoContactRoom as exc:
+        raise NoContactRoom(f"target.case ({problem.target_case}): load.position {tuple(problem.position)!r} m: {exc}") from None
     return model
 
 
@@ -117,15 +115,14 @@ def impact_kernels(problem: ImpactProblem, model: StructureModel | None = None):
     then every coupled run on this structure (another velocity, mass, law, or a diameter up to the
     problem's: its contact disc is among the loadable nodes) costs milliseconds.
     ``model``: the target's model to reuse (its factorised stepper)."""
-    from ..fem.kernels import ContactKernels
+    from ..fem.kernels import ContactKernels  # (scipy.fft and the marches: imported when kernels are built)
 
     model = model or impact_model(problem)
     reach = model.contact_reach(problem.position, problem.impactor.diameter)
     structure = model.contact_structure(problem.position, reach)
     solver = problem.solver
-    kernels = ContactKernels(structure, solver.time_step, solver.steps, solver.newmark, stepper=model.stepper)
-    kernels.reach = reach  # the widest contact they load: smaller impactors run on them too (run_impact)
-    return kernels
+    # reach: the widest contact they load; smaller impactors run on them too (run_impact)
+    return ContactKernels(structure, solver.time_step, solver.steps, solver.newmark, stepper=model.stepper, reach=reach)
 
 
 def run_impact(
@@ -154,41 +151,42 @@ def run_impact(
     sqrt(R·α) and a flattened sphere's sqrt(d·α) stay within it while α < d (on a plate,
     cut by the edges: ``model.contact_reach``).
     """
+    from ..fem.steppers import STEPPERS  # (the kernels' module: imported when a run needs it)
+
     if method not in METHODS:
         raise InputError(f"method must be one of {', '.join(METHODS)}, got {method!r}")
     if method == "kernels" and (energy or len(snapshots)):
         raise InputError("method 'kernels' gives no structure energies or snapshots: pass energy=False and no snapshots, or use method 'direct'")
     use_kernels = method == "kernels" or (method == "auto" and kernels is not None and not energy and not len(snapshots))
     model = model or impact_model(problem)
+    solver, imp = problem.solver, problem.impactor
+    reach = model.contact_reach(problem.position, imp.diameter)
     if use_kernels:
         kernels = kernels or impact_kernels(problem, model)
-        if kernels.steps != problem.solver.steps or not math.isclose(kernels.dt, problem.solver.time_step, rel_tol=1e-12):
-            raise InputError(
-                f"kernels: built for {kernels.steps} steps of {kernels.dt:.6g} s, the problem runs {problem.solver.steps} of {problem.solver.time_step:.6g} s"
-            )
-        reach = model.contact_reach(problem.position, problem.impactor.diameter)
-        own = reach == getattr(kernels, "reach", None)
-        if own:
-            structure = kernels.structure
-        else:  # a smaller impactor: its own contact disc, kept with the kernels for the next run of that diameter
-            cache = kernels.__dict__.setdefault("_structures", {})
-            if reach not in cache:
-                cache.clear()
-                cache[reach] = model.contact_structure(problem.position, reach)
-            structure = cache[reach]
+        if kernels.steps != solver.steps or not math.isclose(kernels.dt, solver.time_step, rel_tol=1e-12):
+            raise InputError(f"kernels: built for {kernels.steps} steps of {kernels.dt:.6g} s, the problem runs {solver.steps} of {solver.time_step:.6g} s")
+        # a smaller impactor: its own contact disc, kept with the kernels for the next run of that diameter
+        structure = kernels.structure_for(reach, lambda r: model.contact_structure(problem.position, r))
     else:
-        structure = model.contact_structure(problem.position, model.contact_reach(problem.position, problem.impactor.diameter))
+        structure = model.contact_structure(problem.position, reach)
+    stepper = STEPPERS["kernels" if use_kernels else "direct"](
+        structure,
+        problem.law,
+        imp.mass,
+        imp.velocity,
+        solver.time_step,
+        solver.steps,
+        solver.newmark,
+        engine=kernels if use_kernels else model.stepper,
+        stop_after=stop_after,
+        energy=energy,
+        snapshots=snapshots,
+    )
     try:
-        if use_kernels:
-            imp = problem.impactor
-            history = kernels.run(problem.law, imp.mass, imp.velocity, stop_after=stop_after, structure=None if own else structure)
-            result = coupled_result(history, imp, tuple(structure.output_names))
-        else:
-            result = simulate_coupled(structure, problem.law, problem.impactor, problem.solver, energy, model.stepper, stop_after, snapshots)
-    except InputError as exc:
-        if "runs past" not in str(exc):
-            raise
-        raise InputError(f"{exc}: the contact outgrew the room about the impact point (target.case: load.position)") from None
+        history = stepper.run()
+    except ContactOutgrewRoom as exc:
+        raise ContactOutgrewRoom(f"{exc}: the contact outgrew the room about the impact point (target.case: load.position)") from None
+    result = coupled_result(history, imp, tuple(structure.output_names))
     if structure.patch is not None:  # a plate's contact disc: a half or quarter model carries its share
         result = _whole_plate(result, structure.patch.patch.share)
     return model, result

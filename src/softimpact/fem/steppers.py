@@ -1,0 +1,21 @@
+"""The coupled steppers by name, one table (as scipy's ``METHODS`` of ``solve_ivp``): each an implementation
+of :class:`softimpact.fem.stepping.CoupledStepper` with one signature,
+``STEPPERS[name](structure, law, mass, velocity, time_step, steps, newmark, *, engine, stop_after, energy,
+snapshots)`` then ``.run()``:
+
+- ``"direct"``: :class:`softimpact.fem.direct.DirectStepper`, the structure stepped by Newmark with the
+  impactor (``engine``: its factored :class:`softimpact.fem.newmark.NewmarkStepper`); energies and
+  snapshots; the reference.
+- ``"kernels"``: :class:`softimpact.fem.kernel_stepping.KernelStepper`, the scalar contact equation against
+  the structure's impulse responses (``engine``: its :class:`softimpact.fem.kernels.ContactKernels`);
+  milliseconds a run once built, equal to direct stepping to round-off, no structure energies.
+"""
+
+from __future__ import annotations
+
+from .direct import DirectStepper
+from .kernel_stepping import KernelStepper
+
+__all__ = ["STEPPERS"]
+
+STEPPERS = {"direct": DirectStepper, "kernels": KernelStepper}
