@@ -78,22 +78,14 @@ class ImpactProblem:
         try:
             model = self.target.model(patch_radius=min(self.target.load.contact_radius, self.impactor.diameter), damage=damage)
             model.contact_reach(self.position, self.impactor.diameter)
-        except InputError as exc:
-            if "patch" not in str(exc) and "contact disc" not in str(exc):
-                raise
-            raise InputError(f"target.case ({self.target_case}): load.position {tuple(self.position)!r} m: {exc}") from None
+        except NoContactRoom as exc:
+            raise NoContactRoom(f"target.case ({self.target_case}): load.position {tuple(self.position)!r} m: {exc}") from None
         return model
 
 
 def impact_model(problem: ImpactProblem) -> StructureModel:
-    """The target's model for the impact run (:meth:`BeamProblem.model`, :meth:`PlateProblem.model`),
-    checked for room about the impact point (errors name the target case's load.position)."""
-    try:
-        model = problem.target.model(patch_radius=min(problem.target.load.contact_radius, problem.impactor.diameter))
-        model.contact_reach(problem.position, problem.impactor.diameter)
-    except NoContactRoom as exc:
-        raise NoContactRoom(f"target.case ({problem.target_case}): load.position {tuple(problem.position)!r} m: {exc}") from None
-    return model
+    """The target's model for the impact run, without the damage group (:meth:`ImpactProblem.model`)."""
+    return problem.model()
 
 
 def _whole_plate(result: CoupledResult, share: float) -> CoupledResult:
