@@ -1,8 +1,10 @@
 # Two commands set everything up on a fresh machine:
-#   make run   - create .venv, install softimpact, run the whole paper into results/paper
-#   make test  - create .venv, install softimpact with its test extras, run the tests (all of them, slow ones too)
-#                on two processes (pytest-xdist; a test file stays on one, so its fixtures are built once), one BLAS thread each;
-#                files in the order tests/conftest.py sets (the shared paper first), not xdist's by-size order
+#   make run   - create .venv, install softimpact (no extras: the report needs none), run the whole paper into results/paper
+#   make test  - create .venv, install softimpact with its test extras, run the tests but the slow verification tier
+#                on two processes (pytest-xdist; a test file stays on one, so its fixtures are built once), one BLAS thread each
+#   make test-slow - the slow verification tier (-m slow: the whole paper report, fine meshes, the docs build);
+#                files in the order tests/conftest.py sets (the shared paper first), not xdist's by-size order;
+#                .ci/run runs both tiers
 #   make lint  - ruff: lint and format check
 #   make docs  - the documentation site (Sphinx, warnings are errors) into docs/_build/html; the examples are run
 #                by the tests (tests/test_examples.py), not here: SOFTIMPACT_DOCS_RUN_EXAMPLES=1 make docs draws their figures
@@ -12,19 +14,31 @@ VENV := .venv
 BIN := $(VENV)/bin
 OUT ?= results/paper
 
-.PHONY: run test lint bench clean fuzz docs
+.PHONY: run test test-slow lint bench clean fuzz docs
 
-$(BIN)/softimpact: pyproject.toml
+# One venv; each target installs what it needs once (a stamp per set of extras, remade when pyproject.toml changes).
+$(VENV)/.installed-run: pyproject.toml
+	$(PYTHON) -m venv $(VENV)
+	$(BIN)/pip install --quiet --upgrade pip
+	$(BIN)/pip install --quiet -e .
+	touch $@
+
+$(VENV)/.installed-test: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/pip install --quiet --upgrade pip
 	$(BIN)/pip install --quiet -e '.[test]'
 	touch $@
 
-run: $(BIN)/softimpact
+$(BIN)/softimpact: $(VENV)/.installed-test
+
+run: $(VENV)/.installed-run
 	MPLBACKEND=Agg $(BIN)/softimpact paper --out $(OUT)
 
-test: $(BIN)/softimpact
-	MPLBACKEND=Agg OMP_NUM_THREADS=1 $(BIN)/python -m pytest -q -n 2 --dist loadfile --no-loadscope-reorder
+test: $(VENV)/.installed-test
+	MPLBACKEND=Agg OMP_NUM_THREADS=1 $(BIN)/python -m pytest -q -n 2 --dist loadfile --no-loadscope-reorder -m "not slow"
+
+test-slow: $(VENV)/.installed-test
+	MPLBACKEND=Agg OMP_NUM_THREADS=1 $(BIN)/python -m pytest -q -n 2 --dist loadfile --no-loadscope-reorder -m slow
 
 docs: $(BIN)/softimpact
 	MPLBACKEND=Agg $(BIN)/python -m sphinx -W --keep-going -q -b html docs docs/_build/html
