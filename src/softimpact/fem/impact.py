@@ -288,6 +288,9 @@ def newton_contact(
     stepping keeps the plain bracket test, so its iteration counts in summary.json do not move). Returns (α,
     F, contact radius — 0 where F is — iterations); :class:`SolverFailed` (time, step, residual and
     bracket) after :data:`NEWTON_MAXITER` iterations."""
+    # One function on purpose (91 lines, most of them the docstring): it runs at every step of every coupled
+    # run, and its iterate's state (bracket, slope, force, radius) lives in plain locals; split into calls, the
+    # kernels' millisecond runs would pay a Python call and a tuple per iterate.
     lo, hi = 0.0, target
     a = guess if 0.0 < guess < target else target
     half = comp.half_spacing
