@@ -103,7 +103,7 @@ html_theme_options = {
     "show_toc_level": 2,
     "secondary_sidebar_items": ["page-toc"],
     "navbar_align": "left",
-    "header_links_before_dropdown": 5,
+    "header_links_before_dropdown": 4,
     "navbar_persistent": [],
     "navbar_end": ["search-button", "theme-switcher"],
     "footer_start": ["copyright"],
