@@ -6,8 +6,9 @@
 #                files in the order tests/conftest.py sets (the shared paper first), not xdist's by-size order;
 #                .ci/run runs both tiers
 #   make lint  - ruff: lint and format check
-#   make docs  - the documentation site (Sphinx, warnings are errors) into docs/_build/html; the examples are run
-#                by the tests (tests/test_examples.py), not here: SOFTIMPACT_DOCS_RUN_EXAMPLES=1 make docs draws their figures
+#   make docs  - the documentation site (Sphinx, warnings are errors) into docs/_build/html, readable offline; it runs the
+#                quick examples of the gallery and shows their figures (SOFTIMPACT_DOCS_RUN_EXAMPLES=all: every example;
+#                =none: none); the slow ones show a stored thumbnail, refreshed by `.venv/bin/python docs/_ext/gallery_figures.py`
 #   make fuzz  - the long property-based fuzz run (case files, CSV records, unit strings; minutes)
 PYTHON ?= python3
 VENV := .venv
@@ -41,7 +42,7 @@ test-slow: $(VENV)/.installed-test
 	MPLBACKEND=Agg OMP_NUM_THREADS=1 $(BIN)/python -m pytest -q -n 2 --dist loadfile --no-loadscope-reorder -m slow
 
 docs: $(BIN)/softimpact
-	MPLBACKEND=Agg $(BIN)/python -m sphinx -W --keep-going -q -b html docs docs/_build/html
+	MPLBACKEND=Agg OMP_NUM_THREADS=1 $(BIN)/python -m sphinx -W --keep-going -q -b html docs docs/_build/html
 
 fuzz: $(BIN)/softimpact
 	HYPOTHESIS_PROFILE=long MPLBACKEND=Agg $(BIN)/python -m pytest -q -m fuzz tests/test_fuzz.py

@@ -16,6 +16,7 @@ import matplotlib.pyplot as plt
 
 import softimpact as si
 
+# sphinx_gallery_thumbnail_path = "_static/thumbnails/02_reduce_and_fit.png"
 res = si.fit("paper-rubber-series", figures=False)
 print(res.line)
 

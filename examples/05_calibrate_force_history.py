@@ -19,6 +19,7 @@ import matplotlib.pyplot as plt
 
 import softimpact as si
 
+# sphinx_gallery_thumbnail_path = "_static/thumbnails/05_calibrate_force_history.png"
 res = si.calibrate("paper-long-calibration", figures=False)
 print(res.line)
 

@@ -25,6 +25,7 @@ import matplotlib.pyplot as plt
 
 import softimpact as si
 
+# sphinx_gallery_thumbnail_path = "_static/thumbnails/06_damage_threshold_sweep.png"
 work = Path(tempfile.mkdtemp())
 (work / "spec.toml").write_text("""
 [sweep]

@@ -2,6 +2,8 @@
 
 import ast
 import importlib.util
+import os
+import re
 import shutil
 import subprocess
 import sys
@@ -67,18 +69,120 @@ def test_reference_gives_units_and_defaults(recorded):
         assert keys, f"no key recorded for {fmt}"
 
 
-@pytest.mark.slow
-@pytest.mark.skipif(importlib.util.find_spec("sphinx") is None, reason="the docs extra is not installed")
-def test_docs_build_with_no_warning(tmp_path):
-    """sphinx-build -W (warnings are errors) builds the site: a broken reference, a bad docstring or a missing page fails."""
-    src = tmp_path / "docs"
+DOCS_EXTRA = ["sphinx", "numpydoc", "sphinx_gallery", "sphinx_click", "myst_parser", "pydata_sphinx_theme", "sphinx_copybutton", "sphinx-mathjax-offline"]
+MISSING_EXTRA = [m for m in DOCS_EXTRA if importlib.util.find_spec(m) is None]
+needs_docs = pytest.mark.skipif(bool(MISSING_EXTRA), reason=f"the docs extra is not installed ({', '.join(MISSING_EXTRA)})")
+
+
+@pytest.fixture(scope="module")
+def site(tmp_path_factory):
+    """The site built once for this file's checks, as ``make docs`` builds it (quick examples executed); (the run, the HTML folder)."""
+    tmp = tmp_path_factory.mktemp("site")
+    src = tmp / "docs"
     shutil.copytree(ROOT / "docs", src, ignore=shutil.ignore_patterns("_build", "_generated", "gallery", "sg_execution_times.rst"))
     (src / "conf.py").write_text((ROOT / "docs" / "conf.py").read_text().replace('HERE.parent / "examples"', f"Path({str(ROOT / 'examples')!r})"))
+    env = {**os.environ, "MPLBACKEND": "Agg", "OMP_NUM_THREADS": "1", "SOFTIMPACT_DOCS_RUN_EXAMPLES": "quick"}
     run = subprocess.run(
-        [sys.executable, "-m", "sphinx", "-W", "--keep-going", "-q", "-b", "html", str(src), str(tmp_path / "html")], capture_output=True, text=True
+        [sys.executable, "-m", "sphinx", "-W", "--keep-going", "-q", "-b", "html", str(src), str(tmp / "html")], capture_output=True, text=True, env=env
     )
+    return run, tmp / "html"
+
+
+def _pages(html: Path) -> dict[str, str]:
+    return {str(p.relative_to(html)): p.read_text(encoding="utf-8") for p in html.rglob("*.html")}
+
+
+@pytest.mark.slow
+@needs_docs
+def test_docs_build_with_no_warning(site):
+    """sphinx-build -W (warnings are errors) builds the site: a broken reference, a bad docstring or a missing page fails."""
+    run, html = site
     assert run.returncode == 0, run.stderr[-4000:]
-    assert (tmp_path / "html" / "index.html").is_file()
+    assert (html / "index.html").is_file()
+
+
+@pytest.mark.slow
+@needs_docs
+def test_site_loads_nothing_from_another_host(site):
+    """The equations are typeset by a MathJax the site carries (fonts included), and no page loads a script, style or font from a network."""
+    run, html = site
+    assert run.returncode == 0, run.stderr[-4000:]
+    theory = (html / "theory.html").read_text(encoding="utf-8")
+    scripts = re.findall(r"<script[^>]*\bsrc=\"([^\"]+)\"", theory)
+    mathjax = [s for s in scripts if "mathjax" in s.lower()]
+    assert mathjax == ["_static/mathjax/tex-chtml.js"], scripts
+    assert (html / "_static" / "mathjax" / "tex-chtml.js").stat().st_size > 100_000
+    assert list((html / "_static" / "mathjax" / "output" / "chtml" / "fonts" / "woff-v2").glob("MathJax_Main-Regular.woff"))
+    assert "\\[F = K\\alpha^{n}" in theory  # eq (1) left as TeX for MathJax, in a math block
+    remote = []
+    for name, text in _pages(html).items():
+        for tag, attr in (("script", "src"), ("link", "href"), ("img", "src"), ("iframe", "src")):
+            remote += [f"{name}: {u}" for u in re.findall(rf"<{tag}\b[^>]*\b{attr}=\"((?:https?:)?//[^\"]+)\"", text)]
+    for css in (html / "_static").rglob("*.css"):
+        remote += [
+            f"{css.name}: {u}"
+            for u in re.findall(r"(?:@import\s+|url\()\s*[\"']?((?:https?:)?//[^\"')\s]+)", css.read_text(encoding="utf-8", errors="replace"))
+        ]
+    assert not remote, remote
+
+
+@pytest.mark.slow
+@needs_docs
+def test_gallery_shows_figures(site):
+    """Every gallery thumbnail is a figure, not sphinx-gallery's placeholder, and the quick examples' pages show the figures they drew."""
+    from sphinx_gallery.gen_rst import scale_image  # the placeholder as sphinx-gallery makes it
+
+    run, html = site
+    assert run.returncode == 0, run.stderr[-4000:]
+    gallery = (html / "gallery" / "index.html").read_text(encoding="utf-8")
+    thumbs = re.findall(r"<img[^>]*src=\"([^\"]*_thumb\.png)\"", gallery)
+    assert len(thumbs) == len(list((ROOT / "examples").glob("[0-9][0-9]_*.py")))
+    placeholder = html.parent / "placeholder.png"
+    scale_image(str(Path(importlib.util.find_spec("sphinx_gallery").origin).parent / "_static" / "no_image.png"), str(placeholder), 400, 280)
+    for thumb in thumbs:
+        data = (html / "gallery" / thumb).read_bytes()
+        assert data != placeholder.read_bytes(), f"{thumb} is the placeholder"
+        assert len(data) > 5_000, f"{thumb} is nearly blank"
+    for stem in _conf_quick_examples():
+        page = (html / "gallery" / f"{stem}.html").read_text(encoding="utf-8")
+        figures = re.findall(rf"<img[^>]*src=\"\.\./(_images/sphx_glr_{stem}_\d+\.png)\"", page)
+        assert figures and all((html / f).stat().st_size > 5_000 for f in figures), f"{stem}: no figure on its page"
+
+
+def _conf_quick_examples() -> tuple[str, ...]:
+    """QUICK_EXAMPLES of docs/conf.py (the examples the docs build executes), each an example of examples/."""
+    tree = ast.parse((ROOT / "docs" / "conf.py").read_text())
+    (value,) = [n.value for n in tree.body if isinstance(n, ast.Assign) and any(getattr(t, "id", None) == "QUICK_EXAMPLES" for t in n.targets)]
+    quick = tuple(ast.literal_eval(value))
+    assert quick and all((ROOT / "examples" / f"{s}.py").is_file() for s in quick)
+    return quick
+
+
+@pytest.mark.slow
+@needs_docs
+def test_cli_reference_keeps_double_dashes(site):
+    """Smart quotes are off: the command-line reference writes options as typed (--out), never with an en dash (–out)."""
+    run, html = site
+    assert run.returncode == 0, run.stderr[-4000:]
+    text = re.sub(r"<[^>]+>", "", (html / "reference" / "cli.html").read_text(encoding="utf-8"))
+    assert "--out" in text
+    assert not re.findall(r"(?<![\w–-])[–—][a-z]", text)
+    assert "copybutton.js" in (html / "reference" / "cli.html").read_text(encoding="utf-8")
+
+
+@pytest.mark.slow
+@needs_docs
+def test_built_pages_cite_no_work_item(site):
+    """No built page, docstrings of the API reference included, cites a work-item number ("issue 21", "#21", "stage 3")."""
+    from test_citations import WORK_ITEM
+
+    run, html = site
+    assert run.returncode == 0, run.stderr[-4000:]
+    hits = []
+    for name, page in _pages(html).items():
+        text = re.sub(r"<(script|style)\b.*?</\1>|<[^>]+>", " ", page, flags=re.DOTALL)
+        hits += [f"{name}: {m.group(0)}" for m in WORK_ITEM.finditer(text)]
+    assert not hits, hits
 
 
 def _recorded_columns(command: str) -> list[str]:

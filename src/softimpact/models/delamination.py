@@ -3,12 +3,12 @@ closed forms of the delamination specimens the cohesive model is verified agains
 
 Plate thresholds (SI: forces in N, bending stiffnesses D in N·m, toughness G_IIc in J/m²):
 
-- Effective bending stiffness of an orthotropic plate (Olsson's D*, as issue 30 states it; Olsson's text
+- Effective bending stiffness of an orthotropic plate (Olsson's D*, as given to the project; Olsson's text
   was not retrieved here, so the form is **unverified against the source**):
   D* = sqrt(D11·D22·(A + 1)/2), A = (D12 + 2·D66)/sqrt(D11·D22). For an isotropic plate A = 1 and D* = D.
   D16 and D26 are ignored (a specially orthotropic plate).
 - :func:`olsson_threshold` — Olsson's quasi-static delamination threshold F_d = π·sqrt(32·D*·G_IIc/9), as
-  issue 30 states it (source text not retrieved: **unverified**). Validity as stated for threshold loads of
+  given to the project (source text not retrieved: **unverified**). Validity as stated for threshold loads of
   this family: a thin plate (Kirchhoff), small deflections (no membrane stiffening), the load spread over a
   region small against the plate, mode II growth of a circular delamination, a quasi-static response
   (large-mass impact).

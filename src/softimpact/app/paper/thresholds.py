@@ -379,7 +379,7 @@ def _map_table(maps: list[dict], vu) -> tuple[tuple, list[str]]:
     names = list(dict.fromkeys(r["structure"] for r in maps))
     delam_spread = max((max(v) - min(v)) / min(v) for d in diameters for v in [[de[(n, d)] for n in names]])
     text = [
-        "Threshold maps from coupled impact (issue 21): the velocity at which a damage index first reaches 1 for rubber balls of the paper's "
+        "Threshold maps from coupled impact: the velocity at which a damage index first reaches 1 for rubber balls of the paper's "
         f"family ({', '.join(f'{d / INCH:.3g}' for d in diameters)} in; mass ∝ d³, the paper's 1.1 g at 1/2 in), struck normally at the case's "
         "impact point, with the contact law identified from the rubber-ball bar series (the section on the paper's question; its Maxwell arm "
         "included), on the beams' layered laminate (beam.laminate.model = layered) and the plate's quarter (MITC4, symmetry edges). The law "
