@@ -360,3 +360,25 @@ def test_beam_target_mass_is_its_own(tmp_path):
     beam_mass = PLY.density * 20 * PLY.thickness * 0.0254 * 6 * 0.0254
     assert s["damage"]["target_mass_kg"] == pytest.approx(beam_mass, rel=1e-12)
     assert s["damage"]["impactor_over_target_mass"] == pytest.approx(CATALOGUE["steel"].density * math.pi / 6 * (0.5 * 0.0254) ** 3 / beam_mass, rel=1e-9)
+
+
+def test_an_impact_sweep_carries_olsson_onset(tmp_path):
+    """A velocity sweep of the beam impact outputs Olsson's F_d (the same for both velocities: a property of the
+    laminate) and the peak over it, equal to `softimpact impact` run alone; the ratio grows with the velocity."""
+    import pyarrow.parquet as pq
+
+    case = _beam_cases(tmp_path, None)
+    (tmp_path / "spec.toml").write_text(
+        '[sweep]\ncase = "case.toml"\nmethod = "grid"\noutputs = ["damage.olsson_threshold_force_N", "damage.peak_over_olsson", '
+        '"damage.interface_shear_max_Pa", "damage.impactor_over_target_mass"]\n'
+        '[[sweep.parameter]]\nkey = "impactor.velocity"\nvalues = ["50 in/s", "100 in/s"]\n'
+    )
+    r = CliRunner().invoke(main, ["sweep", str(tmp_path / "spec.toml"), "--out", str(tmp_path / "out"), "--workers", "0", "--no-figures"])
+    assert r.exit_code == 0, r.output
+    t = pq.read_table(tmp_path / "out" / "runs.parquet").to_pydict()
+    fd = t["damage.olsson_threshold_force_N"]
+    assert fd[0] == fd[1] == pytest.approx(_olsson_by_hand(CROSS_PLY, X.GIIc), rel=1e-9)
+    assert t["damage.peak_over_olsson"][1] > t["damage.peak_over_olsson"][0] > 0
+    _, s = _impact(case, tmp_path / "one")  # the case's own velocity, 100 in/s
+    for key in ("peak_over_olsson", "interface_shear_max_Pa", "impactor_over_target_mass"):
+        assert t[f"damage.{key}"][1] == pytest.approx(s["damage"][key], rel=1e-9)
