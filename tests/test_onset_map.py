@@ -55,3 +55,22 @@ def test_onset_map_rows_state_their_regime_from_the_mass_ratio(beam):
         lo, hi = REGIME_BOUNDS
         assert r.regime == ("wave-controlled" if ratio < lo else "quasi-static" if ratio > hi else "intermediate")
         assert r.as_dict()["regime"] == r.regime
+
+
+def test_the_report_lays_out_the_onset_map_with_each_rows_regime(beam):
+    """The paper's onset-map CSV keeps each row's regime and mass ratio, and the report's table names them in every cell."""
+    import csv
+
+    from softimpact.app.paper.thresholds import _onset_files, _onset_table
+    from softimpact.units import display
+
+    s, law = beam
+    rows = [r.as_dict() for r in T.threshold_map(s, law, [0.5 * INCH], 500 * INCH, 30000 * INCH, draws=2, strength_quantiles=3, indices=(T.ONSET,))]
+    files = {}
+    assert _onset_files(rows, False, files, "thresholds/", "in-lbf-s") == []
+    written = list(csv.DictReader(files["thresholds/onset-map.csv"].splitlines()))
+    assert [w["regime"] for w in written] == [r["regime"] for r in rows]
+    assert float(written[0]["impactor_over_target_mass"]) == pytest.approx(rows[0]["impactor_over_target_mass"], rel=1e-9)
+    (_, header, table), text = _onset_table(rows, display("in-lbf-s", "velocity"))
+    assert header == ["structure", "d = 0.5 in"] and table[0][0] == "long beam"
+    assert rows[0]["regime"] in table[0][1] and "not retrieved" in text[0]
