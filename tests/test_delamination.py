@@ -95,6 +95,19 @@ def test_response_regime_by_mass_ratio():
         response_regime(1.0, 1.0, wave_below=2.0, quasi_static_above=1.0)
 
 
+def test_stand_in_regime_bounds_rest_on_the_fundamental_modal_mass():
+    """The stand-in lower bound 1/4 is the centre modal mass of a simply supported plate's fundamental mode over its mass,
+    ∫∫sin²(πx/a)·sin²(πy/b) dx dy/(a·b), integrated here by Gauss-Legendre quadrature; the upper bound is ten times it."""
+    from softimpact.models.delamination import REGIME_BOUNDS, REGIME_BOUNDS_NOTE
+
+    x, w = np.polynomial.legendre.leggauss(20)
+    u, wu = 0.5 * (x + 1), 0.5 * w  # on [0, 1]
+    modal = float(np.sum(wu * np.sin(np.pi * u) ** 2)) ** 2
+    assert REGIME_BOUNDS[0] == pytest.approx(modal, rel=1e-12)
+    assert REGIME_BOUNDS[1] == pytest.approx(10 * modal, rel=1e-12)
+    assert "not Olsson's" in REGIME_BOUNDS_NOTE
+
+
 # -- the cohesive law ---------------------------------------------------------------------------------------------
 
 LAW = BilinearCohesive(K=1e15, N=60e6, S=90e6, GIc=280.0, GIIc=800.0, eta=2.1)

@@ -259,3 +259,126 @@ def test_delamination_index_takes_the_largest_force_of_any_contact(tmp_path):
     # the command refines each peak between its samples: the sampled maximum is within 1e-5 below it
     assert force / d["threshold_force_N"] <= d["delamination"] <= (1 + 1e-5) * force / d["threshold_force_N"]
     assert "F_max/P_c" in r.output and "F0/P_c" not in r.output
+
+
+# ---- delamination onset on the run path: Olsson's threshold, the response regime, the interfaces, the verdict ----
+
+ONSET_KEYS = ("olsson_threshold_force_N", "peak_over_olsson", "regime", "impactor_over_target_mass", "target_mass_kg", "regime_note")
+
+
+def _plate_case(tmp_path, layup="[90/0]5s", mass=None):
+    """The small 4 × 4 in plate (tests/_support/problems.PLATE) struck by the 1/2-in steel ball (``mass``: its mass)."""
+    (tmp_path / "plate.toml").write_text(PLATE.format(layup=layup, force="10 lbf"))
+    extra = f'mass = "{mass}"\n' if mass else ""
+    (tmp_path / "case.toml").write_text(
+        'units = "in-lbf-s"\n[target]\ncase = "plate.toml"\n[impactor]\nmaterial = "steel"\ndiameter = "0.5 in"\nvelocity = "100 in/s"\n'
+        + extra
+        + '[contact]\nlaw = "hertz"\n[solver]\ntime_step = "2 us"\nduration = "200 us"\n'
+    )
+    return tmp_path / "case.toml"
+
+
+def _olsson_by_hand(angles, GIIc):
+    """F_d = π·sqrt(32·D*·G_IIc/9), D* = sqrt(D11·D22·(A + 1)/2), A = (D12 + 2·D66)/sqrt(D11·D22), with
+    D = Σ Q̄_k·(z_top³ − z_bottom³)/3 written out here for 0° and 90° plies (Q̄ of 90°: 1 and 2 swapped)."""
+    t = PLY.thickness
+    Q = reduced_stiffness(ply_stiffness(PLY))
+    Q90 = Q[[1, 0, 2]][:, [1, 0, 2]]
+    h = t * len(angles)
+    D = np.zeros((3, 3))
+    for k, a in enumerate(angles):  # top ply first
+        top, bottom = h / 2 - k * t, h / 2 - (k + 1) * t
+        D += {0.0: Q, 90.0: Q90}[a] * (top**3 - bottom**3) / 3
+    A = (D[0, 1] + 2 * D[2, 2]) / math.sqrt(D[0, 0] * D[1, 1])
+    D_star = math.sqrt(D[0, 0] * D[1, 1] * (A + 1) / 2)
+    return math.pi * math.sqrt(32 * D_star * GIIc / 9)
+
+
+CROSS_PLY = (90.0, 0.0) * 5 + (0.0, 90.0) * 5  # [90/0]5s, top ply first
+
+
+@pytest.mark.parametrize("target", ["beam", "plate"])
+def test_summary_has_olsson_onset_regime_interfaces_and_verdict(tmp_path, target):
+    """Beam and plate impacts on [90/0]5s T300/934: Olsson's F_d is the closed form with D summed by hand over the
+    plies, peak over F_d is the Davies–Zhang peak over F_d, the interfaces are exactly the 18 between 90° and 0°
+    plies at z = h/2 − k·t (not the 0/0 mid-plane), their maximum is listed, and the verdict and line name the regime."""
+    case = _beam_cases(tmp_path, None) if target == "beam" else _plate_case(tmp_path)
+    r, s = _impact(case, tmp_path / "out")
+    assert r.exit_code == 0, r.output
+    d = s["damage"]
+    assert set(ONSET_KEYS) <= set(d)
+    assert d["olsson_threshold_force_N"] == pytest.approx(_olsson_by_hand(CROSS_PLY, X.GIIc), rel=1e-9)
+    # the same peak (the largest of any contact) against both thresholds
+    assert d["peak_over_olsson"] * d["olsson_threshold_force_N"] == pytest.approx(d["delamination"] * d["threshold_force_N"], rel=1e-12)
+    t, h = PLY.thickness, 20 * PLY.thickness
+    expected = [k for k in range(1, 20) if CROSS_PLY[k - 1] != CROSS_PLY[k]]
+    assert len(d["interfaces"]) == len(expected) == 18
+    for i, k in zip(d["interfaces"], expected):
+        assert i["z_m"] == pytest.approx(h / 2 - k * t, abs=1e-12 * h)
+        assert i["between"].startswith(f"plies {k}/{k + 1} ")
+    assert all(abs(i["z_m"]) > t / 2 for i in d["interfaces"])  # the 0/0 mid-plane is not among them
+    assert d["interface_shear_max_Pa"] == max(i["shear_max_Pa"] for i in d["interfaces"]) > 0
+    assert d["interface_shear_max_Pa"] <= d["interlaminar_shear_max_Pa"]
+    assert d["regime"] in d["verdict"] and f"{d['peak_over_olsson']:.2f}" in d["verdict"]
+    assert ("below delamination onset" in d["verdict"]) == (d["peak_over_olsson"] < 1)
+    assert f"regime {d['regime']}" in r.output and "F_d (Olsson)" in r.output and "verdict:" in r.output
+
+
+def test_one_ply_angle_has_no_interface_between_orientations(tmp_path):
+    """A [0_20] plate: no interface between plies of different orientation, so the list is empty and its maximum 0,
+    while the interlaminar shear of all interfaces (Jourawski's parabola) is not."""
+    r, s = _impact(_plate_case(tmp_path, layup="[0_20]"), tmp_path / "out")
+    assert r.exit_code == 0, r.output
+    assert s["damage"]["interfaces"] == [] and s["damage"]["interface_shear_max_Pa"] == 0.0
+    assert s["damage"]["interlaminar_shear_max_Pa"] > 0
+
+
+@pytest.mark.parametrize(("mass", "regime"), [("5 g", "wave-controlled"), ("40 g", "intermediate"), ("300 g", "quasi-static")])
+def test_regime_spans_the_bounds_with_the_impactor_mass(tmp_path, mass, regime):
+    """Impactors of 5, 40 and 300 g on the 4 × 4 in plate (mass ρ·h·a² by hand = 45.6 g): ratios 0.11, 0.88 and 6.6
+    fall below, between and above the stand-in bounds 0.25 and 2.5, and the summary says so, with the mass by hand."""
+    from softimpact.models.delamination import REGIME_BOUNDS
+
+    r, s = _impact(_plate_case(tmp_path, mass=mass), tmp_path / "out")
+    assert r.exit_code == 0, r.output
+    a = 4 * 0.0254
+    plate_mass = PLY.density * 20 * PLY.thickness * a * a
+    assert s["damage"]["target_mass_kg"] == pytest.approx(plate_mass, rel=1e-12)
+    ratio = float(mass.split()[0]) * 1e-3 / plate_mass
+    assert s["damage"]["impactor_over_target_mass"] == pytest.approx(ratio, rel=1e-12)
+    assert REGIME_BOUNDS == (0.25, 2.5)
+    assert s["damage"]["regime"] == regime
+    assert "not retrieved" in s["damage"]["regime_note"]
+
+
+def test_beam_target_mass_is_its_own(tmp_path):
+    """On the long beam (6 × 1 in, [90/0]5s T300/934) the target's mass is ρ·h·b·L by hand, and the ratio the ball's over it."""
+    from softimpact.models.materials import CATALOGUE
+
+    r, s = _impact(_beam_cases(tmp_path, None), tmp_path / "out")
+    assert r.exit_code == 0, r.output
+    beam_mass = PLY.density * 20 * PLY.thickness * 0.0254 * 6 * 0.0254
+    assert s["damage"]["target_mass_kg"] == pytest.approx(beam_mass, rel=1e-12)
+    assert s["damage"]["impactor_over_target_mass"] == pytest.approx(CATALOGUE["steel"].density * math.pi / 6 * (0.5 * 0.0254) ** 3 / beam_mass, rel=1e-9)
+
+
+def test_an_impact_sweep_carries_olsson_onset(tmp_path):
+    """A velocity sweep of the beam impact outputs Olsson's F_d (the same for both velocities: a property of the
+    laminate) and the peak over it, equal to `softimpact impact` run alone; the ratio grows with the velocity."""
+    import pyarrow.parquet as pq
+
+    case = _beam_cases(tmp_path, None)
+    (tmp_path / "spec.toml").write_text(
+        '[sweep]\ncase = "case.toml"\nmethod = "grid"\noutputs = ["damage.olsson_threshold_force_N", "damage.peak_over_olsson", '
+        '"damage.interface_shear_max_Pa", "damage.impactor_over_target_mass"]\n'
+        '[[sweep.parameter]]\nkey = "impactor.velocity"\nvalues = ["50 in/s", "100 in/s"]\n'
+    )
+    r = CliRunner().invoke(main, ["sweep", str(tmp_path / "spec.toml"), "--out", str(tmp_path / "out"), "--workers", "0", "--no-figures"])
+    assert r.exit_code == 0, r.output
+    t = pq.read_table(tmp_path / "out" / "runs.parquet").to_pydict()
+    fd = t["damage.olsson_threshold_force_N"]
+    assert fd[0] == fd[1] == pytest.approx(_olsson_by_hand(CROSS_PLY, X.GIIc), rel=1e-9)
+    assert t["damage.peak_over_olsson"][1] > t["damage.peak_over_olsson"][0] > 0
+    _, s = _impact(case, tmp_path / "one")  # the case's own velocity, 100 in/s
+    for key in ("peak_over_olsson", "interface_shear_max_Pa", "impactor_over_target_mass"):
+        assert t[f"damage.{key}"][1] == pytest.approx(s["damage"][key], rel=1e-9)

@@ -17,14 +17,20 @@ from . import Outcome, Progress, no_progress
 __all__ = ["impact"]
 
 
-def _damage_words(summary: dict) -> str:
-    """The line's damage part: the largest index and Davies–Zhang's ratio (summary.json's ``damage``): the largest
-    force of any contact over P_c (a later contact can press harder than the first, whose peak is F0)."""
+def _damage_words(summary: dict, force) -> str:
+    """The line's damage part (summary.json's ``damage``): the largest index, Davies–Zhang's ratio (the largest
+    force of any contact over P_c: a later contact can press harder than the first, whose peak is F0), the
+    response regime and Olsson's threshold F_d in the display unit ``force``, then the verdict."""
     d = summary.get("damage")
     if not d:
         return ""
     worst = max(("max_strain", "tsai_wu", "hashin", "interlaminar_index"), key=lambda k: d[k])
-    return f"; damage: {worst.replace('_', ' ')} {d[worst]:.2f}, F_max/P_c (Davies-Zhang) {d['delamination']:.2f}"
+    words = f"; damage: {worst.replace('_', ' ')} {d[worst]:.2f}, F_max/P_c (Davies-Zhang) {d['delamination']:.2f}"
+    if "regime" in d:
+        words += f"; regime {d['regime']}"
+    if "olsson_threshold_force_N" in d:
+        words += f", F_d (Olsson) {d['olsson_threshold_force_N'] * force.factor:.1f} {force.label}"
+    return words + f"; verdict: {d['verdict']}"
 
 
 def impact(*, case: str, figures: bool = True, fields: bool = False, progress: Progress = no_progress) -> Outcome:
@@ -52,6 +58,6 @@ def impact(*, case: str, figures: bool = True, fields: bool = False, progress: P
     )
     line = (
         f"{problem.law_name}: F0 {result.peak_force * fu.factor:.1f} {fu.label} at {result.time_of_peak * tu.factor:.1f} {tu.label}, {T}, "
-        f"{len(result.contacts)} contact(s); peak strains {peaks}{_damage_words(run.summary)} ({model.size} DOF, {steps} steps, {time.perf_counter() - t0:.1f} s)"
+        f"{len(result.contacts)} contact(s); peak strains {peaks}{_damage_words(run.summary, fu)} ({model.size} DOF, {steps} steps, {time.perf_counter() - t0:.1f} s)"
     )
     return Outcome(files, line, inputs, unfinished)

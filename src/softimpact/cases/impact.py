@@ -254,7 +254,7 @@ class ImpactKind:
 
         target = problem.target
         result = group_outputs(result, model.contact_groups())
-        dmg = coupled_damage(target, result).summary() if damage else None
+        dmg = coupled_damage(target, result, impactor_mass=problem.impactor.mass).summary() if damage else None
         note = None if dmg is not None else damage_refusal(target, "target.case: ")
         validity = impact_validity(problem, result, dmg)
         summary = impact_summary(problem, result, validity, dmg, note, target.summary_extras(model, result))

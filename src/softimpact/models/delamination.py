@@ -65,6 +65,8 @@ __all__ = [
     "isotropic_bending_stiffness",
     "response_regime",
     "REGIMES",
+    "REGIME_BOUNDS",
+    "REGIME_BOUNDS_NOTE",
     "OnsetThresholds",
     "onset_thresholds",
     "DCB",
@@ -135,13 +137,26 @@ def onset_thresholds(stack, GIIc: float, *, n_max: int = 3) -> OnsetThresholds:
 
 REGIMES = ("wave-controlled", "intermediate", "quasi-static")
 
+# Olsson's bounds on M_i/M_p were not retrieved (module docstring): these stand-ins are this project's choice,
+# NOT Olsson's. 1/4 is the mass ratio at which the impactor weighs as much as a simply supported plate's
+# fundamental mode at its centre (modal mass ρh·∫∫sin²(πx/a)·sin²(πy/b) dx dy = M_p/4, derived here): a lighter
+# impactor is stopped before the plate's global mode takes up the load (wave-controlled); above ten times that
+# ratio the mode's inertia is under a tenth of the impactor's and the plate responds as a spring (quasi-static).
+REGIME_BOUNDS = (0.25, 2.5)
+REGIME_BOUNDS_NOTE = (
+    "Olsson's mass-ratio bounds not retrieved; stand-in bounds M_i/M_p < 0.25 wave-controlled, > 2.5 quasi-static "
+    "(0.25: impactor mass equal to a simply supported plate's fundamental modal mass M_p/4; 2.5: ten times it), "
+    "this project's choice, not Olsson's"
+)
+
 
 def response_regime(impactor_mass: float, plate_mass: float, *, wave_below: float, quasi_static_above: float) -> str:
     """Olsson's classification of an impact response by the impactor-to-plate mass ratio M_i/M_p: below
     ``wave_below`` "wave-controlled", above ``quasi_static_above`` "quasi-static", else "intermediate".
 
     Olsson's bounds (and his definition of the plate mass) were not retrieved: they are arguments, to be
-    given from the source (module docstring)."""
+    given from the source (module docstring); the damage outputs of an impact use :data:`REGIME_BOUNDS`,
+    this project's stand-ins (:data:`REGIME_BOUNDS_NOTE`)."""
     lo, hi = _positive("wave_below", wave_below), _positive("quasi_static_above", quasi_static_above)
     if not lo < hi:
         raise InputError(f"wave_below must be below quasi_static_above, got {lo!r} and {hi!r}", "wave_below")

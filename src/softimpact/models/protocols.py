@@ -169,7 +169,8 @@ class Target(Protocol):
       ``refine(factor)`` the same target with mesh and time step refined; ``elements`` its mesh (a list);
       ``for_impact(solver, gauges)`` the target of a coupled run (force history dropped);
     - ``stack`` its laminate (or None), ``material`` its isotropic material (or None), ``thickness`` [m],
-      ``laminate_key`` where a case gives the laminate's ply;
+      ``mass`` [kg] of the whole structure (a half or quarter model's mirrored parts included), ``laminate_key``
+      where a case gives the laminate's ply;
     - damage: ``has_damage_outputs`` (a layup with strengths), ``damage_points()`` where the indices are
       read ("at_load", "at_<gauge>"), ``damage_gauges()`` the ``"damage"`` output group, ``damage_faces(gauges, damage)`` each damage point's (top, bottom) face strains,
       ``damage_section`` (plane, width) of a beam section or (None, None);
@@ -206,6 +207,9 @@ class Target(Protocol):
 
     @property
     def thickness(self) -> float: ...
+
+    @property
+    def mass(self) -> float: ...
 
     @property
     def has_damage_outputs(self) -> bool: ...

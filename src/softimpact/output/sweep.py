@@ -49,7 +49,7 @@ def parquet_bytes(cols: dict) -> bytes:
 def threshold_csv(th: list[dict]) -> str:
     """Threshold rows (:func:`softimpact.workflows.sweep_stats.thresholds`, or a threshold map's rows,
     :meth:`softimpact.studies.thresholds.MapRow.as_dict`) as CSV text."""
-    return csv_text({k: np.array([t[k] for t in th], dtype=object if k in ("levels", "index", "structure") else float) for k in th[0]})
+    return csv_text({k: np.array([t[k] for t in th], dtype=object if k in ("levels", "index", "structure", "regime") else float) for k in th[0]})
 
 
 def sweep_files(cols: dict, summary: dict, th: list[dict], figures: bool, system: str = "in-lbf-s") -> dict:

@@ -10,7 +10,14 @@ geometric scan): I(V*) = 1, with I
 - Tsai–Wu at the load point (the largest 1/R over both faces of every ply and the run,
   :func:`softimpact.workflows.damage.point_damage`), or
 - Davies–Zhang delamination, the coupled peak force over the laminate's threshold force
-  P_c = π·sqrt(8·E·h³·G_IIc/(9(1−ν²))) (:func:`softimpact.workflows.damage.delamination_force`).
+  P_c = π·sqrt(8·E·h³·G_IIc/(9(1−ν²))) (:func:`softimpact.workflows.damage.delamination_force`), or
+- Olsson's onset (:data:`ONSET`, the onset map), the coupled peak force over Olsson's quasi-static threshold
+  F_d = π·sqrt(32·D*·G_IIc/9) from the laminate's bending stiffnesses (:func:`softimpact.workflows.damage.olsson_force`).
+
+Each row states its validity: the impactor-to-target mass ratio at its diameter and the response regime it
+falls in (:func:`softimpact.models.delamination.response_regime` with the stand-in bounds
+:data:`~softimpact.models.delamination.REGIME_BOUNDS`; Olsson's were not retrieved): Olsson's F_d is a
+quasi-static threshold, to be read as such only in the "quasi-static" rows.
 
 The impactor is a ball of the identified law's projectile: mass m = ρ·π·d³/6 (the law's tests'
 density), diameter d; the law is :meth:`IdentifiedLaw.law(m, d, V)` of each velocity (its
@@ -22,9 +29,9 @@ Bands (:func:`threshold_map`) combine three sources, stated in each row:
     hypercube, fixed seed) from the law's covariance (its 95 % half-widths /1.96 on the diagonal
     when it has none), as a sweep's ``contact.parameters`` draws are
     (:class:`softimpact.input.sweep_spec.LawDraw`);
-(b) material scatter: every strength of the ply (and √G_IIc, hence P_c) scaled by a common factor
+(b) material scatter: every strength of the ply (and √G_IIc, hence P_c and F_d) scaled by a common factor
     s ~ N(1, ``strength_cov``²). Tsai–Wu's 1/R is homogeneous of degree −1 in a common strength
-    factor (F_i ∝ 1/S, F_ij ∝ 1/S²), the delamination index F/P_c too, so I(V; s) = I(V; 1)/s and
+    factor (F_i ∝ 1/S, F_ij ∝ 1/S²), the delamination indices F/P_c and F/F_d too, so I(V; s) = I(V; 1)/s and
     V*(s) solves I(V; 1) = s: with the local power I ∝ V^β at V* (β from two runs at V*·(1 ± 2 %)),
     V*(s) = V*·s^(1/β);
 (c) the discretisation error: the map is computed on the finer of two meshes (element counts
@@ -48,14 +55,27 @@ import numpy as np
 from ..errors import InputError
 from ..fem.contact import group_outputs
 from ..fem.newmark import SolverSpec
+from ..models.delamination import REGIME_BOUNDS, response_regime
 from ..models.materials import Material
 from ..models.specimens import Impactor
 from ..workflows.coupled import ImpactProblem, impact_kernels, run_impact
-from ..workflows.damage import coupled_damage, delamination_force
+from ..workflows.damage import coupled_damage, delamination_force, olsson_force
 
-__all__ = ["INDICES", "ThresholdStructure", "MapRow", "structure", "damage_index", "threshold_velocity", "threshold_map", "law_draws", "gci_two_meshes"]
+__all__ = [
+    "INDICES",
+    "ONSET",
+    "ThresholdStructure",
+    "MapRow",
+    "structure",
+    "damage_index",
+    "threshold_velocity",
+    "threshold_map",
+    "law_draws",
+    "gci_two_meshes",
+]
 
-INDICES = ("tsai_wu", "delamination")  # the damage indices thresholded
+INDICES = ("tsai_wu", "delamination")  # the damage indices thresholded by default
+ONSET = "olsson"  # the onset map's index: peak force over Olsson's F_d
 
 
 @dataclass(frozen=True)
@@ -82,6 +102,8 @@ class MapRow:
     coarse: float
     draws: int
     reached: int
+    mass_ratio: float = math.nan  # the impactor's mass over the target's (the row's validity)
+    regime: str = ""  # its response regime (module docstring)
 
     def as_dict(self) -> dict:
         return {
@@ -100,6 +122,8 @@ class MapRow:
             "threshold_velocity_coarse_mesh_m_s": self.coarse,
             "draws": self.draws,
             "draws_reaching_1": self.reached,
+            "impactor_over_target_mass": self.mass_ratio,
+            "regime": self.regime,
         }
 
 
@@ -139,13 +163,15 @@ def structure(name: str, target, widest: float, density: float, time_step: float
 
 
 def damage_index(problem: ImpactProblem, result, index: str, scale: float = 1.0) -> float:
-    """The damage ``index`` of a coupled run (:data:`INDICES`; ``result`` with its ``"damage"`` output group):
-    Tsai–Wu at the load point or the Davies–Zhang delamination index (peak force / P_c); ``scale``
-    multiplies every strength (and P_c): the index is divided by it (homogeneous of degree −1)."""
+    """The damage ``index`` of a coupled run (:data:`INDICES` or :data:`ONSET`; ``result`` with its ``"damage"``
+    output group): Tsai–Wu at the load point, the Davies–Zhang delamination index (peak force / P_c) or Olsson's
+    onset (peak force / F_d); ``scale`` multiplies every strength (and P_c, F_d): the index is divided by it
+    (homogeneous of degree −1)."""
     stack = problem.target.stack
-    if index == "delamination":
+    if index in ("delamination", ONSET):
         peak = max(c.peak_force for c in result.contacts)
-        return peak / delamination_force(stack, stack.ply.strength.GIIc) / scale
+        threshold = delamination_force if index == "delamination" else olsson_force
+        return peak / threshold(stack, stack.ply.strength.GIIc) / scale
     return coupled_damage(problem.target, result, ("at_load",)).points["at_load"].peak[index] / scale
 
 
@@ -272,8 +298,9 @@ def threshold_map(
     indices=INDICES,
     seed: int = 1,
 ) -> list[MapRow]:
-    """The threshold map of structure ``s`` (module docstring): one :class:`MapRow` per index and
-    diameter [m], velocity range [``lo``, ``hi``] m/s; ``coarse``: the same structure on the mesh
+    """The threshold map of structure ``s`` (module docstring): one :class:`MapRow` per index (``indices``: of
+    :data:`INDICES` and :data:`ONSET`; ``(ONSET,)`` the onset map) and diameter [m], with its regime, velocity range
+    [``lo``, ``hi``] m/s; ``coarse``: the same structure on the mesh
     (and step) coarser by 2, for the discretisation error (None: no estimate, ``gci`` NaN)."""
     from scipy.stats import norm
 
@@ -303,5 +330,7 @@ def threshold_map(
                 law_lo, law_hi = (float(x) for x in np.percentile(ok, [5, 95]))
             else:
                 p05 = p95 = med = law_lo = law_hi = math.nan
-            rows.append(MapRow(s.name, index, d, mass, nominal, med, p05, p95, law_lo, law_hi, beta, gci, coarse_v, len(vs), int(ok.size)))
+            ratio = mass / s.problem.target.mass
+            regime = response_regime(mass, s.problem.target.mass, wave_below=REGIME_BOUNDS[0], quasi_static_above=REGIME_BOUNDS[1])
+            rows.append(MapRow(s.name, index, d, mass, nominal, med, p05, p95, law_lo, law_hi, beta, gci, coarse_v, len(vs), int(ok.size), ratio, regime))
     return rows

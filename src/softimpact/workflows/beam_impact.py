@@ -173,6 +173,11 @@ class BeamProblem:
         return self.beam.thickness
 
     @property
+    def mass(self) -> float:
+        """The beam's mass [kg]: density × thickness × width × free length."""
+        return self.beam.density * self.beam.thickness * self.beam.width * self.beam.length
+
+    @property
     def elements(self) -> list[int]:
         """The mesh: [along, through the thickness]."""
         return [self.beam.nx, self.beam.nz]

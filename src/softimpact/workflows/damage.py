@@ -14,6 +14,13 @@ On a plate (:func:`plate_damage`) a point's in-plane strain tensor (ε_x, ε_y,
 γ_xy = 2ε_45 − ε_x − ε_y); the two faces give the mid-plane strains and
 curvatures, and the indices are taken at both faces of every ply
 (:func:`ply_faces`).
+
+Delamination onset of a coupled impact (:func:`impact_damage`): Olsson's quasi-static threshold F_d from the
+laminate's bending stiffnesses D and the ply's G_IIc (:func:`softimpact.models.delamination.onset_thresholds`)
+against the peak force, the response regime by the impactor-to-target mass ratio
+(:func:`softimpact.models.delamination.response_regime`, with the stand-in bounds
+:data:`~softimpact.models.delamination.REGIME_BOUNDS`: Olsson's were not retrieved), the interlaminar shear at
+each interface between plies of different orientation, and a one-line verdict.
 """
 
 from __future__ import annotations
@@ -24,6 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
+from ..models.delamination import REGIME_BOUNDS, REGIME_BOUNDS_NOTE, onset_thresholds, response_regime
 from ..models.failure import CRITERIA, PlyStrength, davies_zhang_force, failure_indices, interlaminar_shear, ply_stresses
 from ..models.laminate import abd, engineering_constants
 
@@ -36,6 +44,10 @@ __all__ = [
     "beam_damage",
     "plate_damage",
     "delamination_force",
+    "olsson_force",
+    "Interface",
+    "Onset",
+    "onset",
     "damage_unavailable",
     "damage_refusal",
     "PointDamage",
@@ -186,6 +198,60 @@ def delamination_force(stack, GIIc: float) -> float:
     return davies_zhang_force(ec["E1"], ec["nu12"], stack.thickness, GIIc)
 
 
+@functools.lru_cache(maxsize=64)  # as delamination_force: a sweep asks again for every run
+def olsson_force(stack, GIIc: float) -> float:
+    """Olsson's quasi-static delamination threshold F_d [N] of a layup from its bending stiffnesses D
+    (:func:`softimpact.models.delamination.onset_thresholds`: D* then π·sqrt(32·D*·G_IIc/9))."""
+    return onset_thresholds(stack, GIIc).olsson
+
+
+@dataclass(frozen=True)
+class Interface:
+    """The largest interlaminar shear [Pa] over the run at the interface between plies ``upper`` and ``lower``
+    (1 = the top ply) of fibre angles ``angles`` [°], at ``z`` [m] from the mid-plane."""
+
+    upper: int
+    lower: int
+    angles: tuple[float, float]
+    z: float
+    shear_max: float
+
+    def summary(self) -> dict:
+        """summary.json's entry: {between, z_m, shear_max_Pa}."""
+        a, b = (f"{x:g}" for x in self.angles)
+        return {"between": f"plies {self.upper}/{self.lower} ({a}/{b})", "z_m": self.z, "shear_max_Pa": self.shear_max}
+
+
+@dataclass(frozen=True)
+class Onset:
+    """Delamination onset of an impact: Olsson's threshold ``threshold_force`` F_d [N] against ``peak_force`` [N],
+    and the response ``regime`` by ``mass_ratio`` M_i/M_p of the impactor's mass to the target's ``target_mass``
+    [kg] (None without the impactor's mass), with the bounds used and their standing (``regime_note``)."""
+
+    threshold_force: float
+    peak_force: float
+    regime: str | None = None
+    mass_ratio: float | None = None
+    target_mass: float | None = None
+    regime_note: str = REGIME_BOUNDS_NOTE
+
+    @property
+    def ratio(self) -> float:
+        """Peak force over Olsson's F_d: delamination onset at 1."""
+        return self.peak_force / self.threshold_force
+
+
+def onset(stack, GIIc: float, peak_force: float, impactor_mass: float | None = None, target_mass: float | None = None) -> Onset:
+    """:class:`Onset` of an impact of ``peak_force`` [N] on ``stack``; the regime when both masses [kg] are given
+    (:func:`~softimpact.models.delamination.response_regime` with :data:`~softimpact.models.delamination.REGIME_BOUNDS`)."""
+    regime = ratio = None
+    if impactor_mass is not None and target_mass is not None:
+        lo, hi = REGIME_BOUNDS
+        regime = response_regime(impactor_mass, target_mass, wave_below=lo, quasi_static_above=hi)
+        ratio = impactor_mass / target_mass
+    return Onset(olsson_force(stack, GIIc), float(peak_force), regime, ratio, target_mass)
+
+
 @dataclass(frozen=True)
 class PointDamage:
     """Peak indices at one point (load point or gauge) over both faces of every ply and the run:
@@ -210,9 +276,32 @@ class ImpactDamage:
     interlaminar_shear_max: float
     interlaminar_index_max: float
     interlaminar_z: float
+    onset: Onset | None = None
+    interfaces: tuple[Interface, ...] = ()  # between plies of different orientation, top first
+
+    def first_ply_failure(self) -> tuple[str, float]:
+        """The criterion with the largest first-ply failure index over the points, and that index."""
+        worst = {c: max(p.peak[c] for p in self.points.values()) for c in CRITERIA}
+        c = max(CRITERIA, key=worst.__getitem__)
+        return c, worst[c]
+
+    def verdict(self) -> str:
+        """One line: the response regime, onset (peak force over Olsson's F_d) and the first-ply failure index."""
+        c, fpf = self.first_ply_failure()
+        parts = []
+        if self.onset is not None:
+            o = self.onset
+            if o.regime is not None:
+                parts.append(f"{o.regime} response (M_i/M_p {o.mass_ratio:.3g})")
+            caveat = "" if o.regime in (None, "quasi-static") else ", a quasi-static threshold outside its regime"
+            onset_word = "delamination onset reached" if o.ratio >= 1 else "below delamination onset"
+            parts.append(f"{onset_word}: F_max/F_d (Olsson) {o.ratio:.2f}{caveat}")
+        parts.append(f"first-ply failure {'reached' if fpf >= 1 else 'not reached'}: {c.replace('_', ' ')} {fpf:.2f}")
+        return "; ".join(parts)
 
     def summary(self) -> dict:
-        """summary.json's ``damage``: the worst over the points per criterion, then each point, SI."""
+        """summary.json's ``damage``: the worst over the points per criterion, delamination onset (Davies–Zhang,
+        Olsson, the regime, the interfaces' shear) and the verdict, then each point, SI."""
         out = {c: max(p.peak[c] for p in self.points.values()) for c in CRITERIA}
         out.update(
             delamination=self.peak_force / self.threshold_force,
@@ -221,6 +310,14 @@ class ImpactDamage:
             interlaminar_index=self.interlaminar_index_max,
             interlaminar_interface_z_m=self.interlaminar_z,
         )
+        if self.onset is not None:
+            o = self.onset
+            out.update(olsson_threshold_force_N=o.threshold_force, peak_over_olsson=o.ratio)
+            if o.regime is not None:
+                out.update(regime=o.regime, impactor_over_target_mass=o.mass_ratio, target_mass_kg=o.target_mass, regime_note=o.regime_note)
+        out["interfaces"] = [i.summary() for i in self.interfaces]
+        out["interface_shear_max_Pa"] = max((i.shear_max for i in self.interfaces), default=0.0)
+        out["verdict"] = self.verdict()
         for name, p in self.points.items():
             out[name] = {**p.peak, "worst_ply": {c: {"ply": p.ply[c], "face": p.face[c]} for c in CRITERIA}}
         return out
@@ -244,21 +341,33 @@ RADIAL_DIRECTIONS = (0.0, 45.0, 90.0, 135.0)
 
 
 def impact_damage(
-    stack, strength: PlyStrength, points: dict, force: np.ndarray, contact_radius: np.ndarray, width: float | None, peak_force: float | None = None
+    stack,
+    strength: PlyStrength,
+    points: dict,
+    force: np.ndarray,
+    contact_radius: np.ndarray,
+    width: float | None,
+    peak_force: float | None = None,
+    *,
+    impactor_mass: float | None = None,
+    target_mass: float | None = None,
 ) -> ImpactDamage:
     """Damage of a coupled impact.
 
     ``points``: name → (mid-plane strains, curvatures), each (3, n_t) (:func:`section_strains`
     for a beam section, the faces' mean and difference over h on a plate); ``force`` (n_t,) [N];
     ``contact_radius`` (n_t,) [m]; ``width`` [m] of a beam, None on a plate; ``peak_force`` [N] the
-    peak set against the Davies–Zhang threshold (default the largest sample of ``force``).
+    peak set against the Davies–Zhang and Olsson thresholds (default the largest sample of ``force``);
+    ``impactor_mass`` and ``target_mass`` [kg] give the response regime (:func:`onset`).
 
     Interlaminar shear under the load (:func:`softimpact.models.failure.interlaminar_shear`) from
     the transverse shear resultant beside the load: on a beam q = F/(2b), the load shared by the
     two sides (the impact regime: flexural waves leave both ways; a load at an end sends all of F
     one way); on a plate q = F/(2π·a) at the edge of the contact disc of radius a (axisymmetric
     equilibrium), a no less than h/2 (Saint-Venant: the shear spreads over about the thickness),
-    taken along :data:`RADIAL_DIRECTIONS`.
+    taken along :data:`RADIAL_DIRECTIONS`. Per interface the largest shear over those directions; the
+    ``interfaces`` kept are those between plies of different fibre angle, where delaminations run (the
+    largest shear of all, at the mid-plane of a symmetric layup, often lies between two plies of one angle).
     """
     force = np.asarray(force, float)
     out = {name: point_damage(stack, strength, e0, k) for name, (e0, k) in points.items()}
@@ -268,14 +377,33 @@ def impact_damage(
         a = np.maximum(np.asarray(contact_radius, float), stack.thickness / 2)
         q, dirs = float(np.max(np.abs(force) / (2 * np.pi * a))), RADIAL_DIRECTIONS
     best = (0.0, 0.0, 0.0)
+    per_interface = np.zeros(len(stack.angles) - 1)
+    z = np.zeros_like(per_interface)
     for d in dirs:
         ils = interlaminar_shear(stack.ply, stack.angles, strength, d)
         if ils.z.size == 0:
             continue
         tau = np.hypot(ils.tau_xz, ils.tau_yz) * q
+        per_interface, z = np.maximum(per_interface, tau), ils.z
         j = int(np.argmax(ils.index))
         best = max(best, (float(ils.index[j] * q), float(tau.max()), float(ils.z[j])))
-    return ImpactDamage(out, delamination_force(stack, strength.GIIc), float(np.max(force) if peak_force is None else peak_force), best[1], best[0], best[2])
+    angles = stack.angles
+    interfaces = tuple(
+        Interface(i + 1, i + 2, (float(angles[i]), float(angles[i + 1])), float(z[i]), float(per_interface[i]))
+        for i in range(len(angles) - 1)
+        if angles[i] != angles[i + 1]
+    )
+    peak = float(np.max(force) if peak_force is None else peak_force)
+    return ImpactDamage(
+        out,
+        delamination_force(stack, strength.GIIc),
+        peak,
+        best[1],
+        best[0],
+        best[2],
+        onset(stack, strength.GIIc, peak, impactor_mass, target_mass),
+        interfaces,
+    )
 
 
 def face_points(stack, faces: dict, plane: str | None) -> dict:
@@ -293,11 +421,12 @@ def face_points(stack, faces: dict, plane: str | None) -> dict:
     return out
 
 
-def coupled_damage(target, result, points: tuple[str, ...] | None = None) -> ImpactDamage:
+def coupled_damage(target, result, points: tuple[str, ...] | None = None, *, impactor_mass: float | None = None) -> ImpactDamage:
     """Damage of a coupled impact (:func:`impact_damage`) on ``target`` (a :class:`~softimpact.models.protocols.Target`
     whose laminate has strengths) from ``result`` (a CoupledResult with its ``"damage"`` output group): first-ply
-    failure at the target's damage points (``points``: only these, e.g. ("at_load",)), Davies–Zhang against the
-    largest refined peak of every contact, interlaminar shear under the load."""
+    failure at the target's damage points (``points``: only these, e.g. ("at_load",)), Davies–Zhang and Olsson
+    against the largest refined peak of every contact, interlaminar shear under the load, and with
+    ``impactor_mass`` [kg] the response regime (against the target's ``mass``)."""
     names, rows = result.groups["damage"]
     faces = target.damage_faces(result.strain, dict(zip(names, rows)))
     if points is not None:
@@ -305,4 +434,15 @@ def coupled_damage(target, result, points: tuple[str, ...] | None = None) -> Imp
     plane, width = target.damage_section
     stack = target.stack
     peak = max(c.peak_force for c in result.contacts)  # every contact's refined peak (parabola through the top samples)
-    return impact_damage(stack, stack.ply.strength, face_points(stack, faces, plane), result.force, result.contact_radius, width, peak)
+    target_mass = target.mass if impactor_mass is not None else None
+    return impact_damage(
+        stack,
+        stack.ply.strength,
+        face_points(stack, faces, plane),
+        result.force,
+        result.contact_radius,
+        width,
+        peak,
+        impactor_mass=impactor_mass,
+        target_mass=target_mass,
+    )

@@ -207,6 +207,12 @@ class PlateProblem:
         return self.plate.stack.thickness
 
     @property
+    def mass(self) -> float:
+        """The whole plate's mass [kg]: areal density × area, doubled about each symmetry edge (a half or quarter model)."""
+        stack, mirrors = self.plate.stack, sum(s == "symmetry" for s in self.plate.supports)
+        return stack.ply.density * stack.thickness * self.plate.length_x * self.plate.length_y * 2**mirrors
+
+    @property
     def elements(self) -> list[int]:
         """The mesh: [along x, along y]."""
         return list(self.plate.elements)

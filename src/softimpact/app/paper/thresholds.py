@@ -19,7 +19,15 @@ from ... import units
 from ...cases.sweep import plan_sweep, plan_thresholds, prepare_group, run_chunk, run_table
 from ...units import INCH
 
-__all__ = ["threshold_section", "paper_thresholds", "paper_plate_thresholds", "paper_plate_case", "paper_identification", "paper_threshold_maps"]
+__all__ = [
+    "threshold_section",
+    "paper_thresholds",
+    "paper_plate_thresholds",
+    "paper_plate_case",
+    "paper_identification",
+    "paper_threshold_maps",
+    "paper_onset_map",
+]
 
 
 PAPER_BEAMS = ("paper-long-beam", "paper-short-beam")
@@ -159,18 +167,32 @@ def _map_structures(name: str, law):
     return out[1], out[0]
 
 
-def paper_threshold_maps(draws: int = MAP_DRAWS) -> list[dict]:
-    """Threshold maps of the long beam, the short beam and the 8-in plate from coupled impact with the
-    identified law (:func:`softimpact.studies.thresholds.threshold_map`): rows as dicts (SI)."""
-    from ...studies.thresholds import threshold_map
+@functools.lru_cache(maxsize=1)
+def _paper_maps(draws: int) -> tuple[tuple[dict, ...], tuple[dict, ...]]:
+    """(threshold maps, onset map) rows of the three structures, on one build of each structure's kernels."""
+    from ...studies.thresholds import INDICES, ONSET, threshold_map
 
     law = paper_identification()[2]
     lo, hi = (v * INCH for v in MAP_RANGE_IN_S)
-    rows = []
+    diameters = [d * INCH for d in MAP_DIAMETERS_IN]
+    maps, onset = [], []
     for name in (*PAPER_BEAMS, PAPER_PLATE):
         fine, coarse = _map_structures(name, law)
-        rows += [r.as_dict() for r in threshold_map(fine, law, [d * INCH for d in MAP_DIAMETERS_IN], lo, hi, draws, MAP_STRENGTH_COV, coarse=coarse)]
-    return rows
+        maps += [r.as_dict() for r in threshold_map(fine, law, diameters, lo, hi, draws, MAP_STRENGTH_COV, coarse=coarse, indices=INDICES)]
+        onset += [r.as_dict() for r in threshold_map(fine, law, diameters, lo, hi, draws, MAP_STRENGTH_COV, coarse=coarse, indices=(ONSET,))]
+    return tuple(maps), tuple(onset)
+
+
+def paper_threshold_maps(draws: int = MAP_DRAWS) -> list[dict]:
+    """Threshold maps of the long beam, the short beam and the 8-in plate from coupled impact with the
+    identified law (:func:`softimpact.studies.thresholds.threshold_map`): rows as dicts (SI)."""
+    return [dict(r) for r in _paper_maps(draws)[0]]
+
+
+def paper_onset_map(draws: int = MAP_DRAWS) -> list[dict]:
+    """The onset map of the same structures and balls: the velocity at which the coupled peak force reaches Olsson's
+    quasi-static threshold F_d (:data:`softimpact.studies.thresholds.ONSET`), each row with its regime: rows as dicts (SI)."""
+    return [dict(r) for r in _paper_maps(draws)[1]]
 
 
 @functools.lru_cache(maxsize=1)
@@ -303,8 +325,9 @@ def threshold_section(figures: bool, files: dict, prefix: str = "thresholds/"):
     system = "in-lbf-s"
     vu = display(system, "velocity")
     beams, plate = paper_thresholds(), paper_plate_thresholds()
-    maps = paper_threshold_maps()
+    maps, onset = paper_threshold_maps(), paper_onset_map()
     figs = _threshold_files(beams, plate, maps, figures, files, prefix, system)
+    figs += _onset_files(onset, figures, files, prefix, system)
     plate_h = f"{PAPER_PLATE_MESHES[-1]} × {PAPER_PLATE_MESHES[-1]}"
     plate_err = _plate_error_text(plate)
     th = beams + plate
@@ -312,9 +335,11 @@ def threshold_section(figures: bool, files: dict, prefix: str = "thresholds/"):
     indices = list(dict.fromkeys(t["index"] for t in th))
     rows = [[lab] + [_threshold_cell(next(t for t in th if t["levels"] == lab and t["index"] == i), vu) for i in indices] for lab in labels]
     map_table, map_text = _map_table(maps, vu)
+    onset_table, onset_text = _onset_table(onset, vu)
     return Section(
         "Damage thresholds of the paper's beams and of a plate",
         map_text
+        + onset_text
         + [
             "Velocity at which each damage index first reaches 1 (first-ply failure by maximum strain, Tsai-Wu and Hashin; "
             "Davies-Zhang delamination force against the peak force), for the two rubber balls under the empirical "
@@ -334,9 +359,65 @@ def threshold_section(figures: bool, files: dict, prefix: str = "thresholds/"):
             "error of the paper's meshes, history by history'; the threshold pulses are shorter still and not studied "
             "there); their bands are the α draws' only.",
         ],
-        [map_table, (f"Prescribed force (carried-over Table I law): threshold velocity [{vu.label}], median [5-95 %]", ["structure, ball"] + indices, rows)],
+        [
+            map_table,
+            onset_table,
+            (f"Prescribed force (carried-over Table I law): threshold velocity [{vu.label}], median [5-95 %]", ["structure, ball"] + indices, rows),
+        ],
         figs,
     )
+
+
+def _onset_files(onset: list[dict], figures: bool, files: dict, prefix: str, system: str) -> list[tuple[str, str]]:
+    """The onset map written into ``files`` (onset-map.csv, and onset-map.png with ``figures``); returns the figure's (path, caption)."""
+    from ...output.files import figure_bytes
+    from ...output.sweep import threshold_csv, threshold_map_figure
+
+    files[f"{prefix}onset-map.csv"] = threshold_csv(onset)
+    if not figures:
+        return []
+    title = "Delamination-onset velocity (peak force = Olsson's F_d) against the rubber ball's diameter: coupled impact, identified law"
+    files[f"{prefix}onset-map.png"] = figure_bytes(threshold_map_figure(onset, [], system, title))
+    return [
+        (
+            f"{prefix}onset-map.png",
+            "Onset map: velocity at which the coupled peak force reaches Olsson's quasi-static threshold F_d, per structure, against the "
+            "ball's diameter: median over the identified law's draws and 5-95 % band (as the threshold maps); each row's regime in onset-map.csv",
+        )
+    ]
+
+
+def _onset_table(onset: list[dict], vu) -> tuple[tuple, list[str]]:
+    """The onset map as a table (structure × diameter, each cell with its regime) and its paragraph."""
+    from ...models.delamination import REGIME_BOUNDS_NOTE
+
+    diameters = sorted({r["diameter_m"] for r in onset})
+    names = list(dict.fromkeys(r["structure"] for r in onset))
+
+    def cell(r):
+        ratio = f"{r['regime']}, M_i/M_p {r['impactor_over_target_mass']:.2g}"
+        if not r["draws_reaching_1"]:
+            return f"above {MAP_RANGE_IN_S[1]:.0f} ({ratio})"
+        m, lo, hi = (r[f"threshold_velocity_{q}_m_s"] * vu.factor for q in ("median", "p05", "p95"))
+        return f"{m:.0f} [{lo:.0f}-{hi:.0f}] ({ratio})"
+
+    rows = [[n] + [cell(next(r for r in onset if (r["structure"], r["diameter_m"]) == (n, d))) for d in diameters] for n in names]
+    table = (
+        f"Onset map (coupled impact, identified law): velocity [{vu.label}] at which the peak force reaches Olsson's F_d, median [5-95 %], "
+        "with the row's response regime",
+        ["structure"] + [f"d = {d / INCH:.3g} in" for d in diameters],
+        rows,
+    )
+    quasi = sum(r["regime"] == "quasi-static" for r in onset)
+    text = [
+        "Onset map (issue 30): the same structures, balls, law draws, strength scatter and meshes, with the index the coupled peak force "
+        "over Olsson's quasi-static delamination threshold F_d = π·sqrt(32·D*·G_IIc/9), D* from the laminate's bending stiffnesses "
+        "(docs/delamination.md; the formula as issue 30 gives it, its source not retrieved). Each row states its validity: the ball's mass "
+        f"over the structure's (the whole plate's) and the response regime it falls in. {REGIME_BOUNDS_NOTE}. F_d is a quasi-static "
+        f"threshold: {quasi} of the {len(onset)} rows are in the quasi-static regime; elsewhere the map gives the velocity at which the "
+        "peak force reaches F_d, not a validated onset (Olsson's dynamic threshold for small-mass impact was not retrieved).",
+    ]
+    return table, text
 
 
 def _prescribed_points(th: list[dict]) -> list[dict]:
