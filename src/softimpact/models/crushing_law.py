@@ -191,6 +191,14 @@ class CrushingLaw(SphereFlowLaw):
             raise InputError(f"material {record.name!r} has no crushing strength: the crushing law is for ice", "material")
         return cls(mass, diameter, record.strength)
 
+    def validity(self, velocity: float):
+        """The strength law's envelope at the impact ``velocity`` [m/s]: the crush's strain rate V/d against the
+        rates it was measured on (:func:`~softimpact.models.validity.ice_strength_validity`); nothing to check
+        in the fragment-flow limit (no strength)."""
+        from .validity import Validity, ice_strength_validity
+
+        return Validity({}) if self.strength is None else ice_strength_validity(self.diameter, velocity, self.strength)
+
     def pressure_terms(self, s: float, rate: float) -> tuple[float, float, float]:
         """p = σ_c(ṡ/d) + ρ·ṡ², ∂p/∂s = 0, ∂p/∂ṡ = σ_c'/d + 2ρṡ (ṡ > 0)."""
         if rate <= 0.0:
