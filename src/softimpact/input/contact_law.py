@@ -22,7 +22,7 @@ from pathlib import Path
 
 from ..errors import InputError
 from ..formats.law_json import read_law
-from ..models.contact_laws import CONTACT_LAWS, HertzLaw, HuntCrossleyLaw, YangSunLaw
+from ..models.contact_laws import CONTACT_LAWS, MATERIAL_LAWS, HertzLaw, HuntCrossleyLaw, YangSunLaw
 from ..models.materials import Material
 from ..models.projectiles import LinearHugoniot, PowerLawStrength, projectile_material
 from .toml import Table
@@ -47,7 +47,7 @@ def read_contact_law(
     """The law ``name`` of table ``c`` for an impactor (mass [kg], diameter [m], velocity [m/s], ``material``
     the projectile's, read from the key ``where``); ``hertz()`` gives the pair's Hertz law. Returns (law, the
     law file read or None)."""
-    if name in ("crushing", "hydrodynamic"):
+    if name in MATERIAL_LAWS:
         return _flow_law(c, name, material, mass, diameter, velocity, where), None
     if name == "identified":
         file = c.string("law_file")

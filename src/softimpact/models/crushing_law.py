@@ -42,7 +42,7 @@ from dataclasses import dataclass
 from ..errors import InputError
 from .projectiles import PowerLawStrength, projectile_material
 
-__all__ = ["SphereFlowLaw", "CrushingLaw", "sphere_crush_depth", "crushed_area", "centre_of_mass_advance"]
+__all__ = ["SphereFlowLaw", "CrushingLaw", "sphere_crush_depth", "crushed_area", "centre_of_mass_advance", "rigid_target_pulse"]
 
 DEPTH_TOL = 1e-14  # relative tolerance on u = s/d in the inversion of X(s)
 CONSUMED = 1.0 - 1e-9  # u beyond which the sphere is all crushed: no section, no force
@@ -206,3 +206,37 @@ class CrushingLaw(SphereFlowLaw):
         rho, d = self.density, self.diameter
         sigma, dsigma = self.strength(rate / d) if self.strength is not None else (0.0, 0.0)
         return sigma + rho * rate * rate, 0.0, dsigma / d + 2.0 * rho * rate
+
+
+def rigid_target_pulse(law: SphereFlowLaw, mass: float, velocity: float, samples: int = 801):
+    """The force history [N] of a sphere (``law``, e.g. :class:`CrushingLaw`; ``mass`` [kg] striking at
+    ``velocity`` [m/s]) on a rigid target: m·α̈ = −F(α, α̇), α(0) = 0, α̇(0) = V, integrated (scipy's LSODA, a
+    step of at most d/V/1000) until the sphere stops or is consumed (α = d/2), and sampled at ``samples``
+    instants as a :class:`~softimpact.models.pulses.TabulatedPulse`. On a rigid target this is the soft-missile
+    solution of the law (module docstring); its impulse is m·(V − the velocity left when consumed)."""
+    import numpy as np
+    from scipy.integrate import solve_ivp
+
+    from .pulses import TabulatedPulse
+
+    d = law.diameter
+    T = d / velocity
+
+    def rhs(t, y):
+        return [y[1], -law.force(y[0], y[1]) / mass]
+
+    def stopped(t, y):
+        return y[1] - 1e-9 * velocity
+
+    def consumed(t, y):
+        return y[0] - 0.5 * d * CONSUMED
+
+    stopped.terminal = consumed.terminal = True
+    sol = solve_ivp(
+        rhs, (0.0, 5.0 * T), [0.0, velocity], method="LSODA", events=[stopped, consumed], rtol=1e-9, atol=1e-12 * d, max_step=T / 1000, dense_output=True
+    )
+    t = np.linspace(0.0, sol.t[-1], samples)
+    alpha, rate = sol.sol(t)
+    force = np.array([law.force(a, r) for a, r in zip(alpha, rate)])
+    force[-1] = 0.0  # stopped or consumed: the force ends with the contact
+    return TabulatedPulse(t, force)

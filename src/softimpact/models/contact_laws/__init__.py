@@ -107,6 +107,7 @@ from .yang_sun import YangSunBranch, YangSunLaw, YangSunState
 
 __all__ = [
     "CONTACT_LAWS",
+    "MATERIAL_LAWS",
     "HERTZ_DURATION",
     "HertzLaw",
     "YangSunLaw",
@@ -143,6 +144,9 @@ CONTACT_LAWS = {
     "crushing": CrushingLaw,
     "hydrodynamic": HydrodynamicLaw,
 }
+# The laws of the projectile's own material (ice, gelatin), built by ``CONTACT_LAWS[name].of(material,
+# diameter, mass, velocity)`` from the sphere alone.
+MATERIAL_LAWS = ("crushing", "hydrodynamic")
 
 
 def resolve_law(law, hertz: Callable[[], HertzLaw]):
