@@ -5,8 +5,9 @@ position is the impact point, its force history is ignored), ``[impactor]``
 (``material``, ``diameter``, ``velocity`` toward the target, optional ``mass``; or a ``threat``,
 ``{ hail = "38.1 mm" }``: :mod:`softimpact.input.projectile`),
 ``[contact]`` (``law`` = hertz | hertz-unloading | hunt-crossley | identified |
-crushing (an ice impactor) | hydrodynamic (a gelatin impactor), with the law's own keys), ``[solver]`` and optional ``[[gauges]]`` (default: the
-target case's, beam or plate gauges as the target). See README.md,
+crushing (an ice impactor) | hydrodynamic (a gelatin impactor), with the law's own keys),
+``[solver]`` and optional ``[[gauges]]`` (default: the target case's, beam or plate gauges
+as the target). See README.md,
 ``data/cases/paper-long-beam-impact.toml`` and ``data/cases/plate-ss-8in-impact.toml``.
 
 Contact keys: those of :mod:`softimpact.input.contact_law`, and for the Hertz
