@@ -169,7 +169,7 @@ def test_a_law_is_a_name_or_an_object_resolved_in_one_table():
     assert resolve_law("hertz", lambda: HERTZ) is HERTZ
     lossy = HuntCrossleyLaw(HERTZ.K, HERTZ.R, 0.5, 2.0)
     assert resolve_law(lossy, lambda: HERTZ) is lossy and law_name(lossy) == "hunt-crossley" and law_name(HERTZ) == "hertz"
-    assert set(CONTACT_LAWS) == {"hertz", "hertz-unloading", "hunt-crossley", "identified"}
+    assert set(CONTACT_LAWS) == {"hertz", "hertz-unloading", "hunt-crossley", "identified", "crushing", "hydrodynamic"}
     for bad in ("hunt-crossley", "rubber", 3.0):
         with pytest.raises(InputError) as exc:
             resolve_law(bad, lambda: HERTZ)

@@ -160,6 +160,13 @@ def _variants() -> dict[str, list]:
         {"law": "identified", "law_file": "law.json"},
         {"law": "identified", "law_file": "law.json", "parameters": {"k_ref": 4.0}},
     ]
+    # the crushing and hydrodynamic laws are the projectile's material's (ice, gelatin), their optional keys
+    # replacing the material's constants; a hail threat in place of the sphere's material, diameter, velocity
+    flow_laws = [
+        ({"material": "ice"}, {"law": "crushing", "strength_coefficient": "10 MPa", "strength_exponent": 0.1}),
+        ({"material": "gelatin"}, {"law": "hydrodynamic", "sound_speed": "1500 m/s", "hugoniot_slope": 2.0}),
+    ]
+    threat = {"threat": {"hail": "38.1 mm", "airspeed": "100 m/s"}, "velocity": "30 m/s", "mass": "20 g"}
     history = [
         {"shape": "skewed", "peak_force": "100 lbf", "time_of_peak": "50 us", "duration": "200 us"},
         {"shape": "table", "file": "force.csv"},
@@ -168,7 +175,9 @@ def _variants() -> dict[str, list]:
     row = {"velocity": "1166 in/s", "peak_force": "100 lbf", "time_of_peak": "50 us", "duration": "200 us", "contact_radius": "0.1 in"}
     return {
         "bar": [(bar,), (_set(bar, bar__material=_INLINE_MATERIAL, bar__end_cap={"material": "steel", "diameter": "1 in", "length": "0.25 in"}, output={"snapshots": ["10 us"]}),)]
-        + [(_set(bar, contact=c),) for c in contact_laws],
+        + [(_set(bar, contact=c),) for c in contact_laws]
+        + [(_set(bar, projectile__material=m["material"], contact=c),) for m, c in flow_laws]
+        + [(_set(bar, projectile={**threat, "velocity": "30 m/s"}),)],
         "beam": [(beam,), (beam, P("."), 1)]
         + [(_set(beam, load__history=h, load__table=[row]), P("."), 1) for h in history]
         + [
@@ -178,7 +187,9 @@ def _variants() -> dict[str, list]:
         ],
         "plate": [(plate,), (_set(plate, plate__element="mitc4", plate__model="fsdt", load__grow=False, gauges=[{"name": "g", "position": ["1 in", "1 in"], "surface": "top", "direction": 45, "length": "0.1 in"}]),)],
         "impact": [(impact,), (pimpact,), (_set(impact, impactor__mass="1 g", gauges=[{"name": "g", "position": "1 in", "surface": "top", "length": "0.1 in"}]),)]
-        + [(_set(impact, contact=c),) for c in contact_laws],
+        + [(_set(impact, contact=c),) for c in contact_laws]
+        + [(_set(impact, impactor__material=m["material"], contact=c),) for m, c in flow_laws]
+        + [(_set(impact, impactor=threat),)],
         "series": [
             "paper-rubber-series",
             _set(_data("paper-rubber-series"), bar__dispersion="pochhammer-chree", gauge__bridge="quarter", gauge__gauge_factor=2.1, gauge__excitation="5 V", gauge__gain=100, gauge__polarity=-1, gauge__poisson_ratio=0.3, gauge__gauge_resistance_ohm=350, gauge__lead_resistance_ohm=0.4, gauge__shunt_resistance_ohm=100e3, gauge__shunt_step="-0.3 V"),
@@ -280,6 +291,12 @@ _CONTEXT_DEFAULTS = {
     "contact.target_modulus": "the ply's through-thickness modulus",
     "projectile.mass": "from density and diameter",
     "impactor.mass": "from density and diameter",
+    "contact.strength_coefficient": "the projectile material's (ice: Jones 1997, 8.9 MPa)",
+    "contact.strength_exponent": "the projectile material's (ice: Jones 1997, 0.15)",
+    "contact.sound_speed": "the projectile material's (gelatin: Wilbeck, 1482.9 m/s)",
+    "contact.hugoniot_slope": "the projectile material's (gelatin: Wilbeck, 2)",
+    "projectile.threat.airspeed": "none: the hail falls at its terminal velocity",
+    "impactor.threat.airspeed": "none: the hail falls at its terminal velocity",
 }
 
 

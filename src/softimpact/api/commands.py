@@ -55,7 +55,7 @@ def _law(law, hertz, sphere: Sphere):
     a law object, or a law.json path read by the one reader (:func:`softimpact.formats.law_json.read_law`,
     its errors naming ``law``) with the warnings a case file's ``law_file`` gets when the sphere lies outside
     what the law was identified on (:func:`softimpact.input.contact_law.warn_outside`)."""
-    from ..models.contact_laws import resolve_law
+    from ..models.contact_laws import CONTACT_LAWS, MATERIAL_LAWS, resolve_law
 
     if _is_law_file(law):
         from ..formats.law_json import read_law
@@ -65,6 +65,8 @@ def _law(law, hertz, sphere: Sphere):
         identified = read_law(path, "law")
         warn_outside(identified.identified_on, sphere.velocity, sphere.diameter, path, sphere.mass)
         return "identified", identified.law(sphere.mass, sphere.diameter, sphere.velocity), path
+    if isinstance(law, str) and law in MATERIAL_LAWS:  # ice's crushing, gelatin's flow: the sphere's own law
+        return law, CONTACT_LAWS[law].of(sphere.material, sphere.diameter, sphere.mass, sphere.velocity), None
     resolved = resolve_law(law, hertz)
     return (law if isinstance(law, str) else getattr(law, "name", type(law).__name__)), resolved, None
 
@@ -99,7 +101,8 @@ def impact(
         The sphere, its diameter [length] and velocity [velocity].
     law : str, ContactLaw, HistoryLaw or path
         ``"hertz"`` (eqs 1–3; Sun's laminate form with the ply's through-thickness modulus
-        E3 on a laminate), any contact law object (:mod:`softimpact.models.contact_laws`), or
+        E3 on a laminate), ``"crushing"`` (an ice sphere) or ``"hydrodynamic"`` (a gelatin sphere),
+        built from the sphere's material, any contact law object (:mod:`softimpact.models.contact_laws`), or
         the path of a law.json written by ``softimpact identify``.
     time_step : str or pint.Quantity
         Newmark time step [time], e.g. ``"0.5 us"``.
@@ -199,8 +202,10 @@ def _bar_impact(bar: Bar, at, sphere: Sphere, law, solver, gauges, units: str, t
 
     if at is not None:
         raise InputError("at: a bar is struck on its end (leave at out)")
+    from ..models.contact_laws import MATERIAL_LAWS
+
     law_file = None
-    if _is_law_file(law):
+    if _is_law_file(law) or (isinstance(law, str) and law in MATERIAL_LAWS):
         _, law, law_file = _law(law, None, sphere)
     gs = tuple(Gauge(str(n), _si(p, "length", f"gauges[{n!r}]")) for n, p in (gauges or {}).items())
     projectile = Projectile(sphere.material, sphere.diameter, sphere.velocity, sphere.mass)

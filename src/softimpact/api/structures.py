@@ -276,7 +276,10 @@ class Sphere:
     Parameters
     ----------
     material : str or Material
-        A catalogue material (``"steel"``); its elastic constants enter Hertz's law (eqs 1–3).
+        A catalogue material (``"steel"``); its elastic constants enter Hertz's law (eqs 1–3). ``"ice"``
+        (hail) and ``"gelatin"`` (the bird substitute) also carry their crushing strength and Hugoniot:
+        their laws are ``law="crushing"`` and ``law="hydrodynamic"`` of :func:`softimpact.impact`
+        (:meth:`law`).
     diameter : str or pint.Quantity
         Diameter [length], e.g. ``"0.5 in"``.
     velocity : str or pint.Quantity
@@ -305,6 +308,9 @@ class Sphere:
     >>> ball = si.Sphere("steel", "0.5 in", velocity="100 in/s")
     >>> round(ball.velocity, 12)
     2.54
+    >>> hail = si.Sphere("ice", "38.1 mm", velocity="27.3 m/s")
+    >>> type(hail.law("crushing")).__name__
+    'CrushingLaw'
     """
 
     material: object
@@ -325,6 +331,17 @@ class Sphere:
         Impactor(m, d, v)  # the same checks as every other path
         for k, value in (("material", mat), ("diameter", d), ("velocity", v), ("mass", m)):
             object.__setattr__(self, k, value)
+
+    def law(self, name: str):
+        """The contact law ``name`` of the sphere's own material (:data:`~softimpact.models.contact_laws.MATERIAL_LAWS`:
+        ``"crushing"`` for ice, ``"hydrodynamic"`` for gelatin), for this diameter, mass and velocity.
+
+        Raises InputError (``law``) for another name, (``material``) for a material without the law's data."""
+        from ..models.contact_laws import CONTACT_LAWS, MATERIAL_LAWS
+
+        if name not in MATERIAL_LAWS:
+            raise InputError(f"law: {name!r} is not a law of the sphere's material (known: {', '.join(MATERIAL_LAWS)})", "law")
+        return CONTACT_LAWS[name].of(self.material, self.diameter, self.mass, self.velocity)
 
     @property
     def impactor(self):

@@ -3,12 +3,13 @@
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
 from ..errors import InputError
 from ..input.scaling_constants import scaling_law
-from ..models.empirical import PROJECTILES, HertzModel, WilbeckModel
+from ..models.empirical import PROJECTILES, HertzModel, PulseParameters, WilbeckModel
 from ..models.materials import lookup
 from ..output.predict import predict_files
 from ..units import display, parse
@@ -53,6 +54,7 @@ def predict(
     models = {
         "hertz": HertzModel(sphere, lookup(target, "--target")),
         "wilbeck": WilbeckModel(density),
+        **_material_models(sphere, model),
     }
     notes = []
     law = None
@@ -66,6 +68,10 @@ def predict(
         hertz = models["hertz"].law(d)
         alpha_max = hertz.rigid_impact(m, V)[0]
         notes.extend(contact_validity("hertz", alpha_max, hertz.radius(alpha_max), d).flags)
+    if model in ("crushing", "hydrodynamic"):  # the law's own envelope (ice: strain rate; gelatin: shock release)
+        from ..models.contact_laws import CONTACT_LAWS, law_validity
+
+        notes.extend(law_validity(CONTACT_LAWS[model].of(sphere, d, m, V), V).flags)
     chosen = models[model]
     pulse = chosen.pulse(m, d, V, tail=tail) if model == "empirical" else chosen.pulse(m, d, V)
     params = chosen.parameters(m, d, V)
@@ -95,6 +101,44 @@ def predict(
         f"T {params.duration * tu.factor:.4g} {tu.label}, I {params.impulse * iu.factor:.4g} {iu.label}"
     )
     return Outcome(files, line, tuple(inputs), tuple(notes))
+
+
+@dataclass(frozen=True)
+class _RigidTarget:
+    """The contact law ``name`` of the projectile's material (:data:`~softimpact.models.contact_laws.MATERIAL_LAWS`:
+    ice crushing, gelatin flowing) on a rigid target (:func:`softimpact.models.crushing_law.rigid_target_pulse`),
+    with the ``parameters``/``pulse`` of the other predict models."""
+
+    name: str
+    material: object
+
+    def pulse(self, m: float, d: float, V: float):
+        from ..models.contact_laws import CONTACT_LAWS
+        from ..models.crushing_law import rigid_target_pulse
+
+        return rigid_target_pulse(CONTACT_LAWS[self.name].of(self.material, d, m, V), m, V)
+
+    def parameters(self, m: float, d: float, V: float) -> PulseParameters:
+        p = self.pulse(m, d, V)
+        k = int(np.argmax(p.force))
+        return PulseParameters(float(p.force[k]), float(p.time[k]), float(p.time[-1]), float(np.trapezoid(p.force, p.time)))
+
+
+def _material_models(sphere, model: str) -> dict:
+    """The crushing and hydrodynamic models the projectile's material has the data for (ice, gelatin); InputError
+    naming ``--material`` when the chosen one is not among them."""
+    from ..models.contact_laws import CONTACT_LAWS, MATERIAL_LAWS
+
+    out = {}
+    for name in MATERIAL_LAWS:
+        try:
+            CONTACT_LAWS[name].of(sphere, 1.0, 1.0, 1.0)  # the material has the law's data (a unit sphere: only the check)
+        except InputError:
+            if model == name:
+                raise InputError(f"--material: {sphere.name!r} has no data for the {name} model (ice: crushing, gelatin: hydrodynamic)") from None
+            continue
+        out[name] = _RigidTarget(name, sphere)
+    return out
 
 
 def _projectile(projectile: str | None, mass: str | None, diameter: str | None):

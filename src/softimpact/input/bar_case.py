@@ -1,8 +1,10 @@
 """Bar case files (``softimpact bar``): TOML → :class:`BarImpactProblem`.
 
-``[bar]`` (with ``[bar.end_cap]``), ``[projectile]``, ``[contact]`` (``law`` and
+``[bar]`` (with ``[bar.end_cap]``), ``[projectile]`` (a sphere, or a hail ``threat``:
+:mod:`softimpact.input.projectile`), ``[contact]`` (``law`` and
 its keys, :mod:`softimpact.input.contact_law`; the Hertz laws use the sphere on
-the bar's end, or on its end cap),
+the bar's end, or on its end cap; ``crushing`` and ``hydrodynamic`` the projectile's
+material, ice or gelatin),
 ``[solver]``, ``[[gauges]]`` and ``[output]``; see README.md for the format.
 """
 
@@ -14,10 +16,10 @@ from .. import units
 from ..errors import InputError
 from ..fem.bar import Rod
 from ..models.contact_laws import HertzLaw
-from ..models.materials import sphere_mass
 from ..models.specimens import BarSpec, EndCap, Gauge, Projectile
 from ..workflows.bar_impact import BarImpactProblem, check_problem
 from .contact_law import CONTACT_LAWS, read_contact_law
+from .projectile import read_sphere
 from .toml import Table, load_case_toml, locate, naming, read_material, read_solver, read_units
 
 __all__ = ["read_bar", "read_gauges", "bar_problem", "load_bar_case"]
@@ -65,10 +67,9 @@ def bar_problem(data: dict, base: Path = Path(".")) -> BarImpactProblem:
     system = read_units(top)
     bar = read_bar(top.table("bar"))
     p = top.table("projectile")
-    material = read_material(p)
-    diameter = p.quantity("diameter", "length")
-    mass = p.quantity("mass", "mass", default=None)
-    projectile = Projectile(material, diameter, p.quantity("velocity", "velocity"), sphere_mass(material, diameter) if mass is None else mass)
+    sphere = read_sphere(p)
+    material, diameter = sphere.material, sphere.diameter
+    projectile = Projectile(material, diameter, sphere.velocity, sphere.mass)
     p.done()
     contact_tbl = top.table("contact", optional=True)
     law = "hertz"
@@ -80,7 +81,7 @@ def bar_problem(data: dict, base: Path = Path(".")) -> BarImpactProblem:
             def hertz():
                 return HertzLaw.sphere_on_flat(diameter / 2, material, flat)
 
-            law, _ = read_contact_law(contact_tbl, name, hertz, projectile.mass, diameter, projectile.velocity, base)
+            law, _ = read_contact_law(contact_tbl, name, hertz, projectile.mass, diameter, projectile.velocity, base, material, p.key("material"))
         contact_tbl.done()
     solver = read_solver(top.table("solver"))
     gauges = read_gauges(top, bar.length)

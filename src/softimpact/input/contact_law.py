@@ -5,7 +5,13 @@
 required, ``form`` lankarani-nikravesh | hunt-crossley) | ``identified``
 (``law_file``: a law.json of ``softimpact identify``, relative to the case file; optional
 ``parameters``, a table of the law's parameters by name replacing the file's values: a sweep's
-draws from the law's covariance, :class:`softimpact.input.sweep_spec.LawDraw`).
+draws from the law's covariance, :class:`softimpact.input.sweep_spec.LawDraw`) | ``crushing`` (an
+ice sphere, :class:`~softimpact.models.crushing_law.CrushingLaw`; optional ``strength_coefficient`` A and
+``strength_exponent`` m of σ_c = A·(ε̇/1 s⁻¹)^m in place of the material's, Jones 1997 for the catalogue's
+ice) | ``hydrodynamic`` (a gelatin sphere, :class:`~softimpact.models.hydrodynamic_law.HydrodynamicLaw`;
+optional ``sound_speed`` c0 and ``hugoniot_slope`` k of U_s = c0 + k·u_p in place of the material's,
+Wilbeck's for the catalogue's gelatin). The crushing and hydrodynamic laws are the projectile's material's:
+it must be ice or gelatin (:data:`softimpact.models.projectiles.PROJECTILES`).
 The Hertz constant comes from the caller (a laminate, a flat, the bar's end).
 """
 
@@ -16,7 +22,9 @@ from pathlib import Path
 
 from ..errors import InputError
 from ..formats.law_json import read_law
-from ..models.contact_laws import CONTACT_LAWS, HertzLaw, HuntCrossleyLaw, YangSunLaw
+from ..models.contact_laws import CONTACT_LAWS, MATERIAL_LAWS, HertzLaw, HuntCrossleyLaw, YangSunLaw
+from ..models.materials import Material
+from ..models.projectiles import LinearHugoniot, PowerLawStrength, projectile_material
 from .toml import Table
 
 __all__ = ["CONTACT_LAWS", "CRITICAL_INDENTATION", "HUNT_CROSSLEY_FORMS", "read_contact_law", "warn_outside"]
@@ -25,9 +33,22 @@ CRITICAL_INDENTATION = 0.08e-3  # m: Yang & Sun (1982), graphite/epoxy struck by
 HUNT_CROSSLEY_FORMS = ("lankarani-nikravesh", "hunt-crossley")
 
 
-def read_contact_law(c: Table, name: str, hertz: Callable[[], HertzLaw], mass: float, diameter: float, velocity: float, base: Path):
-    """The law ``name`` of table ``c`` for an impactor (mass [kg], diameter [m], velocity [m/s]);
-    ``hertz()`` gives the pair's Hertz law. Returns (law, the law file read or None)."""
+def read_contact_law(
+    c: Table,
+    name: str,
+    hertz: Callable[[], HertzLaw],
+    mass: float,
+    diameter: float,
+    velocity: float,
+    base: Path,
+    material: Material | None = None,
+    where: str = "material",
+):
+    """The law ``name`` of table ``c`` for an impactor (mass [kg], diameter [m], velocity [m/s], ``material``
+    the projectile's, read from the key ``where``); ``hertz()`` gives the pair's Hertz law. Returns (law, the
+    law file read or None)."""
+    if name in MATERIAL_LAWS:
+        return _flow_law(c, name, material, mass, diameter, velocity, where), None
     if name == "identified":
         file = c.string("law_file")
         path = Path(file) if Path(file).is_absolute() else base / file
@@ -45,6 +66,34 @@ def read_contact_law(c: Table, name: str, hertz: Callable[[], HertzLaw], mass: f
         raise InputError(f"{c.key('restitution')}: must be in (0, 1], got {restitution!r}")
     form = c.string("form", HUNT_CROSSLEY_FORMS[0], choices=HUNT_CROSSLEY_FORMS)
     return HuntCrossleyLaw(h.K, h.R, restitution, velocity, h.exponent, form), None
+
+
+def _flow_law(c: Table, name: str, material: Material | None, mass: float, diameter: float, velocity: float, where: str):
+    """The crushing (ice) or hydrodynamic (gelatin) law of the projectile's ``material``, its strength law's or
+    Hugoniot's constants replaced by the table's optional keys."""
+    import dataclasses
+
+    try:
+        record = projectile_material(material if material is not None else "")
+        law = CONTACT_LAWS[name].of(record, diameter, mass, velocity)
+    except InputError as exc:
+        raise InputError(f"{c.key('law')} = {name!r} with {where}: {exc}") from None
+    if name == "crushing":
+        sc = law.strength
+        coefficient = c.quantity("strength_coefficient", "stress", default=sc.coefficient)
+        exponent = c.number("strength_exponent", sc.exponent)
+        if not 0.0 <= exponent < 1.0:
+            raise InputError(f"{c.key('strength_exponent')}: must lie in [0, 1), got {exponent!r}")
+        if (coefficient, exponent) != (sc.coefficient, sc.exponent):
+            source = f"{c.key('strength_coefficient')}, {c.key('strength_exponent')} of the case"
+            law = dataclasses.replace(law, strength=PowerLawStrength(coefficient, exponent, sc.rate_range, sc.reference_rate, source))
+        return law
+    h = law.hugoniot
+    c0 = c.quantity("sound_speed", "velocity", default=h.c0)
+    k = c.number("hugoniot_slope", h.k)
+    if not k >= 0.0:
+        raise InputError(f"{c.key('hugoniot_slope')}: must be non-negative, got {k!r}")
+    return law if (c0, k) == (h.c0, h.k) else dataclasses.replace(law, hugoniot=LinearHugoniot(c0, k))
 
 
 def _with_parameters(law, c: Table, given):

@@ -2,10 +2,12 @@
 
 ``[target]`` (``case``: a beam or plate case, file or built-in name; its ``[load]``
 position is the impact point, its force history is ignored), ``[impactor]``
-(``material``, ``diameter``, ``velocity`` toward the target, optional ``mass``),
-``[contact]`` (``law`` = hertz | hertz-unloading | hunt-crossley | identified,
-with the law's own keys), ``[solver]`` and optional ``[[gauges]]`` (default: the
-target case's, beam or plate gauges as the target). See README.md,
+(``material``, ``diameter``, ``velocity`` toward the target, optional ``mass``; or a ``threat``,
+``{ hail = "38.1 mm" }``: :mod:`softimpact.input.projectile`),
+``[contact]`` (``law`` = hertz | hertz-unloading | hunt-crossley | identified |
+crushing (an ice impactor) | hydrodynamic (a gelatin impactor), with the law's own keys),
+``[solver]`` and optional ``[[gauges]]`` (default: the target case's, beam or plate gauges
+as the target). See README.md,
 ``data/cases/paper-long-beam-impact.toml`` and ``data/cases/plate-ss-8in-impact.toml``.
 
 Contact keys: those of :mod:`softimpact.input.contact_law`, and for the Hertz
@@ -19,14 +21,15 @@ from pathlib import Path
 
 from ..errors import InputError
 from ..models.contact_laws import HertzLaw
-from ..models.materials import Material, sphere_mass
+from ..models.materials import Material
 from ..workflows.beam_impact import BeamProblem
 from ..workflows.coupled import Impactor, ImpactProblem
 from ..workflows.plate_impact import PlateProblem
 from .beam_case import beam_problem, read_beam_gauges
 from .contact_law import CONTACT_LAWS, read_contact_law
 from .plate_case import plate_problem, read_plate_gauges
-from .toml import Table, load_case_toml, load_toml, locate, naming, read_material, read_solver, read_units
+from .projectile import read_sphere
+from .toml import Table, load_case_toml, load_toml, locate, naming, read_solver, read_units
 
 __all__ = ["CONTACT_LAWS", "ImpactProblem", "impact_problem", "load_impact_case"]
 
@@ -83,15 +86,15 @@ def impact_problem(data: dict, base: Path = Path(".")) -> tuple[ImpactProblem, t
         check(target, f"{t.key('case')} ({target_path})")
     t.done()
     i = top.table("impactor")
-    material = read_material(i)
-    diameter = i.quantity("diameter", "length")
-    velocity = i.quantity("velocity", "velocity")
-    mass = i.quantity("mass", "mass", default=None)
-    impactor = Impactor(sphere_mass(material, diameter) if mass is None else mass, diameter, velocity)
+    sphere = read_sphere(i)
+    material, diameter, velocity = sphere.material, sphere.diameter, sphere.velocity
+    impactor = Impactor(sphere.mass, diameter, velocity)
     i.done()
     c = top.table("contact")
     name = c.string("law", choices=CONTACT_LAWS)
-    law, law_path = read_contact_law(c, name, lambda: _hertz(c, target, diameter / 2, material), impactor.mass, diameter, velocity, base)
+    law, law_path = read_contact_law(
+        c, name, lambda: _hertz(c, target, diameter / 2, material), impactor.mass, diameter, velocity, base, material, i.key("material")
+    )
     c.done()
     solver = read_solver(top.table("solver"))
     gauges = read_gauges(top) if "gauges" in top else target.gauges

@@ -69,6 +69,13 @@ class HydrodynamicLaw(SphereFlowLaw):
             raise InputError(f"material {record.name!r} has no Hugoniot: the hydrodynamic law is for gelatin", "material")
         return cls(mass, diameter, velocity, record.hugoniot)
 
+    def validity(self, velocity: float | None = None):
+        """The shock phase's envelope (:func:`~softimpact.models.validity.hydrodynamic_validity`) at the law's own
+        impact velocity (the length scales were built for it; ``velocity`` [m/s], the run's, is not needed)."""
+        from .validity import hydrodynamic_validity
+
+        return hydrodynamic_validity(self.diameter, self.velocity, self.hugoniot)
+
     @property
     def hugoniot_pressure(self) -> float:
         """P_H = ρ·(c0 + k·V)·V at the impact velocity [Pa]."""

@@ -26,7 +26,18 @@ from typing import Protocol, runtime_checkable
 
 import numpy as np
 
-__all__ = ["ContactLaw", "HistoryLaw", "RespondingLaw", "PowerRadiusLaw", "StepBoundLaw", "SettlingLaw", "Pulse", "ContactPatch", "StructureModel"]
+__all__ = [
+    "ContactLaw",
+    "HistoryLaw",
+    "RespondingLaw",
+    "PowerRadiusLaw",
+    "StepBoundLaw",
+    "EnvelopedLaw",
+    "SettlingLaw",
+    "Pulse",
+    "ContactPatch",
+    "StructureModel",
+]
 
 
 @runtime_checkable
@@ -91,6 +102,15 @@ class StepBoundLaw(Protocol):
     step, called once before stepping."""
 
     def for_time_step(self, dt: float): ...
+
+
+@runtime_checkable
+class EnvelopedLaw(Protocol):
+    """A law with its own validity envelope beyond the approach and contact radius every law is checked on:
+    ``validity(velocity) -> Validity`` (:mod:`softimpact.models.validity`) at the run's impact velocity [m/s]
+    (the crushing law's strain rate, the hydrodynamic law's shock release)."""
+
+    def validity(self, velocity: float): ...
 
 
 @runtime_checkable

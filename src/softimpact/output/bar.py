@@ -17,11 +17,14 @@ MICROSECOND = 1e-6  # s: the column names of strain-along-bar.csv give the insta
 
 def bar_validity(result):
     """The contact law's envelope on the bar (:func:`softimpact.models.validity.contact_validity`): approach
-    against the projectile's diameter, contact radius against the projectile's and the bar's radius."""
+    against the projectile's diameter, contact radius against the projectile's and the bar's radius, and the
+    law's own envelope (:func:`softimpact.models.contact_laws.law_validity`)."""
+    from ..models.contact_laws import law_validity
     from ..models.validity import contact_validity
 
     p = result.problem
-    return contact_validity(p.law_name, float(np.max(result.approach)), float(np.max(result.contact_radius)), p.projectile.diameter, p.bar.diameter / 2)
+    v = contact_validity(p.law_name, float(np.max(result.approach)), float(np.max(result.contact_radius)), p.projectile.diameter, p.bar.diameter / 2)
+    return v + law_validity(p.contact_law(), p.projectile.velocity)  # the law's own envelope (ice: strain rate; gelatin: shock)
 
 
 def bar_summary(result, plain=None) -> dict:

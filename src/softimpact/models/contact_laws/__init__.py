@@ -51,6 +51,12 @@ Laws
     k = k_ref·(d/d_ref)^{q_k}, c = c_ref·(d/d_ref)^{q_c} (and, optionally, the
     exponent p_ref·(d/d_ref)^{q_p}); q = 0 is pure geometric similarity. Its parameters are identified from bar tests
     (:mod:`softimpact.workflows.identification`).
+:class:`~softimpact.models.crushing_law.CrushingLaw` (``"crushing"``)
+    Ice (hail) crushing against the target: F = A(s)·[σ_c(ε̇) + ρ·ṡ²] over the crushed section, no rebound
+    (:mod:`softimpact.models.crushing_law`); built by ``CrushingLaw.of(material, diameter, mass, velocity)``.
+:class:`~softimpact.models.hydrodynamic_law.HydrodynamicLaw` (``"hydrodynamic"``)
+    Gelatin (the bird substitute) flowing against the target: Wilbeck's shock, release and steady flow
+    (:mod:`softimpact.models.hydrodynamic_law`); built by ``HydrodynamicLaw.of(...)``.
 :class:`ViscoelasticSoftLaw`
     The soft-projectile law in parallel with a Maxwell arm (spring in series with a
     dashpot; with the equilibrium branch, the standard linear solid of Zener 1948,
@@ -81,7 +87,9 @@ Laws
 Modules: :mod:`.hertz`, :mod:`.yang_sun`, :mod:`.hunt_crossley`, :mod:`.soft` (one per law family); the
 table :data:`CONTACT_LAWS` of names lives here. A new law costs its class (declaring its optional
 capabilities, :mod:`softimpact.models.protocols`), its row below and its validity envelope
-(:mod:`softimpact.models.validity`).
+(:mod:`softimpact.models.validity`): the approach and contact radius every law is checked on, and a law's
+own (:class:`~softimpact.models.protocols.EnvelopedLaw`, ``validity(velocity)``), which :func:`law_validity`
+adds to every run that uses the law.
 """
 
 from __future__ import annotations
@@ -89,7 +97,9 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from ...errors import InputError
-from ..protocols import ContactLaw, HistoryLaw
+from ..crushing_law import CrushingLaw
+from ..hydrodynamic_law import HydrodynamicLaw
+from ..protocols import ContactLaw, EnvelopedLaw, HistoryLaw
 from .hertz import HERTZ_DURATION, HertzLaw, effective_modulus, laminate_modulus
 from .hunt_crossley import HuntCrossleyLaw
 from .soft import MaxwellBranch, MaxwellState, SoftProjectileLaw, ViscoelasticSoftLaw
@@ -97,6 +107,7 @@ from .yang_sun import YangSunBranch, YangSunLaw, YangSunState
 
 __all__ = [
     "CONTACT_LAWS",
+    "MATERIAL_LAWS",
     "HERTZ_DURATION",
     "HertzLaw",
     "YangSunLaw",
@@ -112,6 +123,7 @@ __all__ = [
     "branch_of",
     "resolve_law",
     "law_name",
+    "law_validity",
 ]
 
 
@@ -121,14 +133,20 @@ def branch_of(law, state) -> ContactLaw:
 
 
 # The contact laws by name (case files' ``contact.law``), each with the class it builds: one table,
-# as scipy's ``METHODS``. "identified" is a law.json of ``softimpact identify``: the soft-projectile
+# as scipy's ``METHODS``. "crushing" (ice) and "hydrodynamic" (gelatin) are built from the projectile's
+# material by their ``.of(material, diameter, mass, velocity)``. "identified" is a law.json of ``softimpact identify``: the soft-projectile
 # law (or its viscoelastic extension, :class:`ViscoelasticSoftLaw`).
 CONTACT_LAWS = {
     "hertz": HertzLaw,
     "hertz-unloading": YangSunLaw,
     "hunt-crossley": HuntCrossleyLaw,
     "identified": SoftProjectileLaw,
+    "crushing": CrushingLaw,
+    "hydrodynamic": HydrodynamicLaw,
 }
+# The laws of the projectile's own material (ice, gelatin), built by ``CONTACT_LAWS[name].of(material,
+# diameter, mass, velocity)`` from the sphere alone.
+MATERIAL_LAWS = ("crushing", "hydrodynamic")
 
 
 def resolve_law(law, hertz: Callable[[], HertzLaw]):
@@ -157,3 +175,13 @@ def law_name(law) -> str:
         if type(law) is cls:
             return name
     return "identified" if isinstance(law, ViscoelasticSoftLaw) else type(law).__name__
+
+
+def law_validity(law, velocity: float):
+    """The law's own validity envelope at the impact ``velocity`` [m/s] (an
+    :class:`~softimpact.models.protocols.EnvelopedLaw`: the crushing law's strain rate, the hydrodynamic law's
+    shock release); an empty :class:`~softimpact.models.validity.Validity` for a law without one (the Hertz
+    family's envelope is the approach's, :func:`~softimpact.models.validity.contact_validity`)."""
+    from ..validity import Validity
+
+    return law.validity(velocity) if isinstance(law, EnvelopedLaw) else Validity({})
