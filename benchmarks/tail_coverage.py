@@ -19,7 +19,7 @@ Each record goes through the reduction's main-pulse fit (:func:`softimpact.model
 the reported F0, t_F0, T) and its tail-family fits (:func:`softimpact.workflows.reduction.fit_tail_shapes`);
 the series through :func:`softimpact.studies.series.with_tail_shapes`, as ``softimpact fit`` does.
 Printed: per α, the fraction of series whose 95 % interval with the tail-shape term holds the true α
-(and without it), the median half-width relative to α, per shape; a one-sided 95 % Clopper–Pearson
+(and with the Student interval alone, and with the issue-22 term), the median half-width relative to α, per shape; a one-sided 95 % Clopper–Pearson
 lower bound of the coverage; how many series name each α as not bounded by the records.
 
 Usage: python benchmarks/tail_coverage.py [series, default 60] [seed, default 3208]
@@ -121,6 +121,19 @@ def hidden_series(rng, shape):
     return alphas, points, shapes
 
 
+def _issue22_intervals(fit) -> dict:
+    """The widening before issue 32 (for comparison): the largest distance from the reported α of the four
+    issue-22 families (knee, ramp-under, linear, power-law) within ΔAIC < 4 of their best, no errors, no range."""
+    term = fit.tail_shape
+    aic = {f: a for f, a in term.aic.items() if f in ("knee", "ramp-under", "linear", "power-law")}
+    ok = [f for f in aic if aic[f] - min(aic.values()) < 4.0]
+    out = {}
+    for name, line in fit.origin.items():
+        h = max(abs(term.alphas[f][name] - line.slope) for f in ok)
+        out[name] = (line.slope_ci[0] - h, line.slope_ci[1] + h)
+    return out
+
+
 def run(n: int, seed: int):
     from scipy.stats import beta as beta_dist
 
@@ -141,6 +154,7 @@ def run(n: int, seed: int):
             lo, hi = fit.tail_shape.interval(name, line)
             row[name] = (truth, line.slope, line.slope_ci, (lo, hi))
         row["unbounded"] = fit.tail_shape.unbounded
+        row["issue22"] = _issue22_intervals(fit)
         rows.append(row)
         print(
             f"{i:3d} {shape:19s} "
@@ -151,13 +165,14 @@ def run(n: int, seed: int):
             flush=True,
         )
     print(f"\n{n} series, seed {seed}, {time.time() - t0:.0f} s")
-    print("α       covered (with term)  95 % lower bound  covered (t only)  median half-width/α")
+    print("α       covered (with term)  95 % lower bound  covered (t only)  (issue-22 term)  median half-width/α")
     for name in names:
         hit = sum(r[name][3][0] <= r[name][0] <= r[name][3][1] for r in rows)
         hit_t = sum(r[name][2][0] <= r[name][0] <= r[name][2][1] for r in rows)
+        hit_22 = sum(r["issue22"][name][0] <= r[name][0] <= r["issue22"][name][1] for r in rows)
         lower = beta_dist.ppf(0.05, hit, n - hit + 1) if hit else 0.0  # one-sided 95 % (Clopper–Pearson)
         hw = np.median([(r[name][3][1] - r[name][3][0]) / 2 / r[name][0] for r in rows])
-        print(f"{name}  {hit:3d}/{n} = {hit / n:5.1%}      {lower:5.1%}            {hit_t / n:5.1%}             {hw:.3f}")
+        print(f"{name}  {hit:3d}/{n} = {hit / n:5.1%}      {lower:5.1%}            {hit_t / n:5.1%}            {hit_22 / n:5.1%}           {hw:.3f}")
     print("named as not bounded by the records: " + ", ".join(f"{name} {sum(name in r['unbounded'] for r in rows)}/{n}" for name in names))
     for shape in SHAPES:
         sub = [r for r in rows if r["shape"] == shape]

@@ -183,8 +183,8 @@ def _unbounded_text(g) -> str:
         return "the records bound every alpha better than the tail's shape: the tail-shape term is smaller than each 95 % interval"
     parts = ", ".join(f"{n} to +/-{t.half_widths[n]:.3g} (statistical +/-{0.5 * (g.origin[n].slope_ci[1] - g.origin[n].slope_ci[0]):.3g})" for n in t.unbounded)
     return (
-        f"the records cannot bound {parts}: the tail ramps in under the main pulse and its shape, which the data do not fix, "
-        "moves the main pulse by more than the scatter does; the 95 % intervals are widened by the spread over every tail family"
+        f"the records cannot bound {parts}: a tail that ramps in under the main pulse, in a shape the records do not fix, "
+        "would move the main pulse by more than the scatter does; the 95 % intervals are widened by the spread over every tail family"
     )
 
 
