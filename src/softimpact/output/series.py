@@ -125,7 +125,8 @@ TAIL_COLUMNS = ("tail_best_family", "tail_families_not_rejected", "tail_shape_pe
 
 def tail_shape_spread(shapes) -> dict:
     """One test's tail-shape columns for tests.csv: the best tail family by AIC, those within
-    TAIL_DELTA_AIC of it, and half the range of their F0 [N], t_F0, T [s] (the tail_shape term)."""
+    TAIL_DELTA_AIC of it, and half the range of their F0 [N], t_F0, T [s] (for information: the α's tail_shape
+    term takes every family, :func:`softimpact.workflows.scaling.tail_shape_term`)."""
     if not shapes:
         return {k: ("" if k.startswith("tail_best") or k.startswith("tail_families") else math.nan) for k in TAIL_COLUMNS}
     best = min(shapes, key=lambda s: s.aic)
