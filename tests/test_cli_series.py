@@ -93,25 +93,31 @@ def test_fit_recovers_table_one_from_the_builtin_series(tmp_path):
     assert "pooled" in data and "softimpact_version" in data
 
 
+FAMILIES = ("knee", "ramp-under", "linear", "power-law", "free-ramp")  # the reduction's tail families (issues 22, 32)
+
+
 def test_fit_writes_the_tail_shape_term(tmp_path):
-    """fit's scaling.json carries, per group, a separate tail_shape term (four families ranked by AIC, those within
-    ΔAIC < 4 kept) whose widened α2, α3 intervals contain Table I's values that made the built-in series
-    (α2 0.93 and 1.03, α3 0.25 assumed for both), and tests.csv names each test's best tail family."""
+    """fit's scaling.json carries, per group, a separate tail_shape term (five families ranked by AIC, those within
+    ΔAIC < 4 listed) whose widened α2, α3 intervals contain Table I's values that made the built-in series
+    (α2 0.93 and 1.03, α3 0.25 assumed for both), names the α's the records do not bound better than the tail's
+    shape (those whose tail-shape half-width exceeds the Student one), and tests.csv names each test's best tail family."""
     out = tmp_path / "fit"
     result = CliRunner().invoke(main, ["fit", "paper-rubber-series", "--out", str(out), "--no-figures"])
     assert result.exit_code == 0, result.output
     data = json.loads((out / "scaling.json").read_text())
     for label, (a2, a3) in {"0.375 in": (1.03, 0.25), "0.5 in": (0.93, 0.25)}.items():
         term = data["groups"][label]["tail_shape"]
-        assert set(term["aic"]) == {"knee", "ramp-under", "linear", "power-law"} and term["best"] in term["not_rejected"]
+        assert set(term["aic"]) == set(FAMILIES) and term["best"] in term["not_rejected"]
         assert term["delta_aic_threshold"] == 4
         for name, truth in (("alpha2", a2), ("alpha3", a3)):
             lo, hi = term["ci95_with_tail_shape"][name]
             ci = data["groups"][label][name]["ci95"]
             assert lo <= ci[0] and ci[1] <= hi and term["half_width"][name] >= 0
             assert lo <= truth <= hi, (label, name, lo, hi)
+        student = {n: 0.5 * (data["groups"][label][n]["ci95"][1] - data["groups"][label][n]["ci95"][0]) for n in term["half_width"]}
+        assert set(term["not_bounded_by_data"]) == {n for n, h in term["half_width"].items() if h > student[n]}
     with open(out / "tests.csv") as fh:
-        assert all(row["tail_best_family"] in ("knee", "ramp-under", "linear", "power-law") for row in csv.DictReader(fh))
+        assert all(row["tail_best_family"] in FAMILIES for row in csv.DictReader(fh))
 
 
 def test_predict_empirical_and_bar(tmp_path):

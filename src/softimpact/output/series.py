@@ -125,7 +125,8 @@ TAIL_COLUMNS = ("tail_best_family", "tail_families_not_rejected", "tail_shape_pe
 
 def tail_shape_spread(shapes) -> dict:
     """One test's tail-shape columns for tests.csv: the best tail family by AIC, those within
-    TAIL_DELTA_AIC of it, and half the range of their F0 [N], t_F0, T [s] (the tail_shape term)."""
+    TAIL_DELTA_AIC of it, and half the range of their F0 [N], t_F0, T [s] (for information: the α's tail_shape
+    term takes every family, :func:`softimpact.workflows.scaling.tail_shape_term`)."""
     if not shapes:
         return {k: ("" if k.startswith("tail_best") or k.startswith("tail_families") else math.nan) for k in TAIL_COLUMNS}
     best = min(shapes, key=lambda s: s.aic)
@@ -145,8 +146,11 @@ def scaling_text(fits) -> str:
 
 def scaling_data(fits) -> dict:
     """scaling.json (:mod:`softimpact.formats.scaling_json`) with, per group, its ``tail_shape`` term:
-    the tail families' AICs, the best, those not rejected (ΔAIC < TAIL_DELTA_AIC), each family's α's,
-    and per α the half-width added to each side of its 95 % interval, and the widened interval."""
+    the tail families' AICs, the best, those within ΔAIC < TAIL_DELTA_AIC (for information), each
+    family's α's and the half-width its fit's standard errors give them (``error_half_width``), per α
+    the half-width added to each side of its 95 % interval (the largest over every family of its
+    distance from the reported α plus its error), the widened interval, the α's the records do not
+    bound better than the tail's shape (``not_bounded_by_data``) and a sentence saying so."""
     data = scaling_summary(fits)
 
     def term(g):
@@ -159,8 +163,11 @@ def scaling_data(fits) -> dict:
             "not_rejected": list(t.accepted),
             "delta_aic_threshold": TAIL_DELTA_AIC,
             "alphas": t.alphas,
+            "error_half_width": t.errors,
             "half_width": t.half_widths,
             "ci95_with_tail_shape": {n: list(t.interval(n, line)) for n, line in g.origin.items()},
+            "not_bounded_by_data": list(t.unbounded),
+            "statement": _unbounded_text(g),
         }
 
     for label, g in fits.items():
@@ -168,6 +175,18 @@ def scaling_data(fits) -> dict:
             data["groups"][label]["tail_shape"] = term(g)
     data["pooled"]["tail_shape"] = term(fits["pooled"] if "pooled" in fits else next(iter(fits.values())))
     return data
+
+
+def _unbounded_text(g) -> str:
+    """One sentence: which α's of group ``g`` the records cannot bound better than the tail's unknown shape."""
+    t = g.tail_shape
+    if not t.unbounded:
+        return "the records bound every alpha better than the tail's shape: the tail-shape term is smaller than each 95 % interval"
+    parts = ", ".join(f"{n} to +/-{t.half_widths[n]:.3g} (statistical +/-{0.5 * (g.origin[n].slope_ci[1] - g.origin[n].slope_ci[0]):.3g})" for n in t.unbounded)
+    return (
+        f"the records cannot bound {parts}: a tail that ramps in under the main pulse, in a shape the records do not fix, "
+        "would move the main pulse by more than the scatter does; the 95 % intervals are widened by the spread over every tail family"
+    )
 
 
 def _text(items) -> str:
@@ -243,13 +262,16 @@ def scaling_section(fits, series, reduced, prefix: str, figures: bool) -> Sectio
     terms = [(label, g.tail_shape) for label, g in fits.items() if g.tail_shape is not None]
     if terms:
         paragraphs.append(
-            "The tail's shape is not known, and where the tail ramps in under the falling main pulse it moves T and tF0. Four "
-            "tail families (a knee with an exponential decay; a tail ramping in under the main pulse then decaying "
-            "exponentially, linearly or as a power law) are fitted to every record and ranked by AIC; the families within "
-            f"ΔAIC < {TAIL_DELTA_AIC:g} of the best are not rejected, and the largest distance of their α's from the reported "
-            "ones is added to each side of the 95 % interval (last column; tail_shape in scaling.json, per test in tests.csv): "
+            "The tail's shape is not known, and where the tail ramps in under the falling main pulse it moves T and tF0. Five "
+            "tail families (a knee with an exponential decay; a tail ramping in linearly under the main pulse then decaying "
+            "exponentially, linearly or as a power law; a free ramp, concave or convex, ending before or after T, then a stretched "
+            "exponential) are fitted to every record. The true tail is in none of them, so none is rejected on its AIC: for every "
+            "family the distance of its α's from the reported ones plus what its own fit's standard errors (tail parameters free) "
+            "leave of them is taken, and the largest is added to each side of the 95 % interval (last column; tail_shape in "
+            "scaling.json, per test in tests.csv): "
             + "; ".join(
-                f"{label}: best {t.best}, not rejected {', '.join(t.accepted)}, α2 ±{t.half_widths['alpha2']:.3f}, α3 ±{t.half_widths['alpha3']:.3f}"
+                f"{label}: best by AIC {t.best}, α2 ±{t.half_widths['alpha2']:.3f}, α3 ±{t.half_widths['alpha3']:.3f}"
+                + (f", not bounded by the records better than the tail's shape: {', '.join(t.unbounded)}" if t.unbounded else "")
                 for label, t in terms
             )
             + "."

@@ -174,7 +174,7 @@ def fit_series(reduced: Sequence[ReducedTest]) -> dict[str, ScalingFit]:
 def with_tail_shapes(fits: dict[str, ScalingFit], shapes: dict) -> dict[str, ScalingFit]:
     """Each group's fit with its tail-shape term (:func:`softimpact.workflows.scaling.tail_shape_term`):
     ``shapes`` test name → its TailShapeFits (one per family); the group's points refitted with each
-    family's F0, t_F0, T, and the families' AICs summed over the group. Unchanged when a test of the
+    family's F0, t_F0, T, with their standard errors, and the families' AICs summed over the group. Unchanged when a test of the
     group has no tail fits."""
     out = {}
     for label, g in fits.items():
@@ -188,7 +188,8 @@ def with_tail_shapes(fits: dict[str, ScalingFit], shapes: dict) -> dict[str, Sca
             for k, fam in enumerate(families)
         }
         aic = {fam: float(sum(s[k].aic for s in per_test)) for k, fam in enumerate(families)}
-        out[label] = replace(g, tail_shape=tail_shape_term(g, family_points, aic))
+        errors = {fam: [(s[k].se_peak_force, s[k].se_time_of_peak, s[k].se_duration) for s in per_test] for k, fam in enumerate(families)}
+        out[label] = replace(g, tail_shape=tail_shape_term(g, family_points, aic, errors))
     return out
 
 
