@@ -68,12 +68,20 @@ class PlateKind:
         """The plate stepped directly (:func:`softimpact.cases.run.execute`), its displacement kept at the
         deflected-shape figure's instants (``figures``: ``shown``) and the fields' frames (``fields``: ``kept``);
         its warnings: the symmetry edges that miss the load, then the envelopes. A coupled run's options do not apply."""
+        from ..errors import InputError
         from ..models.validity import Validity
         from ..output.fields import sampled_steps
         from ..output.plate import plate_summary, plate_validity, snapshot_steps
         from ..workflows.plate_impact import PlateModel
         from .run import Run
 
+        if problem.analysis == "static":
+            return self._static(problem, model)
+        if problem.kinematics != "linear":
+            raise InputError(
+                f'plate.kinematics = "{problem.kinematics}": a plate under a force history runs linear kinematics only for now; '
+                'von Karman runs a static pressure ([solver] analysis = "static") or a coupled impact on the plate',
+            )
         model = model or PlateModel(problem)
         steps = problem.solver.steps
         shown = snapshot_steps(steps) if figures else ()
@@ -81,6 +89,20 @@ class PlateKind:
         result = model.direct(progress=progress, energy=energy, snapshots=np.union1d(shown, kept).astype(int) if fields else shown)
         validity = Validity({}, mirrored_loads(problem)) + plate_validity(result)
         return Run(result, model, plate_summary(model, result), validity, problem, shown, kept)
+
+    def _static(self, problem, model=None):
+        """A static plate run (:func:`softimpact.workflows.plate_impact.solve_plate_static`): its summary and envelope;
+        a Newton that did not converge is a warning of the run (summary.json says where)."""
+        from ..models.validity import Validity
+        from ..output.plate import plate_static_summary, plate_static_validity
+        from ..workflows.plate_impact import solve_plate_static
+        from .run import Run
+
+        model, result = solve_plate_static(problem, model)
+        validity = plate_static_validity(result)
+        if not result.converged:
+            validity += Validity({}, (f"static plate: {result.message}",), ("",))
+        return Run(result, model, plate_static_summary(model, result), validity, problem)
 
     def damage_refusal(self, problem):
         from ..workflows.damage import damage_refusal

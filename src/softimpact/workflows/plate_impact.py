@@ -35,9 +35,22 @@ from ..models.plate_laminate import SHEAR_CORRECTION, PlateSection, plate_sectio
 from ..models.specimens import GAUGE_LENGTH
 from ..models.validity import Validity, deflection_validity
 
-__all__ = ["PlateSpec", "PlateLoad", "PlateGauge", "PlateProblem", "PlateResult", "PlateModel", "check_problem", "DAMAGE_DIRECTIONS"]
+__all__ = [
+    "PlateSpec",
+    "PlateLoad",
+    "PlateGauge",
+    "PlateProblem",
+    "PlateResult",
+    "PlateModel",
+    "PlateStaticResult",
+    "ANALYSES",
+    "check_problem",
+    "solve_plate_static",
+    "DAMAGE_DIRECTIONS",
+]
 
 DAMAGE_DIRECTIONS = ("x", "y", 45.0)  # three normal strains give a point's in-plane strain tensor
+ANALYSES = ("dynamic", "static")  # a plate run: a force history in time, or a uniform pressure at equilibrium
 
 
 def _positive(name: str, value) -> None:
@@ -138,20 +151,51 @@ class PlateProblem:
     ``points``: extra points (x, y) [m] where the deflection is recorded, after
     the impact point.
 
+    ``kinematics``: ``"linear"`` or ``"von-karman"`` (:mod:`softimpact.fem.plate_vk`), ``in_plane`` the
+    restraint of the supported edges in their plane under von Kármán kinematics (``"immovable"``, the
+    default: a panel fastened to a stiff frame, and the classical large-deflection benchmarks';
+    ``"movable"``). ``analysis``: ``"dynamic"`` (the force history ``load`` over the ``solver``'s steps)
+    or ``"static"`` (the uniform ``pressure`` [Pa] on the top face, pushing down, in ``load_steps``
+    increments of Newton; ``load`` and ``solver`` are then None).
+
     A :class:`~softimpact.models.protocols.Target` of a coupled impact: its model, checks and
     refinement, laminate, damage outputs (point strains in x, y and 45° on both faces under the
     load and at each gauge), validity (linear plate theory) and summary extras (its ``target`` block).
     """
 
     plate: PlateSpec
-    load: PlateLoad
-    solver: SolverSpec
+    load: PlateLoad | None
+    solver: SolverSpec | None
     gauges: tuple[PlateGauge, ...] = ()
     points: tuple[tuple[float, float], ...] = ()
     title: str = ""
     units: str = "SI"  # display system of the outputs (the numbers stay SI)
+    kinematics: str = "linear"
+    in_plane: str = "immovable"
+    analysis: str = "dynamic"
+    pressure: float | None = None
+    load_steps: int = 10
 
     def __post_init__(self):
+        from ..fem.plate_vk import IN_PLANE, KINEMATICS
+
+        if self.kinematics not in KINEMATICS:
+            raise InputError(f"kinematics: {self.kinematics!r} is not one of {', '.join(KINEMATICS)}", "kinematics")
+        if self.in_plane not in IN_PLANE:
+            raise InputError(f"in_plane: {self.in_plane!r} is not one of {', '.join(IN_PLANE)}", "in_plane")
+        if self.analysis not in ANALYSES:
+            raise InputError(f"analysis: {self.analysis!r} is not one of {', '.join(ANALYSES)}", "analysis")
+        if self.analysis == "static":
+            _positive("pressure", self.pressure)
+            if isinstance(self.load_steps, bool) or not (isinstance(self.load_steps, (int, np.integer)) and self.load_steps >= 1):
+                raise InputError(f"load_steps must be a positive integer, got {self.load_steps!r}", "load_steps")
+            if self.gauges or self.points:
+                raise InputError("a static plate run records the largest deflection only: gauges and points are for dynamic runs", "gauges")
+            return
+        if self.pressure is not None:
+            raise InputError("pressure: a uniform pressure is a static load (analysis = 'static'); a dynamic run takes a force history", "pressure")
+        if self.load is None or self.solver is None:
+            raise InputError("a dynamic plate run needs its load (position, contact radius, history) and its solver (time step, duration)", "load")
         Lx, Ly = self.plate.length_x, self.plate.length_y
 
         tol = 1e-12 * max(Lx, Ly)  # round-off of cos 90°
@@ -318,6 +362,45 @@ class PlateResult:
     damage: np.ndarray | None = None  # (n_damage, n): the "damage" output group (PlateModel(damage=True)), rows of PlateProblem.damage_gauges()
 
 
+STATIC_ITERATIONS = 5  # full Newton from the previous load step: 3-6 iterations a step past w/h = 1 (tests/test_plate_vk.py)
+
+
+@dataclass(frozen=True)
+class PlateStaticResult:
+    """A static plate run (uniform pressure, :func:`solve_plate_static`): per load step the ``pressure`` [Pa],
+    the largest mid-surface deflection ``max_deflection`` [m] (its magnitude, along the pressure), Newton's
+    ``iterations`` and final relative ``residuals``; ``converged`` (every step), ``message``, the final
+    displacement ``u`` over the model's free DOFs and the plate's ``kinematics``."""
+
+    problem: PlateProblem
+    pressure: np.ndarray
+    max_deflection: np.ndarray
+    iterations: np.ndarray
+    residuals: np.ndarray
+    converged: bool
+    message: str
+    u: np.ndarray
+    kinematics: str
+
+
+def solve_plate_static(problem: PlateProblem, model=None):
+    """(model, :class:`PlateStaticResult`) of a static plate problem: the uniform pressure on the top face
+    (down), in ``load_steps`` equal increments, by full Newton on the von Kármán plate
+    (:func:`softimpact.fem.plate_vk.solve_static`), or one linear solve (``kinematics = "linear"``: the
+    same plate's linear stiffness, membrane DOFs included)."""
+    from ..fem.plate import W
+    from ..fem.plate_vk import PlateVK, solve_static
+
+    if problem.analysis != "static":
+        raise InputError("solve_plate_static: the problem is not a static one (analysis = 'static')", "analysis")
+    model = model or PlateVK(problem.plate.plate(), problem.in_plane)
+    res = solve_static(model, model.load_vector(-problem.pressure), load_steps=problem.load_steps, kinematics=problem.kinematics)
+    rows = model.fe.basis.nodal_dofs[W]
+    w = np.array([np.abs(model.expand(u)[rows]).max() for u in res.u])
+    pressure = problem.pressure * res.load_factors
+    return model, PlateStaticResult(problem, pressure, w, res.iterations, res.residuals, res.converged, res.message, res.u[-1], problem.kinematics)
+
+
 def check_problem(problem: PlateProblem) -> None:
     """Refuse, before anything is built, a plate too big for the machine (:mod:`softimpact.guards`).
 
@@ -334,11 +417,17 @@ def check_problem(problem: PlateProblem) -> None:
     spec = problem.plate
     nx, ny = (int(n) for n in spec.elements)
     k = 2 if spec.element == "mitc9" else 1
-    per_node = 3 if spec.section().is_symmetric() else 5
+    # von Kármán keeps the membrane DOFs that a symmetric section's linear model drops
+    per_node = 3 if spec.section().is_symmetric() and problem.kinematics == "linear" else 5
     n = per_node * (k * nx + 1) * (k * ny + 1)
     band = per_node * (k * (k * ny + 1) + k + 1)
-    steps = problem.solver.steps
     memory = 2 * 8.0 * n * (band + 1)
+    if problem.analysis == "static":
+        # a factorisation per Newton iteration: about STATIC_ITERATIONS a load step
+        factorisations = 1 if problem.kinematics == "linear" else STATIC_ITERATIONS * problem.load_steps
+        require_resources(f"a {nx} x {ny} {spec.element.upper()} plate over {problem.load_steps} load steps", memory, factorisations * n * band * band)
+        return
+    steps = problem.solver.steps
     flops = n * band * (band + 4.0 * (steps + 1))
     require_resources(f"a {nx} x {ny} {spec.element.upper()} plate over {steps} steps", memory, flops)
 
