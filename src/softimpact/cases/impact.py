@@ -227,10 +227,18 @@ class ImpactKind:
         """The coupled run (:func:`softimpact.cases.run.execute`): the target's model (with its ``"damage"`` output
         group when ``damage`` and its laminate allow the indices), the snapshots the figures and fields draw, the run
         (``method``: direct stepping, or kernel runs), the damage indices, the validity and summary.json's content."""
+        from ..errors import InputError
         from ..output.fields import sampled_steps
         from ..output.impact import snapshot_steps
         from ..workflows.coupled import run_impact
 
+        if problem.target.kinematics == "von-karman":  # the nonlinear plate's own stepper (fem.vk_stepping)
+            if method == "kernels":
+                raise InputError(
+                    'contact kernels need a linear target: the target\'s plate.kinematics = "von-karman" runs stepped directly '
+                    "(a sweep of it steps every run; use linear kinematics for kernel runs)"
+                )
+            method = "von-karman"
         damage = damage and problem.target.has_damage_outputs
         steps = problem.solver.steps
         shown = snapshot_steps(steps) if figures and problem.target.deflected_shapes else ()

@@ -42,6 +42,7 @@ __all__ = [
     "PlateProblem",
     "PlateResult",
     "PlateModel",
+    "PlateVKModel",
     "PlateStaticResult",
     "ANALYSES",
     "check_problem",
@@ -225,9 +226,12 @@ class PlateProblem:
                 f"{rise * 1e6:.3g} us (need at most time_of_peak/{MIN_STEPS_PER_RISE})"
             )
 
-    def model(self, patch_radius: float | None = None, damage: bool = False) -> PlateModel:
+    def model(self, patch_radius: float | None = None, damage: bool = False) -> PlateModel | PlateVKModel:
         """The assembled :class:`PlateModel` of this problem (``patch_radius``: the widest contact radius it loads;
-        ``damage``: it also outputs the ``"damage"`` group, :meth:`damage_gauges`)."""
+        ``damage``: it also outputs the ``"damage"`` group, :meth:`damage_gauges`); with von Kármán kinematics the
+        :class:`PlateVKModel` (a coupled impact's target; ``patch_radius`` unused: its disc is the contact's)."""
+        if self.kinematics == "von-karman":
+            return PlateVKModel(self, damage=damage)
         return PlateModel(self, patch_radius, damage=damage)
 
     # --- the Target protocol (softimpact.models.protocols.Target) ---
@@ -313,7 +317,10 @@ class PlateProblem:
         return None, None
 
     def validity(self, max_deflection: float) -> Validity:
-        """The deflection envelope of linear plate theory (:func:`~softimpact.models.validity.deflection_validity`)."""
+        """The deflection envelope of linear plate theory (:func:`~softimpact.models.validity.deflection_validity`);
+        with von Kármán kinematics, the model past it, the ratio alone (no flag)."""
+        if self.kinematics == "von-karman":
+            return Validity({"deflection_over_thickness": abs(max_deflection) / self.plate.stack.thickness})
         return deflection_validity(self.theory, max_deflection, self.plate.stack.thickness)
 
     def gauge_summary(self, gauge: PlateGauge) -> dict:
@@ -327,7 +334,9 @@ class PlateProblem:
         k = int(np.argmax(np.abs(w)))
         target = {
             "model": f"fsdt ({self.plate.element.upper()})",
-            "dofs": model.fe.n,
+            "kinematics": self.kinematics,
+            **({"in_plane": self.in_plane} if self.kinematics == "von-karman" else {}),
+            "dofs": int(model.size),
             "elements": list(self.plate.elements),
             "supports": dict(zip(("x0", "x1", "y0", "y1"), self.plate.supports)),
             "impact_point_m": list(self.load.position),
@@ -500,3 +509,83 @@ class PlateModel(LinearModel):
         light.fe = None
         light.patch = copy.copy(self.patch)
         light.patch.fe = None
+
+
+class _SupportedView:
+    """The all-DOF PlateFE of a :class:`~softimpact.fem.plate_vk.PlateVK` seen with the plate's own supports
+    (a contact disc mirrored on a symmetry edge carries its share): every attribute but ``plate`` is the FE's."""
+
+    def __init__(self, fe: PlateFE, plate: Plate):
+        self._fe, self.plate = fe, plate
+
+    def __getattr__(self, name):
+        return getattr(self._fe, name)
+
+
+class PlateVKModel:
+    """The plate with von Kármán kinematics as a coupled impact's structure
+    (:mod:`softimpact.fem.plate_vk`): its :class:`~softimpact.fem.plate_vk.PlateVK` ``vk`` (membrane DOFs kept,
+    in-plane edges as the problem's ``in_plane``), its nonlinear Newmark ``stepper``
+    (:class:`~softimpact.fem.plate_vk.VonKarmanNewmark`, modified Newton), the contact structure over its free
+    DOFs, the output rows (gauges, then the ``"damage"`` group) and the coupled stepper's name,
+    ``"von-karman"`` (:data:`softimpact.fem.steppers.STEPPERS`). ``fe``: the all-DOF mesh (snapshots are full
+    DOF vectors of it). No response engine or kernels: the structure is not linear."""
+
+    coupled_stepper = "von-karman"
+
+    def __init__(self, problem: PlateProblem, damage: bool = False):
+        from ..fem.plate_vk import PlateVK, VonKarmanNewmark
+
+        self.problem = problem
+        self.damage = problem.damage_gauges() if damage else ()
+        plate = problem.plate.plate()
+        self.vk = vk = PlateVK(plate, problem.in_plane)
+        self.fe = vk.fe
+        self._view = _SupportedView(vk.fe, plate)
+        a, b = problem.plate.damping
+        self.C = None if a == 0 and b == 0 else (a * vk.M + b * vk.K).tocsr()
+        self.solver = problem.solver
+        self.stepper = VonKarmanNewmark(vk, problem.solver.time_step, self.C, problem.solver.newmark, tangent="modified")
+        gauges = problem.gauges + self.damage
+        self.O = np.array([vk.fe.surface_strain(*g.position, g.surface, g.direction, g.length)[vk.free] for g in gauges]).reshape(len(gauges), vk.n)
+
+    @property
+    def size(self) -> int:
+        """The plate's free DOFs (membrane included)."""
+        return self.vk.n
+
+    def contact_structure(self, point: tuple[float, float], reach: float):
+        """The plate struck downward on its top face at ``point`` (x, y) [m], contact discs up to ``reach`` [m]
+        (as :func:`softimpact.fem.contact.plate_contact_structure`, over this model's free DOFs)."""
+        from ..errors import NoContactRoom
+        from ..fem.impact import ContactStructure
+        from ..fem.plate_loads import DiscShares
+
+        vk = self.vk
+        patch = CircularPatch(self._view, point, reach, grow=True)
+        dofs = vk._index[patch.dofs]
+        if np.any(dofs < 0):
+            raise NoContactRoom(f"contact patch about {tuple(point)!r} m reaches a supported edge")
+        gauges = self.problem.gauges + self.damage
+        return ContactStructure(
+            M=vk.M,
+            K=vk.K,
+            surface_x=vk.fe.node_xy()[0, patch.nodes],
+            surface_dofs=dofs,
+            load_sign=-1.0,  # w is up +, the impact pushes down
+            center=float(point[0]),
+            approach_row=-vk.deflection(*point),
+            outputs=self.O,
+            output_names=tuple(g.name for g in gauges),
+            C=self.C,
+            patch=DiscShares(patch),
+            groups=self.contact_groups(),
+        )
+
+    def contact_groups(self) -> dict[str, tuple[int, ...]]:
+        """``"gauges"`` (the problem's) and ``"damage"`` (:meth:`PlateProblem.damage_gauges`, when built with it)."""
+        return output_groups(gauges=len(self.problem.gauges), damage=len(self.damage))
+
+    def contact_reach(self, point: tuple[float, float], diameter: float) -> float:
+        """The impactor's diameter cut by the plate's edges (:func:`softimpact.fem.contact.plate_reach`)."""
+        return plate_reach(self.fe, self.problem.plate.supports, point, diameter)
