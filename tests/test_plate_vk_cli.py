@@ -91,3 +91,10 @@ def test_bad_large_deflection_keys_are_refused(tmp_path, text, key):
     assert result.exit_code == 2, result.output
     assert key in result.output
     assert not out.exists() or not any(out.iterdir())
+
+
+def test_converge_refuses_a_static_plate_case(tmp_path):
+    """softimpact converge on the static von Kármán case exits 2 with a reason naming the keys it needs (only linear dynamic plates are wired there)."""
+    result = CliRunner().invoke(main, ["converge", "plate-ss-pressure-vk", "--out", str(tmp_path / "out"), "--no-figures"])
+    assert result.exit_code == 2, result.output
+    assert "solver.analysis" in result.output

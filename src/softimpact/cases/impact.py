@@ -69,7 +69,8 @@ class SharedModel:
             return
         try:
             problem = ImpactKind().problem(self.data, self.base)
-            if _other_kind(problem) is None:  # the kernels' outputs: the model's, with the damage group when the runs want it
+            if _other_kind(problem) is None and problem.target.kinematics == "linear":  # kernels: a linear target's only
+                # the kernels' outputs: the model's, with the damage group when the runs want it
                 self.kernels(problem, self.data)
         except InputError:  # the runs meet it again and record it, one by one
             return
@@ -290,7 +291,7 @@ class ImpactKind:
         damage = _wants_damage(outputs)
         shared = isinstance(prepared, SharedModel)
         model = prepared.get(problem) if shared else None
-        if shared and prepared.use_kernels:
+        if shared and prepared.use_kernels and problem.target.kinematics == "linear":  # a von Kármán target steps every run
             run = self.execute(problem, damage=damage, model=model, energy=False, method="kernels", kernels=prepared.kernels(problem, data))
         else:
             run = self.execute(problem, damage=damage, model=model, method="direct")

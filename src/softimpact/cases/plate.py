@@ -60,6 +60,7 @@ class PlateKind:
         problem.check()
 
     def refine(self, problem, factor):
+        self._linear_dynamic_only(problem, "converge")
         return problem.refine(factor)
 
     def execute(
@@ -109,10 +110,18 @@ class PlateKind:
 
         return damage_refusal(problem)
 
+    def _linear_dynamic_only(self, problem, what: str) -> None:
+        """Refuse a static or von Kármán plate case where only linear dynamic runs are wired (``what``: the study)."""
+        from ..errors import InputError
+
+        if problem.analysis == "static" or problem.kinematics != "linear":
+            raise InputError(f"{what} of a plate case runs linear dynamic plates only for now (solver.analysis = 'dynamic', plate.kinematics = 'linear')")
+
     def study(self, problem, stride, progress=None):
         """Peak deflection under the load, gauge peaks and histories; the model's size."""
         from ..workflows.plate_impact import PlateModel
 
+        self._linear_dynamic_only(problem, "converge")
         model = PlateModel(problem)
         r = model.direct(progress=progress, energy=False, snapshots=[])
         from ..output.plate import plate_scalars
@@ -128,6 +137,7 @@ class PlateKind:
         from ..workflows.plate_impact import PlateModel
 
         problem = self.problem(data, base)
+        self._linear_dynamic_only(problem, "a sweep")
         model = PlateModel(problem, damage=_wants_damage(outputs) and problem.has_damage_outputs)
         # Several runs: only the kernels, the patch's tables and the problem travel to the workers (the
         # light copy: no mesh, matrices or factor, which does not pickle; 15 MB → under 1 MB).

@@ -264,13 +264,13 @@ class PlateProblem:
         check_problem(self)
 
     def refine(self, factor: int) -> PlateProblem:
-        """Factor × the elements along x and y and dt/factor (load patch, gauges and points unchanged)."""
+        """Factor × the elements along x and y and dt/factor (load patch, gauges and points unchanged; a static run: the mesh only)."""
         from dataclasses import replace
 
         if isinstance(factor, bool) or not isinstance(factor, int) or factor < 1:
             raise InputError(f"refinement factor must be a positive integer, got {factor!r}")
         nx, ny = self.plate.elements
-        solver = replace(self.solver, time_step=self.solver.time_step / factor)
+        solver = None if self.solver is None else replace(self.solver, time_step=self.solver.time_step / factor)
         return replace(self, plate=replace(self.plate, elements=(nx * factor, ny * factor)), solver=solver)
 
     def for_impact(self, solver: SolverSpec, gauges: tuple[PlateGauge, ...] | None = None) -> PlateProblem:
