@@ -40,5 +40,5 @@ def plate(*, case: str, history: int | None = None, figures: bool = True, fields
     su, lu = display(problem.units, "strain"), display(problem.units, "length")
     peaks = "".join(f", {g.name} {eps[np.argmax(np.abs(eps))] * su.factor:.0f} {su.label}" for g, eps in zip(problem.gauges, result.strain))
     w = result.deflection[0]
-    line = f"{model.fe.n} DOF, {steps} steps ({time.perf_counter() - t0:.1f} s); peak deflection {w[np.argmax(np.abs(w))] * lu.factor:.3g} {lu.label}{peaks}"
+    line = f"{model.size} DOF, {steps} steps ({time.perf_counter() - t0:.1f} s); peak deflection {w[np.argmax(np.abs(w))] * lu.factor:.3g} {lu.label}{peaks}"
     return Outcome(files, line, (path,), run.warnings.flags)

@@ -69,21 +69,14 @@ class PlateKind:
         """The plate stepped directly (:func:`softimpact.cases.run.execute`), its displacement kept at the
         deflected-shape figure's instants (``figures``: ``shown``) and the fields' frames (``fields``: ``kept``);
         its warnings: the symmetry edges that miss the load, then the envelopes. A coupled run's options do not apply."""
-        from ..errors import InputError
         from ..models.validity import Validity
         from ..output.fields import sampled_steps
         from ..output.plate import plate_summary, plate_validity, snapshot_steps
-        from ..workflows.plate_impact import PlateModel
         from .run import Run
 
         if problem.analysis == "static":
             return self._static(problem, model)
-        if problem.kinematics != "linear":
-            raise InputError(
-                f'plate.kinematics = "{problem.kinematics}": a plate under a force history runs linear kinematics only for now; '
-                'von Karman runs a static pressure ([solver] analysis = "static") or a coupled impact on the plate',
-            )
-        model = model or PlateModel(problem)
+        model = model or problem.model()
         steps = problem.solver.steps
         shown = snapshot_steps(steps) if figures else ()
         kept = sampled_steps(steps) if fields else ()

@@ -29,11 +29,11 @@ def plate_validity(result):
     """The envelopes of a plate run (:mod:`softimpact.models.validity`): peak deflection under the load against
     the thickness (linear FSDT), and with ply strengths each gauge's peak strain against the most a face strain
     reaches before the ply fails (:func:`softimpact.models.validity.surface_strain_bound`)."""
-    from ..models.validity import deflection_validity, gauge_allowable_flags
+    from ..models.validity import gauge_allowable_flags
 
     p = result.problem
     stack = p.plate.stack
-    v = deflection_validity("linear plate theory (FSDT)", float(np.max(np.abs(result.deflection[0]))), stack.thickness)
+    v = p.validity(float(np.max(np.abs(result.deflection[0]))))  # the kinematics' envelope (von Kármán: the ratio alone)
     if stack.ply.strength is not None and len(p.gauges):
         k = int(np.argmax([np.max(np.abs(e)) for e in result.strain]))
         v += gauge_allowable_flags(f"gauge {p.gauges[k].name}", stack.ply, float(np.max(np.abs(result.strain[k]))))
@@ -61,10 +61,10 @@ def plate_summary(model, result) -> dict:
         "model": f"fsdt ({p.plate.element.upper()})",
         "element": p.plate.element,
         "kinematics": p.kinematics,
-        "dofs": model.fe.n,
+        "dofs": int(model.size),
         "elements": list(p.plate.elements),
         "supports": dict(zip(("x0", "x1", "y0", "y1"), p.plate.supports)),
-        "natural_frequencies_Hz": [float(f) for f in model.frequencies(min(5, model.fe.n - 2))],
+        "natural_frequencies_Hz": [float(f) for f in model.frequencies(min(5, model.size - 2))],
         **plate_scalars(result),
         "gauges": gauges,
         "validity": plate_validity(result).summary(),

@@ -523,13 +523,14 @@ class _SupportedView:
 
 
 class PlateVKModel:
-    """The plate with von Kármán kinematics as a coupled impact's structure
-    (:mod:`softimpact.fem.plate_vk`): its :class:`~softimpact.fem.plate_vk.PlateVK` ``vk`` (membrane DOFs kept,
-    in-plane edges as the problem's ``in_plane``), its nonlinear Newmark ``stepper``
-    (:class:`~softimpact.fem.plate_vk.VonKarmanNewmark`, modified Newton), the contact structure over its free
-    DOFs, the output rows (gauges, then the ``"damage"`` group) and the coupled stepper's name,
-    ``"von-karman"`` (:data:`softimpact.fem.steppers.STEPPERS`). ``fe``: the all-DOF mesh (snapshots are full
-    DOF vectors of it). No response engine or kernels: the structure is not linear."""
+    """The plate with von Kármán kinematics (:mod:`softimpact.fem.plate_vk`): its
+    :class:`~softimpact.fem.plate_vk.PlateVK` ``vk`` (membrane DOFs kept, in-plane edges as the problem's
+    ``in_plane``), its nonlinear Newmark ``stepper`` (:class:`~softimpact.fem.plate_vk.VonKarmanNewmark`,
+    modified Newton), the output rows (gauges, then the ``"damage"`` group); a coupled impact's structure
+    (:meth:`contact_structure`, over its free DOFs, stepped by :data:`softimpact.fem.steppers.STEPPERS`
+    ``"von-karman"``) and a prescribed force history's (:meth:`direct`). ``fe``: the all-DOF mesh with the
+    plate's supports (snapshots are full DOF vectors of it). No response engine or kernels: the structure is
+    not linear."""
 
     coupled_stepper = "von-karman"
 
@@ -540,8 +541,7 @@ class PlateVKModel:
         self.damage = problem.damage_gauges() if damage else ()
         plate = problem.plate.plate()
         self.vk = vk = PlateVK(plate, problem.in_plane)
-        self.fe = vk.fe
-        self._view = _SupportedView(vk.fe, plate)
+        self.fe = self._view = _SupportedView(vk.fe, plate)
         a, b = problem.plate.damping
         self.C = None if a == 0 and b == 0 else (a * vk.M + b * vk.K).tocsr()
         self.solver = problem.solver
@@ -553,6 +553,65 @@ class PlateVKModel:
     def size(self) -> int:
         """The plate's free DOFs (membrane included)."""
         return self.vk.n
+
+    @property
+    def steps(self) -> int:
+        return self.solver.steps
+
+    def frequencies(self, count: int = 5) -> np.ndarray:
+        """The ``count`` lowest natural frequencies [Hz] of small vibrations about the flat plate (its linear
+        stiffness K, membrane DOFs included; shift-invert Lanczos)."""
+        import scipy.sparse.linalg as spl
+
+        if not (isinstance(count, int) and 1 <= count < self.size - 1):
+            raise InputError(f"count must be an integer from 1 to {self.size - 2}, got {count!r}")
+        vals = spl.eigsh(self.vk.K.tocsc(), k=count, M=self.vk.M.tocsc(), sigma=0.0, which="LM", tol=1e-10, return_eigenvectors=False)
+        return np.sqrt(np.abs(np.sort(vals))) / (2 * np.pi)
+
+    def direct(self, history=None, progress=None, energy: bool = True, snapshots=None) -> PlateResult:
+        """The force history (default: the problem's) on the load's patch (eq 11, its radius growing by eq 10
+        when the load says so) by nonlinear Newmark–Newton stepping (:class:`~softimpact.fem.plate_vk.VonKarmanNewmark`):
+        gauge strains, deflections under the load and at the problem's points, with ``energy`` the balance
+        (kinetic, the von Kármán strain energy, the loads' work by the trapezoidal rule) at every step;
+        ``snapshots``: step indices at which to keep the full DOF vector (None: every step)."""
+        p, vk, st, N = self.problem, self.vk, self.stepper, self.solver.steps
+        h = p.load.history if history is None else history
+        F = np.asarray(h(self.solver.times()) if callable(h) else h, float)
+        patch = CircularPatch(self._view, p.load.position, p.load.contact_radius, grow=p.load.grow)
+        dofs = vk._index[patch.dofs]
+        if np.any(dofs < 0):
+            raise InputError(f"load position {p.load.position!r} m: the load patch reaches a supported edge")
+        loads = -patch.forces(F, p.load.contact_radius)  # (p, N + 1): the patch pushes the plate down (−z)
+        rows = np.vstack([self.O, *[vk.deflection(*xy)[None] for xy in (p.load.position,) + tuple(p.points)]])
+        keep = np.arange(N + 1) if snapshots is None else np.asarray(snapshots, int)
+        slot = {int(k): i for i, k in enumerate(keep)}
+        saved = np.zeros((vk.fe.basis.N, keep.size))
+        n = vk.n
+        u, v = np.zeros(n), np.zeros(n)
+        f = np.zeros(n)
+        f[dofs] = loads[:, 0]
+        a = st.initial_acceleration(u, v, f)
+        y = np.zeros((rows.shape[0], N + 1))
+        kinetic, strain, work = np.zeros(N + 1), np.zeros(N + 1), np.zeros(N + 1)
+        strain[0] = vk.strain_energy(u)
+        if 0 in slot:
+            saved[:, slot[0]] = vk.expand(u)
+        for k in range(N):
+            f1 = np.zeros(n)
+            f1[dofs] = loads[:, k + 1]
+            u1, v, a, _ = st.step(u, v, a, f1)
+            work[k + 1] = work[k] + 0.5 * (loads[:, k] + loads[:, k + 1]) @ (u1[dofs] - u[dofs])
+            u = u1
+            y[:, k + 1] = rows @ u
+            if energy:
+                kinetic[k + 1], strain[k + 1] = 0.5 * v @ (vk.M @ v), vk.strain_energy(u)
+            if k + 1 in slot:
+                saved[:, slot[k + 1]] = vk.expand(u)
+            if progress is not None and k % 100 == 0:
+                progress(k)
+        energies = Energies(np.arange(N + 1), kinetic, strain, work) if energy else None
+        ng, nd = len(p.gauges), len(self.damage)
+        return PlateResult(p, self.solver.times(), F, y[:ng], y[ng + nd :], saved, energies, keep, y[ng : ng + nd] if nd else None)
 
     def contact_structure(self, point: tuple[float, float], reach: float):
         """The plate struck downward on its top face at ``point`` (x, y) [m], contact discs up to ``reach`` [m]
