@@ -54,7 +54,7 @@ class VonKarmanStepper(CoupledStepper):
     :class:`ContactStructure` over the plate's free DOFs (``M``, ``K`` its linear part, a contact disc as
     ``patch``), ``engine`` its :class:`~softimpact.fem.plate_vk.VonKarmanNewmark` (required: it carries the
     nonlinear plate); ``energy``: record the plate's kinetic and strain energies (else NaN); ``snapshots``:
-    step indices at which to keep the displacement, as full DOF vectors of the plate (``PlateVK.expand``)."""
+    step indices at which to keep the displacement of the free DOFs."""
 
     def __init__(
         self,
@@ -96,7 +96,7 @@ class VonKarmanStepper(CoupledStepper):
         if keep.size and (keep.min() < 0 or keep.max() > self.steps):
             raise InputError(f"snapshots: step indices must lie in 0 … {self.steps}, got {snapshots!r}")
         self.keep, self.slot = keep, {int(k): i for i, k in enumerate(keep)}
-        self.saved = np.zeros((self.vk.fe.basis.N, keep.size))
+        self.saved = np.zeros((self.vk.n, keep.size))
         self.structure_iterations = 0  # the plate's Newton iterations, summed over the run
         self._n = n
 
@@ -170,7 +170,7 @@ class VonKarmanStepper(CoupledStepper):
             self.es[k1] = self.vk.strain_energy(u1)
         self.u, self.v, self.acc, self.s_prev = u1, v1, acc1, fs
         if k1 in self.slot:
-            self.saved[:, self.slot[k1]] = self.vk.expand(u1)
+            self.saved[:, self.slot[k1]] = u1
 
     def approach_acceleration(self, k: int, a_new: float, impactor_acceleration: float) -> float:
         """α̈_{k+1} = ẍ_{k+1} − c·ü_{k+1}, from the plate's state (kept for the next coupled step)."""

@@ -512,11 +512,18 @@ class PlateModel(LinearModel):
 
 
 class _SupportedView:
-    """The all-DOF PlateFE of a :class:`~softimpact.fem.plate_vk.PlateVK` seen with the plate's own supports
-    (a contact disc mirrored on a symmetry edge carries its share): every attribute but ``plate`` is the FE's."""
+    """The all-DOF PlateFE of a :class:`~softimpact.fem.plate_vk.PlateVK` ``vk`` seen with the plate's own supports
+    (a contact disc mirrored on a symmetry edge carries its share) and ``vk``'s free DOFs (``n``, ``free``,
+    :meth:`expand`): every other attribute is the FE's (its DOF numbering: full vectors)."""
 
-    def __init__(self, fe: PlateFE, plate: Plate):
-        self._fe, self.plate = fe, plate
+    def __init__(self, vk, plate: Plate):
+        self._fe, self.plate, self.n, self.free = vk.fe, plate, vk.n, vk.free
+
+    def expand(self, u: np.ndarray) -> np.ndarray:
+        """Full DOF vector(s) (fixed DOFs zero) from ``vk``'s reduced ones; time on the last axis."""
+        full = np.zeros((self._fe.basis.N,) + np.shape(u)[1:])
+        full[self.free] = u
+        return full
 
     def __getattr__(self, name):
         return getattr(self._fe, name)
@@ -528,9 +535,9 @@ class PlateVKModel:
     ``in_plane``), its nonlinear Newmark ``stepper`` (:class:`~softimpact.fem.plate_vk.VonKarmanNewmark`,
     modified Newton), the output rows (gauges, then the ``"damage"`` group); a coupled impact's structure
     (:meth:`contact_structure`, over its free DOFs, stepped by :data:`softimpact.fem.steppers.STEPPERS`
-    ``"von-karman"``) and a prescribed force history's (:meth:`direct`). ``fe``: the all-DOF mesh with the
-    plate's supports (snapshots are full DOF vectors of it). No response engine or kernels: the structure is
-    not linear."""
+    ``"von-karman"``) and a prescribed force history's (:meth:`direct`). ``fe``: the mesh with the plate's
+    supports and ``vk``'s free DOFs (its ``expand`` maps snapshots to full vectors). No response engine or
+    kernels: the structure is not linear."""
 
     coupled_stepper = "von-karman"
 
@@ -541,7 +548,7 @@ class PlateVKModel:
         self.damage = problem.damage_gauges() if damage else ()
         plate = problem.plate.plate()
         self.vk = vk = PlateVK(plate, problem.in_plane)
-        self.fe = self._view = _SupportedView(vk.fe, plate)
+        self.fe = self._view = _SupportedView(vk, plate)
         a, b = problem.plate.damping
         self.C = None if a == 0 and b == 0 else (a * vk.M + b * vk.K).tocsr()
         self.solver = problem.solver
@@ -573,7 +580,7 @@ class PlateVKModel:
         when the load says so) by nonlinear Newmark–Newton stepping (:class:`~softimpact.fem.plate_vk.VonKarmanNewmark`):
         gauge strains, deflections under the load and at the problem's points, with ``energy`` the balance
         (kinetic, the von Kármán strain energy, the loads' work by the trapezoidal rule) at every step;
-        ``snapshots``: step indices at which to keep the full DOF vector (None: every step)."""
+        ``snapshots``: step indices at which to keep the displacement of the free DOFs (None: every step)."""
         p, vk, st, N = self.problem, self.vk, self.stepper, self.solver.steps
         h = p.load.history if history is None else history
         F = np.asarray(h(self.solver.times()) if callable(h) else h, float)
@@ -585,7 +592,7 @@ class PlateVKModel:
         rows = np.vstack([self.O, *[vk.deflection(*xy)[None] for xy in (p.load.position,) + tuple(p.points)]])
         keep = np.arange(N + 1) if snapshots is None else np.asarray(snapshots, int)
         slot = {int(k): i for i, k in enumerate(keep)}
-        saved = np.zeros((vk.fe.basis.N, keep.size))
+        saved = np.zeros((vk.n, keep.size))
         n = vk.n
         u, v = np.zeros(n), np.zeros(n)
         f = np.zeros(n)
@@ -595,7 +602,7 @@ class PlateVKModel:
         kinetic, strain, work = np.zeros(N + 1), np.zeros(N + 1), np.zeros(N + 1)
         strain[0] = vk.strain_energy(u)
         if 0 in slot:
-            saved[:, slot[0]] = vk.expand(u)
+            saved[:, slot[0]] = u
         for k in range(N):
             f1 = np.zeros(n)
             f1[dofs] = loads[:, k + 1]
@@ -606,7 +613,7 @@ class PlateVKModel:
             if energy:
                 kinetic[k + 1], strain[k + 1] = 0.5 * v @ (vk.M @ v), vk.strain_energy(u)
             if k + 1 in slot:
-                saved[:, slot[k + 1]] = vk.expand(u)
+                saved[:, slot[k + 1]] = u
             if progress is not None and k % 100 == 0:
                 progress(k)
         energies = Energies(np.arange(N + 1), kinetic, strain, work) if energy else None
