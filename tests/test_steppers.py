@@ -119,7 +119,7 @@ def test_a_law_with_no_optional_capability_runs_the_same():
     s = _two_masses(nodes=np.linspace(-2e-3, 2e-3, 41))  # a line patch the contact disc spreads over
     dt, steps = 0.2e-6, 800
     kernels = ContactKernels(s, dt, steps)
-    for name in STEPPERS:
+    for name in ("direct", "kernels"):  # the linear structures' steppers ("von-karman" steps a PlateVK: tests/test_plate_vk_impact.py)
         runs = [
             STEPPERS[name](s, law, MASS, VELOCITY, dt, steps, engine=kernels if name == "kernels" else None, energy=False).run()
             for law in (HertzLaw(K_HERTZ, R_SPHERE), _PlainHertz(K_HERTZ, R_SPHERE))

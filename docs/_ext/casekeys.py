@@ -185,7 +185,7 @@ def _variants() -> dict[str, list]:
             (_set(beam, beam__laminate=None, beam__material={"material": "steel", "thickness": "1 mm"}),),
             (_set(beam, beam__laminate=None, beam__material={**{k: v for k, v in _INLINE_MATERIAL.items() if k != "source"}, "thickness": "1 mm"}),),
         ],
-        "plate": [(plate,), (_set(plate, plate__element="mitc4", plate__model="fsdt", load__grow=False, gauges=[{"name": "g", "position": ["1 in", "1 in"], "surface": "top", "direction": 45, "length": "0.1 in"}]),)],
+        "plate": [(plate,), (_set(plate, plate__element="mitc4", plate__model="fsdt", load__grow=False, gauges=[{"name": "g", "position": ["1 in", "1 in"], "surface": "top", "direction": 45, "length": "0.1 in"}]),), (_data("plate-ss-pressure-vk"),)],
         "impact": [(impact,), (pimpact,), (_set(impact, impactor__mass="1 g", gauges=[{"name": "g", "position": "1 in", "surface": "top", "length": "0.1 in"}]),)]
         + [(_set(impact, contact=c),) for c in contact_laws]
         + [(_set(impact, impactor__material=m["material"], contact=c),) for m, c in flow_laws]

@@ -69,7 +69,8 @@ class SharedModel:
             return
         try:
             problem = ImpactKind().problem(self.data, self.base)
-            if _other_kind(problem) is None:  # the kernels' outputs: the model's, with the damage group when the runs want it
+            if _other_kind(problem) is None and problem.target.kinematics == "linear":  # kernels: a linear target's only
+                # the kernels' outputs: the model's, with the damage group when the runs want it
                 self.kernels(problem, self.data)
         except InputError:  # the runs meet it again and record it, one by one
             return
@@ -227,10 +228,18 @@ class ImpactKind:
         """The coupled run (:func:`softimpact.cases.run.execute`): the target's model (with its ``"damage"`` output
         group when ``damage`` and its laminate allow the indices), the snapshots the figures and fields draw, the run
         (``method``: direct stepping, or kernel runs), the damage indices, the validity and summary.json's content."""
+        from ..errors import InputError
         from ..output.fields import sampled_steps
         from ..output.impact import snapshot_steps
         from ..workflows.coupled import run_impact
 
+        if problem.target.kinematics == "von-karman":  # the nonlinear plate's own stepper (fem.vk_stepping)
+            if method == "kernels":
+                raise InputError(
+                    'contact kernels need a linear target: the target\'s plate.kinematics = "von-karman" runs stepped directly '
+                    "(a sweep of it steps every run; use linear kinematics for kernel runs)"
+                )
+            method = "von-karman"
         damage = damage and problem.target.has_damage_outputs
         steps = problem.solver.steps
         shown = snapshot_steps(steps) if figures and problem.target.deflected_shapes else ()
@@ -282,7 +291,7 @@ class ImpactKind:
         damage = _wants_damage(outputs)
         shared = isinstance(prepared, SharedModel)
         model = prepared.get(problem) if shared else None
-        if shared and prepared.use_kernels:
+        if shared and prepared.use_kernels and problem.target.kinematics == "linear":  # a von Kármán target steps every run
             run = self.execute(problem, damage=damage, model=model, energy=False, method="kernels", kernels=prepared.kernels(problem, data))
         else:
             run = self.execute(problem, damage=damage, model=model, method="direct")

@@ -60,6 +60,7 @@ class PlateKind:
         problem.check()
 
     def refine(self, problem, factor):
+        self._linear_dynamic_only(problem, "converge")
         return problem.refine(factor)
 
     def execute(
@@ -71,10 +72,11 @@ class PlateKind:
         from ..models.validity import Validity
         from ..output.fields import sampled_steps
         from ..output.plate import plate_summary, plate_validity, snapshot_steps
-        from ..workflows.plate_impact import PlateModel
         from .run import Run
 
-        model = model or PlateModel(problem)
+        if problem.analysis == "static":
+            return self._static(problem, model)
+        model = model or problem.model()
         steps = problem.solver.steps
         shown = snapshot_steps(steps) if figures else ()
         kept = sampled_steps(steps) if fields else ()
@@ -82,15 +84,37 @@ class PlateKind:
         validity = Validity({}, mirrored_loads(problem)) + plate_validity(result)
         return Run(result, model, plate_summary(model, result), validity, problem, shown, kept)
 
+    def _static(self, problem, model=None):
+        """A static plate run (:func:`softimpact.workflows.plate_impact.solve_plate_static`): its summary and envelope;
+        a Newton that did not converge is a warning of the run (summary.json says where)."""
+        from ..models.validity import Validity
+        from ..output.plate import plate_static_summary, plate_static_validity
+        from ..workflows.plate_impact import solve_plate_static
+        from .run import Run
+
+        model, result = solve_plate_static(problem, model)
+        validity = plate_static_validity(result)
+        if not result.converged:
+            validity += Validity({}, (f"static plate: {result.message}",), ("",))
+        return Run(result, model, plate_static_summary(model, result), validity, problem)
+
     def damage_refusal(self, problem):
         from ..workflows.damage import damage_refusal
 
         return damage_refusal(problem)
 
+    def _linear_dynamic_only(self, problem, what: str) -> None:
+        """Refuse a static or von Kármán plate case where only linear dynamic runs are wired (``what``: the study)."""
+        from ..errors import InputError
+
+        if problem.analysis == "static" or problem.kinematics != "linear":
+            raise InputError(f"{what} of a plate case runs linear dynamic plates only for now (solver.analysis = 'dynamic', plate.kinematics = 'linear')")
+
     def study(self, problem, stride, progress=None):
         """Peak deflection under the load, gauge peaks and histories; the model's size."""
         from ..workflows.plate_impact import PlateModel
 
+        self._linear_dynamic_only(problem, "converge")
         model = PlateModel(problem)
         r = model.direct(progress=progress, energy=False, snapshots=[])
         from ..output.plate import plate_scalars
@@ -106,6 +130,7 @@ class PlateKind:
         from ..workflows.plate_impact import PlateModel
 
         problem = self.problem(data, base)
+        self._linear_dynamic_only(problem, "a sweep")
         model = PlateModel(problem, damage=_wants_damage(outputs) and problem.has_damage_outputs)
         # Several runs: only the kernels, the patch's tables and the problem travel to the workers (the
         # light copy: no mesh, matrices or factor, which does not pickle; 15 MB → under 1 MB).

@@ -9,13 +9,17 @@ snapshots)`` then ``.run()``:
 - ``"kernels"``: :class:`softimpact.fem.kernel_stepping.KernelStepper`, the scalar contact equation against
   the structure's impulse responses (``engine``: its :class:`softimpact.fem.kernels.ContactKernels`);
   milliseconds a run once built, equal to direct stepping to round-off, no structure energies.
+- ``"von-karman"``: :class:`softimpact.fem.vk_stepping.VonKarmanStepper`, a plate with von Kármán kinematics
+  (``engine``: its :class:`softimpact.fem.plate_vk.VonKarmanNewmark`): one Newton over the plate and the
+  contact a step; energies and snapshots.
 """
 
 from __future__ import annotations
 
 from .direct import DirectStepper
 from .kernel_stepping import KernelStepper
+from .vk_stepping import VonKarmanStepper
 
 __all__ = ["STEPPERS"]
 
-STEPPERS = {"direct": DirectStepper, "kernels": KernelStepper}
+STEPPERS = {"direct": DirectStepper, "kernels": KernelStepper, "von-karman": VonKarmanStepper}

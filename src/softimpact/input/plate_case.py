@@ -1,10 +1,14 @@
 """Plate case files (``softimpact plate``): TOML → :class:`PlateProblem`.
 
 ``[plate]`` (length, width, elements, element ``mitc9`` or ``mitc4`` (default: see
-``DEFAULT_ELEMENT``), support per edge, model, ``[plate.laminate]``),
+``DEFAULT_ELEMENT``), support per edge, model, ``kinematics`` (``"linear"``, the default, or
+``"von-karman"``), ``in_plane`` (``"immovable"``, the default, or ``"movable"``: see
+``DEFAULT_IN_PLANE``), ``[plate.laminate]``),
 ``[load]`` (position, contact_radius, history and ``[[load.table]]`` rows, read as in
-beam cases), ``[solver]`` and ``[[gauges]]``; see README.md and
-``data/cases/plate-ss-8in.toml``.
+beam cases; or, with ``[solver] analysis = "static"``, a uniform ``pressure`` alone),
+``[solver]`` (time step and duration; or ``analysis = "static"`` and ``load_steps``) and
+``[[gauges]]``; see README.md, ``data/cases/plate-ss-8in.toml`` and
+``data/cases/plate-ss-pressure-vk.toml``.
 """
 
 from __future__ import annotations
@@ -15,9 +19,10 @@ from pathlib import Path
 from .. import units
 from ..errors import InputError
 from ..fem.plate import EDGES, ELEMENTS
+from ..fem.plate_vk import IN_PLANE, KINEMATICS
 from ..models.laminate import Stack, parse_layup
 from ..models.specimens import GAUGE_LENGTH
-from ..workflows.plate_impact import PlateGauge, PlateLoad, PlateProblem, PlateSpec, check_problem
+from ..workflows.plate_impact import ANALYSES, PlateGauge, PlateLoad, PlateProblem, PlateSpec, check_problem
 from .beam_case import read_load_history, read_ply
 from .toml import Table, load_case_toml, locate, naming, read_solver, read_units
 
@@ -30,6 +35,11 @@ MIN_ELEMENTS = 2  # per direction: one element cannot place a load or gauge insi
 # converge, impact, sweep): MITC9, whose flexural dispersion error is O(h⁴) (1.8 % on the
 # issue's plate at 48², where MITC4 needs ~360²). ``element = "mitc4"`` asks for MITC4.
 DEFAULT_ELEMENT = "mitc9"
+# The in-plane restraint of supported edges under von Kármán kinematics when a case names none: immovable,
+# a panel fastened to a stiff frame (the classical large-deflection benchmarks' edges, Levy's and the Ritz
+# oracle's of tests/test_plate_vk.py); "movable" lets the edges draw in. Linear kinematics ignores it.
+DEFAULT_IN_PLANE = "immovable"
+DEFAULT_LOAD_STEPS = 10  # equal pressure increments of a static run: 3-6 Newton iterations each to w/h ~ 3
 
 
 def _point(tbl: Table, name: str) -> tuple[float, float]:
@@ -97,6 +107,8 @@ def plate_problem(data: dict, base: Path = Path("."), history: int | None = None
     if min(elements) < MIN_ELEMENTS:
         raise InputError(f"{p.key('elements')}: the FSDT plate needs at least {MIN_ELEMENTS} elements each way, got {elements!r}")
     supports = _supports(p)
+    kinematics = p.string("kinematics", KINEMATICS[0], choices=KINEMATICS)
+    in_plane = p.string("in_plane", DEFAULT_IN_PLANE, choices=IN_PLANE)
     lam = p.table("laminate")
     ply = read_ply(lam)
     layup = lam.string("layup")  # (read outside the naming: its own errors name the key already)
@@ -106,19 +118,53 @@ def plate_problem(data: dict, base: Path = Path("."), history: int | None = None
     spec = PlateSpec(p.quantity("length", "length"), p.quantity("width", "length"), tuple(elements), stack, supports, element=element)
     p.done()
 
+    sv = top.table("solver")
+    analysis = sv.string("analysis", ANALYSES[0], choices=ANALYSES)
     ld = top.table("load")
-    position = _point(ld, "position")
-    radius = ld.quantity("contact_radius", "length")
-    grow = ld.raw("grow", True)
-    if not isinstance(grow, bool):
-        raise InputError(f"{ld.key('grow')}: expected true or false, got {grow!r}")
-    pulse, radius = read_load_history(ld, base, history, radius)
-    ld.done()
-    solver = read_solver(top.table("solver"))
+    if analysis == "static":
+        if "pressure" not in ld:
+            raise InputError(f"{ld.key('pressure')}: missing (a static plate run, {sv.key('analysis')} = 'static', takes a uniform pressure)")
+        pressure = ld.quantity("pressure", "stress")
+        ld.done()
+        load_steps = sv.integer("load_steps", DEFAULT_LOAD_STEPS)
+        sv.done()
+        load = solver = None
+    else:
+        if "pressure" in ld:
+            raise InputError(
+                f"{ld.key('pressure')}: a uniform pressure is a static load: set {sv.key('analysis')} = 'static' (dynamic runs take a force history)"
+            )
+        if "load_steps" in sv:
+            raise InputError(f"{sv.key('load_steps')}: load steps belong to a static run ({sv.key('analysis')} = 'static')")
+        position = _point(ld, "position")
+        radius = ld.quantity("contact_radius", "length")
+        grow = ld.raw("grow", True)
+        if not isinstance(grow, bool):
+            raise InputError(f"{ld.key('grow')}: expected true or false, got {grow!r}")
+        pulse, radius = read_load_history(ld, base, history, radius)
+        ld.done()
+        load = PlateLoad(position, radius, pulse, grow)
+        solver = read_solver(sv)
+        pressure, load_steps = None, DEFAULT_LOAD_STEPS
     gauges = read_plate_gauges(top)
     top.done()
-    with naming({None: "case"}):
-        problem = PlateProblem(spec, PlateLoad(position, radius, pulse, grow), solver, gauges, title=title, units=system)
+    if analysis == "static" and gauges:
+        raise InputError("gauges: a static plate run records the largest deflection only (gauges are for dynamic runs)")
+    names = {None: "case", "kinematics": p.key("kinematics"), "in_plane": p.key("in_plane"), "pressure": "load.pressure", "load_steps": sv.key("load_steps")}
+    with naming(names):
+        problem = PlateProblem(
+            spec,
+            load,
+            solver,
+            gauges,
+            title=title,
+            units=system,
+            kinematics=kinematics,
+            in_plane=in_plane,
+            analysis=analysis,
+            pressure=pressure,
+            load_steps=load_steps,
+        )
     check_problem(problem)
     return problem
 

@@ -194,7 +194,8 @@ class Target(Protocol):
     - damage: ``has_damage_outputs`` (a layup with strengths), ``damage_points()`` where the indices are
       read ("at_load", "at_<gauge>"), ``damage_gauges()`` the ``"damage"`` output group, ``damage_faces(gauges, damage)`` each damage point's (top, bottom) face strains,
       ``damage_section`` (plane, width) of a beam section or (None, None);
-    - ``validity(max_deflection)`` the deflection envelope of its theory (``theory``: its label);
+    - ``validity(max_deflection)`` the deflection envelope of its theory (``theory``: its label); ``kinematics``
+      ``"linear"`` or ``"von-karman"`` (a plate's: the coupled stepper that runs it);
     - summary.json: ``gauge_summary(gauge)`` a gauge's entries, ``summary_extras(model, result)`` the target's
       own block (a plate's ``target``), ``summary_keys`` its sweep outputs; ``deflected_shapes`` whether the
       impact command draws its deflected shapes.
@@ -204,6 +205,7 @@ class Target(Protocol):
     solver: object
     gauges: tuple
     theory: str
+    kinematics: str
     laminate_key: str
     deflected_shapes: bool
     summary_keys: tuple

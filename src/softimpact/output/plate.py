@@ -6,7 +6,16 @@ import numpy as np
 
 from .files import csv_text, energy_balance, figure_bytes, json_text, strain_peaks
 
-__all__ = ["plate_validity", "plate_summary", "plate_scalars", "plate_files", "SNAPSHOTS"]
+__all__ = [
+    "plate_validity",
+    "plate_summary",
+    "plate_scalars",
+    "plate_files",
+    "plate_static_summary",
+    "plate_static_validity",
+    "plate_static_files",
+    "SNAPSHOTS",
+]
 
 SNAPSHOTS = 6  # instants of the deflected-shape figure, spread over the run
 
@@ -20,11 +29,11 @@ def plate_validity(result):
     """The envelopes of a plate run (:mod:`softimpact.models.validity`): peak deflection under the load against
     the thickness (linear FSDT), and with ply strengths each gauge's peak strain against the most a face strain
     reaches before the ply fails (:func:`softimpact.models.validity.surface_strain_bound`)."""
-    from ..models.validity import deflection_validity, gauge_allowable_flags
+    from ..models.validity import gauge_allowable_flags
 
     p = result.problem
     stack = p.plate.stack
-    v = deflection_validity("linear plate theory (FSDT)", float(np.max(np.abs(result.deflection[0]))), stack.thickness)
+    v = p.validity(float(np.max(np.abs(result.deflection[0]))))  # the kinematics' envelope (von Kármán: the ratio alone)
     if stack.ply.strength is not None and len(p.gauges):
         k = int(np.argmax([np.max(np.abs(e)) for e in result.strain]))
         v += gauge_allowable_flags(f"gauge {p.gauges[k].name}", stack.ply, float(np.max(np.abs(result.strain[k]))))
@@ -51,10 +60,11 @@ def plate_summary(model, result) -> dict:
         "title": p.title,
         "model": f"fsdt ({p.plate.element.upper()})",
         "element": p.plate.element,
-        "dofs": model.fe.n,
+        "kinematics": p.kinematics,
+        "dofs": int(model.size),
         "elements": list(p.plate.elements),
         "supports": dict(zip(("x0", "x1", "y0", "y1"), p.plate.supports)),
-        "natural_frequencies_Hz": [float(f) for f in model.frequencies(min(5, model.fe.n - 2))],
+        "natural_frequencies_Hz": [float(f) for f in model.frequencies(min(5, model.size - 2))],
         **plate_scalars(result),
         "gauges": gauges,
         "validity": plate_validity(result).summary(),
@@ -94,3 +104,53 @@ def plate_files(model, result, figures: bool = True, summary: dict | None = None
         if result.displacement is not None and result.displacement.shape[1]:
             files["deflection.png"] = figure_bytes(plate_plots.plate_deflection(model, result, p.units))
     return files
+
+
+def plate_static_validity(result):
+    """The envelope of a static plate run: with linear kinematics, the largest deflection against the
+    thickness (:func:`softimpact.models.validity.deflection_validity`); von Kármán kinematics is the model
+    past it (its ratio is reported, not flagged)."""
+    from ..models.validity import Validity, deflection_validity
+
+    h = result.problem.plate.stack.thickness
+    w = float(result.max_deflection[-1])
+    if result.kinematics == "linear":
+        return deflection_validity("linear plate theory (FSDT)", w, h)
+    return Validity({"deflection_over_thickness": w / h}, ())
+
+
+def plate_static_summary(model, result) -> dict:
+    """summary.json of a static plate run (uniform pressure): the largest mid-surface deflection
+    ``max_deflection_m`` (its magnitude, along the pressure) and ``kinematics``, Newton's convergence
+    (``newton``: iterations and final relative residual per load step, ``converged``, ``message``), the
+    load steps' pressures and deflections, and the resolved case."""
+    p = result.problem
+    return {
+        "title": p.title,
+        "analysis": "static",
+        "model": f"fsdt ({p.plate.element.upper()})",
+        "element": p.plate.element,
+        "kinematics": result.kinematics,
+        "in_plane": p.in_plane if result.kinematics == "von-karman" else None,
+        "dofs": int(model.n),
+        "elements": list(p.plate.elements),
+        "supports": dict(zip(("x0", "x1", "y0", "y1"), p.plate.supports)),
+        "pressure_Pa": float(p.pressure),
+        "max_deflection_m": float(result.max_deflection[-1]),
+        "max_deflection_over_thickness": float(result.max_deflection[-1] / p.plate.stack.thickness),
+        "deflection_note": "largest transverse deflection of the mid-surface over the plate, positive along the pressure",
+        "load_steps": {"pressure_Pa": [float(q) for q in result.pressure], "max_deflection_m": [float(w) for w in result.max_deflection]},
+        "newton": {
+            "iterations": [int(i) for i in result.iterations],
+            "residual_relative": [float(r) for r in result.residuals],
+            "converged": bool(result.converged),
+            "message": result.message,
+        },
+        "validity": plate_static_validity(result).summary(),
+        "case_SI": p,
+    }
+
+
+def plate_static_files(summary: dict) -> dict[str, str]:
+    """summary.json of a static plate run (:func:`plate_static_summary`): no history, no figures."""
+    return {"summary.json": json_text(summary)}

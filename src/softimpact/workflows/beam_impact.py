@@ -156,6 +156,7 @@ class BeamProblem:
     # --- the Target protocol (softimpact.models.protocols.Target) ---
 
     theory = "linear beam theory"  # the deflection envelope's label (models.validity.deflection_validity)
+    kinematics = "linear"  # (von Kármán beams: not implemented)
     laminate_key = "beam.laminate.ply"  # where a case gives the laminate's ply (messages)
     deflected_shapes = False  # the impact command draws no deflected shapes of a beam
     summary_keys = ()  # the sweep outputs of its summary extras (none)

@@ -44,7 +44,7 @@ __all__ = [
     "METHODS",
 ]
 
-METHODS = ("auto", "kernels", "direct")  # run_impact's ways to step a coupled impact
+METHODS = ("auto", "kernels", "direct", "von-karman")  # run_impact's ways to step a coupled impact (the last: a von Kármán plate's)
 
 
 @dataclass(frozen=True)
@@ -161,7 +161,7 @@ def run_impact(
         structure = kernels.structure_for(reach, lambda r: model.contact_structure(problem.position, r))
     else:
         structure = model.contact_structure(problem.position, reach)
-    stepper = STEPPERS["kernels" if use_kernels else "direct"](
+    stepper = STEPPERS["kernels" if use_kernels else "direct" if method in ("auto", "direct") else method](
         structure,
         problem.law,
         imp.mass,

@@ -35,9 +35,23 @@ from ..models.plate_laminate import SHEAR_CORRECTION, PlateSection, plate_sectio
 from ..models.specimens import GAUGE_LENGTH
 from ..models.validity import Validity, deflection_validity
 
-__all__ = ["PlateSpec", "PlateLoad", "PlateGauge", "PlateProblem", "PlateResult", "PlateModel", "check_problem", "DAMAGE_DIRECTIONS"]
+__all__ = [
+    "PlateSpec",
+    "PlateLoad",
+    "PlateGauge",
+    "PlateProblem",
+    "PlateResult",
+    "PlateModel",
+    "PlateVKModel",
+    "PlateStaticResult",
+    "ANALYSES",
+    "check_problem",
+    "solve_plate_static",
+    "DAMAGE_DIRECTIONS",
+]
 
 DAMAGE_DIRECTIONS = ("x", "y", 45.0)  # three normal strains give a point's in-plane strain tensor
+ANALYSES = ("dynamic", "static")  # a plate run: a force history in time, or a uniform pressure at equilibrium
 
 
 def _positive(name: str, value) -> None:
@@ -138,20 +152,51 @@ class PlateProblem:
     ``points``: extra points (x, y) [m] where the deflection is recorded, after
     the impact point.
 
+    ``kinematics``: ``"linear"`` or ``"von-karman"`` (:mod:`softimpact.fem.plate_vk`), ``in_plane`` the
+    restraint of the supported edges in their plane under von Kármán kinematics (``"immovable"``, the
+    default: a panel fastened to a stiff frame, and the classical large-deflection benchmarks';
+    ``"movable"``). ``analysis``: ``"dynamic"`` (the force history ``load`` over the ``solver``'s steps)
+    or ``"static"`` (the uniform ``pressure`` [Pa] on the top face, pushing down, in ``load_steps``
+    increments of Newton; ``load`` and ``solver`` are then None).
+
     A :class:`~softimpact.models.protocols.Target` of a coupled impact: its model, checks and
     refinement, laminate, damage outputs (point strains in x, y and 45° on both faces under the
     load and at each gauge), validity (linear plate theory) and summary extras (its ``target`` block).
     """
 
     plate: PlateSpec
-    load: PlateLoad
-    solver: SolverSpec
+    load: PlateLoad | None
+    solver: SolverSpec | None
     gauges: tuple[PlateGauge, ...] = ()
     points: tuple[tuple[float, float], ...] = ()
     title: str = ""
     units: str = "SI"  # display system of the outputs (the numbers stay SI)
+    kinematics: str = "linear"
+    in_plane: str = "immovable"
+    analysis: str = "dynamic"
+    pressure: float | None = None
+    load_steps: int = 10
 
     def __post_init__(self):
+        from ..fem.plate_vk import IN_PLANE, KINEMATICS
+
+        if self.kinematics not in KINEMATICS:
+            raise InputError(f"kinematics: {self.kinematics!r} is not one of {', '.join(KINEMATICS)}", "kinematics")
+        if self.in_plane not in IN_PLANE:
+            raise InputError(f"in_plane: {self.in_plane!r} is not one of {', '.join(IN_PLANE)}", "in_plane")
+        if self.analysis not in ANALYSES:
+            raise InputError(f"analysis: {self.analysis!r} is not one of {', '.join(ANALYSES)}", "analysis")
+        if self.analysis == "static":
+            _positive("pressure", self.pressure)
+            if isinstance(self.load_steps, bool) or not (isinstance(self.load_steps, (int, np.integer)) and self.load_steps >= 1):
+                raise InputError(f"load_steps must be a positive integer, got {self.load_steps!r}", "load_steps")
+            if self.gauges or self.points:
+                raise InputError("a static plate run records the largest deflection only: gauges and points are for dynamic runs", "gauges")
+            return
+        if self.pressure is not None:
+            raise InputError("pressure: a uniform pressure is a static load (analysis = 'static'); a dynamic run takes a force history", "pressure")
+        if self.load is None or self.solver is None:
+            raise InputError("a dynamic plate run needs its load (position, contact radius, history) and its solver (time step, duration)", "load")
         Lx, Ly = self.plate.length_x, self.plate.length_y
 
         tol = 1e-12 * max(Lx, Ly)  # round-off of cos 90°
@@ -181,9 +226,12 @@ class PlateProblem:
                 f"{rise * 1e6:.3g} us (need at most time_of_peak/{MIN_STEPS_PER_RISE})"
             )
 
-    def model(self, patch_radius: float | None = None, damage: bool = False) -> PlateModel:
+    def model(self, patch_radius: float | None = None, damage: bool = False) -> PlateModel | PlateVKModel:
         """The assembled :class:`PlateModel` of this problem (``patch_radius``: the widest contact radius it loads;
-        ``damage``: it also outputs the ``"damage"`` group, :meth:`damage_gauges`)."""
+        ``damage``: it also outputs the ``"damage"`` group, :meth:`damage_gauges`); with von Kármán kinematics the
+        :class:`PlateVKModel` (a coupled impact's target; ``patch_radius`` unused: its disc is the contact's)."""
+        if self.kinematics == "von-karman":
+            return PlateVKModel(self, damage=damage)
         return PlateModel(self, patch_radius, damage=damage)
 
     # --- the Target protocol (softimpact.models.protocols.Target) ---
@@ -222,13 +270,13 @@ class PlateProblem:
         check_problem(self)
 
     def refine(self, factor: int) -> PlateProblem:
-        """Factor × the elements along x and y and dt/factor (load patch, gauges and points unchanged)."""
+        """Factor × the elements along x and y and dt/factor (load patch, gauges and points unchanged; a static run: the mesh only)."""
         from dataclasses import replace
 
         if isinstance(factor, bool) or not isinstance(factor, int) or factor < 1:
             raise InputError(f"refinement factor must be a positive integer, got {factor!r}")
         nx, ny = self.plate.elements
-        solver = replace(self.solver, time_step=self.solver.time_step / factor)
+        solver = None if self.solver is None else replace(self.solver, time_step=self.solver.time_step / factor)
         return replace(self, plate=replace(self.plate, elements=(nx * factor, ny * factor)), solver=solver)
 
     def for_impact(self, solver: SolverSpec, gauges: tuple[PlateGauge, ...] | None = None) -> PlateProblem:
@@ -275,7 +323,10 @@ class PlateProblem:
         return None, None
 
     def validity(self, max_deflection: float) -> Validity:
-        """The deflection envelope of linear plate theory (:func:`~softimpact.models.validity.deflection_validity`)."""
+        """The deflection envelope of linear plate theory (:func:`~softimpact.models.validity.deflection_validity`);
+        with von Kármán kinematics, the model past it, the ratio alone (no flag)."""
+        if self.kinematics == "von-karman":
+            return Validity({"deflection_over_thickness": abs(max_deflection) / self.plate.stack.thickness})
         return deflection_validity(self.theory, max_deflection, self.plate.stack.thickness)
 
     def gauge_summary(self, gauge: PlateGauge) -> dict:
@@ -289,7 +340,9 @@ class PlateProblem:
         k = int(np.argmax(np.abs(w)))
         target = {
             "model": f"fsdt ({self.plate.element.upper()})",
-            "dofs": model.fe.n,
+            "kinematics": self.kinematics,
+            **({"in_plane": self.in_plane} if self.kinematics == "von-karman" else {}),
+            "dofs": int(model.size),
             "elements": list(self.plate.elements),
             "supports": dict(zip(("x0", "x1", "y0", "y1"), self.plate.supports)),
             "impact_point_m": list(self.load.position),
@@ -324,6 +377,45 @@ class PlateResult:
     damage: np.ndarray | None = None  # (n_damage, n): the "damage" output group (PlateModel(damage=True)), rows of PlateProblem.damage_gauges()
 
 
+STATIC_ITERATIONS = 5  # full Newton from the previous load step: 3-6 iterations a step past w/h = 1 (tests/test_plate_vk.py)
+
+
+@dataclass(frozen=True)
+class PlateStaticResult:
+    """A static plate run (uniform pressure, :func:`solve_plate_static`): per load step the ``pressure`` [Pa],
+    the largest mid-surface deflection ``max_deflection`` [m] (its magnitude, along the pressure), Newton's
+    ``iterations`` and final relative ``residuals``; ``converged`` (every step), ``message``, the final
+    displacement ``u`` over the model's free DOFs and the plate's ``kinematics``."""
+
+    problem: PlateProblem
+    pressure: np.ndarray
+    max_deflection: np.ndarray
+    iterations: np.ndarray
+    residuals: np.ndarray
+    converged: bool
+    message: str
+    u: np.ndarray
+    kinematics: str
+
+
+def solve_plate_static(problem: PlateProblem, model=None):
+    """(model, :class:`PlateStaticResult`) of a static plate problem: the uniform pressure on the top face
+    (down), in ``load_steps`` equal increments, by full Newton on the von Kármán plate
+    (:func:`softimpact.fem.plate_vk.solve_static`), or one linear solve (``kinematics = "linear"``: the
+    same plate's linear stiffness, membrane DOFs included)."""
+    from ..fem.plate import W
+    from ..fem.plate_vk import PlateVK, solve_static
+
+    if problem.analysis != "static":
+        raise InputError("solve_plate_static: the problem is not a static one (analysis = 'static')", "analysis")
+    model = model or PlateVK(problem.plate.plate(), problem.in_plane)
+    res = solve_static(model, model.load_vector(-problem.pressure), load_steps=problem.load_steps, kinematics=problem.kinematics)
+    rows = model.fe.basis.nodal_dofs[W]
+    w = np.array([np.abs(model.expand(u)[rows]).max() for u in res.u])
+    pressure = problem.pressure * res.load_factors
+    return model, PlateStaticResult(problem, pressure, w, res.iterations, res.residuals, res.converged, res.message, res.u[-1], problem.kinematics)
+
+
 def check_problem(problem: PlateProblem) -> None:
     """Refuse, before anything is built, a plate too big for the machine (:mod:`softimpact.guards`).
 
@@ -340,11 +432,17 @@ def check_problem(problem: PlateProblem) -> None:
     spec = problem.plate
     nx, ny = (int(n) for n in spec.elements)
     k = 2 if spec.element == "mitc9" else 1
-    per_node = 3 if spec.section().is_symmetric() else 5
+    # von Kármán keeps the membrane DOFs that a symmetric section's linear model drops
+    per_node = 3 if spec.section().is_symmetric() and problem.kinematics == "linear" else 5
     n = per_node * (k * nx + 1) * (k * ny + 1)
     band = per_node * (k * (k * ny + 1) + k + 1)
-    steps = problem.solver.steps
     memory = 2 * 8.0 * n * (band + 1)
+    if problem.analysis == "static":
+        # a factorisation per Newton iteration: about STATIC_ITERATIONS a load step
+        factorisations = 1 if problem.kinematics == "linear" else STATIC_ITERATIONS * problem.load_steps
+        require_resources(f"a {nx} x {ny} {spec.element.upper()} plate over {problem.load_steps} load steps", memory, factorisations * n * band * band)
+        return
+    steps = problem.solver.steps
     flops = n * band * (band + 4.0 * (steps + 1))
     require_resources(f"a {nx} x {ny} {spec.element.upper()} plate over {steps} steps", memory, flops)
 
@@ -417,3 +515,149 @@ class PlateModel(LinearModel):
         light.fe = None
         light.patch = copy.copy(self.patch)
         light.patch.fe = None
+
+
+class _SupportedView:
+    """The all-DOF PlateFE of a :class:`~softimpact.fem.plate_vk.PlateVK` ``vk`` seen with the plate's own supports
+    (a contact disc mirrored on a symmetry edge carries its share) and ``vk``'s free DOFs (``n``, ``free``,
+    :meth:`expand`): every other attribute is the FE's (its DOF numbering: full vectors)."""
+
+    def __init__(self, vk, plate: Plate):
+        self._fe, self.plate, self.n, self.free = vk.fe, plate, vk.n, vk.free
+
+    def expand(self, u: np.ndarray) -> np.ndarray:
+        """Full DOF vector(s) (fixed DOFs zero) from ``vk``'s reduced ones; time on the last axis."""
+        full = np.zeros((self._fe.basis.N,) + np.shape(u)[1:])
+        full[self.free] = u
+        return full
+
+    def __getattr__(self, name):
+        return getattr(self._fe, name)
+
+
+class PlateVKModel:
+    """The plate with von Kármán kinematics (:mod:`softimpact.fem.plate_vk`): its
+    :class:`~softimpact.fem.plate_vk.PlateVK` ``vk`` (membrane DOFs kept, in-plane edges as the problem's
+    ``in_plane``), its nonlinear Newmark ``stepper`` (:class:`~softimpact.fem.plate_vk.VonKarmanNewmark`,
+    modified Newton), the output rows (gauges, then the ``"damage"`` group); a coupled impact's structure
+    (:meth:`contact_structure`, over its free DOFs, stepped by :data:`softimpact.fem.steppers.STEPPERS`
+    ``"von-karman"``) and a prescribed force history's (:meth:`direct`). ``fe``: the mesh with the plate's
+    supports and ``vk``'s free DOFs (its ``expand`` maps snapshots to full vectors). No response engine or
+    kernels: the structure is not linear."""
+
+    coupled_stepper = "von-karman"
+
+    def __init__(self, problem: PlateProblem, damage: bool = False):
+        from ..fem.plate_vk import PlateVK, VonKarmanNewmark
+
+        self.problem = problem
+        self.damage = problem.damage_gauges() if damage else ()
+        plate = problem.plate.plate()
+        self.vk = vk = PlateVK(plate, problem.in_plane)
+        self.fe = self._view = _SupportedView(vk, plate)
+        a, b = problem.plate.damping
+        self.C = None if a == 0 and b == 0 else (a * vk.M + b * vk.K).tocsr()
+        self.solver = problem.solver
+        self.stepper = VonKarmanNewmark(vk, problem.solver.time_step, self.C, problem.solver.newmark, tangent="modified")
+        gauges = problem.gauges + self.damage
+        self.O = np.array([vk.fe.surface_strain(*g.position, g.surface, g.direction, g.length)[vk.free] for g in gauges]).reshape(len(gauges), vk.n)
+
+    @property
+    def size(self) -> int:
+        """The plate's free DOFs (membrane included)."""
+        return self.vk.n
+
+    @property
+    def steps(self) -> int:
+        return self.solver.steps
+
+    def frequencies(self, count: int = 5) -> np.ndarray:
+        """The ``count`` lowest natural frequencies [Hz] of small vibrations about the flat plate (its linear
+        stiffness K, membrane DOFs included; shift-invert Lanczos)."""
+        import scipy.sparse.linalg as spl
+
+        if not (isinstance(count, int) and 1 <= count < self.size - 1):
+            raise InputError(f"count must be an integer from 1 to {self.size - 2}, got {count!r}")
+        vals = spl.eigsh(self.vk.K.tocsc(), k=count, M=self.vk.M.tocsc(), sigma=0.0, which="LM", tol=1e-10, return_eigenvectors=False)
+        return np.sqrt(np.abs(np.sort(vals))) / (2 * np.pi)
+
+    def direct(self, history=None, progress=None, energy: bool = True, snapshots=None) -> PlateResult:
+        """The force history (default: the problem's) on the load's patch (eq 11, its radius growing by eq 10
+        when the load says so) by nonlinear Newmark–Newton stepping (:class:`~softimpact.fem.plate_vk.VonKarmanNewmark`):
+        gauge strains, deflections under the load and at the problem's points, with ``energy`` the balance
+        (kinetic, the von Kármán strain energy, the loads' work by the trapezoidal rule) at every step;
+        ``snapshots``: step indices at which to keep the displacement of the free DOFs (None: every step)."""
+        p, vk, st, N = self.problem, self.vk, self.stepper, self.solver.steps
+        h = p.load.history if history is None else history
+        F = np.asarray(h(self.solver.times()) if callable(h) else h, float)
+        patch = CircularPatch(self._view, p.load.position, p.load.contact_radius, grow=p.load.grow)
+        dofs = vk._index[patch.dofs]
+        if np.any(dofs < 0):
+            raise InputError(f"load position {p.load.position!r} m: the load patch reaches a supported edge")
+        loads = -patch.forces(F, p.load.contact_radius)  # (p, N + 1): the patch pushes the plate down (−z)
+        rows = np.vstack([self.O, *[vk.deflection(*xy)[None] for xy in (p.load.position,) + tuple(p.points)]])
+        keep = np.arange(N + 1) if snapshots is None else np.asarray(snapshots, int)
+        slot = {int(k): i for i, k in enumerate(keep)}
+        saved = np.zeros((vk.n, keep.size))
+        n = vk.n
+        u, v = np.zeros(n), np.zeros(n)
+        f = np.zeros(n)
+        f[dofs] = loads[:, 0]
+        a = st.initial_acceleration(u, v, f)
+        y = np.zeros((rows.shape[0], N + 1))
+        kinetic, strain, work = np.zeros(N + 1), np.zeros(N + 1), np.zeros(N + 1)
+        strain[0] = vk.strain_energy(u)
+        if 0 in slot:
+            saved[:, slot[0]] = u
+        for k in range(N):
+            f1 = np.zeros(n)
+            f1[dofs] = loads[:, k + 1]
+            u1, v, a, _ = st.step(u, v, a, f1)
+            work[k + 1] = work[k] + 0.5 * (loads[:, k] + loads[:, k + 1]) @ (u1[dofs] - u[dofs])
+            u = u1
+            y[:, k + 1] = rows @ u
+            if energy:
+                kinetic[k + 1], strain[k + 1] = 0.5 * v @ (vk.M @ v), vk.strain_energy(u)
+            if k + 1 in slot:
+                saved[:, slot[k + 1]] = u
+            if progress is not None and k % 100 == 0:
+                progress(k)
+        energies = Energies(np.arange(N + 1), kinetic, strain, work) if energy else None
+        ng, nd = len(p.gauges), len(self.damage)
+        return PlateResult(p, self.solver.times(), F, y[:ng], y[ng + nd :], saved, energies, keep, y[ng : ng + nd] if nd else None)
+
+    def contact_structure(self, point: tuple[float, float], reach: float):
+        """The plate struck downward on its top face at ``point`` (x, y) [m], contact discs up to ``reach`` [m]
+        (as :func:`softimpact.fem.contact.plate_contact_structure`, over this model's free DOFs)."""
+        from ..errors import NoContactRoom
+        from ..fem.impact import ContactStructure
+        from ..fem.plate_loads import DiscShares
+
+        vk = self.vk
+        patch = CircularPatch(self._view, point, reach, grow=True)
+        dofs = vk._index[patch.dofs]
+        if np.any(dofs < 0):
+            raise NoContactRoom(f"contact patch about {tuple(point)!r} m reaches a supported edge")
+        gauges = self.problem.gauges + self.damage
+        return ContactStructure(
+            M=vk.M,
+            K=vk.K,
+            surface_x=vk.fe.node_xy()[0, patch.nodes],
+            surface_dofs=dofs,
+            load_sign=-1.0,  # w is up +, the impact pushes down
+            center=float(point[0]),
+            approach_row=-vk.deflection(*point),
+            outputs=self.O,
+            output_names=tuple(g.name for g in gauges),
+            C=self.C,
+            patch=DiscShares(patch),
+            groups=self.contact_groups(),
+        )
+
+    def contact_groups(self) -> dict[str, tuple[int, ...]]:
+        """``"gauges"`` (the problem's) and ``"damage"`` (:meth:`PlateProblem.damage_gauges`, when built with it)."""
+        return output_groups(gauges=len(self.problem.gauges), damage=len(self.damage))
+
+    def contact_reach(self, point: tuple[float, float], diameter: float) -> float:
+        """The impactor's diameter cut by the plate's edges (:func:`softimpact.fem.contact.plate_reach`)."""
+        return plate_reach(self.fe, self.problem.plate.supports, point, diameter)

@@ -1,0 +1,211 @@
+"""Coupled stepping of a rigid impactor on the von Kármán plate: one implementation of :class:`CoupledStepper`.
+
+The structure is nonlinear (:mod:`softimpact.fem.plate_vk`), so its deflection under the contact force is no
+longer w̃ + h_s(r)·F with a free response w̃ and a compliance h_s fixed for the run, the affine model the
+shared loop's contact Newton solves against. Each step therefore solves the coupled step first, monolithically,
+in :meth:`VonKarmanStepper.free_approach`: the plate's Newmark–Newton step (:meth:`VonKarmanNewmark.step`)
+with the contact as its ``extra(u)`` load, where for the plate's state u the impactor's Newmark step and the
+law give the force,
+
+    α = x̃ − β dt² F / m − c·u,   F = P(α, κα + q),   nodal loads F·s(a(α)) on the contact disc,
+
+(the scalar equation solved by the loop's own :func:`~softimpact.fem.impact.newton_contact` against a zero
+patch compliance), and its stiffness −dF/dw (a rank-one term on the disc's nodes) joins the Jacobian: one
+Newton over the membrane, bending and contact together. The converged step (u*, F*, r*) then fixes the affine
+model the loop sees: the bracket's top α̃ = x̃ − w̃ with w̃ = c·u* − h_s(r*)·F*, and any positive compliance
+h_s (here the linear plate's effective one, c·K_eff⁻¹·B, solved once) makes the loop's contact Newton land on
+α* = x̃ − β dt² F*/m − c·u* again (R(α*) = 0 exactly), to its tolerance. :meth:`apply` takes u* (the loop's
+force differs from F* by the contact Newton's tolerance only) and records the plate's energies (kinetic,
+the von Kármán strain energy), the work of the nodal contact forces, outputs and snapshots, as
+:class:`softimpact.fem.direct.DirectStepper` does for a linear structure.
+
+Contact laws with memory (a HistoryLaw) are refused for now: the coupled step would need the law's branch
+inside the plate's Newton.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse
+
+from ..errors import InputError
+from .impact import ContactStructure, ImpactHistory, PatchCompliance, newton_contact
+from .newmark import NewmarkParameters, spd_factor
+from .plate_vk import VonKarmanNewmark
+from .stepping import CoupledStepper, check_time_step
+
+__all__ = ["VonKarmanStepper"]
+
+
+class _Rigid:
+    """A zero patch compliance: the contact Newton of the impactor against a plate held at its state u."""
+
+    value = None
+
+    def __init__(self, half_spacing: float):
+        self.half_spacing = half_spacing
+
+    def __call__(self, r: float) -> tuple[float, float]:
+        return 0.0, 0.0
+
+
+class VonKarmanStepper(CoupledStepper):
+    """:class:`CoupledStepper` of a von Kármán plate (module docstring): ``structure`` a
+    :class:`ContactStructure` over the plate's free DOFs (``M``, ``K`` its linear part, a contact disc as
+    ``patch``), ``engine`` its :class:`~softimpact.fem.plate_vk.VonKarmanNewmark` (required: it carries the
+    nonlinear plate); ``energy``: record the plate's kinetic and strain energies (else NaN); ``snapshots``:
+    step indices at which to keep the displacement of the free DOFs."""
+
+    def __init__(
+        self,
+        structure: ContactStructure,
+        law,
+        mass: float,
+        velocity: float,
+        time_step: float,
+        steps: int,
+        newmark: NewmarkParameters = NewmarkParameters(),
+        *,
+        engine: VonKarmanNewmark | None = None,
+        stop_after: float | None = None,
+        energy: bool = True,
+        snapshots=(),
+    ):
+        super().__init__(law, mass, velocity, time_step, steps, stop_after)
+        if not isinstance(engine, VonKarmanNewmark):
+            raise InputError("the von Karman stepper needs the plate's VonKarmanNewmark as its engine (a linear structure steps 'direct' or 'kernels')")
+        if self.memory:
+            raise InputError(
+                f"a contact law with memory ({type(law).__name__}) on a von Karman plate is not implemented yet: use a memoryless law or linear kinematics"
+            )
+        if structure.patch is None:
+            raise InputError("the von Karman stepper loads a plate's contact disc: the structure has no patch")
+        check_time_step(engine.dt, self.dt)
+        self.nm, self.vk, self.params, self.energy = engine, engine.model, engine.params, energy
+        n = self.vk.n
+        self.c = np.asarray(structure.approach_row, float)
+        self.dofs = np.asarray(structure.surface_dofs, int)
+        self.sign = float(structure.load_sign)
+        self.patch = structure.patch
+        # The loop's affine model needs a positive compliance only (module docstring): the linear plate's, by one solve
+        z = spd_factor(scipy.sparse.csc_matrix(engine._keff)).solve(self.c)
+        self.compliance = PatchCompliance(self.patch, self.sign * z[self.dofs])
+        self._rigid = _Rigid(self.compliance.half_spacing)
+        self.O = np.asarray(structure.outputs, float)
+        keep = np.unique(np.asarray(snapshots, int))
+        if keep.size and (keep.min() < 0 or keep.max() > self.steps):
+            raise InputError(f"snapshots: step indices must lie in 0 … {self.steps}, got {snapshots!r}")
+        self.keep, self.slot = keep, {int(k): i for i, k in enumerate(keep)}
+        self.saved = np.zeros((self.vk.n, keep.size))
+        self.structure_iterations = 0  # the plate's Newton iterations, summed over the run
+        self._n = n
+
+    def _begin(self) -> None:
+        super()._begin()
+        n, N = self._n, self.steps
+        self.w = np.zeros(N + 1)
+        self.y = np.zeros((self.O.shape[0], N + 1))
+        self.ek, self.es = np.full(N + 1, np.nan), np.full(N + 1, np.nan)
+        if self.energy:
+            self.ek[0] = self.es[0] = 0.0
+        self.work, self.mism = np.zeros(N + 1), np.zeros(N + 1)
+        self.u, self.v, self.acc = np.zeros(n), np.zeros(n), np.zeros(n)
+        self.s_prev = np.zeros(self.dofs.size)
+        self._ala = 0.0  # α̈ at the step's start (the loop's local, kept by approach_acceleration)
+        self._zero = np.zeros(n)
+        self.structure_iterations = 0
+
+    def _contact(self, u: np.ndarray, x_pred: float, q: float, index: int):
+        """(α, F, r, dF/dw) of the impactor against the plate held at ``u`` (zero force where apart)."""
+        w = float(self.c @ u)
+        top = x_pred - w
+        if top <= 0.0:
+            return top, 0.0, 0.0, 0.0
+        a, f, r, _ = newton_contact(self.law, self._rigid, self.hm, self.kappa, q, top, top, index, self.dt, caps=self.caps)
+        rate = self.kappa * a + q
+        slope = self.law.stiffness(a, rate) + self.kappa * self.law.damping(a, rate) if f > 0.0 else 0.0
+        return a, f, r, -slope / (1.0 + self.hm * slope)
+
+    def free_approach(self, k: int) -> float:
+        """The coupled step to k + 1 (module docstring); w̃ = c·u* − h_s(r*)·F*."""
+        x_pred = self.x[k] + self.dt * self.xv[k] + self.c2 * (-self.F[k] / self.mass)
+        q = self.r1 * self.ald[k] + self.r2 * self._ala - self.kappa * self.al[k]
+        dofs, sign, c = self.dofs, self.sign, self.c
+
+        def extra(u):
+            _, f, r, dfdw = self._contact(u, x_pred, q, k + 1)
+            force = np.zeros(self._n)
+            if f == 0.0:
+                return force, None
+            b = sign * self.patch.shares(r)[0]
+            force[dofs] = f * b
+            # −∂(F b)/∂u = −(dF/dw) b cᵀ, kept symmetric as (−dF/dw)(c·b)/(b·b) b bᵀ on the disc's nodes (it shapes the steps only)
+            cb = float(c[dofs] @ b)
+            scale = -dfdw * max(cb, 0.0) / float(b @ b)
+            stiffness = scipy.sparse.coo_matrix(
+                (scale * np.outer(b, b).ravel(), (np.repeat(dofs, dofs.size), np.tile(dofs, dofs.size))), shape=(self._n, self._n)
+            )
+            return force, stiffness.tocsr()
+
+        u1, v1, a1, its = self.nm.step(self.u, self.v, self.acc, self._zero, extra)
+        self.structure_iterations += its
+        _, f, r, _ = self._contact(u1, x_pred, q, k + 1)
+        self._step = (u1, v1, a1, f, r)
+        return float(c @ u1) - (self.compliance(r)[0] * f if f > 0.0 else 0.0)
+
+    def apply(self, k: int, f: float, r: float) -> None:
+        """The coupled step's state at k + 1 (the loop's f, r agree with its F*, r* to the contact Newton's tolerance)."""
+        u1, v1, acc1, f_star, r_star = self._step
+        u, dofs, sign = self.u, self.dofs, self.sign
+        fs = f_star * self.patch.shares(r_star)[0] if f_star != 0.0 else np.zeros(dofs.size)
+        w, k1 = self.w, k + 1
+        w[k1] = float(self.c @ u1)
+        self.y[:, k1] = self.O @ u1
+        du = u1[dofs] - u[dofs]
+        self.work[k1] = self.work[k] + 0.5 * sign * float((self.s_prev + fs) @ du)
+        mid = 0.5 * (self.F[k] + f)
+        self.mism[k1] = self.mism[k] + 0.5 * sign * float((self.s_prev + fs) @ du) - mid * (w[k1] - w[k])
+        if self.energy:
+            self.ek[k1] = 0.5 * float(v1 @ (self.vk.M @ v1))
+            self.es[k1] = self.vk.strain_energy(u1)
+        self.u, self.v, self.acc, self.s_prev = u1, v1, acc1, fs
+        if k1 in self.slot:
+            self.saved[:, self.slot[k1]] = u1
+
+    def approach_acceleration(self, k: int, a_new: float, impactor_acceleration: float) -> float:
+        """α̈_{k+1} = ẍ_{k+1} − c·ü_{k+1}, from the plate's state (kept for the next coupled step)."""
+        self._ala = impactor_acceleration - float(self.c @ self.acc)
+        return self._ala
+
+    def receding(self, k: int) -> bool:
+        """ẋ_k < ẇ_k = c·u̇_k, from the plate's state."""
+        return self.xv[k] < float(self.c @ self.v)
+
+    def history(self, last: int) -> ImpactHistory:
+        sl, keep = slice(0, last + 1), self.keep
+        t = np.arange(self.steps + 1) * self.dt
+
+        def arr(v):
+            return np.array(v[: last + 1])
+
+        return ImpactHistory(
+            time=t[sl],
+            force=arr(self.F),
+            approach=arr(self.al),
+            approach_rate=arr(self.ald),
+            contact_radius=arr(self.rad),
+            impactor_displacement=arr(self.x),
+            impactor_velocity=arr(self.xv),
+            target_displacement=self.w[sl],
+            outputs=self.y[:, sl],
+            structure_kinetic=self.ek[sl],
+            structure_strain=self.es[sl],
+            structure_work=self.work[sl],
+            contact_work=arr(self.cwork),
+            contact_energy=arr(self.cen),
+            surface_mismatch=self.mism[sl],
+            newton_iterations=self.newton_iterations,
+            solves=self.structure_iterations,
+            displacement=self.saved[:, keep <= last] if keep.size else None,
+            kept=keep[keep <= last] if keep.size else None,
+        )
