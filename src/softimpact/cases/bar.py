@@ -53,7 +53,19 @@ class BarKind:
         return BarImpactProblem
 
     def execute(
-        self, problem, *, figures=False, fields=False, damage=True, method="direct", kernels=None, model=None, energy=True, stop_after=None, progress=None
+        self,
+        problem,
+        *,
+        figures=False,
+        fields=False,
+        frames=None,
+        damage=True,
+        method="direct",
+        kernels=None,
+        model=None,
+        energy=True,
+        stop_after=None,
+        progress=None,
     ):
         """The bar run (:func:`softimpact.cases.run.execute`; :func:`run_bar`: also the run without the end cap and
         the force read from the first gauge); the stepping options of an impact do not apply."""
