@@ -181,6 +181,12 @@ class BeamProblem:
         """:func:`check_problem`."""
         check_problem(self)
 
+    def with_solver(self, solver: SolverSpec) -> BeamProblem:
+        """This problem stepped by ``solver`` (a one-factor refinement swaps the time step alone)."""
+        from dataclasses import replace
+
+        return replace(self, solver=solver)
+
     def refine(self, factor: int) -> BeamProblem:
         """Factor × the elements along and through the thickness and dt/factor (load, gauges unchanged)."""
         from dataclasses import replace

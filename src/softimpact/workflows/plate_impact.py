@@ -215,6 +215,12 @@ class PlateProblem:
         """:func:`check_problem`."""
         check_problem(self)
 
+    def with_solver(self, solver: SolverSpec) -> PlateProblem:
+        """This problem stepped by ``solver`` (a one-factor refinement swaps the time step alone)."""
+        from dataclasses import replace
+
+        return replace(self, solver=solver)
+
     def refine(self, factor: int) -> PlateProblem:
         """Factor × the elements along x and y and dt/factor (load patch, gauges and points unchanged)."""
         from dataclasses import replace
