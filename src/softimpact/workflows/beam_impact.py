@@ -205,7 +205,7 @@ class BeamProblem:
     def has_damage_outputs(self) -> bool:
         """Its laminate is a layup (ply stacking) whose ply has strengths: the damage indices apply."""
         stack = self.beam.stack
-        return stack is not None and getattr(stack, "angles", None) is not None and stack.ply.strength is not None
+        return isinstance(stack, Stack) and stack.ply.strength is not None  # a layup (not ply fractions) with strengths
 
     def damage_points(self) -> dict[str, float]:
         """Where the damage indices are read: the section under the load and each gauge's section (x [m])."""

@@ -244,7 +244,7 @@ class PlateProblem:
     def has_damage_outputs(self) -> bool:
         """Its laminate is a layup (ply stacking) whose ply has strengths: the damage indices apply."""
         stack = self.plate.stack
-        return stack is not None and getattr(stack, "angles", None) is not None and stack.ply.strength is not None
+        return isinstance(stack, Stack) and stack.ply.strength is not None  # a layup (not ply fractions) with strengths
 
     def damage_points(self) -> dict[str, tuple[float, float]]:
         """Where the damage indices are read: under the impact point and at each gauge's centre."""
