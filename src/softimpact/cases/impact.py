@@ -222,7 +222,19 @@ class ImpactKind:
         return out, {"elements": problem.target.elements, "time_step_s": problem.solver.time_step, "dofs": int(run.model.size)}
 
     def execute(
-        self, problem, *, figures=False, fields=False, frames=None, damage=True, method="direct", kernels=None, model=None, energy=True, stop_after=None, progress=None
+        self,
+        problem,
+        *,
+        figures=False,
+        fields=False,
+        frames=None,
+        damage=True,
+        method="direct",
+        kernels=None,
+        model=None,
+        energy=True,
+        stop_after=None,
+        progress=None,
     ):
         """The coupled run (:func:`softimpact.cases.run.execute`): the target's model (with its ``"damage"`` output
         group when ``damage`` and its laminate allow the indices), the snapshots the figures and fields draw, the run

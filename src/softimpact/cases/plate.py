@@ -63,7 +63,19 @@ class PlateKind:
         return problem.refine(factor)
 
     def execute(
-        self, problem, *, figures=False, fields=False, frames=None, damage=True, method="direct", kernels=None, model=None, energy=True, stop_after=None, progress=None
+        self,
+        problem,
+        *,
+        figures=False,
+        fields=False,
+        frames=None,
+        damage=True,
+        method="direct",
+        kernels=None,
+        model=None,
+        energy=True,
+        stop_after=None,
+        progress=None,
     ):
         """The plate stepped directly (:func:`softimpact.cases.run.execute`), its displacement kept at the
         deflected-shape figure's instants (``figures``: ``shown``) and the fields' frames (``fields``: ``kept``);
