@@ -119,3 +119,41 @@ def test_impact_fields_match_the_coupled_deflection(tmp_path):
     for (t1, a, _), (t2, b, _) in zip(cli_frames, frames):
         assert t1 == t2
         np.testing.assert_allclose(a["displacement"], b["displacement"], rtol=0, atol=1e-12 * scale)
+
+
+@pytest.mark.parametrize("kind, text", [("beam", BEAM), ("plate", PLATE)])
+def test_write_fields_writes_the_frames_of_the_command(tmp_path, kind, text):
+    """`res.write_fields` of a run that kept no fields (figures=False) writes the mesh, times and fields `softimpact KIND --fields` writes for the same case."""
+    case = tmp_path / f"{kind}.toml"
+    case.write_text(text)
+    _cli([kind, str(case)], tmp_path / "cli")
+    res = si.run(si.load(case), figures=False)
+    steps = res.write_fields(tmp_path / "api" / "fields.xdmf")
+    api_points, api_cells, api_frames = _read(tmp_path / "api" / "fields.xdmf")
+    cli_points, cli_cells, cli_frames = _read(tmp_path / "cli" / "fields.xdmf")
+    np.testing.assert_array_equal(api_points, cli_points)
+    assert len(api_frames) == len(cli_frames) == len(steps)
+    for (t1, a, _), (t2, b, _) in zip(api_frames, cli_frames):
+        assert t1 == t2
+        np.testing.assert_array_equal(a["displacement"], b["displacement"])
+
+
+def test_write_fields_frames_are_a_sampled_subset_of_the_command_s(tmp_path):
+    """`write_fields(frames=n)` writes at most n frames, every ceil((steps + 1)/n)-th step from 0, each equal to the command's frame at the same time."""
+    case = tmp_path / "plate.toml"
+    case.write_text(PLATE)
+    _cli(["plate", str(case)], tmp_path / "cli")
+    res = si.run(si.load(case), figures=False)
+    n_steps = res.problem.solver.steps
+    n = 7
+    steps = res.write_fields(tmp_path / "api" / "fields.xdmf", frames=n)
+    k = -(-(n_steps + 1) // n)  # ceil, written independently of sampled_steps
+    np.testing.assert_array_equal(steps, np.arange(0, n_steps + 1, k))
+    _, _, api_frames = _read(tmp_path / "api" / "fields.xdmf")
+    _, _, cli_frames = _read(tmp_path / "cli" / "fields.xdmf")
+    assert len(api_frames) == len(steps) <= n
+    cli_at = {t: pd for t, pd, _ in cli_frames}
+    common = [(t, pd) for t, pd, _ in api_frames if t in cli_at]
+    assert len(common) >= 2
+    for t, pd in common:
+        np.testing.assert_array_equal(pd["displacement"], cli_at[t]["displacement"])

@@ -55,7 +55,7 @@ def _law(law, hertz, sphere: Sphere):
     a law object, or a law.json path read by the one reader (:func:`softimpact.formats.law_json.read_law`,
     its errors naming ``law``) with the warnings a case file's ``law_file`` gets when the sphere lies outside
     what the law was identified on (:func:`softimpact.input.contact_law.warn_outside`)."""
-    from ..models.contact_laws import CONTACT_LAWS, MATERIAL_LAWS, resolve_law
+    from ..models.contact_laws import CONTACT_LAWS, MATERIAL_LAWS, law_name, resolve_law
 
     if _is_law_file(law):
         from ..formats.law_json import read_law
@@ -68,7 +68,7 @@ def _law(law, hertz, sphere: Sphere):
     if isinstance(law, str) and law in MATERIAL_LAWS:  # ice's crushing, gelatin's flow: the sphere's own law
         return law, CONTACT_LAWS[law].of(sphere.material, sphere.diameter, sphere.mass, sphere.velocity), None
     resolved = resolve_law(law, hertz)
-    return (law if isinstance(law, str) else getattr(law, "name", type(law).__name__)), resolved, None
+    return law_name(law), resolved, None  # a law object by its CONTACT_LAWS name, as a case file names it
 
 
 def impact(

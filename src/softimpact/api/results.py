@@ -224,14 +224,16 @@ class ImpactResult(_Written):
         return write_fields(path, self.model, self._snapshots(frames))
 
     def _snapshots(self, frames: int):
+        """The frames of the fields: from the run if it kept them, else from the case run again through
+        :func:`~softimpact.cases.run.execute` (the one run path the command's ``--fields`` takes) on the same model."""
+        from ..cases.run import execute
         from ..output.fields import keeps, kept_frames, sampled_steps
-        from ..workflows.coupled import run_impact
 
         steps = sampled_steps(self.problem.solver.steps, frames)
-        r = self.result
-        if not keeps(r, steps):
-            _, r = run_impact(self.problem, self.model, energy=False, snapshots=steps)
-        return kept_frames(r, steps)
+        if keeps(self.result, steps):
+            return kept_frames(self.result, steps)
+        run = execute(self.problem, fields=True, frames=frames, model=self.model, damage=False, energy=False)
+        return kept_frames(run.result, run.kept)
 
 
 @dataclass(frozen=True)
@@ -304,13 +306,14 @@ class BeamResult(_Prescribed):
 
     def write_fields(self, path, *, frames: int = 200):
         """Displacement fields over time as XDMF for ParaView; see :meth:`ImpactResult.write_fields`."""
+        from ..cases.run import execute
         from ..output.fields import sampled_steps, write_fields
 
-        steps = sampled_steps(self.problem.solver.steps, frames)
-        u = self.result.displacement
-        if u is None:
-            raise InputError("write_fields: this beam run kept no displacement (run it with displacement=True)")
-        return write_fields(path, self.model, (steps, self.result.time[steps], u[:, steps]))
+        steps, result = sampled_steps(self.problem.solver.steps, frames), self.result
+        if result.displacement is None:  # a run without its displacement: the case again, as ``--fields`` runs it
+            run = execute(self.problem, fields=True, frames=frames, model=self.model, energy=False)
+            steps, result = run.kept, run.result
+        return write_fields(path, self.model, (steps, result.time[steps], result.displacement[:, steps]))
 
 
 @dataclass(frozen=True)
@@ -355,11 +358,14 @@ class PlateResult(_Prescribed):
 
     def write_fields(self, path, *, frames: int = 200):
         """Displacement fields over time as XDMF for ParaView; see :meth:`ImpactResult.write_fields`."""
+        from ..cases.run import execute
         from ..output.fields import keeps, kept_frames, sampled_steps, write_fields
 
         steps = sampled_steps(self.problem.solver.steps, frames)
-        r = self.result if keeps(self.result, steps) else self.model.direct(energy=False, snapshots=steps)
-        return write_fields(path, self.model, kept_frames(r, steps))
+        if keeps(self.result, steps):
+            return write_fields(path, self.model, kept_frames(self.result, steps))
+        run = execute(self.problem, fields=True, frames=frames, model=self.model, energy=False)  # as ``--fields`` runs it
+        return write_fields(path, self.model, kept_frames(run.result, run.kept))
 
 
 @dataclass(frozen=True)

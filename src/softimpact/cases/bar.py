@@ -53,7 +53,19 @@ class BarKind:
         return BarImpactProblem
 
     def execute(
-        self, problem, *, figures=False, fields=False, damage=True, method="direct", kernels=None, model=None, energy=True, stop_after=None, progress=None
+        self,
+        problem,
+        *,
+        figures=False,
+        fields=False,
+        frames=None,
+        damage=True,
+        method="direct",
+        kernels=None,
+        model=None,
+        energy=True,
+        stop_after=None,
+        progress=None,
     ):
         """The bar run (:func:`softimpact.cases.run.execute`; :func:`run_bar`: also the run without the end cap and
         the force read from the first gauge); the stepping options of an impact do not apply."""
@@ -116,7 +128,7 @@ class BarKind:
         return {**scalars, "validity_flags": bar_validity(result).names}
 
     def output_keys(self, problem):
-        keys = ["peak_force_N", "time_of_peak_s", "contact_duration_s", "impulse_N_s", "rebound_velocity_m_s", "energy_drift_relative", "newton_iterations"]
+        keys = ["peak_force_N", "time_of_peak_s", "contact_duration_s", "impulse_N_s", "rebound_velocity_m_s", "energy_balance_relative", "newton_iterations"]
         for g in problem.gauges:
             keys += [f"gauges.{g.name}.{f}" for f in GAUGE_FIELDS]
         # the contact envelope's ratios (summary.json's validity, output.bar.bar_validity): a sweep may keep them per run

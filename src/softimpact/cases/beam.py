@@ -64,18 +64,30 @@ class BeamKind:
         return problem.refine(factor)
 
     def execute(
-        self, problem, *, figures=False, fields=False, damage=True, method="direct", kernels=None, model=None, energy=True, stop_after=None, progress=None
+        self,
+        problem,
+        *,
+        figures=False,
+        fields=False,
+        frames=None,
+        damage=True,
+        method="direct",
+        kernels=None,
+        model=None,
+        energy=True,
+        stop_after=None,
+        progress=None,
     ):
         """The beam stepped directly (:func:`softimpact.cases.run.execute`), the whole displacement kept with
         ``figures`` or ``fields`` (the frames of the fields: ``kept``); a coupled run's options do not apply."""
         from ..output.beam import beam_summary
-        from ..output.fields import sampled_steps
+        from ..output.fields import FRAMES, sampled_steps
         from ..workflows.beam_impact import BeamModel
         from .run import Run
 
         model = model or BeamModel(problem)
         result = model.direct(progress=progress, energy=energy, displacement=figures or fields)
-        kept = sampled_steps(problem.solver.steps) if fields else ()
+        kept = sampled_steps(problem.solver.steps, FRAMES if frames is None else frames) if fields else ()
         validity = beam_validity(result)
         return Run(result, model, beam_summary(model, result, validity), validity, problem, kept=kept)
 

@@ -223,13 +223,25 @@ class ImpactKind:
         return out, {"elements": problem.target.elements, "time_step_s": problem.solver.time_step, "dofs": int(run.model.size)}
 
     def execute(
-        self, problem, *, figures=False, fields=False, damage=True, method="direct", kernels=None, model=None, energy=True, stop_after=None, progress=None
+        self,
+        problem,
+        *,
+        figures=False,
+        fields=False,
+        frames=None,
+        damage=True,
+        method="direct",
+        kernels=None,
+        model=None,
+        energy=True,
+        stop_after=None,
+        progress=None,
     ):
         """The coupled run (:func:`softimpact.cases.run.execute`): the target's model (with its ``"damage"`` output
         group when ``damage`` and its laminate allow the indices), the snapshots the figures and fields draw, the run
         (``method``: direct stepping, or kernel runs), the damage indices, the validity and summary.json's content."""
         from ..errors import InputError
-        from ..output.fields import sampled_steps
+        from ..output.fields import FRAMES, sampled_steps
         from ..output.impact import snapshot_steps
         from ..workflows.coupled import run_impact
 
@@ -243,7 +255,7 @@ class ImpactKind:
         damage = damage and problem.target.has_damage_outputs
         steps = problem.solver.steps
         shown = snapshot_steps(steps) if figures and problem.target.deflected_shapes else ()
-        kept = sampled_steps(steps) if fields else ()
+        kept = sampled_steps(steps, FRAMES if frames is None else frames) if fields else ()
         snaps = np.union1d(shown, kept).astype(int) if fields else shown
         model = model or problem.model(damage=damage)
         if progress is not None:

@@ -64,13 +64,25 @@ class PlateKind:
         return problem.refine(factor)
 
     def execute(
-        self, problem, *, figures=False, fields=False, damage=True, method="direct", kernels=None, model=None, energy=True, stop_after=None, progress=None
+        self,
+        problem,
+        *,
+        figures=False,
+        fields=False,
+        frames=None,
+        damage=True,
+        method="direct",
+        kernels=None,
+        model=None,
+        energy=True,
+        stop_after=None,
+        progress=None,
     ):
         """The plate stepped directly (:func:`softimpact.cases.run.execute`), its displacement kept at the
         deflected-shape figure's instants (``figures``: ``shown``) and the fields' frames (``fields``: ``kept``);
         its warnings: the symmetry edges that miss the load, then the envelopes. A coupled run's options do not apply."""
         from ..models.validity import Validity
-        from ..output.fields import sampled_steps
+        from ..output.fields import FRAMES, sampled_steps
         from ..output.plate import plate_summary, plate_validity, snapshot_steps
         from .run import Run
 
@@ -79,7 +91,7 @@ class PlateKind:
         model = model or problem.model()
         steps = problem.solver.steps
         shown = snapshot_steps(steps) if figures else ()
-        kept = sampled_steps(steps) if fields else ()
+        kept = sampled_steps(steps, FRAMES if frames is None else frames) if fields else ()
         result = model.direct(progress=progress, energy=energy, snapshots=np.union1d(shown, kept).astype(int) if fields else shown)
         validity = Validity({}, mirrored_loads(problem)) + plate_validity(result)
         return Run(result, model, plate_summary(model, result), validity, problem, shown, kept)

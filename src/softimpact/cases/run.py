@@ -7,7 +7,7 @@ kind of its problem (:func:`softimpact.cases.kind_for`, each kind's ``execute``)
 - the damage indices of an impact, from the target's ``"damage"`` output group (a layup with strengths;
   ``damage=False`` leaves them out: a sweep that asks for none);
 - the snapshots of the structure's displacement (``figures``: a plate's deflected shapes; ``fields``: the
-  frames of fields.xdmf, :func:`softimpact.output.fields.sampled_steps`);
+  frames of fields.xdmf, at most ``frames`` of them, :func:`softimpact.output.fields.sampled_steps`);
 - how an impact is stepped (``method``: "direct", or "kernels" on contact kernels built once; ``energy``).
 
 A :class:`Run` carries the result, the model that ran, summary.json's content and the run's
@@ -52,6 +52,7 @@ def execute(
     *,
     figures: bool = False,
     fields: bool = False,
+    frames: int | None = None,
     damage: bool = True,
     method: str = "direct",
     kernels=None,
@@ -63,7 +64,8 @@ def execute(
     """Run ``problem`` (a BarImpactProblem, BeamProblem, PlateProblem or ImpactProblem) through its kind.
 
     ``figures``: keep what the figures draw (a plate's deflected shapes); ``fields``: keep the frames of the
-    displacement fields; ``damage``: an impact's damage indices (when its target's laminate allows them);
+    displacement fields, at most ``frames`` of them (default :data:`softimpact.output.fields.FRAMES`, evenly
+    sampled: :func:`~softimpact.output.fields.sampled_steps`); ``damage``: an impact's damage indices (when its target's laminate allows them);
     ``method``, ``kernels``, ``energy``, ``stop_after``: how an impact is stepped
     (:func:`softimpact.workflows.coupled.run_impact`); ``model``: a model of the same structure and step to
     reuse; ``progress(k)``: called with the step index while stepping a beam or plate directly."""
@@ -73,6 +75,7 @@ def execute(
         problem,
         figures=figures,
         fields=fields,
+        frames=frames,
         damage=damage,
         method=method,
         kernels=kernels,

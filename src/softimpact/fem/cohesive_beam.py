@@ -328,130 +328,169 @@ LINE_SEARCH_MIN = 1.0 / 16  # smallest fraction of a Newton step the backtrackin
 MIN_STEP_FRACTION = 1.0 / 1024  # of the requested control increment: below it the solver gives up
 
 
+class _Bordered:
+    """The bordered Newton system of a specimen (module docstring) in the free numbering: the beams' stiffness and
+    the bordering entries are fixed, the interfaces' tangent changes every iteration. ``c`` is oriented so that
+    raising the control loads the specimen (λ > 0 on the initial tangent): a local control (a crack-tip sliding)
+    has no obvious sign."""
+
+    def __init__(self, spec: Specimen):
+        stack = spec.stack
+        self.spec = spec
+        self.K0 = beam_stiffness(stack)
+        self.ifc = ifc = CohesiveInterfaces.of(stack)
+        self.n = n = stack.size
+        free = np.ones(n, bool)
+        free[np.asarray(spec.fixed, int)] = False
+        self.idx = idx = np.flatnonzero(free)
+        self.g = g = np.asarray(spec.load, float)[idx]
+        c = np.asarray(spec.control, float)[idx]
+        self.K0f = K0f = self.K0[idx][:, idx]
+        self.nf = nf = idx.size
+        # The bordered matrix [[K0 + K_i, −g], [cᵀ, 0]] as coo triplets.
+        red = np.full(n, -1)
+        red[idx] = np.arange(nf)
+        K0c = K0f.tocoo()
+        ri, ci = (red[p] for p in ifc.pattern)
+        self.keep = keep = (ri >= 0) & (ci >= 0)
+        gi, ck = np.flatnonzero(g), np.flatnonzero(c)
+        self.rows = np.concatenate([K0c.row, ri[keep], gi, np.full(ck.size, nf)])
+        self.cols = np.concatenate([K0c.col, ci[keep], np.full(gi.size, nf), ck])
+        _, ke0, _ = ifc.element_arrays(np.zeros(n), ifc.initial_damage())
+        K_init = (K0f + scipy.sparse.coo_matrix((ke0.ravel()[keep], (ri[keep], ci[keep])), shape=(nf, nf))).tocsc()
+        if c @ scipy.sparse.linalg.spsolve(K_init, g) < 0:
+            c = -c
+        self.c = c
+        self.fixed_vals = (K0c.data, -g[gi], c[ck])
+
+    def full(self, uf: np.ndarray) -> np.ndarray:
+        """The DOF vector (n,) of the free values ``uf``, zero on the fixed DOFs."""
+        u = np.zeros(self.n)
+        u[self.idx] = uf
+        return u
+
+    def residual(self, uf, lam, dmg_old):
+        """(residual of the free equations, the interfaces' tangent values, the new damage, the residual's scale)."""
+        fi, ke, d_new = self.ifc.element_arrays(self.full(uf), dmg_old)
+        fb = self.K0f @ uf
+        r = lam * self.g - (fb + fi[self.idx])
+        # The residual's round-off floor: the beams' and the interfaces' forces cancel to the load.
+        scale = max(abs(lam) * np.linalg.norm(self.g), np.linalg.norm(fb), np.linalg.norm(fi), 1e-30)
+        return r, ke.ravel()[self.keep], d_new, scale
+
+    def newton(self, uf, lam, trial, dmg):
+        """Newton from (``uf``, ``lam``) to the control value ``trial`` with the committed damage ``dmg``:
+        (converged, uf, λ, damage at uf, iterations, residual norm)."""
+        c, nf = self.c, self.nf
+        r, Ki, d_new, scale = self.residual(uf, lam, dmg)
+        iters = 0
+        for it in range(NEWTON_MAX):
+            rc = trial - c @ uf
+            if np.linalg.norm(r) <= NEWTON_TOL * scale and abs(rc) <= NEWTON_TOL * max(abs(trial), 1e-30):
+                return True, uf, lam, d_new, iters, np.linalg.norm(r)
+            vals = np.concatenate([self.fixed_vals[0], Ki, self.fixed_vals[1], self.fixed_vals[2]])
+            A = scipy.sparse.csc_matrix((vals, (self.rows, self.cols)), shape=(nf + 1, nf + 1))
+            sol = scipy.sparse.linalg.spsolve(A, np.concatenate([r, [rc]]))
+            # Backtracking on the residual norm after LINE_SEARCH_AFTER plain iterations: the damage front switches
+            # points between loading and elastic unloading, and full Newton steps can cycle between the two (seen
+            # at a coarse DCB's onset); plain Newton is faster when it converges. A partial step leaves part of
+            # the (linear) control constraint to the next iteration.
+            r0 = np.linalg.norm(r)
+            alpha = 1.0
+            while True:
+                u_try, lam_try = uf + alpha * sol[:-1], lam + alpha * sol[-1]
+                r_try, Ki_try, d_try, scale_try = self.residual(u_try, lam_try, dmg)
+                if it < LINE_SEARCH_AFTER or np.linalg.norm(r_try) < r0 or alpha <= LINE_SEARCH_MIN:
+                    break
+                alpha /= 2
+            uf, lam, r, Ki, d_new, scale = u_try, lam_try, r_try, Ki_try, d_try, scale_try
+            iters += 1
+            # The penalty makes the residual's round-off floor K_penalty·|u|·ε, far above ε·|f| at small loads:
+            # a full Newton step that no longer moves u is converged too.
+            if alpha == 1.0 and np.linalg.norm(sol[:-1]) <= STEP_TOL * np.linalg.norm(uf):
+                return True, uf, lam, d_new, iters, np.linalg.norm(r)
+        return False, uf, lam, d_new, iters, np.linalg.norm(r)
+
+
+@dataclass
+class _Path:
+    """The committed state of a quasi-static path: DOFs ``u``, force ``lam``, damage ``dmg``, control value ``cbar``,
+    the external work so far and the load-point displacement at the last commit."""
+
+    u: np.ndarray
+    dmg: np.ndarray
+    lam: float = 0.0
+    cbar: float = 0.0
+    work: float = 0.0
+    disp: float = 0.0
+
+
+def _advance(system: _Bordered, path: _Path, target: float) -> int:
+    """Raise ``path``'s control to ``target``, halving a step that fails (down to MIN_STEP_FRACTION of the
+    increment, then :class:`SolverFailed`) and doubling after a success; returns the Newton iterations spent."""
+    remaining = target - path.cbar
+    step = remaining
+    iters = 0
+    load = np.asarray(system.spec.load, float)
+    while abs(target - path.cbar) > 1e-15 * max(1.0, abs(target)):
+        trial = path.cbar + step if abs(step) < abs(target - path.cbar) else target
+        ok, uf, lam, d_new, it, rnorm = system.newton(path.u[system.idx].copy(), path.lam, trial, path.dmg)
+        iters += it
+        if not ok:
+            step = (trial - path.cbar) / 2
+            if abs(step) < MIN_STEP_FRACTION * abs(remaining):
+                raise SolverFailed(f"{system.spec.name}: Newton did not converge at control {trial:.6g} m (residual {rnorm:.3g} N)")
+            continue
+        path.u = system.full(uf)
+        path.dmg = d_new  # the damage at the converged u: committed
+        disp = float(load @ path.u)
+        path.work += 0.5 * (lam + path.lam) * (disp - path.disp)
+        path.lam, path.disp, path.cbar = lam, disp, trial
+        step = min(abs(step) * 2, abs(remaining)) * np.sign(remaining)
+    return iters
+
+
+def _crack_measures(stack: BeamStack, ifc: CohesiveInterfaces, dmg: np.ndarray) -> tuple[float, float, float]:
+    """(crack tip x [m], process-zone length [m], that length in elements) of the first interface."""
+    Le = np.diff(np.asarray(stack.x, float))
+    d0 = dmg[0].ravel()
+    xq = ifc.xq.ravel()
+    full = xq[d0 >= 1.0]
+    tip = float(full.max()) if full.size else float(stack.x[0])
+    zone_pts = xq[(d0 > 0) & (d0 < 1.0)]
+    zone = float(zone_pts.max() - zone_pts.min()) if zone_pts.size > 1 else 0.0
+    el = np.searchsorted(stack.x, zone_pts.mean()) - 1 if zone_pts.size else 0
+    return tip, zone, zone / Le[min(max(el, 0), Le.size - 1)]
+
+
 def solve_quasistatic(spec: Specimen, targets) -> Curve:
     """Raise the control to each of ``targets`` [m] in turn (Newton on the bordered system, module docstring);
     returns the :class:`Curve` at the targets. A step that fails to converge is split in halves, down to
     1/1024 of it, then :class:`SolverFailed`."""
-    stack = spec.stack
-    K0 = beam_stiffness(stack)
-    ifc = CohesiveInterfaces.of(stack)
-    n = stack.size
-    free = np.ones(n, bool)
-    free[np.asarray(spec.fixed, int)] = False
-    idx = np.flatnonzero(free)
-    g = np.asarray(spec.load, float)[idx]
-    c = np.asarray(spec.control, float)[idx]
-    K0f = K0[idx][:, idx]
-    nf = idx.size
-    # The bordered matrix [[K0 + K_i, −g], [cᵀ, 0]] in the free numbering, as coo triplets: the beams' and the
-    # bordering entries are fixed, the interfaces' values change every iteration.
-    red = np.full(n, -1)
-    red[idx] = np.arange(nf)
-    K0c = K0f.tocoo()
-    ri, ci = (red[p] for p in ifc.pattern)
-    keep = (ri >= 0) & (ci >= 0)
-    gi, ck = np.flatnonzero(g), np.flatnonzero(c)
-    rows = np.concatenate([K0c.row, ri[keep], gi, np.full(ck.size, nf)])
-    cols = np.concatenate([K0c.col, ci[keep], np.full(gi.size, nf), ck])
-    # Orient the control so that raising it loads the specimen (λ > 0 on the initial tangent): a local control
-    # (a crack-tip sliding) has no obvious sign.
-    _, ke0, _ = ifc.element_arrays(np.zeros(n), ifc.initial_damage())
-    K_init = (K0f + scipy.sparse.coo_matrix((ke0.ravel()[keep], (ri[keep], ci[keep])), shape=(nf, nf))).tocsc()
-    if c @ scipy.sparse.linalg.spsolve(K_init, g) < 0:
-        c = -c
-    fixed_vals = (K0c.data, -g[gi], c[ck])
-    u = np.zeros(n)
-    lam = 0.0
-    dmg = ifc.initial_damage()
-    Le = np.diff(np.asarray(stack.x, float))
+    system = _Bordered(spec)
+    ifc = system.ifc
+    path = _Path(u=np.zeros(system.n), dmg=ifc.initial_damage())
     out = {k: [] for k in ("disp", "force", "ctrl", "work", "stored", "strain", "tip", "zone", "nz", "newton")}
-    work = 0.0
     min_sep = np.inf
-    disp_prev = 0.0
-    lam_prev = 0.0
-    cbar = 0.0
-
-    def residual(uf, lam, dmg_old):
-        u_full = np.zeros(n)
-        u_full[idx] = uf
-        fi, ke, d_new = ifc.element_arrays(u_full, dmg_old)
-        fb = K0f @ uf
-        r = lam * g - (fb + fi[idx])
-        # The residual's round-off floor: the beams' and the interfaces' forces cancel to the load.
-        scale = max(abs(lam) * np.linalg.norm(g), np.linalg.norm(fb), np.linalg.norm(fi), 1e-30)
-        return r, ke.ravel()[keep], d_new, scale
-
     for target in np.asarray(targets, float):
-        remaining = target - cbar
-        step = remaining
-        iters = 0
-        while abs(target - cbar) > 1e-15 * max(1.0, abs(target)):
-            trial = cbar + step if abs(step) < abs(target - cbar) else target
-            uf, lam_t = u[idx].copy(), lam
-            ok = False
-            r, Ki, d_new, scale = residual(uf, lam_t, dmg)
-            for it in range(NEWTON_MAX):
-                rc = trial - c @ uf
-                if np.linalg.norm(r) <= NEWTON_TOL * scale and abs(rc) <= NEWTON_TOL * max(abs(trial), 1e-30):
-                    ok = True
-                    break
-                vals = np.concatenate([fixed_vals[0], Ki, fixed_vals[1], fixed_vals[2]])
-                A = scipy.sparse.csc_matrix((vals, (rows, cols)), shape=(nf + 1, nf + 1))
-                sol = scipy.sparse.linalg.spsolve(A, np.concatenate([r, [rc]]))
-                # Backtracking on the residual norm after LINE_SEARCH_AFTER plain iterations: the damage front switches
-                # points between loading and elastic unloading, and full Newton steps can cycle between the two (seen
-                # at a coarse DCB's onset); plain Newton is faster when it converges. A partial step leaves part of
-                # the (linear) control constraint to the next iteration.
-                r0 = np.linalg.norm(r)
-                alpha = 1.0
-                while True:
-                    u_try, lam_try = uf + alpha * sol[:-1], lam_t + alpha * sol[-1]
-                    r_try, Ki_try, d_try, scale_try = residual(u_try, lam_try, dmg)
-                    if it < LINE_SEARCH_AFTER or np.linalg.norm(r_try) < r0 or alpha <= LINE_SEARCH_MIN:
-                        break
-                    alpha /= 2
-                uf, lam_t, r, Ki, d_new, scale = u_try, lam_try, r_try, Ki_try, d_try, scale_try
-                iters += 1
-                # The penalty makes the residual's round-off floor K_penalty·|u|·ε, far above ε·|f| at small loads:
-                # a full Newton step that no longer moves u is converged too.
-                if alpha == 1.0 and np.linalg.norm(sol[:-1]) <= STEP_TOL * np.linalg.norm(uf):
-                    ok = True
-                    break
-            if not ok:
-                step = (trial - cbar) / 2
-                if abs(step) < MIN_STEP_FRACTION * abs(remaining):
-                    raise SolverFailed(f"{spec.name}: Newton did not converge at control {trial:.6g} m (residual {np.linalg.norm(r):.3g} N)")
-                continue
-            u = np.zeros(n)
-            u[idx] = uf
-            dmg = d_new  # the damage at the converged u: committed
-            disp = float(np.asarray(spec.load, float) @ u)
-            work += 0.5 * (lam_t + lam_prev) * (disp - disp_prev)
-            lam, lam_prev, disp_prev, cbar = lam_t, lam_t, disp, trial
-            step = min(abs(step) * 2, abs(remaining)) * np.sign(remaining)
-        disp = float(np.asarray(spec.load, float) @ u)
-        d0 = dmg[0].ravel()
-        xq = ifc.xq.ravel()
-        full = xq[d0 >= 1.0]
-        tip = float(full.max()) if full.size else float(stack.x[0])
-        zone_pts = xq[(d0 > 0) & (d0 < 1.0)]
-        zone = float(zone_pts.max() - zone_pts.min()) if zone_pts.size > 1 else 0.0
-        el = np.searchsorted(stack.x, zone_pts.mean()) - 1 if zone_pts.size else 0
-        out["disp"].append(disp)
-        out["force"].append(lam)
-        out["ctrl"].append(cbar)
-        out["work"].append(work)
+        iters = _advance(system, path, target)
+        u, dmg = path.u, path.dmg
+        tip, zone, nz = _crack_measures(spec.stack, ifc, dmg)
+        out["disp"].append(float(np.asarray(spec.load, float) @ u))
+        out["force"].append(path.lam)
+        out["ctrl"].append(path.cbar)
+        out["work"].append(path.work)
         out["stored"].append(ifc.stored_energy(u, dmg))
-        out["strain"].append(0.5 * float(u @ (K0 @ u)))
+        out["strain"].append(0.5 * float(u @ (system.K0 @ u)))
         out["tip"].append(tip)
         out["zone"].append(zone)
-        out["nz"].append(zone / Le[min(max(el, 0), Le.size - 1)])
+        out["nz"].append(nz)
         out["newton"].append(iters)
         sep = ifc.openings(u)[..., 0][dmg >= 1.0]
         min_sep = min(min_sep, float(sep.min())) if sep.size else min_sep
     a = {k: np.asarray(v) for k, v in out.items()}
     min_sep = min_sep if np.isfinite(min_sep) else float("nan")  # nothing separated
-    return Curve(a["disp"], a["force"], a["ctrl"], a["work"], a["stored"], a["strain"], a["tip"], a["zone"], a["nz"], a["newton"], dmg, u, min_sep)
+    return Curve(a["disp"], a["force"], a["ctrl"], a["work"], a["stored"], a["strain"], a["tip"], a["zone"], a["nz"], a["newton"], path.dmg, path.u, min_sep)
 
 
 def _mesh(length: float, a0: float, h_el: float, *, refine: tuple[float, float] | None = None, coarse: float = 4.0) -> np.ndarray:

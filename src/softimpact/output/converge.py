@@ -107,7 +107,7 @@ def _rows(result) -> dict[str, list]:
 def _summary(result, sizes, problem, kind: str) -> dict:
     return {
         "kind": kind,
-        "title": getattr(problem, "title", ""),
+        "title": problem.title,
         "ratio": result.ratio,
         "levels": sizes,
         "case_discretisation_error": {o.name: float(o.errors[0]) for o in result.outputs},
@@ -196,12 +196,13 @@ def _history_figure(result, time: np.ndarray, system: str, title: str):
 
 
 def converge_files(result, sizes, problem, kind: str, figures: bool = True, prefix: str = "", case_level: int = 0) -> dict[str, bytes | str]:
-    """convergence.csv, summary.json and (optionally) the error and history figures; ``case_level``:
-    which level is the case's own discretisation (0 unless the study started below it)."""
+    """convergence.csv, summary.json and (optionally) the error and history figures of ``problem`` (any kind:
+    each has its ``title`` and display ``units``); ``case_level``: which level is the case's own discretisation
+    (0 unless the study started below it)."""
     files = {prefix + "convergence.csv": csv_text(_rows(result)), prefix + "summary.json": json_text(_summary(result, sizes, problem, kind))}
     if figures:
-        title = getattr(problem, "title", "") or kind
-        files[prefix + "convergence.png"] = figure_bytes(_error_figure(result, f"Discretisation error: {title}", case_level, getattr(problem, "units", None)))
+        title = problem.title or kind
+        files[prefix + "convergence.png"] = figure_bytes(_error_figure(result, f"Discretisation error: {title}", case_level, problem.units))
         if any(o.kind == "history" for o in result.outputs):
             time = problem.solver.times()
             files[prefix + "histories.png"] = figure_bytes(_history_figure(result, time, problem.units, f"Histories at each level: {title}"))

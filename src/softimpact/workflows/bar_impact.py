@@ -61,6 +61,10 @@ class BarImpactProblem:
                 raise InputError(f"gauge {g.name!r}: position {g.position!r} m is outside the bar (length {self.bar.length!r} m)", "gauges")
         self.contact_law()  # a name or an object, resolved (and refused) here
 
+    def with_solver(self, solver: SolverSpec) -> BarImpactProblem:
+        """This problem stepped by ``solver`` (a one-factor refinement swaps the time step alone)."""
+        return replace(self, solver=solver)
+
     def hertz(self) -> HertzLaw:
         """Eq (3): the sphere on the flat end of the bar (or of the end cap)."""
         target = self.bar.material if self.bar.end_cap is None else self.bar.end_cap.material

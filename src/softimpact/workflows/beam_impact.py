@@ -187,6 +187,12 @@ class BeamProblem:
         """:func:`check_problem`."""
         check_problem(self)
 
+    def with_solver(self, solver: SolverSpec) -> BeamProblem:
+        """This problem stepped by ``solver`` (a one-factor refinement swaps the time step alone)."""
+        from dataclasses import replace
+
+        return replace(self, solver=solver)
+
     def refine(self, factor: int) -> BeamProblem:
         """Factor × the elements along and through the thickness and dt/factor (load, gauges unchanged)."""
         from dataclasses import replace
@@ -205,7 +211,7 @@ class BeamProblem:
     def has_damage_outputs(self) -> bool:
         """Its laminate is a layup (ply stacking) whose ply has strengths: the damage indices apply."""
         stack = self.beam.stack
-        return stack is not None and getattr(stack, "angles", None) is not None and stack.ply.strength is not None
+        return isinstance(stack, Stack) and stack.ply.strength is not None  # a layup (not ply fractions) with strengths
 
     def damage_points(self) -> dict[str, float]:
         """Where the damage indices are read: the section under the load and each gauge's section (x [m])."""

@@ -463,38 +463,19 @@ def study_case(kind, problem, levels: int, ratio: int, progress=None, case_level
         k = levels - 3
         base, both = problems[k], problems[k + 1]
         space, time = _with_solver_of(both, base), _with_solver_of(base, both)
-        if space is None or time is None:
-            return None
         progress(total, total, "one-factor refinements (mesh only, time step only)")
         return kind.study(space, factors[k])[0], kind.study(time, factors[k + 1])[0]
 
     def rise(outputs):
         t_peak = outputs.get("time_of_peak_s")
-        dt = _time_step(problems[levels - 3])
-        return None if t_peak is None or dt is None or not math.isfinite(float(t_peak)) else float(t_peak) / dt
+        dt = problems[levels - 3].solver.time_step
+        return None if t_peak is None or not math.isfinite(float(t_peak)) else float(t_peak) / dt
 
     result = convergence_study(run, range(levels), float(ratio), formal_order=2.0, one_factor=one_factor, rise_steps=rise)
     progress(total, total, "done")
     return result, sizes
 
 
-def _time_step(problem) -> float | None:
-    solver = getattr(problem, "solver", None)
-    return getattr(solver, "time_step", None)
-
-
 def _with_solver_of(problem, other):
-    """``problem`` with the time step of ``other`` (its ``solver``, and its target's when it has
-    one): a one-factor refinement by duck typing; None when the problem has no solver to swap."""
-    from dataclasses import replace
-
-    try:
-        if hasattr(problem, "target") and hasattr(problem.target, "solver"):
-            out = replace(problem, target=replace(problem.target, solver=other.target.solver))
-        elif hasattr(problem, "solver"):
-            out = replace(problem, solver=other.solver)
-        else:
-            return None
-    except (TypeError, ValueError, AttributeError):  # a derived (property) solver cannot be swapped
-        return None
-    return out
+    """``problem`` with the time step of ``other`` (every problem kind's ``with_solver``): a one-factor refinement."""
+    return problem.with_solver(other.solver)

@@ -66,6 +66,10 @@ class ImpactProblem:
     def solver(self) -> SolverSpec:
         return self.target.solver
 
+    def with_solver(self, solver: SolverSpec) -> ImpactProblem:
+        """This problem stepped by ``solver``: its target's (a Target's ``solver`` field), which steps the coupled run."""
+        return replace(self, target=replace(self.target, solver=solver))
+
     @property
     def position(self) -> float | tuple[float, float]:
         """The impact point: x [m] along a beam, (x, y) [m] on a plate."""

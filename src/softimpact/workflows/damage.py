@@ -33,7 +33,7 @@ import numpy as np
 from ..errors import InputError
 from ..models.delamination import REGIME_BOUNDS, REGIME_BOUNDS_NOTE, onset_thresholds, response_regime
 from ..models.failure import CRITERIA, PlyStrength, davies_zhang_force, failure_indices, interlaminar_shear, ply_stresses
-from ..models.laminate import abd, engineering_constants
+from ..models.laminate import Stack, abd, engineering_constants
 
 __all__ = [
     "DamageResult",
@@ -113,7 +113,7 @@ def extreme_faces(stack) -> tuple[np.ndarray, tuple]:
 def beam_damage(stack, strength: PlyStrength, plane: str, face: np.ndarray, other: np.ndarray, surfaces, force: np.ndarray) -> DamageResult:
     """Indices at the gauge sections; ``face``/``other`` (n_gauges, n_t) the axial strain on the
     gauge's face and the opposite one, ``surfaces`` each gauge's face, ``force`` (n_t,) [N]."""
-    if not hasattr(stack, "angles"):
+    if not isinstance(stack, Stack):
         raise InputError("damage screening needs a layup (ply stacking), not ply fractions", "stack")
     z, angles = extreme_faces(stack)
     ply = {c: np.zeros(face.shape) for c in CRITERIA}
@@ -152,7 +152,7 @@ def plate_damage(stack, strength: PlyStrength, top: np.ndarray, bottom: np.ndarr
     """Indices at points of a plate: ``top``/``bottom`` (n_points, 3, n_t) the in-plane strains
     (ε_x, ε_y, γ_xy) on the top (z = +h/2) and bottom face, ``force`` (n_t,) [N]. FSDT
     kinematics: ε(z) = ε0 + z·κ with ε0 the faces' mean and κ their difference over h."""
-    if not hasattr(stack, "angles"):
+    if not isinstance(stack, Stack):
         raise InputError("damage screening needs a layup (ply stacking), not ply fractions", "stack")
     top, bottom = np.asarray(top, float), np.asarray(bottom, float)
     z, angles = ply_faces(stack)
@@ -176,7 +176,7 @@ def damage_unavailable(stack, where: str) -> str | None:
 
     if stack is None:
         return f"{where}: damage outputs need a laminate (an isotropic material has no ply strengths)"
-    if not hasattr(stack, "angles"):
+    if not isinstance(stack, Stack):
         return f"{where}: damage outputs need a layup (ply stacking), not ply fractions"
     try:
         strength_of(stack.ply, where)

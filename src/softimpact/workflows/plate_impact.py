@@ -269,6 +269,12 @@ class PlateProblem:
         """:func:`check_problem`."""
         check_problem(self)
 
+    def with_solver(self, solver: SolverSpec) -> PlateProblem:
+        """This problem stepped by ``solver`` (a one-factor refinement swaps the time step alone)."""
+        from dataclasses import replace
+
+        return replace(self, solver=solver)
+
     def refine(self, factor: int) -> PlateProblem:
         """Factor × the elements along x and y and dt/factor (load patch, gauges and points unchanged; a static run: the mesh only)."""
         from dataclasses import replace
@@ -292,7 +298,7 @@ class PlateProblem:
     def has_damage_outputs(self) -> bool:
         """Its laminate is a layup (ply stacking) whose ply has strengths: the damage indices apply."""
         stack = self.plate.stack
-        return stack is not None and getattr(stack, "angles", None) is not None and stack.ply.strength is not None
+        return isinstance(stack, Stack) and stack.ply.strength is not None  # a layup (not ply fractions) with strengths
 
     def damage_points(self) -> dict[str, tuple[float, float]]:
         """Where the damage indices are read: under the impact point and at each gauge's centre."""

@@ -8,6 +8,7 @@ from ...cases import KINDS
 from ...errors import InputError
 from ...input.bar_case import load_bar_case
 from ...input.beam_case import load_beam_case
+from ...models.pulses import SkewedPulse
 from ...output.converge import converge_files, converge_section
 from ...output.report import Section
 from ...workflows.convergence import study_case
@@ -53,13 +54,14 @@ def _per_history_section(first: dict | None = None) -> Section:
                 break
             result = first[name] if history == 1 and name in first else study_case(KINDS["beam"], coarsen_beam(problem, 2), 3, 2, case_level=1)[0]
             gauges = [o for o in result.outputs if o.kind == "history"]
-            pulse = problem.load.history
+            pulse = problem.load.history  # a Pulse; Tables II and III give eq-15 pulses (t_F0 and T)
+            shape = f"{pulse.time_of_peak * 1e6:.0f} / {pulse.duration * 1e6:.0f}" if isinstance(pulse, SkewedPulse) else f"– / {pulse.duration * 1e6:.0f}"
             for o in gauges:
                 rows.append(
                     [
                         name.removeprefix("paper-"),
                         str(history),
-                        f"{getattr(pulse, 'time_of_peak', float('nan')) * 1e6:.0f} / {getattr(pulse, 'duration', float('nan')) * 1e6:.0f}",
+                        shape,
                         o.name,
                         o.status,
                         f"{100 * o.errors[1]:.2g} %",
