@@ -191,11 +191,12 @@ def _driven(bar: str | None, beam: str | None, pulse):
     if beam is not None:
         from dataclasses import replace
 
+        from ..cases.run import execute
         from ..input.beam_case import load_beam_case
-        from ..workflows.beam_impact import BeamLoad, BeamModel
+        from ..workflows.beam_impact import BeamLoad
 
         problem, path = load_beam_case(beam)
         problem = replace(problem, load=BeamLoad(problem.load.position, problem.load.contact_radius, pulse))
-        res = BeamModel(problem).direct(energy=False)
+        res = execute(problem, energy=False).result
         return [path], (res.time, res.force, problem.gauges, res.strain), "absolute"
     return [], None, ""

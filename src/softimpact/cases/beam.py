@@ -79,14 +79,23 @@ class BeamKind:
         progress=None,
     ):
         """The beam stepped directly (:func:`softimpact.cases.run.execute`), the whole displacement kept with
-        ``figures`` or ``fields`` (the frames of the fields: ``kept``); a coupled run's options do not apply."""
+        ``figures`` or ``fields`` (the frames of the fields: ``kept``); a coupled run's options do not apply.
+        ``model``: a model of the same beam, mesh and step to reuse (its patch reaching the problem's contact
+        radius), stepped under ``problem``'s force history and contact radius."""
+        from dataclasses import replace
+
         from ..output.beam import beam_summary
         from ..output.fields import FRAMES, sampled_steps
         from ..workflows.beam_impact import BeamModel
         from .run import Run
 
-        model = model or BeamModel(problem)
-        result = model.direct(progress=progress, energy=energy, displacement=figures or fields)
+        if model is None:
+            model = BeamModel(problem)
+            result = model.direct(progress=progress, energy=energy, displacement=figures or fields)
+        else:
+            load = problem.load
+            result = model.direct(load.history, progress, energy, figures or fields, radius=load.contact_radius)
+            result = replace(result, problem=problem)
         kept = sampled_steps(problem.solver.steps, FRAMES if frames is None else frames) if fields else ()
         validity = beam_validity(result)
         return Run(result, model, beam_summary(model, result, validity), validity, problem, kept=kept)

@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
+from ...cases.run import execute
 from ...input.beam_case import load_beam_case
 from ...input.records import read_strains
 from ...input.scaling_constants import start_pulse
@@ -15,7 +18,7 @@ from ...output.calibration import SeriesComparison, calibration_section, series_
 from ...output.files import figure_bytes
 from ...output.report import Section
 from ...studies.calibration import CalibratedTest, calibrate_tests, calibration_model, scaling_points, series_fits
-from ...workflows.beam_impact import BeamModel
+from ...workflows.beam_impact import BeamLoad, BeamModel
 from ...workflows.calibration import Measured, calibrate
 from ...workflows.scaling import fit_groups
 from .notes import SYSTEM
@@ -85,7 +88,8 @@ def linear_theory_note(problem, items: list[CalibratedTest], beam: str) -> str:
     # the calibration ladder's models output gauge strains only: the deflection under the load needs a model of its own
     model = BeamModel(problem, patch_radius=max(item.calibration.contact_radius for item in done))
     for item in done:
-        res = model.direct(item.calibration.pulse, energy=False, displacement=False, radius=item.calibration.contact_radius)
+        load = BeamLoad(problem.load.position, item.calibration.contact_radius, item.calibration.pulse)
+        res = execute(replace(problem, load=load), model=model, energy=False).result
         v = deflection_validity(f"calibration of the {beam} beam, test {item.test.name}", float(np.max(np.abs(res.deflection))), res.problem.beam.thickness)
         warn(v)
         if v.flags:
