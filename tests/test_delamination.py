@@ -9,7 +9,8 @@ import pytest
 from scipy.optimize import brentq
 
 from softimpact.errors import InputError
-from softimpact.fem.cohesive_beam import Arm, BeamStack, Specimen, dcb, dof, enf, mmb, solve_quasistatic
+from softimpact.fem.cohesive_beam import Arm, BeamStack, Specimen, dof, solve_quasistatic
+from softimpact.fem.cohesive_specimens import dcb, enf, mmb
 from softimpact.models.cohesive import BilinearCohesive
 from softimpact.models.delamination import (
     DCB,

@@ -210,6 +210,29 @@ def scaling_files(fits, system: str, figures: bool = True, prefix: str = "") -> 
 TABLE_I = {"0.375 in": (4.00, 1.03, 0.25, 0.74), "0.5 in": (4.25, 0.93, None, 0.66)}
 
 
+def _tail_shape_paragraph(fits) -> list[str]:
+    """The report's paragraph on the tail-shape widening of the α intervals (none without tail shapes)."""
+    paragraphs = []
+    terms = [(label, g.tail_shape) for label, g in fits.items() if g.tail_shape is not None]
+    if terms:
+        paragraphs.append(
+            "The tail's shape is not known, and where the tail ramps in under the falling main pulse it moves T and tF0. Five "
+            "tail families (a knee with an exponential decay; a tail ramping in linearly under the main pulse then decaying "
+            "exponentially, linearly or as a power law; a free ramp, concave or convex, ending before or after T, then a stretched "
+            "exponential) are fitted to every record. The true tail is in none of them, so none is rejected on its AIC: for every "
+            "family the distance of its α's from the reported ones plus what its own fit's standard errors (tail parameters free) "
+            "leave of them is taken, and the largest is added to each side of the 95 % interval (last column; tail_shape in "
+            "scaling.json, per test in tests.csv): "
+            + "; ".join(
+                f"{label}: best by AIC {t.best}, α2 ±{t.half_widths['alpha2']:.3f}, α3 ±{t.half_widths['alpha3']:.3f}"
+                + (f", not bounded by the records better than the tail's shape: {', '.join(t.unbounded)}" if t.unbounded else "")
+                for label, t in terms
+            )
+            + "."
+        )
+    return paragraphs
+
+
 def scaling_section(fits, series, reduced, prefix: str, figures: bool) -> Section:
     """Report section: the series, its reductions and Table I beside the fitted constants."""
     rows = []
@@ -259,23 +282,7 @@ def scaling_section(fits, series, reduced, prefix: str, figures: bool) -> Sectio
         "(d'Alembert, exact for the non-dispersive bar), so pulses longer than the reflection return time 2(L−x)/c are handled. "
         "T comes from a least-squares fit of eq (15) to the main pulse; I integrates the whole history, tail included.",
     ]
-    terms = [(label, g.tail_shape) for label, g in fits.items() if g.tail_shape is not None]
-    if terms:
-        paragraphs.append(
-            "The tail's shape is not known, and where the tail ramps in under the falling main pulse it moves T and tF0. Five "
-            "tail families (a knee with an exponential decay; a tail ramping in linearly under the main pulse then decaying "
-            "exponentially, linearly or as a power law; a free ramp, concave or convex, ending before or after T, then a stretched "
-            "exponential) are fitted to every record. The true tail is in none of them, so none is rejected on its AIC: for every "
-            "family the distance of its α's from the reported ones plus what its own fit's standard errors (tail parameters free) "
-            "leave of them is taken, and the largest is added to each side of the 95 % interval (last column; tail_shape in "
-            "scaling.json, per test in tests.csv): "
-            + "; ".join(
-                f"{label}: best by AIC {t.best}, α2 ±{t.half_widths['alpha2']:.3f}, α3 ±{t.half_widths['alpha3']:.3f}"
-                + (f", not bounded by the records better than the tail's shape: {', '.join(t.unbounded)}" if t.unbounded else "")
-                for label, t in terms
-            )
-            + "."
-        )
+    paragraphs += _tail_shape_paragraph(fits)
     if series.synthetic:
         paragraphs.insert(0, "SYNTHETIC DATA: " + series.synthetic + ". The paper's own figure data are not available.")
     return Section(
