@@ -16,7 +16,18 @@ import numpy as np
 
 from .files import csv_text, figure_bytes, json_text, write_outputs
 
-__all__ = ["sweep_files", "threshold_figure", "threshold_map_figure", "threshold_csv", "save_checkpoint", "load_checkpoint", "parquet_bytes"]
+__all__ = [
+    "sweep_files",
+    "threshold_figure",
+    "threshold_map_figure",
+    "threshold_csv",
+    "save_checkpoint",
+    "load_checkpoint",
+    "save_inputs",
+    "earlier_inputs",
+    "INPUTS",
+    "parquet_bytes",
+]
 
 
 def save_checkpoint(folder: Path, name: str, rows: list[dict]) -> None:
@@ -34,6 +45,30 @@ def load_checkpoint(folder: Path, name: str, runs) -> list[dict] | None:
         return rows if sorted(r["run"] for r in rows) == sorted(runs) else None
     except (OSError, ValueError, TypeError, KeyError):
         return None
+
+
+INPUTS = "inputs.json"  # in a checkpoints folder: the spec and every file its runs read, with their SHA-256
+
+
+def save_inputs(folder: Path, spec: str, inputs) -> None:
+    """``folder/inputs.json``: the spec's file and the (file, sha256) its checkpoints were computed from, once."""
+    if not (Path(folder) / INPUTS).is_file():
+        write_outputs(folder, {INPUTS: json.dumps({"spec": spec, "inputs": dict(inputs)}, indent=1)})
+
+
+def earlier_inputs(root: Path, spec: str, fingerprint: str) -> dict | None:
+    """{file: sha256} of the newest other checkpoints folder under ``root`` made by the spec ``spec``; None if none."""
+    found = []
+    for path in Path(root).glob(f"*/{INPUTS}"):
+        if path.parent.name == fingerprint:
+            continue
+        try:
+            data = json.loads(path.read_text(encoding="utf-8"))
+            if data.get("spec") == spec and isinstance(data.get("inputs"), dict):
+                found.append((path.stat().st_mtime_ns, data["inputs"]))
+        except (OSError, ValueError, AttributeError):
+            continue
+    return max(found, key=lambda f: f[0])[1] if found else None
 
 
 def parquet_bytes(cols: dict) -> bytes:
