@@ -74,3 +74,73 @@ def test_the_fingerprint_covers_the_law_json_of_an_identified_contact_law(tmp_pa
     law["edited"] = True
     (tmp_path / "law.json").write_text(json.dumps(law))
     assert load_sweep_spec(str(tmp_path / "spec.toml")).fingerprint != one.fingerprint
+
+
+BEAM_SPEC = """
+[sweep]
+case = "beam.toml"
+method = "grid"
+outputs = ["damage.max_strain"]
+[[sweep.parameter]]
+key = "load.history.velocity"
+values = [{values}]
+"""
+
+
+def _beam_thresholds(tmp_path, values):
+    """A velocity grid on the coarse long beam: (printed output, thresholds.csv rows, summary.json's thresholds, the run table)."""
+    import csv
+
+    (tmp_path / "beam.toml").write_text(COARSE_LONG_BEAM)
+    (tmp_path / "spec.toml").write_text(BEAM_SPEC.format(values=", ".join(f'"{v} in/s"' for v in values)))
+    out = tmp_path / "out"
+    r = CliRunner().invoke(main, ["sweep", str(tmp_path / "spec.toml"), "--out", str(out), "--no-figures", "--workers", "0"])
+    assert r.exit_code == 0, r.output
+    with open(out / "thresholds.csv", newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    return r.output, rows, json.loads((out / "summary.json").read_text())["thresholds"], pq.read_table(out / "runs.parquet").to_pydict()
+
+
+def test_a_threshold_below_the_swept_range_is_reported_as_a_bound(tmp_path):
+    """A grid whose lowest velocity already takes the strain index past 1 reports the threshold as below the lowest level
+    (a text cell, no number) in thresholds.csv, summary.json and the printed line, never as the lowest velocity itself."""
+    text, rows, summary, table = _beam_thresholds(tmp_path, [5000, 8000])
+    assert min(table["damage.max_strain"]) >= 1.0  # the premise: every run is past onset
+    assert rows[0]["threshold_velocity_median_bound"] == "below the lowest level"
+    assert rows[0]["threshold_velocity_median_m_s"] == ""  # an empty cell: no number
+    assert float(rows[0]["lowest_level_m_s"]) == 5000 * 0.0254
+    assert summary[0]["threshold_velocity_median_bound"] == "below the lowest level" and summary[0]["threshold_velocity_median_m_s"] is None
+    assert "median below the lowest level (5000 in/s)" in text
+
+
+def test_a_threshold_above_the_swept_range_is_reported_as_a_bound(tmp_path):
+    """A grid whose highest velocity stays short of onset reports the threshold as above the highest level."""
+    text, rows, summary, table = _beam_thresholds(tmp_path, [1000, 2000])
+    assert max(table["damage.max_strain"]) < 1.0
+    assert rows[0]["threshold_velocity_median_bound"] == "above the highest level"
+    assert "median above the highest level (2000 in/s)" in text
+
+
+def test_a_bracketed_threshold_is_the_linear_crossing_and_has_no_bound(tmp_path):
+    """A grid that brackets onset gives the velocity where the straight line between the two bracketing runs' indices
+    crosses 1 (computed here from the run table), with an empty bound."""
+    text, rows, summary, table = _beam_thresholds(tmp_path, [3000, 5000])
+    (v1, v2), (i1, i2) = table["load.history.velocity"], table["damage.max_strain"]
+    assert i1 < 1.0 <= i2
+    assert summary[0]["threshold_velocity_median_m_s"] == v1 + (1.0 - i1) * (v2 - v1) / (i2 - i1)
+    assert summary[0]["threshold_velocity_median_bound"] == ""
+
+
+def test_censored_quantiles_are_bounds_where_they_fall_on_censored_draws():
+    """Over the draws (below, 1, 2, 3, above) the median is 2 (the middle draw) while the 5 % and 95 % quantiles,
+    interpolated between a censored draw and a bracketed one, are the bounds below the lowest / above the highest level."""
+    import math
+
+    import numpy as np
+
+    from softimpact.workflows.sweep_stats import ABOVE, BELOW, _quantile
+
+    f = np.array([-np.inf, 1.0, 2.0, 3.0, np.inf])
+    assert _quantile(f, 50.0) == (2.0, "")
+    lo, hi = _quantile(f, 5.0), _quantile(f, 95.0)
+    assert math.isnan(lo[0]) and lo[1] == BELOW and math.isnan(hi[0]) and hi[1] == ABOVE

@@ -84,7 +84,10 @@ def parquet_bytes(cols: dict) -> bytes:
 def threshold_csv(th: list[dict]) -> str:
     """Threshold rows (:func:`softimpact.workflows.sweep_stats.thresholds`, or a threshold map's rows,
     :meth:`softimpact.studies.thresholds.MapRow.as_dict`) as CSV text."""
-    return csv_text({k: np.array([t[k] for t in th], dtype=object if k in ("levels", "index", "structure", "regime") else float) for k in th[0]})
+    text = ("levels", "index", "structure", "regime")
+    return csv_text(
+        {k: np.array([t[k] for t in th], dtype=object if k in text or k.endswith("_bound") else float) for k in dict.fromkeys(k for t in th for k in t)}
+    )
 
 
 def sweep_files(cols: dict, summary: dict, th: list[dict], figures: bool, system: str = "in-lbf-s") -> dict:
@@ -117,9 +120,11 @@ def threshold_figure(th: list[dict], system: str, title: str = "Threshold veloci
             lo.append(ys[-1] - t["threshold_velocity_p05_m_s"] * vu.factor)
             hi.append(t["threshold_velocity_p95_m_s"] * vu.factor - ys[-1])
         ax.errorbar(xs, ys, yerr=[np.nan_to_num(lo), np.nan_to_num(hi)], fmt="o", capsize=3, label=name)
-        for x, y in zip(xs, ys):
-            if not np.isfinite(y):  # no draw reached 1 within the swept velocities
-                ax.annotate("not reached", (x, 0.02), xycoords=("data", "axes fraction"), rotation=90, fontsize=7, ha="center")
+        for x, y, lab in zip(xs, ys, labels):
+            if not np.isfinite(y):  # the median is outside the swept velocities: its bound in words
+                t = next(t for t in th if t["levels"] == lab and t["index"] == name)
+                words = t.get("threshold_velocity_median_bound") or "not reached"
+                ax.annotate(words, (x, 0.02), xycoords=("data", "axes fraction"), rotation=90, fontsize=7, ha="center")
     ax.set_xlim(-0.5, len(labels) - 0.5)
     ax.set_xticks(range(len(labels)), [lab or "all runs" for lab in labels], fontsize=8)
     ax.set_xlabel("levels of the swept parameters (besides velocity)")
