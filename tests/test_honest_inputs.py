@@ -144,3 +144,53 @@ def test_censored_quantiles_are_bounds_where_they_fall_on_censored_draws():
     assert _quantile(f, 50.0) == (2.0, "")
     lo, hi = _quantile(f, 5.0), _quantile(f, 95.0)
     assert math.isnan(lo[0]) and lo[1] == BELOW and math.isnan(hi[0]) and hi[1] == ABOVE
+
+
+def test_power_law_rise_is_the_time_to_peak_of_the_rigid_wall_ode():
+    """Hertz's closed-form rise (α_m/V·√π·Γ(7/5)/Γ(9/10) ≈ 1.4716·α_m/V) equals the time of maximum approach of
+    m·α̈ = −K·α^1.5, α(0) = 0, α̇(0) = V, integrated here with scipy (an independent computation)."""
+    import pytest
+    from scipy.integrate import solve_ivp
+
+    from softimpact.guards import power_law_rise
+
+    m, K, V = 8.4e-3, 8.4e8, 2.54  # a 1/2-in steel ball on a laminate (Sun's form, E2 7.9 GPa), 100 in/s
+    peak = lambda t, y: y[1]  # noqa: E731
+    peak.terminal = True
+    sol = solve_ivp(lambda t, y: [y[1], -K * max(y[0], 0.0) ** 1.5 / m], (0.0, 1e-3), [0.0, V], events=peak, rtol=1e-11, atol=1e-15)
+    assert power_law_rise(K, 1.5, m, V) == pytest.approx(sol.t_events[0][0], rel=1e-6)
+
+
+def test_a_coupled_impact_with_too_coarse_a_step_exits_2_with_a_finer_advised_step(tmp_path):
+    """The built-in long-beam impact stepped at 100 us (10 steps over its 1 ms) exits 2 from `softimpact impact` and
+    from a sweep of it, naming a time step below 100 us; stepped at that advised value it passes the check."""
+    import dataclasses
+    import re
+
+    import softimpact as si
+    from softimpact.cases import KINDS
+
+    text = (si.load("paper-long-beam-impact").files[0]).read_text().replace('time_step = "0.5 us"', 'time_step = "100 us"')
+    (tmp_path / "coarse.toml").write_text(text)
+    r = CliRunner().invoke(main, ["impact", str(tmp_path / "coarse.toml"), "--out", str(tmp_path / "o"), "--no-figures"])
+    assert r.exit_code == 2, r.output
+    advised = float(re.search(r"solver.time_step = ([0-9.]+) us or less", r.output).group(1))
+    assert advised < 100.0
+    (tmp_path / "spec.toml").write_text(SPEC.replace("impact.toml", "coarse.toml"))
+    r = CliRunner().invoke(main, ["sweep", str(tmp_path / "spec.toml"), "--out", str(tmp_path / "s"), "--no-figures", "--workers", "0"])
+    assert r.exit_code == 2 and "cannot resolve the contact force's rise" in r.output, r.output
+    problem = si.load("paper-long-beam-impact").problem
+    solver = dataclasses.replace(problem.solver, time_step=advised * 1e-6)
+    KINDS["impact"].check(problem.with_solver(solver))  # the advised step passes
+
+
+def test_a_contact_still_on_at_the_end_says_why_its_duration_is_null(tmp_path):
+    """A coupled run ending while the ball still presses on the beam reports contact_duration_s null with a
+    contact_duration_note saying the contact had not ended and what to lengthen."""
+    case = LONG_BEAM_IMPACT.format(velocity="100 in/s").replace('"300 us"', '"20 us"')
+    (tmp_path / "short.toml").write_text(case)
+    r = CliRunner().invoke(main, ["impact", str(tmp_path / "short.toml"), "--out", str(tmp_path / "o"), "--no-figures"])
+    assert r.exit_code == 0, r.output
+    summary = json.loads((tmp_path / "o" / "summary.json").read_text())
+    assert summary["contact_duration_s"] is None
+    assert "had not ended" in summary["contact_duration_note"] and "solver.duration" in summary["contact_duration_note"]

@@ -102,6 +102,7 @@ def plan_sweep(spec: SweepSpec) -> SweepPlan:
     for i in sorted(probe):
         try:
             checked = kind.problem(spec.case_for(central[i], kind.expand), base)
+            kind.check(checked)  # the command's discretisation floors and resource guards, before any run
         except InputError as exc:
             raise InputError(f"sweep: {spec.case_path.name}: {exc}") from None
         if i == 0:
