@@ -6,6 +6,7 @@ import time
 
 import numpy as np
 
+from ..cases import KINDS
 from ..cases.run import execute
 from ..input.impact_case import load_impact_case
 from ..models.validity import warn
@@ -37,6 +38,7 @@ def impact(*, case: str, figures: bool = True, fields: bool = False, progress: P
     """Run an impact case (file or built-in name) on a beam or plate target; ``fields``: also
     fields.xdmf/.h5, the target's displacement fields (:mod:`softimpact.output.fields`)."""
     problem, inputs = load_impact_case(case)
+    KINDS["impact"].check(problem)  # the target's mesh and resources, the step against the contact's rise (exit 2)
     t0 = time.perf_counter()
     steps = problem.solver.steps
     run = execute(problem, figures=figures, fields=fields, progress=lambda k: progress(k, steps, "stepping"))

@@ -20,7 +20,7 @@ from ..input.sweep_spec import load_sweep_spec
 from ..output.sweep import sweep_files
 from . import Outcome, Progress, no_progress
 
-__all__ = ["sweep", "sweep_warnings"]
+__all__ = ["sweep", "sweep_warnings", "threshold_lines"]
 
 MAX_DISTINCT = 8  # distinct run warnings shown (e.g. a Monte Carlo's draws outside a law's fitted range, each with its value)
 
@@ -47,9 +47,42 @@ def sweep(
         f"{summary['runs']} runs in {summary['groups']} structure group(s): {summary['succeeded']} done, {summary['failed']} failed, "
         f"{summary['from_checkpoints']} from checkpoints ({dt:.1f} s, {_rate(summary['computed_now'] / dt)} runs/s)"
     )
+    if th:
+        line = threshold_lines(th, system) + "\n" + line  # the command line ends the last line with the files written
     # validity flags raised here (the probes' reading of their cases) are the runs' own, counted per run
     found = [str(w.message).strip() for w in caught.held if not getattr(w.message, "flag", "")]
     return Outcome(files, line, (s.path, s.case_path), tuple(sweep_warnings(summary, found)))
+
+
+MAX_THRESHOLDS = 6  # threshold rows printed (all of them in thresholds.csv and summary.json)
+
+
+def _velocity_text(t: dict, q: str, vu) -> str:
+    """A threshold quantile in display units, or its bound in words with the level it is beyond."""
+    bound = t.get(f"threshold_velocity_{q}_bound", "")
+    if not bound:
+        return f"{t[f'threshold_velocity_{q}_m_s'] * vu.factor:.4g} {vu.label}"
+    if bound.startswith("below") and "others" not in bound:
+        return f"{bound} ({t['lowest_level_m_s'] * vu.factor:.4g} {vu.label})"
+    if bound.startswith("above"):
+        return f"{bound} ({t['highest_level_m_s'] * vu.factor:.4g} {vu.label})"
+    return bound
+
+
+def threshold_lines(th: list[dict], system: str) -> str:
+    """The thresholds as printed lines: per index and level combination, the median and 5-95 % band in display
+    units, a quantile outside the swept velocities as its bound in words (never a bare value)."""
+    from ..units import display
+
+    vu = display(system, "velocity")
+    lines = []
+    for t in th[:MAX_THRESHOLDS]:
+        where = f" ({t['levels']})" if t["levels"] else ""
+        band = f"{_velocity_text(t, 'p05', vu)} to {_velocity_text(t, 'p95', vu)}"
+        lines.append(f"threshold velocity {t['index']}{where}: median {_velocity_text(t, 'median', vu)}, 5-95 % {band}")
+    if len(th) > MAX_THRESHOLDS:
+        lines.append(f"... and {len(th) - MAX_THRESHOLDS} more in thresholds.csv")
+    return "\n".join(lines)
 
 
 def _rate(x: float) -> str:

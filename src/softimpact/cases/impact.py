@@ -197,8 +197,16 @@ class ImpactKind:
         return ImpactProblem
 
     def check(self, problem):
+        """The target's checks (mesh, resources) and the coupled run's time step against its contact force's rise
+        (:func:`softimpact.guards.require_contact_steps`: the beam and plate commands' floor of steps per rise)."""
+        from ..guards import require_contact_steps
+
         other = _other_kind(problem)
-        return other.check(problem) if other else problem.target.check()
+        if other:
+            return other.check(problem)
+        problem.target.check()
+        i = problem.impactor
+        require_contact_steps(problem.law, i.mass, i.velocity, i.diameter, problem.solver.time_step)
 
     def refine(self, problem, factor):
         """The target refined (mesh and step, :meth:`~softimpact.models.protocols.Target.refine`); impactor and law unchanged."""

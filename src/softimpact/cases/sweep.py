@@ -15,16 +15,18 @@ computed once. Nothing here parses arguments or writes the sweep's files.
 
 from __future__ import annotations
 
+import hashlib
 import re
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from ..errors import HeldWarnings, InputError
+from ..errors import HeldWarnings, InputError, SoftimpactWarning
 from ..input.sweep_spec import Level, SweepSpec
-from ..output.sweep import load_checkpoint, save_checkpoint
+from ..output.sweep import earlier_inputs, load_checkpoint, save_checkpoint, save_inputs
 from ..workflows import sweep_stats
 from . import KINDS, kind_of
 from ._common import flatten
@@ -100,6 +102,7 @@ def plan_sweep(spec: SweepSpec) -> SweepPlan:
     for i in sorted(probe):
         try:
             checked = kind.problem(spec.case_for(central[i], kind.expand), base)
+            kind.check(checked)  # the command's discretisation floors and resource guards, before any run
         except InputError as exc:
             raise InputError(f"sweep: {spec.case_path.name}: {exc}") from None
         if i == 0:
@@ -243,6 +246,8 @@ def execute(plan: SweepPlan, out: Path | None, workers: int = 0, scheduler: str 
     progress = progress or (lambda done, total, label: None)
     base = str(spec.case_path.parent)
     folder = None if out is None else Path(out) / CHECKPOINTS / spec.fingerprint
+    if folder is not None:
+        _check_inputs(folder, spec)
     rows: dict[int, dict] = {}
     pending = []
     for c in plan.chunks:
@@ -291,6 +296,34 @@ def execute(plan: SweepPlan, out: Path | None, workers: int = 0, scheduler: str 
         if cluster is not None:
             cluster.close()
     return rows, sum(len(c.items) for c in pending)
+
+
+def _inputs(spec: SweepSpec) -> tuple[str, dict]:
+    """The spec's file and {file: sha256} of it and of every file its runs read (:attr:`SweepSpec.inputs`)."""
+    name = str(Path(spec.path).resolve())
+    files = dict(spec.inputs)
+    if Path(spec.path).is_file():
+        files[name] = hashlib.sha256(Path(spec.path).read_bytes()).hexdigest()
+    return name, files
+
+
+def _check_inputs(folder: Path, spec: SweepSpec) -> None:
+    """A sweep whose inputs changed since checkpoints were made in the same --out starts afresh in its own
+    fingerprint folder (the old one is kept: undoing the edit resumes it) and warns naming the files that changed."""
+    name, files = _inputs(spec)
+    if not folder.is_dir():
+        before = earlier_inputs(folder.parent, name, folder.name)
+        if before is not None:
+            changed = sorted(f for f in set(files) | set(before) if files.get(f) != before.get(f))
+            if changed:
+                words = "; ".join(f"{f} ({'new' if f not in before else 'gone' if f not in files else 'edited'})" for f in changed)
+                warnings.warn(
+                    SoftimpactWarning(
+                        f"sweep: inputs changed since the checkpoints in {folder.parent}: {words}; every run is computed afresh (checkpoints {folder.name})"
+                    ),
+                    stacklevel=2,
+                )
+    save_inputs(folder, name, files)
 
 
 def run_table(plan: SweepPlan, rows: dict) -> dict[str, np.ndarray | list]:

@@ -241,6 +241,7 @@ class SweepSpec:
     parameters: tuple
     chunk: int
     fingerprint: str
+    inputs: tuple[tuple[str, str], ...] = ()  # (file, sha256) of every file the runs read: the fingerprint covers their content
 
     def runs(self, central: bool = False) -> list[Run]:
         """The runs; with ``central``, one per level combination with every draw at its median."""
@@ -518,9 +519,69 @@ def read_sweep_spec(data: dict, base: Path, path: Path | None = None, text: byte
         raise InputError("sweep.parameter: nothing varies (give values, range, distribution or from)")
     s.done()
     top.done()
+    case_data = load_toml(case_path)
+    inputs = input_files(case_path, case_data, params)
     h = hashlib.sha256(text or json.dumps(data, sort_keys=True, default=str).encode())
-    h.update(case_path.read_bytes())
+    for name, digest in inputs:  # the content of every file the runs read, not only their names
+        h.update(f"{name}\0{digest}\0".encode())
     for p in params:
         if isinstance(p, (Scaling, LawDraw)):
             h.update(repr(p.mean + p.covariance).encode())
-    return SweepSpec(path or base / "spec", case_path, load_toml(case_path), method, draws, seed, tuple(outputs), params, chunk, h.hexdigest()[:16])
+    spec_path = path or base / "spec"
+    return SweepSpec(spec_path, case_path, case_data, method, draws, seed, tuple(outputs), params, chunk, h.hexdigest()[:16], inputs)
+
+
+def _strings(node, key: str = ""):
+    """(key, string) of every string in a case's nested tables and lists."""
+    if isinstance(node, dict):
+        for k, v in node.items():
+            yield from _strings(v, k)
+    elif isinstance(node, (list, tuple)):
+        for v in node:
+            yield from _strings(v, key)
+    elif isinstance(node, str):
+        yield key, node
+
+
+def _file_of(value: str, key: str, base: Path) -> Path | None:
+    """The file a case's string names (relative to its case's folder; a ``case`` key may be a built-in name), None if none."""
+    if not value or "\n" in value or len(value) > 4096:
+        return None
+    try:
+        path = base / value
+        if path.is_file():
+            return path
+        if key == "case":
+            return locate(value)
+    except (OSError, ValueError, InputError):
+        return None
+    return None
+
+
+def input_files(case_path: Path, case_data: dict, params=()) -> tuple[tuple[str, str], ...]:
+    """(file, sha256 of its bytes) of every file a sweep's runs read: the case, every file its strings name
+    (an impact case's target case, a law.json, a record), the files those cases name in turn, the files a
+    parameter's values name, and a parameter's ``from`` (scaling.json, law.json); sorted by file."""
+    found: dict[Path, str] = {}
+    todo: list[tuple[Path, dict | None]] = [(Path(case_path), case_data)]
+    for p in params:
+        if isinstance(p, (Scaling, LawDraw)):
+            todo.append((Path(p.source.rsplit(":", 1)[0] if isinstance(p, Scaling) else p.source), None))
+        elif isinstance(p, (Level, Fixed)):
+            values = p.values if isinstance(p, Level) else [p.value]
+            todo += [(f, None) for k, v in _strings(list(values), p.key.split(".")[-1]) if (f := _file_of(v, k, Path(case_path).parent)) is not None]
+    while todo:
+        path, data = todo.pop()
+        path = path.resolve()
+        if path in found or not path.is_file():
+            continue
+        raw = path.read_bytes()
+        found[path] = hashlib.sha256(raw).hexdigest()
+        if path.suffix == ".toml":
+            if data is None:
+                try:
+                    data = load_toml(path)
+                except InputError:
+                    continue  # a file that does not parse is refused where it is read; its bytes are already counted
+            todo += [(f, None) for k, v in _strings(data) if (f := _file_of(v, k, path.parent)) is not None]
+    return tuple(sorted((str(p), d) for p, d in found.items()))

@@ -65,6 +65,14 @@ def impact_summary(problem, result, validity, damage: dict | None = None, damage
         "peak_force_N": result.peak_force,
         "time_of_peak_s": result.time_of_peak,
         "contact_duration_s": result.contact_duration,
+        **(
+            {}
+            if math.isfinite(result.contact_duration)
+            else {
+                "contact_duration_note": f"null: the first contact had not ended at the end of the run ({float(result.time[-1]) * 1e6:.4g} us); "
+                "its duration and the rebound velocity are unknown and its peak may come later: lengthen solver.duration"
+            }
+        ),
         "impulse_N_s": result.impulse,
         "rebound_velocity_m_s": result.rebound_velocity,
         "rebound_velocity_note": "impactor velocity after the first contact, positive toward the target (negative = bounced back), as for the bar",

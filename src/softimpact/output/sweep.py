@@ -16,7 +16,18 @@ import numpy as np
 
 from .files import csv_text, figure_bytes, json_text, write_outputs
 
-__all__ = ["sweep_files", "threshold_figure", "threshold_map_figure", "threshold_csv", "save_checkpoint", "load_checkpoint", "parquet_bytes"]
+__all__ = [
+    "sweep_files",
+    "threshold_figure",
+    "threshold_map_figure",
+    "threshold_csv",
+    "save_checkpoint",
+    "load_checkpoint",
+    "save_inputs",
+    "earlier_inputs",
+    "INPUTS",
+    "parquet_bytes",
+]
 
 
 def save_checkpoint(folder: Path, name: str, rows: list[dict]) -> None:
@@ -36,6 +47,30 @@ def load_checkpoint(folder: Path, name: str, runs) -> list[dict] | None:
         return None
 
 
+INPUTS = "inputs.json"  # in a checkpoints folder: the spec and every file its runs read, with their SHA-256
+
+
+def save_inputs(folder: Path, spec: str, inputs) -> None:
+    """``folder/inputs.json``: the spec's file and the (file, sha256) its checkpoints were computed from, once."""
+    if not (Path(folder) / INPUTS).is_file():
+        write_outputs(folder, {INPUTS: json.dumps({"spec": spec, "inputs": dict(inputs)}, indent=1)})
+
+
+def earlier_inputs(root: Path, spec: str, fingerprint: str) -> dict | None:
+    """{file: sha256} of the newest other checkpoints folder under ``root`` made by the spec ``spec``; None if none."""
+    found = []
+    for path in Path(root).glob(f"*/{INPUTS}"):
+        if path.parent.name == fingerprint:
+            continue
+        try:
+            data = json.loads(path.read_text(encoding="utf-8"))
+            if data.get("spec") == spec and isinstance(data.get("inputs"), dict):
+                found.append((path.stat().st_mtime_ns, data["inputs"]))
+        except (OSError, ValueError, AttributeError):
+            continue
+    return max(found, key=lambda f: f[0])[1] if found else None
+
+
 def parquet_bytes(cols: dict) -> bytes:
     """A table of columns (name → array or list) as Parquet."""
     import pyarrow as pa
@@ -49,7 +84,10 @@ def parquet_bytes(cols: dict) -> bytes:
 def threshold_csv(th: list[dict]) -> str:
     """Threshold rows (:func:`softimpact.workflows.sweep_stats.thresholds`, or a threshold map's rows,
     :meth:`softimpact.studies.thresholds.MapRow.as_dict`) as CSV text."""
-    return csv_text({k: np.array([t[k] for t in th], dtype=object if k in ("levels", "index", "structure", "regime") else float) for k in th[0]})
+    text = ("levels", "index", "structure", "regime")
+    return csv_text(
+        {k: np.array([t[k] for t in th], dtype=object if k in text or k.endswith("_bound") else float) for k in dict.fromkeys(k for t in th for k in t)}
+    )
 
 
 def sweep_files(cols: dict, summary: dict, th: list[dict], figures: bool, system: str = "in-lbf-s") -> dict:
@@ -82,9 +120,11 @@ def threshold_figure(th: list[dict], system: str, title: str = "Threshold veloci
             lo.append(ys[-1] - t["threshold_velocity_p05_m_s"] * vu.factor)
             hi.append(t["threshold_velocity_p95_m_s"] * vu.factor - ys[-1])
         ax.errorbar(xs, ys, yerr=[np.nan_to_num(lo), np.nan_to_num(hi)], fmt="o", capsize=3, label=name)
-        for x, y in zip(xs, ys):
-            if not np.isfinite(y):  # no draw reached 1 within the swept velocities
-                ax.annotate("not reached", (x, 0.02), xycoords=("data", "axes fraction"), rotation=90, fontsize=7, ha="center")
+        for x, y, lab in zip(xs, ys, labels):
+            if not np.isfinite(y):  # the median is outside the swept velocities: its bound in words
+                t = next(t for t in th if t["levels"] == lab and t["index"] == name)
+                words = t.get("threshold_velocity_median_bound") or "not reached"
+                ax.annotate(words, (x, 0.02), xycoords=("data", "axes fraction"), rotation=90, fontsize=7, ha="center")
     ax.set_xlim(-0.5, len(labels) - 0.5)
     ax.set_xticks(range(len(labels)), [lab or "all runs" for lab in labels], fontsize=8)
     ax.set_xlabel("levels of the swept parameters (besides velocity)")

@@ -92,12 +92,36 @@ def sobol_first_order(columns: dict[str, np.ndarray], y: np.ndarray) -> list[dic
     return sorted(out, key=lambda d: -d["S1"])
 
 
+BELOW = "below the lowest level"  # a threshold quantile at or under the lowest swept velocity: an upper bound only
+ABOVE = "above the highest level"  # a threshold quantile over the highest swept velocity (index never reached 1): a lower bound only
+QUANTILES = (("p05", 5.0), ("median", 50.0), ("p95", 95.0))
+
+
+def _quantile(f: np.ndarray, q: float) -> tuple[float, str]:
+    """The ``q`` % quantile (numpy's linear interpolation) of draws ``f`` whose thresholds outside the swept
+    levels are -inf (below the lowest) or +inf (above the highest): (value, "") when both draws it interpolates
+    between are bracketed, else (NaN, :data:`BELOW` or :data:`ABOVE`): a bound, never a bare value."""
+    s = np.sort(f)
+    pos = q / 100.0 * (s.size - 1)
+    window = s[int(np.floor(pos)) : int(np.ceil(pos)) + 1]
+    if np.all(np.isfinite(window)):
+        return float(np.percentile(f, q)), ""
+    if np.any(window == np.inf) and np.any(window == -np.inf):
+        return math.nan, f"{BELOW} for some draws, {ABOVE} for others"
+    return math.nan, BELOW if np.any(window == -np.inf) else ABOVE
+
+
 def thresholds(velocity: np.ndarray, labels: list[str], draws: np.ndarray, indices: dict[str, np.ndarray]) -> list[dict]:
     """Threshold velocities: per combination of the other levels (``labels``, one text per run)
     and per damage index (``indices``: output name → values, shape (n_runs,)), the velocity
     [m/s] where the index first reaches 1 (linear between velocity levels), over the draws
     (``draws``: each run's draw number): median and 5–95 % band, and how many draws reach 1
-    within the swept range. ``velocity``: each run's velocity level [m/s]."""
+    within the swept range. ``velocity``: each run's velocity level [m/s].
+
+    A draw whose index is 1 or more already at the lowest level has its threshold below that level, one that
+    never reaches 1 above the highest: both are censored (ordered as -inf and +inf among the draws), and a
+    quantile that falls on one is NaN with ``threshold_velocity_<q>_bound`` saying :data:`BELOW` or :data:`ABOVE`
+    (beside ``lowest_level_m_s`` and ``highest_level_m_s``); a bracketed quantile has an empty bound."""
     velocity = np.asarray(velocity, float)
     draws = np.asarray(draws)
     out = []
@@ -111,24 +135,25 @@ def thresholds(velocity: np.ndarray, labels: list[str], draws: np.ndarray, indic
                 v, idx = velocity[m][order], np.asarray(values, float)[m][order]
                 k = np.flatnonzero(np.nan_to_num(idx, nan=-np.inf) >= 1.0)
                 if k.size == 0:
-                    found.append(np.nan)
+                    found.append(np.inf)
                 elif k[0] == 0:
-                    found.append(float(v[0]))
+                    found.append(-np.inf)
                 else:
                     j = k[0]
                     found.append(float(v[j - 1] + (1.0 - idx[j - 1]) * (v[j] - v[j - 1]) / (idx[j] - idx[j - 1])))
             f = np.array(found)
-            ok = f[np.isfinite(f)]
-            q = np.percentile(ok, [5, 50, 95]) if ok.size else [np.nan] * 3
-            out.append(
+            row = {"levels": label, "index": o.removeprefix("damage.")}
+            quantiles = {name: _quantile(f, q) for name, q in QUANTILES}
+            row.update({f"threshold_velocity_{name}_m_s": quantiles[name][0] for name in ("median", "p05", "p95")})
+            row.update(
                 {
-                    "levels": label,
-                    "index": o.removeprefix("damage."),
-                    "threshold_velocity_median_m_s": float(q[1]),
-                    "threshold_velocity_p05_m_s": float(q[0]),
-                    "threshold_velocity_p95_m_s": float(q[2]),
                     "draws": int(f.size),
-                    "draws_reaching_1": int(ok.size),
+                    "draws_reaching_1": int(np.sum(f < np.inf)),
+                    "draws_below_lowest_level": int(np.sum(f == -np.inf)),
+                    "lowest_level_m_s": float(velocity[sel].min()),
+                    "highest_level_m_s": float(velocity[sel].max()),
                 }
             )
+            row.update({f"threshold_velocity_{name}_bound": quantiles[name][1] for name in ("median", "p05", "p95")})
+            out.append(row)
     return out
