@@ -330,6 +330,17 @@ def cases_cmd():
         click.echo(f"{name:24s} {kind:7s} {title}")
 
 
+@main.command("catalogue", short_help="List the named materials, plies, projectiles, contact laws and cases.")
+@_guarded
+def catalogue_cmd():
+    """List every named material, ply, projectile, projectile material, set of scaling constants,
+    contact law and built-in case, each value in SI with its unit and each entry with its source
+    (the same tables as ``si.catalogue()`` and the docs' catalogue page)."""
+    from .app.catalogue import text
+
+    click.echo(text().rstrip())
+
+
 @_command("bar", "Sphere on the instrumented bar (Figs 4-6).")
 @click.argument("case")
 def bar_cmd(case, out, figures):
