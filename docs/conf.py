@@ -40,6 +40,7 @@ extensions = [
     "sphinx_click",
     "sphinx_gallery.gen_gallery",
     "casekeys",
+    "catalogue_page",
     "plaindoc",
 ]
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}

@@ -216,3 +216,21 @@ def test_every_key_read_whole_says_what_it_holds(recorded):
     casekeys = _casekeys()
     bare = [f"{fmt}: {path}" for fmt, keys in recorded.items() for path, k in keys.items() if k.method == "raw" and casekeys.raw_value(path) is None]
     assert not bare, f"describe these in docs/_ext/casekeys.py RAW_VALUES: {bare}"
+
+
+@pytest.mark.slow
+@needs_docs
+def test_catalogue_page_lists_every_entry(site):
+    """The built catalogue page (docs/_ext/catalogue_page.py) names every material, ply, projectile, scaling-constant set, contact law and built-in case."""
+    from softimpact.input.toml import builtin_cases
+    from softimpact.models.contact_laws import CONTACT_LAWS
+    from softimpact.models.empirical import PRESETS, PROJECTILES
+    from softimpact.models.laminate import PLIES
+    from softimpact.models.materials import CATALOGUE
+
+    run, html = site
+    assert run.returncode == 0, run.stderr[-4000:]
+    page = re.sub(r"<[^>]+>", "", (html / "_generated" / "catalogue.html").read_text(encoding="utf-8")).replace("&#160;", " ")
+    names = [*CATALOGUE, *PLIES, *PROJECTILES, *PRESETS, *CONTACT_LAWS, *builtin_cases()]
+    missing = [n for n in names if n not in page]
+    assert not missing, f"not on the catalogue page: {missing}"

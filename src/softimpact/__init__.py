@@ -16,7 +16,8 @@ quantities, converted to SI once::
 Structures and impactors: :class:`Beam`, :class:`Plate`, :class:`Laminate`, :class:`Sphere`.
 Runs: :func:`impact`, :func:`load` and :func:`run` (any case file or built-in name).
 The chain of the paper: :func:`reduce`, :func:`fit`, :func:`predict`, :func:`identify`,
-:func:`calibrate`, :func:`converge`, :func:`sweep`; lab records: :func:`read_record`.
+:func:`calibrate`, :func:`converge`, :func:`sweep`; lab records: :func:`read_record`; the named
+materials, plies, projectiles, contact laws and cases: :func:`catalogue`.
 
 The names are imported on first use (PEP 562), so ``import softimpact`` imports
 no numpy, scipy, scikit-fem, pint or matplotlib. The layers below, imported
@@ -56,6 +57,7 @@ _LAZY = {
     "converge": "api",
     "sweep": "api",
     "read_record": "api",
+    "catalogue": "api",
     "Case": "api",
     "ImpactResult": "api",
     "BeamResult": "api",

@@ -210,6 +210,52 @@ def main(ignore_limits, debug, force):
         os.environ[DEBUG_ENV] = "1"
 
 
+# --- the examples of the commands' --help (click's epilog) ----------------------------------------------
+
+# name → (a file the example needs, as "name: one-line description" then its lines; or None) and the command
+# line. tests/test_cli_examples.py runs every one (but paper's) as it is written here.
+EXAMPLES = {
+    "cases": (None, "softimpact cases"),
+    "catalogue": (None, "softimpact catalogue"),
+    "bar": (None, "softimpact bar paper-calibration --no-figures --out bar-out"),
+    "beam": (None, "softimpact beam paper-long-beam --history 1 --no-figures --out beam-out"),
+    "converge": (None, "softimpact converge paper-calibration --levels 2 --no-figures --out converge-out"),
+    "sweep": (
+        (
+            "spec.toml: the 1/2-in rubber ball at two velocities on the built-in long beam",
+            "[sweep]",
+            'case = "paper-long-beam"',
+            'method = "grid"',
+            'outputs = ["peak_force_N", "strain_g1.peak"]',
+            "[[sweep.parameter]]",
+            'key = "load.history"',
+            'value = { shape = "empirical", projectile = "rubber-1/2in", velocity = "1000 in/s" }',
+            "[[sweep.parameter]]",
+            'key = "load.history.velocity"',
+            'values = ["1000 in/s", "3000 in/s"]',
+        ),
+        "softimpact sweep spec.toml --workers 0 --no-figures --out sweep-out",
+    ),
+    "plate": (None, "softimpact plate plate-ss-8in --no-figures --out plate-out"),
+    "reduce": (None, "softimpact reduce paper-rubber-series --no-figures --out reduce-out"),
+    "fit": (None, "softimpact fit paper-rubber-series --no-figures --out fit-out"),
+    "predict": (None, 'softimpact predict --projectile rubber-1/2in --velocity "2000 in/s" --no-figures --out predict-out'),
+    "calibrate": (None, "softimpact calibrate paper-long-calibration --no-figures --out calibrate-out"),
+    "impact": (None, "softimpact impact paper-long-beam-impact --no-figures --out impact-out"),
+    "identify": (None, "softimpact identify paper-rubber-series --no-figures --out identify-out"),
+    "paper": (None, "softimpact paper --out paper-out"),
+}
+
+
+def _epilog(name: str) -> str:
+    """The ``Example:`` block of a command's --help (``\\b``: click keeps its lines as written)."""
+    needs, line = EXAMPLES[name]
+    if needs is None:
+        return f"\b\nExample:\n  {line}"
+    head, *body = needs
+    return "\b\n" + f"Example ({head}):\n" + "".join(f"    {b}\n" for b in body) + f"  {line}"
+
+
 # --- the shared options and the command factory ----------------------------------------------------
 
 HISTORY_HELP = "Row N of the case's [[load.table]]."
@@ -302,7 +348,7 @@ def _command(
     where calibrate has always had it) and ``--fields`` (when asked for); the function runs under :func:`_guarded`."""
 
     def decorate(fn):
-        command = main.command(name, short_help=short_help)(_guarded(fn))
+        command = main.command(name, short_help=short_help, epilog=_epilog(name))(_guarded(fn))
         command.params.extend(_option(o) for o in options if o.name != "figures")
         shared = [_history_option(history)] if history is not None else []
         if accept_poor == "before-out":
@@ -320,7 +366,7 @@ def _command(
     return decorate
 
 
-@main.command("cases", short_help="List the built-in cases and series.")
+@main.command("cases", short_help="List the built-in cases and series.", epilog=_epilog("cases"))
 @_guarded
 def cases_cmd():
     """List the built-in cases and series, usable by name wherever a CASE or SERIES is asked for."""
@@ -328,6 +374,17 @@ def cases_cmd():
 
     for name, kind, title in builtin_listing():
         click.echo(f"{name:24s} {kind:7s} {title}")
+
+
+@main.command("catalogue", short_help="List the named materials, plies, projectiles, contact laws and cases.", epilog=_epilog("catalogue"))
+@_guarded
+def catalogue_cmd():
+    """List every named material, ply, projectile, projectile material, set of scaling constants,
+    contact law and built-in case, each value in SI with its unit and each entry with its source
+    (the same tables as ``si.catalogue()`` and the docs' catalogue page)."""
+    from .app.catalogue import text
+
+    click.echo(text().rstrip())
 
 
 @_command("bar", "Sphere on the instrumented bar (Figs 4-6).")

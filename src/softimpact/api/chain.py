@@ -14,7 +14,7 @@ from ._edge import _Heard, _one_line
 from ._options import given, python_terms, takes
 from .results import CommandResult, Record
 
-__all__ = ["reduce", "fit", "predict", "identify", "calibrate", "converge", "sweep", "read_record"]
+__all__ = ["reduce", "fit", "predict", "identify", "calibrate", "converge", "sweep", "read_record", "catalogue"]
 
 
 def _command(command: str, call, table=()) -> CommandResult:
@@ -324,3 +324,27 @@ def read_record(path, *, channel: str | int | None = None) -> Record:
 
     r = read_lab_record(Path(path), channel)
     return Record(r.time, r.signal, r.unit, dict(r.metadata))
+
+
+def catalogue():
+    """The catalogue: every named material, ply, projectile, projectile material, set of scaling constants,
+    contact law and built-in case (the tables of ``softimpact catalogue`` and of the docs' catalogue page).
+
+    Returns
+    -------
+    softimpact.app.catalogue.Catalogue
+        Frozen; one :class:`~softimpact.app.catalogue.Table` per attribute (``materials``, ``plies``,
+        ``projectiles``, ``projectile_materials``, ``scaling_constants``, ``contact_laws``, ``cases``), each
+        with its ``columns``, their SI ``units`` and one tuple per entry in ``rows`` (its name first, its
+        source last); ``to_frame(name)`` gives a table as a pandas DataFrame.
+
+    Examples
+    --------
+    >>> import softimpact as si
+    >>> cat = si.catalogue()
+    >>> "steel" in cat.materials.names
+    True
+    """
+    from ..app.catalogue import catalogue as build
+
+    return build()

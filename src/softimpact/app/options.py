@@ -79,7 +79,11 @@ PREDICT = (
         "empirical",
         choices=("empirical", "hertz", "wilbeck", "crushing", "hydrodynamic"),
     ),
-    Option("constants", "Scaling constants: a preset (silicone-1/2in, silicone-3/8in) or a scaling.json from `softimpact fit`."),
+    Option(
+        "constants",
+        "Scaling constants: a projectile's (rubber-1/2in, rubber-3/8in: Table I) or a scaling.json from `softimpact fit` "
+        "(the old names silicone-1/2in, silicone-3/8in are deprecated aliases, still accepted).",
+    ),
     Option("group", "Group of a scaling.json to use (a diameter such as '0.5 in', or pooled).", "pooled"),
     Option("tail", "Empirical model: add the tail that carries the rest of eq (7)'s impulse.", False, type=bool),
     Option("material", "Projectile material (hertz and wilbeck models; ice for crushing, gelatin for hydrodynamic).", "silicone rubber"),
@@ -103,7 +107,11 @@ CALIBRATE = (
     Option("contact_time", 'First contact on the record\'s clock, e.g. "100 us" (default: estimated).', kind="time"),
     Option("fit_radius", "Least squares: fit r0 too.", False, type=bool),
     Option("projectile", "Projectile of the bar-model start.", "rubber-1/2in"),
-    Option("constants", "Scaling constants of the start: a preset or a scaling.json (default: the projectile's)."),
+    Option(
+        "constants",
+        "Scaling constants of the start: a projectile's (rubber-1/2in, rubber-3/8in) or a scaling.json (default: the projectile's; "
+        "the old names silicone-1/2in, silicone-3/8in are deprecated aliases, still accepted).",
+    ),
     Option(
         "budget",
         "Seconds that refining the model may cost: the mesh is refined until its discretisation error moves no "

@@ -16,16 +16,19 @@ __all__ = ["scaling_law", "start_pulse"]
 
 
 def scaling_law(constants: str | None, group: str, projectile) -> ScalingLaw:
-    """The α's: a preset name, a scaling.json from `softimpact fit`, or the projectile's preset."""
+    """The α's: a projectile's name (its preset: ``rubber-1/2in``), a preset's own name (``silicone-1/2in``, the
+    deprecated spelling of the same constants), a scaling.json from `softimpact fit`, or the projectile's preset."""
     if constants is None:
         if projectile is None:
             raise InputError("--constants: needed with --mass/--diameter (a preset or a scaling.json)")
         return PRESETS[projectile.law]
-    if constants in PRESETS:
+    if constants in PROJECTILES:  # one name per ball: a projectile's name gives its own constants
+        return PRESETS[PROJECTILES[constants].law]
+    if constants in PRESETS:  # the presets' own names (silicone-1/2in): the older spelling, still accepted
         return PRESETS[constants]
     path = Path(constants)
     if not path.is_file():
-        raise InputError(f"--constants: {constants!r} is neither a preset ({', '.join(PRESETS)}) nor a file")
+        raise InputError(f"--constants: {constants!r} is neither a projectile's constants ({', '.join(PROJECTILES)}; formerly {', '.join(PRESETS)}) nor a file")
     return read_scaling_law(path, group)
 
 

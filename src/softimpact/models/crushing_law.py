@@ -180,6 +180,8 @@ class CrushingLaw(SphereFlowLaw):
     None is the fragment-flow limit (no strength: the momentum flux alone, the crush lasting d/V exactly).
     """
 
+    source = "ice crushing strength of Jones 1997 (J. Phys. Chem. B 101:6099) with the momentum flux rho*V^2 (models/crushing_law.py)"  # where the law comes from (softimpact catalogue); a class attribute, not a field
+
     strength: PowerLawStrength | None = None
 
     @classmethod

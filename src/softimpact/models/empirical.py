@@ -129,12 +129,22 @@ class ProjectilePreset:
     mass: float
     material: str
     law: str
+    source: str = "user input"
 
 
 PROJECTILES = {
-    "rubber-1/2in": ProjectilePreset("rubber-1/2in", 0.5 * INCH, 1.1e-3, "silicone rubber", "silicone-1/2in"),
+    "rubber-1/2in": ProjectilePreset(
+        "rubber-1/2in", 0.5 * INCH, 1.1e-3, "silicone rubber", "silicone-1/2in", "the paper's text (1/2-in silicone rubber ball, 1.1 g); its law Table I"
+    ),
     # 0.46 g: the same density as the 1.1-g half-inch ball (docs/modelling-notes.md).
-    "rubber-3/8in": ProjectilePreset("rubber-3/8in", 0.375 * INCH, 1.1e-3 * 0.75**3, "silicone rubber", "silicone-3/8in"),
+    "rubber-3/8in": ProjectilePreset(
+        "rubber-3/8in",
+        0.375 * INCH,
+        1.1e-3 * 0.75**3,
+        "silicone rubber",
+        "silicone-3/8in",
+        "the paper's 3/8-in ball (Table I); mass from the 1/2-in ball's density (docs/modelling-notes.md)",
+    ),
 }
 
 

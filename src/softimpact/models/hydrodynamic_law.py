@@ -52,6 +52,8 @@ class HydrodynamicLaw(SphereFlowLaw):
     scales), ``hugoniot`` the linear Hugoniot (c0, k) of the material.
     """
 
+    source = "Wilbeck 1978 (AFML-TR-77-134) shock, release and steady flow; constants via saullocastro/birdpressure"  # where the law comes from (softimpact catalogue); a class attribute, not a field
+
     velocity: float = 1.0
     hugoniot: LinearHugoniot = WILBECK_GELATIN
 

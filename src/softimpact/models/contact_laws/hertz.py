@@ -39,6 +39,8 @@ class HertzLaw(PowerRadiusLaw):
     ``energy`` take a scalar (the stepping loop's fast path) or an array of α.
     """
 
+    source = "Hertz 1882 (paper eqs 1-3); on a laminate Sun 1977 (NASA CR-1977) and Tan & Sun 1985 (J. Appl. Mech. 52:6-12)"  # where the law comes from (softimpact catalogue); a class attribute, not a field
+
     radius_power = 0.5  # the contact radius a = sqrt(c·α) ∝ α^½ (the contact iteration's da/dα = ½·a/α)
 
     K: float

@@ -20,6 +20,8 @@ class HuntCrossleyLaw(PowerRadiusLaw):
     (D = 3(1 − e)/(2v⁻)). ``impact_velocity`` v⁻ > 0 [m/s].
     """
 
+    source = "Hunt & Crossley 1975 (J. Appl. Mech. 42:440-445); Lankarani & Nikravesh 1990 (J. Mech. Des. 112:369-376)"  # where the law comes from (softimpact catalogue); a class attribute, not a field
+
     radius_power = 0.5  # the contact radius a = sqrt(c·α) ∝ α^½ (the contact iteration's da/dα = ½·a/α)
 
     K: float

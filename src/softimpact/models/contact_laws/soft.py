@@ -24,6 +24,8 @@ class SoftProjectileLaw(PowerRadiusLaw, RespondingLaw):
     :meth:`scaled`).
     """
 
+    source = "identified from bar tests (workflows/identification.py); its form from Table I's scaling laws and Wilbeck 1978 (AFML-TR-77-134)"  # where the law comes from (softimpact catalogue); a class attribute, not a field
+
     radius_power = 0.5  # the contact radius a = sqrt(c·α) ∝ α^½ (the contact iteration's da/dα = ½·a/α)
 
     mass: float

@@ -74,6 +74,8 @@ class YangSunLaw:
     ``unloading_exponent`` q = 5/2.
     """
 
+    source = "Yang & Sun 1982 (ASTM STP 787:425-449); Tan & Sun 1985 (J. Appl. Mech. 52:6-12)"  # where the law comes from (softimpact catalogue); a class attribute, not a field
+
     hertz: HertzLaw
     critical_indentation: float
     unloading_exponent: float = 2.5
