@@ -1,0 +1,107 @@
+"""The HTML report's structure (output/report.py render_report): the table of contents, the summary of results
+gathered from the sections' own ``summary`` lines, alt text on every figure and the run's warnings — on small
+fake sections, without running the paper."""
+
+import warnings
+from html.parser import HTMLParser
+
+from softimpact.errors import SoftimpactWarning
+from softimpact.output.report import Section, render_report
+
+PNG = b"\x89PNG\r\n\x1a\n" + b"\0" * 16  # bytes that render_report embeds as a PNG
+
+
+class _Page(HTMLParser):
+    """The ids, the links (in order, with the list they sit in), the <img> alts and the <h2> ids of a page."""
+
+    def __init__(self, text: str):
+        super().__init__()
+        self.ids, self.links, self.alts, self.h2, self.order = [], [], [], [], []
+        self._ul = None
+        self.feed(text)
+
+    def handle_starttag(self, tag, attrs):
+        a = dict(attrs)
+        if "id" in a:
+            self.ids.append(a["id"])
+            self.order.append(a["id"])
+        if tag == "h2":
+            self.h2.append(a.get("id"))
+        if tag == "ul" and a.get("class") == "summary":
+            self._ul = "summary"
+        if tag == "a" and "href" in a:
+            self.links.append((self._ul, a["href"]))
+        if tag == "img":
+            self.alts.append(a.get("alt"))
+
+    def handle_endtag(self, tag):
+        if tag == "ul":
+            self._ul = None
+
+
+def _sections():
+    """Two small sections, one with a summary of two results and a captioned figure, one with an uncaptioned figure."""
+    a = Section("Table I: scaling constants", ["text"], [("t", ["a"], [["1"]])], [("a/fig.png", "Fig 8: F0 against V²")], ["α1 = 4.1 (paper 4.00)", "R² 0.99"])
+    b = Section("Table I: scaling constants", ["more"], [], [("b/fig.png", "")])  # the same title: its anchor must still be unique
+    return a, b
+
+
+def test_contents_link_every_section_and_summary_links_its_own():
+    """Every section's <h2> has a unique id, the contents link each of them, and each summary line links to the section it came from."""
+    a, b = _sections()
+    page = _Page(render_report("T", [a, b], ["a note"], {"a/fig.png": PNG}, warnings=["w one", "w two"]))
+    assert len(page.ids) == len(set(page.ids))
+    section_ids = [i for i in page.h2 if i not in ("summary", "contents")]
+    assert len(section_ids) == 4  # two sections, the warnings, the notes
+    toc = [h.removeprefix("#") for ul, h in page.links if ul is None]
+    assert toc == section_ids
+    summary = [h.removeprefix("#") for ul, h in page.links if ul == "summary"]
+    assert summary == [section_ids[0], section_ids[0], section_ids[2]]  # a's two lines, then the warnings' count
+
+
+def test_summary_comes_first_and_repeats_the_sections_lines():
+    """The summary and contents precede the first section, and the summary carries each line of the sections' summaries and the warning count."""
+    a, b = _sections()
+    text = render_report("T", [a, b], [], {}, warnings=["w one", "w two"])
+    page = _Page(text)
+    assert page.order.index("summary") < page.order.index("contents") < page.order.index(page.h2[2])
+    head = text[: text.index("id='contents'")]
+    for line in a.summary:
+        assert line in head
+    assert "2 warnings raised by the run" in head
+
+
+def test_every_figure_has_alt_text():
+    """Each <img>, embedded or linked, captioned or not, has a non-empty alt."""
+    a, b = _sections()
+    page = _Page(render_report("T", [a, b], [], {"a/fig.png": PNG}))
+    assert len(page.alts) == 2
+    assert all(alt and alt.strip() for alt in page.alts)
+    assert page.alts[0] == "Fig 8: F0 against V²"
+
+
+def test_warnings_are_listed_escaped_and_none_is_said():
+    """Each warning is an item of the warnings section (escaped); an empty list says so; None (not collected) gives no section."""
+    a, _ = _sections()
+    text = render_report("T", [a], [], {}, warnings=["deflection <0.5> & more"])
+    assert "<li>deflection &lt;0.5&gt; &amp; more</li>" in text
+    assert "1 warning raised by the run" in text
+    assert "The run raised no warning." in render_report("T", [a], [], {}, warnings=[])
+    assert "Warnings of the run" not in render_report("T", [a], [], {})
+
+
+def test_paper_collects_the_steps_warnings(monkeypatch):
+    """softimpact paper holds the SoftimpactWarnings its steps raise and hands them to the report and to the outcome (the manifest)."""
+    import softimpact.app.paper as paper_app
+
+    def step(figures, files):
+        warnings.warn("the deflection reaches 0.7 times the thickness", SoftimpactWarning, stacklevel=1)
+        return [Section("A step", ["text"], summary=["x = 1"])]
+
+    monkeypatch.setattr(paper_app, "STEPS", (("one", step), ("two", step)))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", SoftimpactWarning)  # a warning not held would fail the test
+        outcome = paper_app.paper(figures=False)
+    assert outcome.warnings == ("the deflection reaches 0.7 times the thickness",) * 2
+    assert outcome.files["report.html"].count("<li>the deflection reaches 0.7 times the thickness</li>") == 2
+    assert "2 warnings raised by the run" in outcome.files["report.html"]
