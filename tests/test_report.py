@@ -105,3 +105,41 @@ def test_paper_collects_the_steps_warnings(monkeypatch):
     assert outcome.warnings == ("the deflection reaches 0.7 times the thickness",) * 2
     assert outcome.files["report.html"].count("<li>the deflection reaches 0.7 times the thickness</li>") == 2
     assert "2 warnings raised by the run" in outcome.files["report.html"]
+
+
+def test_calibration_summary_converts_and_compares_f0():
+    """The calibrations' summary line gives each calibrated F0 beside the paper's in lbf (1 lbf = 4.4482216152605 N, exact by
+    definition) and their largest relative difference; an uncalibrated test is left out, a test without a paper row shows '—'."""
+    from types import SimpleNamespace as NS
+
+    from softimpact.app.paper.calibrations import f0_summary
+
+    lbf = 4.4482216152605
+    items = [
+        NS(test=NS(velocity=10.0), calibration=NS(peak_force=20 * lbf)),
+        NS(test=NS(velocity=20.0), calibration=None),
+        NS(test=NS(velocity=30.0), calibration=NS(peak_force=33 * lbf)),
+    ]
+    line = f0_summary(items, NS(reference=[(10.0, 25 * lbf, 0, 0, 0), (20.0, 1.0, 0, 0, 0)]), "long")
+    assert "20.0 (25.0), 33.0 (—)" in line
+    assert "at most 20% apart" in line  # |20/25 - 1|
+    assert "Table II" in line
+
+
+def test_threshold_headline_picks_each_structures_lowest_index_at_half_inch():
+    """The threshold maps' headline gives, for the 1/2-in ball, each structure's lowest median threshold (in/s: m/s / 0.0254) and says
+    'above' the searched range when no draw reaches 1."""
+    from softimpact.app.paper.thresholds import MAP_RANGE_IN_S, _map_headline
+    from softimpact.units import display
+
+    inch = 0.0254
+    rows = [
+        ("long beam", 0.5, "tsai_wu", 5, 30 * inch),
+        ("long beam", 0.5, "delamination", 5, 20 * inch),
+        ("long beam", 0.375, "tsai_wu", 5, 1 * inch),  # another diameter: not the headline's
+        ("plate", 0.5, "tsai_wu", 0, 1 * inch),
+    ]
+    maps = [dict(structure=s, diameter_m=d * inch, index=i, draws_reaching_1=n, threshold_velocity_median_m_s=v) for s, d, i, n, v in rows]
+    line = _map_headline(maps, display("in-lbf-s", "velocity"))
+    assert "long beam 20 (delamination)" in line
+    assert f"plate above {MAP_RANGE_IN_S[1]:.0f}" in line

@@ -336,7 +336,7 @@ def threshold_section(figures: bool, files: dict, prefix: str = "thresholds/"):
     rows = [[lab] + [_threshold_cell(next(t for t in th if t["levels"] == lab and t["index"] == i), vu) for i in indices] for lab in labels]
     map_table, map_text = _map_table(maps, vu)
     onset_table, onset_text = _onset_table(onset, vu)
-    return Section(
+    section = Section(
         "Damage thresholds of the paper's beams and of a plate",
         map_text
         + onset_text
@@ -366,6 +366,23 @@ def threshold_section(figures: bool, files: dict, prefix: str = "thresholds/"):
         ],
         figs,
     )
+    section.summary = [_map_headline(maps, vu)]
+    return section
+
+
+def _map_headline(maps: list[dict], vu) -> str:
+    """The threshold maps' headline for the report's summary: for the 1/2-in ball (the paper's), each structure's
+    lowest median threshold velocity and the index that reaches 1 there (the maps' own rows)."""
+    d_half = min({r["diameter_m"] for r in maps}, key=lambda d: abs(d - 0.5 * INCH))
+    parts = []
+    for name in dict.fromkeys(r["structure"] for r in maps):
+        rows = [r for r in maps if r["structure"] == name and r["diameter_m"] == d_half and r["draws_reaching_1"]]
+        if not rows:
+            parts.append(f"{name} above {MAP_RANGE_IN_S[1]:.0f}")
+            continue
+        low = min(rows, key=lambda r: r["threshold_velocity_median_m_s"])
+        parts.append(f"{name} {low['threshold_velocity_median_m_s'] * vu.factor:.0f} ({low['index']})")
+    return f"Threshold maps, {d_half / INCH:.3g}-in ball (coupled impact, identified law): lowest median threshold velocity [{vu.label}]: " + ", ".join(parts)
 
 
 def _onset_files(onset: list[dict], figures: bool, files: dict, prefix: str, system: str) -> list[tuple[str, str]]:
