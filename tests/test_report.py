@@ -143,3 +143,21 @@ def test_threshold_headline_picks_each_structures_lowest_index_at_half_inch():
     line = _map_headline(maps, display("in-lbf-s", "velocity"))
     assert "long beam 20 (delamination)" in line
     assert f"plate above {MAP_RANGE_IN_S[1]:.0f}" in line
+
+
+def test_table_i_summary_stands_each_fit_beside_the_papers_table_i():
+    """Each ball's summary line gives its fitted α1-α4 beside the paper's Table I (3/8 in: 4.00, 1.03, 0.25, 0.74; 1/2 in:
+    4.25, 0.93, α3 lost, 0.66: /work/shared/paper/soft-projectile-impact.txt, Table I), and a pooled fit, absent from
+    Table I, is left to the section."""
+    from types import SimpleNamespace as NS
+
+    from softimpact.app.paper.rubber_series import table_i_summary
+
+    def fit(*slopes):
+        return NS(origin={f"alpha{i + 1}": NS(slope=s) for i, s in enumerate(slopes)})
+
+    lines = table_i_summary({"0.375 in": fit(4.1, 1.0, 0.3, 0.7), "0.5 in": fit(4.2, 0.9, 0.25, 0.6), "pooled": fit(1, 1, 1, 1)})
+    assert lines == [
+        "Table I, 0.375 in: fitted (paper) α1 4.100 (4), α2 1.000 (1.03), α3 0.300 (0.25), α4 0.700 (0.74)",
+        "Table I, 0.5 in: fitted (paper) α1 4.200 (4.25), α2 0.900 (0.93), α3 0.250 (—), α4 0.600 (0.66)",
+    ]

@@ -28,7 +28,7 @@ def bar_summary(result, lag) -> str:
     far the gauge-derived force's peak falls from it (``lag``: :func:`~softimpact.app.bar.gauge_lag`, None without a gauge)."""
     fu, tu = display(result.problem.units, "force"), display(result.problem.units, "time")
     line = (
-        f"Bar calibration (5/8-in steel ball): peak contact force {result.peak_force * fu.factor:.1f} {fu.label}, "
+        f"Bar calibration: peak contact force {result.peak_force * fu.factor:.1f} {fu.label}, "
         f"contact duration {result.contact_duration * tu.factor:.1f} {tu.label}"
     )
     if lag is not None:

@@ -41,13 +41,15 @@ def rubber_series_sections(figures: bool, files: dict) -> list[Section]:
 
 
 def table_i_summary(fits) -> list[str]:
-    """One line per ball: the fitted α1-α4 (the section's table) beside Table I's (output.series.TABLE_I, the paper's Table I)."""
+    """One line per ball of Table I: the fitted α1-α4 (the section's table) beside the paper's (output.series.TABLE_I, the paper's Table I)."""
     lines = []
     for label, g in fits.items():
         paper = TABLE_I.get(label)
+        if paper is None:  # the pooled fit: no column of Table I to stand beside (it stays in the section's table)
+            continue
         pairs = []
         for i, name in enumerate(("alpha1", "alpha2", "alpha3", "alpha4")):
-            ref = "—" if paper is None or paper[i] is None else f"{paper[i]:.3g}"
+            ref = "—" if paper[i] is None else f"{paper[i]:.3g}"
             pairs.append(f"α{i + 1} {g.origin[name].slope:.3f} ({ref})")
         lines.append(f"Table I, {label}: fitted (paper) " + ", ".join(pairs))
     return lines
