@@ -161,3 +161,28 @@ def test_table_i_summary_stands_each_fit_beside_the_papers_table_i():
         "Table I, 0.375 in: fitted (paper) α1 4.100 (4), α2 1.000 (1.03), α3 0.300 (0.25), α4 0.700 (0.74)",
         "Table I, 0.5 in: fitted (paper) α1 4.200 (4.25), α2 0.900 (0.93), α3 0.250 (—), α4 0.600 (0.66)",
     ]
+
+
+def test_paper_command_lists_each_warning_once_in_manifest_and_report(monkeypatch, tmp_path):
+    """`softimpact paper` (on two fake steps) writes each warning its steps raise once into manifest.json, once into
+    report.html's warnings section, and once onto stderr."""
+    import json
+
+    from click.testing import CliRunner
+
+    import softimpact.app.paper as paper_app
+    from softimpact.cli import main
+
+    def step(figures, files):
+        warnings.warn(f"step warning {len(files)}", SoftimpactWarning, stacklevel=1)
+        files[f"x{len(files)}.txt"] = "x"
+        return [Section(f"Step {len(files)}", ["text"])]
+
+    monkeypatch.setattr(paper_app, "STEPS", (("one", step), ("two", step)))
+    result = CliRunner().invoke(main, ["paper", "--out", str(tmp_path / "out"), "--no-figures"])
+    assert result.exit_code == 0, result.output
+    manifest = json.loads((tmp_path / "out" / "manifest.json").read_text())
+    assert manifest["warnings"] == ["step warning 0", "step warning 1"]
+    html = (tmp_path / "out" / "report.html").read_text(encoding="utf-8")
+    assert html.count("<li>step warning 0</li>") == 1 and html.count("<li>step warning 1</li>") == 1
+    assert result.output.count("softimpact: warning: step warning 0") == 1
