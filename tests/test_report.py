@@ -186,3 +186,20 @@ def test_paper_command_lists_each_warning_once_in_manifest_and_report(monkeypatc
     html = (tmp_path / "out" / "report.html").read_text(encoding="utf-8")
     assert html.count("<li>step warning 0</li>") == 1 and html.count("<li>step warning 1</li>") == 1
     assert result.output.count("softimpact: warning: step warning 0") == 1
+
+
+def test_calibration_summary_matches_the_built_in_series_to_tables_ii_and_iii():
+    """On the built-in calibration series the summary finds each test's row of the paper's table by velocity: the paper's
+    column reads Table II's and Table III's F0 in lbf (the paper's tables, tests/_support/problems.py)."""
+    from types import SimpleNamespace as NS
+
+    from softimpact.app.paper.calibrations import f0_summary
+    from softimpact.input.series import load_calibration_series
+
+    from _support.problems import TABLE_II, TABLE_III
+
+    for beam, table in (("long", TABLE_II), ("short", TABLE_III)):
+        series = load_calibration_series(f"paper-{beam}-calibration")
+        items = [NS(test=t, calibration=NS(peak_force=1.0)) for t in series.tests]
+        line = f0_summary(items, series, beam)
+        assert ", ".join(f"0.2 ({row[1]:.1f})" for row in table) in line  # 1 N = 0.2248 lbf beside each paper F0
