@@ -432,8 +432,8 @@ def _onset_table(onset: list[dict], vu) -> tuple[tuple, list[str]]:
         "Onset map: the same structures, balls, law draws, strength scatter and meshes, with the index the coupled peak force "
         "over Olsson's quasi-static delamination threshold F_d = π·sqrt(32·D*·G_IIc/9), D* from the laminate's bending stiffnesses "
         "(docs/delamination.md; the formula as given to the project, its source not retrieved). Each row states its validity: the ball's mass "
-        f"over the structure's (the whole plate's) and the response regime it falls in. {REGIME_BOUNDS_NOTE}. F_d is a quasi-static "
-        f"threshold: {quasi} of the {len(onset)} rows are in the quasi-static regime; elsewhere the map gives the velocity at which the "
+        f"over the structure's (the whole plate's) and the response regime it falls in. {REGIME_BOUNDS_NOTE}.",
+        f"F_d is a quasi-static threshold: {quasi} of the {len(onset)} rows are in the quasi-static regime; elsewhere the map gives the velocity at which the "
         "peak force reaches F_d, not a validated onset (Olsson's dynamic threshold for small-mass impact was not retrieved).",
     ]
     return table, text
