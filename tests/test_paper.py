@@ -288,3 +288,34 @@ def test_calibrations_outside_linear_theory_are_warned_and_noted(paper_report):
     for ratio, name in zip(command[1:], ("long-V1932", "long-V3058", "long-V4026")):
         assert flagged[name] == pytest.approx(ratio, rel=0.05)
     assert "Outside linear theory" in paper_report.html
+
+
+def test_the_report_opens_with_contents_summary_and_has_alt_text(paper_report):
+    """report.html has a summary of results (Table I, the calibrations' F0, the thresholds, the discretisation error, the
+    warning count: as many as the manifest lists) and a contents list before the first section, each linking to an
+    existing anchor, and every <img> has a non-empty alt."""
+    import json
+    from html.parser import HTMLParser
+
+    class Page(HTMLParser):
+        def __init__(self):
+            super().__init__()
+            self.ids, self.hrefs, self.alts = [], [], []
+
+        def handle_starttag(self, tag, attrs):
+            a = dict(attrs)
+            self.ids += [a["id"]] if "id" in a else []
+            self.hrefs += [a["href"]] if tag == "a" and a.get("href", "").startswith("#") else []
+            self.alts += [a.get("alt")] if tag == "img" else []
+
+    page = Page()
+    page.feed(paper_report.html)
+    head = paper_report.html[: paper_report.html.index("<h2 id='contents'>")]
+    assert "Summary of results" in head
+    for what in ("Table I, 0.375 in", "F0 of the long beam", "F0 of the short beam", "Threshold maps", "Discretisation error"):
+        assert what in head, what
+    n = len(json.loads((paper_report.out / "manifest.json").read_text())["warnings"])
+    assert f"{n} warning{'' if n == 1 else 's'} raised by the run" in head
+    assert page.ids.index("summary") < page.ids.index("contents") < page.ids.index("warnings-of-the-run")
+    assert page.hrefs and all(h.removeprefix("#") in page.ids for h in page.hrefs)
+    assert page.alts and all(alt and alt.strip() for alt in page.alts)

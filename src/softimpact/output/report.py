@@ -8,35 +8,76 @@ from dataclasses import dataclass, field
 
 from .. import __version__
 
-__all__ = ["Section", "render_report", "stem"]
+__all__ = ["Section", "render_report", "stem", "anchors"]
 
 
 @dataclass
 class Section:
-    """A part of the HTML report: text, tables (header, rows) and figure paths."""
+    """A part of the HTML report: text, tables (header, rows) and figure paths; ``summary``: one-line results
+    (made from the same objects as the section's tables) that render_report lists at the top, linked to the section."""
 
     title: str
     paragraphs: list[str] = field(default_factory=list)
     tables: list[tuple[str, list[str], list[list[str]]]] = field(default_factory=list)
     figures: list[tuple[str, str]] = field(default_factory=list)  # (path, caption)
+    summary: list[str] = field(default_factory=list)
 
 
-def render_report(title: str, sections: list[Section], notes: list[str] = (), files: dict[str, bytes | str] | None = None) -> str:
-    """A self-contained HTML page: figures found in ``files`` are embedded (base64),
-    so the page opens on its own when mailed; others are linked by relative path."""
+def anchors(titles: list[str]) -> list[str]:
+    """A unique HTML id for each title (lower-case words joined by '-', a number appended to a repeat)."""
+    out, seen = [], set()
+    for title in titles:
+        base = "-".join("".join(ch if ch.isalnum() else " " for ch in title.lower()).split()) or "section"
+        name, k = base, 2
+        while name in seen:
+            name, k = f"{base}-{k}", k + 1
+        seen.add(name)
+        out.append(name)
+    return out
+
+
+def render_report(
+    title: str,
+    sections: list[Section],
+    notes: list[str] = (),
+    files: dict[str, bytes | str] | None = None,
+    warnings: list[str] | tuple[str, ...] | None = None,
+) -> str:
+    """A self-contained HTML page: a table of contents and a summary of results (each section's ``summary``
+    lines, linked to it) at the top; figures found in ``files`` are embedded (base64), so the page opens on
+    its own when mailed; others are linked by relative path. ``warnings`` (the run's, None: not collected)
+    are listed in a section of their own."""
     esc = html.escape
+    extra = []
+    if warnings is not None:
+        extra.append(("Warnings of the run", "warnings"))
+    if notes:
+        extra.append(("Assumptions and errata", "assumptions-and-errata"))
+    ids = anchors([s.title for s in sections] + [t for t, _ in extra])
+    ids, extra = ids[: len(sections)], [(t, i) for (t, _), i in zip(extra, ids[len(sections) :], strict=True)]
     out = [
         "<!doctype html><html><head><meta charset='utf-8'>",
         f"<title>{esc(title)}</title>",
         "<style>body{font-family:sans-serif;max-width:1000px;margin:auto;padding:1em;line-height:1.4}"
         "table{border-collapse:collapse;margin:0.5em 0}td,th{border:1px solid #bbb;padding:2px 8px;text-align:left}"
-        "th{background:#eee}figure{margin:1em 0}img{max-width:100%}figcaption{font-size:90%;color:#444}</style>",
+        "th{background:#eee}figure{margin:1em 0}img{max-width:100%}figcaption{font-size:90%;color:#444}"
+        "nav ol{columns:2;font-size:90%}.summary li{margin:0.2em 0}</style>",
         "</head><body>",
         f"<h1>{esc(title)}</h1>",
         f"<p>softimpact {esc(__version__)}</p>",
     ]
-    for s in sections:
-        out.append(f"<h2>{esc(s.title)}</h2>")
+    items = [(line, s.title, i) for s, i in zip(sections, ids, strict=True) for line in s.summary]
+    if warnings is not None:
+        wid = dict(extra)["Warnings of the run"]
+        items.append((f"{len(warnings)} warning{'' if len(warnings) == 1 else 's'} raised by the run", "Warnings of the run", wid))
+    if items:
+        out.append("<h2 id='summary'>Summary of results</h2><ul class='summary'>")
+        out += [f"<li>{esc(line)} (<a href='#{i}'>{esc(t)}</a>)</li>" for line, t, i in items]
+        out.append("</ul>")
+    toc = [(s.title, i) for s, i in zip(sections, ids, strict=True)] + extra
+    out.append("<nav><h2 id='contents'>Contents</h2><ol>" + "".join(f"<li><a href='#{i}'>{esc(t)}</a></li>" for t, i in toc) + "</ol></nav>")
+    for s, sid in zip(sections, ids, strict=True):
+        out.append(f"<h2 id='{sid}'>{esc(s.title)}</h2>")
         out += [f"<p>{esc(p)}</p>" for p in s.paragraphs]
         for caption, header, rows in s.tables:
             out.append(f"<table><caption>{esc(caption)}</caption><tr>" + "".join(f"<th>{esc(h)}</th>" for h in header) + "</tr>")
@@ -49,12 +90,19 @@ def render_report(title: str, sections: list[Section], notes: list[str] = (), fi
                 mime = "application/pdf" if data[:4] == b"%PDF" else "image/svg+xml" if data.lstrip()[:5] in (b"<?xml", b"<svg ") else "image/png"
                 src = f"data:{mime};base64," + base64.b64encode(data).decode("ascii")
             shown = src if src != path else esc(path)
+            alt = esc(caption or f"figure {path.rsplit('/', 1)[-1]} of the section {s.title}", quote=True)
             if mime == "application/pdf":  # --figure-format pdf: browsers show a PDF in an embed, not an img
-                out.append(f"<figure><embed src='{shown}' type='application/pdf' width='100%' height='480'><figcaption>{esc(caption)}</figcaption></figure>")
+                out.append(
+                    f"<figure><embed src='{shown}' type='application/pdf' width='100%' height='480' title='{alt}'><figcaption>{esc(caption)}</figcaption></figure>"
+                )
             else:
-                out.append(f"<figure><img src='{shown}' alt='{esc(caption)}'><figcaption>{esc(caption)}</figcaption></figure>")
-    if notes:
-        out.append("<h2>Assumptions and errata</h2><ul>" + "".join(f"<li>{esc(n)}</li>" for n in notes) + "</ul>")
+                out.append(f"<figure><img src='{shown}' alt='{alt}'><figcaption>{esc(caption)}</figcaption></figure>")
+    for t, i in extra:
+        out.append(f"<h2 id='{i}'>{esc(t)}</h2>")
+        if i == dict(extra).get("Warnings of the run"):
+            out.append("<ul>" + "".join(f"<li>{esc(w)}</li>" for w in warnings) + "</ul>" if warnings else "<p>The run raised no warning.</p>")
+        else:
+            out.append("<ul>" + "".join(f"<li>{esc(n)}</li>" for n in notes) + "</ul>")
     out.append("</body></html>")
     return "\n".join(out)
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import time
 
+from ...errors import HeldWarnings
 from ...output.report import render_report
 from .. import Outcome, Progress, no_progress
 from .bar_calibration import bar_calibration_sections
@@ -41,13 +42,15 @@ def paper(*, figures: bool = True, progress: Progress = no_progress) -> Outcome:
     """Run every section of the paper on the built-in cases; the outcome holds report.html and its files."""
     t0 = time.perf_counter()
     files: dict[str, bytes | str] = {}
-    sections = []
+    sections, warned = [], []
     for k, (label, step) in enumerate(STEPS):
         progress(k, len(STEPS), label)
-        sections.extend(step(figures, files))
+        with HeldWarnings() as held:  # the run's warnings, listed in the report and (as the outcome's) shown and in the manifest
+            sections.extend(step(figures, files))
+        warned += [" ".join(str(w.message).split()) for w in held.held]
     progress(len(STEPS), len(STEPS), "report")
     if not figures:
         for s in sections:
             s.figures = []
-    files["report.html"] = render_report("softimpact: the paper, end to end", sections, NOTES, files)
-    return Outcome(files, f"report.html ({len(files)} files, {time.perf_counter() - t0:.1f} s)")
+    files["report.html"] = render_report("softimpact: the paper, end to end", sections, NOTES, files, warnings=warned)
+    return Outcome(files, f"report.html ({len(files)} files, {time.perf_counter() - t0:.1f} s)", warnings=tuple(warned))

@@ -121,7 +121,7 @@ def _crossing_paragraphs(found) -> list[str]:
     lp, lhere, lfine, llen, lcomp, _, llead, lruns = found["long"]
     sp, shere, sfine, slen, scomp, sper, slead, _ = found["short"]
     lmax = max(c for _, c in lcomp.scanned)
-    text = (
+    intro = (
         "The paper calibrated each transverse history's duration T on the first zero crossing of the bending strain at gauge 1, "
         '"approximately 450 µs in fig. 21" (long beam, history 1), and warns that its fixture is no rigid clamp. Figure 16, with '
         "the specimens' dimensions and the gauge positions, is not in the text: the report's beams use assumed free lengths "
@@ -129,28 +129,32 @@ def _crossing_paragraphs(found) -> list[str]:
         f"{(lp.load.position - lp.gauges[0].position) / INCH:.1f} in from the impact toward the clamp). The crossing is read as the "
         f"end of the first main lobe of gauge 1's bending strain (the first lobe reaching {MAIN_LOBE_FRACTION:.0%} of the largest "
         f"|strain| in the {lp.solver.duration * 1e3:.0f}-ms window; the earlier lobes, the local flexural wave passing the gauge, "
-        f"reach {llead:.0%} (long) and {slead:.0%} (short)). "
+        f"reach {llead:.0%} (long) and {slead:.0%} (short))."
+    )
+    text = (
         f"With the paper's history 1 the long beam crosses at {_us(lhere)} µs, not ≈ 450, and the short beam "
         + ("not within 1 ms" if not math.isfinite(shere) else f"at {_us(shere)} µs")
         + f" (its first main lobe lasts past the window). Discretisation error of the crossing: {_us(lfine)} µs on a mesh twice as "
         f"fine each way at half the step ({(lfine - lhere) * 1e6:+.1f} µs on the long beam)."
     )
+    paragraphs = [intro, text]
     if math.isfinite(llen.value):
-        text += (
-            f" A free length of {llen.value / INCH:.2f} in (impact at mid-length, gauge 1 kept 1 in from it) brings the long beam's "
+        match = (
+            f"A free length of {llen.value / INCH:.2f} in (impact at mid-length, gauge 1 kept 1 in from it) brings the long beam's "
             f"crossing to 450 µs ({_us(crossing_time(_refined(at_free_length(lp, llen.value))))} µs on the refined model); the "
             f"crossing grows by about {_slope(llen) * 1e6 * INCH:.0f} µs per inch of span"
         )
         lo, hi = (crossing_time(lp, length=llen.value, fraction=f, runs=lruns) for f in (0.2, 0.4))  # the match's own run, read otherwise
         same = crossing_time(sp, length=llen.value)
-        text += (
+        match += (
             f". That match rests on how the crossing is read: at {llen.value / INCH:.2f} in, reading the first lobe above "
             f"20 % or 40 % of the largest |strain| instead of {MAIN_LOBE_FRACTION:.0%} gives {_at(lo)} and {_at(hi)}; and the "
             f"short beam made as long has {_at(same)}, so the two beams' different answers below come from that "
-            "reading, not from a difference between them"
+            "reading, not from a difference between them."
         )
-    text += (
-        ". A rotational spring at the clamp (the clamped face's axial DOFs on springs; compliances up to the root rotation of "
+        paragraphs.append(match)
+    spring = (
+        "A rotational spring at the clamp (the clamped face's axial DOFs on springs; compliances up to the root rotation of "
         f"{COMPLIANCE_BRACKET_LENGTH / INCH:.0f} in of extra beam) "
         + (
             f"does not: it only delays the crossing, to {_us(lmax)} µs at most, so within this model the paper's earlier crossing "
@@ -169,7 +173,7 @@ def _crossing_paragraphs(found) -> list[str]:
     else:
         edge = min((x for x, c in slen.scanned if math.isfinite(c)), default=math.nan)
         short += f"; no free length does (the lobe first appears at {edge / INCH:.2f} in, crossing at {_us(dict(slen.scanned)[edge])} µs)."
-    return [text, short + " Either is a fit of one unknown of the specimen to one number read off a figure, not a measurement of it."]
+    return [*paragraphs, spring, short + " Either is a fit of one unknown of the specimen to one number read off a figure, not a measurement of it."]
 
 
 def _at(t: float) -> str:

@@ -51,6 +51,7 @@ def calibration_sections(figures: bool, files: dict) -> list[Section]:
             paper_method = calibrate(models(0), Measured(test.measured.name, t, strains), start, "paper", radius=test.contact_radius)
         compared = comparison(models.finest(), series, items, fits)
         section = calibration_section(models, series, items, compared, prefix, figures, paper_method)
+        section.summary = [f0_summary(items, series, beam)]
         note = linear_theory_note(problem, items, beam)
         if note:
             section.paragraphs.insert(0, note)
@@ -72,6 +73,21 @@ def calibration_sections(figures: bool, files: dict) -> list[Section]:
             )
         )
     return sections
+
+
+def f0_summary(items: list[CalibratedTest], series: CalibrationSeries, beam: str) -> str:
+    """The calibrated F0 of each test beside the paper's (Table II long, III short: ``series.reference``, the
+    section's own table), in the report's units, and the largest relative difference."""
+    from ...units import display
+
+    fu = display(SYSTEM, "force")
+    ref = {round(r[0], 6): r[1] for r in series.reference}
+    pairs = [(i.calibration.peak_force, ref.get(round(i.test.velocity, 6))) for i in items if i.calibration is not None]
+    shown = ", ".join(f"{f * fu.factor:.1f} ({'—' if p is None else f'{p * fu.factor:.1f}'})" for f, p in pairs)
+    diffs = [abs(f / p - 1) for f, p in pairs if p]
+    worst = f"; at most {max(diffs):.0%} apart" if diffs else ""
+    table = "II" if beam == "long" else "III"
+    return f"F0 of the {beam} beam's calibrations [{fu.label}], calibrated (paper's Table {table}): {shown or 'none calibrated'}{worst}"
 
 
 def linear_theory_note(problem, items: list[CalibratedTest], beam: str) -> str:

@@ -336,7 +336,7 @@ def threshold_section(figures: bool, files: dict, prefix: str = "thresholds/"):
     rows = [[lab] + [_threshold_cell(next(t for t in th if t["levels"] == lab and t["index"] == i), vu) for i in indices] for lab in labels]
     map_table, map_text = _map_table(maps, vu)
     onset_table, onset_text = _onset_table(onset, vu)
-    return Section(
+    section = Section(
         "Damage thresholds of the paper's beams and of a plate",
         map_text
         + onset_text
@@ -352,9 +352,11 @@ def threshold_section(figures: bool, files: dict, prefix: str = "thresholds/"):
             f"the thresholds are those of the finest ({plate_h}), and their band is widened on both sides by the "
             "discretisation error estimated from the three meshes (Richardson's observed order, GCI with safety factor 1.25 "
             "when that order is within 25 % of 2, else 3; one factor, the mesh, is refined): "
-            f"{plate_err}. First-ply failure under the impact point, where it peaks: ply stresses at both faces of every ply "
+            f"{plate_err}.",
+            "First-ply failure under the impact point, where it peaks: ply stresses at both faces of every ply "
             "from the top- and bottom-face strains in x, y and 45°. Halving the step changes no threshold by 1 in/s; the "
-            "delamination threshold depends on the force alone and has no mesh error. The beams' rows are on the paper's "
+            "delamination threshold depends on the force alone and has no mesh error.",
+            "The beams' rows are on the paper's "
             "meshes, whose gauge-strain error grows as the pulse shortens (history by history in the section 'Discretisation "
             "error of the paper's meshes, history by history'; the threshold pulses are shorter still and not studied "
             "there); their bands are the α draws' only.",
@@ -366,6 +368,23 @@ def threshold_section(figures: bool, files: dict, prefix: str = "thresholds/"):
         ],
         figs,
     )
+    section.summary = [_map_headline(maps, vu)]
+    return section
+
+
+def _map_headline(maps: list[dict], vu) -> str:
+    """The threshold maps' headline for the report's summary: for the 1/2-in ball (the paper's), each structure's
+    lowest median threshold velocity and the index that reaches 1 there (the maps' own rows)."""
+    d_half = min({r["diameter_m"] for r in maps}, key=lambda d: abs(d - 0.5 * INCH))
+    parts = []
+    for name in dict.fromkeys(r["structure"] for r in maps):
+        rows = [r for r in maps if r["structure"] == name and r["diameter_m"] == d_half and r["draws_reaching_1"]]
+        if not rows:
+            parts.append(f"{name} above {MAP_RANGE_IN_S[1]:.0f}")
+            continue
+        low = min(rows, key=lambda r: r["threshold_velocity_median_m_s"])
+        parts.append(f"{name} {low['threshold_velocity_median_m_s'] * vu.factor:.0f} ({low['index']})")
+    return f"Threshold maps, {d_half / INCH:.3g}-in ball (coupled impact, identified law): lowest median threshold velocity [{vu.label}]: " + ", ".join(parts)
 
 
 def _onset_files(onset: list[dict], figures: bool, files: dict, prefix: str, system: str) -> list[tuple[str, str]]:
@@ -413,8 +432,8 @@ def _onset_table(onset: list[dict], vu) -> tuple[tuple, list[str]]:
         "Onset map: the same structures, balls, law draws, strength scatter and meshes, with the index the coupled peak force "
         "over Olsson's quasi-static delamination threshold F_d = π·sqrt(32·D*·G_IIc/9), D* from the laminate's bending stiffnesses "
         "(docs/delamination.md; the formula as given to the project, its source not retrieved). Each row states its validity: the ball's mass "
-        f"over the structure's (the whole plate's) and the response regime it falls in. {REGIME_BOUNDS_NOTE}. F_d is a quasi-static "
-        f"threshold: {quasi} of the {len(onset)} rows are in the quasi-static regime; elsewhere the map gives the velocity at which the "
+        f"over the structure's (the whole plate's) and the response regime it falls in. {REGIME_BOUNDS_NOTE}.",
+        f"F_d is a quasi-static threshold: {quasi} of the {len(onset)} rows are in the quasi-static regime; elsewhere the map gives the velocity at which the "
         "peak force reaches F_d, not a validated onset (Olsson's dynamic threshold for small-mass impact was not retrieved).",
     ]
     return table, text
@@ -464,7 +483,8 @@ def _map_table(maps: list[dict], vu) -> tuple[tuple, list[str]]:
         f"family ({', '.join(f'{d / INCH:.3g}' for d in diameters)} in; mass ∝ d³, the paper's 1.1 g at 1/2 in), struck normally at the case's "
         "impact point, with the contact law identified from the rubber-ball bar series (the section on the paper's question; its Maxwell arm "
         "included), on the beams' layered laminate (beam.laminate.model = layered) and the plate's quarter (MITC4, symmetry edges). The law "
-        "was identified on 3/8 and 1/2 in balls at 1000-5000 in/s: larger balls and faster impacts extrapolate it. Indices: Tsai-Wu (1/R) "
+        "was identified on 3/8 and 1/2 in balls at 1000-5000 in/s: larger balls and faster impacts extrapolate it.",
+        "Indices: Tsai-Wu (1/R) "
         "at the load point, over both faces of every ply; Davies-Zhang delamination, the coupled peak force over P_c. Each threshold is "
         "the root of ln I(V) = 0 over contact-kernel runs (one kernel build per structure and mesh, milliseconds a run; the root gives I "
         "within 0.5 % of 1 on direct stepping, tests/test_threshold_maps.py).",
@@ -472,12 +492,14 @@ def _map_table(maps: list[dict], vu) -> tuple[tuple, list[str]]:
         f"covariance (threshold half-range {spread('law_half_range_m_s')} of the median); (b) material scatter, stated: every ply strength "
         f"and √G_IIc (hence P_c) scaled by one factor s ~ N(1, {MAP_STRENGTH_COV:.0%}); both indices are homogeneous of degree -1 in s, so "
         "the threshold moves as s^(1/β), β the local power of the index in V at the threshold (from two runs at ±2 %), each law draw "
-        "paired with 9 quantiles of s; (c) the discretisation error, the two-mesh GCI (safety factor 3, formal order 2, ratio 2) from the "
+        "paired with 9 quantiles of s.",
+        "(c) The discretisation error: the two-mesh GCI (safety factor 3, formal order 2, ratio 2) from the "
         f"map's mesh and one coarser by 2 in elements and step: beams {MAP_BEAM_MESHES[1][0][0]} × {MAP_BEAM_MESHES[1][0][1]} at "
         f"{MAP_BEAM_MESHES[1][1] * 1e6:g} µs against {MAP_BEAM_MESHES[0][0][0]} × {MAP_BEAM_MESHES[0][0][1]} at {MAP_BEAM_MESHES[0][1] * 1e6:g} µs, "
         f"the plate's quarter {MAP_PLATE_MESHES[1][0]}² at {MAP_PLATE_MESHES[1][1] * 1e6:g} µs against {MAP_PLATE_MESHES[0][0]}² at "
         f"{MAP_PLATE_MESHES[0][1] * 1e6:g} µs (GCI {spread('discretisation_error_m_s')} of the median), which widens the band on both "
-        f"sides. Runs last {MAP_DURATION * 1e6:.0f} µs. Few draws and two meshes keep the maps to about 20 s of the report; the material "
+        "sides.",
+        f"Runs last {MAP_DURATION * 1e6:.0f} µs. Few draws and two meshes keep the maps to about 20 s of the report; the material "
         "scatter dominates the bands, the law's draws add little.",
         "The maps differ between the structures in first-ply failure: at "
         + ", ".join(f"{n} {tw[(n, d_half)]:.0f}" for n in names)
@@ -487,7 +509,7 @@ def _map_table(maps: list[dict], vu) -> tuple[tuple, list[str]]:
         + ", ".join(f"{n} {de[(n, d_half)]:.0f}" for n in names)
         + f" {vu.label}): that index is the peak force over P_c, and the soft ball's contact is far more compliant than any of the three "
         "targets, so its peak force is set by the ball and the velocity almost alone (the structures' delamination thresholds differ "
-        f"by at most {delam_spread:.1%}). "
+        f"by at most {delam_spread:.1%}).",
         "Every threshold falls with the diameter: the ball's mass, momentum and peak force grow as d³ at a given velocity. Beside them, "
         "the carried-over thresholds of prescribed force histories (below): the Table I law is the same on every structure, so its "
         "delamination threshold is the same on all three by construction.",
