@@ -18,6 +18,7 @@ def _cli(args, out):
     return out
 
 
+@pytest.mark.slow  # about 10 s: fits the whole rubber series (the fit itself is in the quick tier through test_cli_series)
 def test_fit_wrapper_gives_the_commands_scaling_json(tmp_path):
     """si.fit returns the scaling.json of `softimpact fit` on the same series, byte for byte, and writes it with a manifest."""
     res = si.fit("paper-rubber-series", figures=False)

@@ -256,6 +256,7 @@ def test_decimal_comma_reads_and_text_names_the_delimiter(tmp_path):
         read_columns(path)
 
 
+@pytest.mark.slow  # about 30 s: a long record's reduction, a resource check rather than a quick one
 def test_record_with_200000_rows_reduces_like_the_original(tmp_path):
     """The built-in 1000 in/s record resampled to 200 000 rows reduces to the original's peak force within 2 %."""
     from softimpact.input.records import read_record
