@@ -122,7 +122,7 @@ def test_calibration_summary_converts_and_compares_f0():
     ]
     line = f0_summary(items, NS(reference=[(10.0, 25 * lbf, 0, 0, 0), (20.0, 1.0, 0, 0, 0)]), "long")
     assert "20.0 (25.0), 33.0 (—)" in line
-    assert "at most 20% apart" in line  # |20/25 - 1|
+    assert "at most 20.0% apart" in line  # |20/25 - 1|
     assert "Table II" in line
 
 

@@ -85,7 +85,7 @@ def f0_summary(items: list[CalibratedTest], series: CalibrationSeries, beam: str
     pairs = [(i.calibration.peak_force, ref.get(round(i.test.velocity, 6))) for i in items if i.calibration is not None]
     shown = ", ".join(f"{f * fu.factor:.1f} ({'—' if p is None else f'{p * fu.factor:.1f}'})" for f, p in pairs)
     diffs = [abs(f / p - 1) for f, p in pairs if p]
-    worst = f"; at most {max(diffs):.0%} apart" if diffs else ""
+    worst = f"; at most {max(diffs):.1%} apart" if diffs else ""
     table = "II" if beam == "long" else "III"
     return f"F0 of the {beam} beam's calibrations [{fu.label}], calibrated (paper's Table {table}): {shown or 'none calibrated'}{worst}"
 
