@@ -16,7 +16,7 @@ from .impact import ContactPatch, ContactStructure, ImpactHistory, PatchComplian
 from .newmark import NewmarkParameters, NewmarkStepper
 from .stepping import CoupledStepper, check_time_step
 
-__all__ = ["DirectStepper"]
+__all__ = ["DirectStepper", "structure_history"]
 
 
 class DirectStepper(CoupledStepper):
@@ -112,30 +112,37 @@ class DirectStepper(CoupledStepper):
         return self.xv[k] < float(self.c @ self.v)
 
     def history(self, last: int) -> ImpactHistory:
-        sl, keep = slice(0, last + 1), self.keep
-        t = np.arange(self.steps + 1) * self.dt
+        return structure_history(self, last, self.st.nsolve)
 
-        def arr(v):
-            return np.array(v[: last + 1])
 
-        return ImpactHistory(
-            time=t[sl],
-            force=arr(self.F),
-            approach=arr(self.al),
-            approach_rate=arr(self.ald),
-            contact_radius=arr(self.rad),
-            impactor_displacement=arr(self.x),
-            impactor_velocity=arr(self.xv),
-            target_displacement=self.w[sl],
-            outputs=self.y[:, sl],
-            structure_kinetic=self.ek[sl],
-            structure_strain=self.es[sl],
-            structure_work=self.work[sl],
-            contact_work=arr(self.cwork),
-            contact_energy=arr(self.cen),
-            surface_mismatch=self.mism[sl],
-            newton_iterations=self.newton_iterations,
-            solves=self.st.nsolve,
-            displacement=self.saved[:, keep <= last] if keep.size else None,
-            kept=keep[keep <= last] if keep.size else None,
-        )
+def structure_history(st, last: int, solves: int) -> ImpactHistory:
+    """The :class:`ImpactHistory` of a stepper that steps the whole structure (direct stepping, the von
+    Kármán plate's), up to step ``last``: its impactor and contact records, the structure's mid-surface
+    displacement, outputs, energies and kept snapshots; ``solves``: its structure solves."""
+    sl, keep = slice(0, last + 1), st.keep
+    t = np.arange(st.steps + 1) * st.dt
+
+    def arr(v):
+        return np.array(v[: last + 1])
+
+    return ImpactHistory(
+        time=t[sl],
+        force=arr(st.F),
+        approach=arr(st.al),
+        approach_rate=arr(st.ald),
+        contact_radius=arr(st.rad),
+        impactor_displacement=arr(st.x),
+        impactor_velocity=arr(st.xv),
+        target_displacement=st.w[sl],
+        outputs=st.y[:, sl],
+        structure_kinetic=st.ek[sl],
+        structure_strain=st.es[sl],
+        structure_work=st.work[sl],
+        contact_work=arr(st.cwork),
+        contact_energy=arr(st.cen),
+        surface_mismatch=st.mism[sl],
+        newton_iterations=st.newton_iterations,
+        solves=solves,
+        displacement=st.saved[:, keep <= last] if keep.size else None,
+        kept=keep[keep <= last] if keep.size else None,
+    )

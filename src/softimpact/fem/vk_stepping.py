@@ -29,6 +29,7 @@ import numpy as np
 import scipy.sparse
 
 from ..errors import InputError
+from .direct import structure_history
 from .impact import ContactStructure, ImpactHistory, PatchCompliance, newton_contact
 from .newmark import NewmarkParameters, spd_factor
 from .plate_vk import VonKarmanNewmark
@@ -182,30 +183,4 @@ class VonKarmanStepper(CoupledStepper):
         return self.xv[k] < float(self.c @ self.v)
 
     def history(self, last: int) -> ImpactHistory:
-        sl, keep = slice(0, last + 1), self.keep
-        t = np.arange(self.steps + 1) * self.dt
-
-        def arr(v):
-            return np.array(v[: last + 1])
-
-        return ImpactHistory(
-            time=t[sl],
-            force=arr(self.F),
-            approach=arr(self.al),
-            approach_rate=arr(self.ald),
-            contact_radius=arr(self.rad),
-            impactor_displacement=arr(self.x),
-            impactor_velocity=arr(self.xv),
-            target_displacement=self.w[sl],
-            outputs=self.y[:, sl],
-            structure_kinetic=self.ek[sl],
-            structure_strain=self.es[sl],
-            structure_work=self.work[sl],
-            contact_work=arr(self.cwork),
-            contact_energy=arr(self.cen),
-            surface_mismatch=self.mism[sl],
-            newton_iterations=self.newton_iterations,
-            solves=self.structure_iterations,
-            displacement=self.saved[:, keep <= last] if keep.size else None,
-            kept=keep[keep <= last] if keep.size else None,
-        )
+        return structure_history(self, last, self.structure_iterations)
