@@ -93,6 +93,24 @@ class PlaneTL:
             centres = p[1, t].mean(axis=0)  # the layers as PlaneModel assigns them
             layer = np.clip(np.floor(centres / beam.thickness * beam.nz).astype(int), 0, beam.nz - 1)
             self._D = np.array([np.asarray(D, float) for D in beam.layers])[layer]
+        # The gradient operator over the reduced DOFs, one sparse matrix: rows (c, j, e, q) give H_cj at the
+        # point q of element e (a product per evaluation instead of small batched ones), and its transpose
+        # assembles the force. D per point: (3, 3, ne·nq), for the elementwise stress.
+        ne, nq = self._wq.shape
+        rows, cols, vals = [], [], []
+        for c in range(2):
+            for j, Dj in enumerate((self._Dx, self._Dz)):
+                r = (2 * c + j) * ne * nq + np.arange(ne * nq).reshape(ne, nq)
+                dof = self._index[self._gdofs[:, c, :]]  # (ne, 4), −1 where fixed
+                rr = np.broadcast_to(r[:, :, None], (ne, nq, 4))
+                cc = np.broadcast_to(dof[:, None, :], (ne, nq, 4))
+                keep = cc >= 0
+                rows.append(rr[keep])
+                cols.append(cc[keep])
+                vals.append(Dj[keep])
+        self._A = scipy.sparse.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(4 * ne * nq, self.n))
+        self._AT = self._A.T.tocsr()
+        self._Dp = np.repeat(self._D, nq, axis=0).transpose(1, 2, 0).copy()  # (3, 3, ne·nq)
 
     # ---- kinematics -------------------------------------------------------------------
     def expand(self, d: np.ndarray) -> np.ndarray:
@@ -103,8 +121,8 @@ class PlaneTL:
 
     def _gradient(self, d: np.ndarray) -> np.ndarray:
         """H = ∇u at the quadrature points, (ne, nq, 2, 2): [component, derivative]."""
-        de = self.expand(d)[self._gdofs]  # (ne, 2, 4)
-        return np.stack([np.einsum("eqp,ecp->eqc", self._Dx, de), np.einsum("eqp,ecp->eqc", self._Dz, de)], -1)
+        ne, nq = self._wq.shape
+        return (self._A @ d).reshape(2, 2, ne, nq).transpose(2, 3, 0, 1)
 
     @staticmethod
     def _strains(H: np.ndarray):
@@ -137,7 +155,7 @@ class PlaneTL:
     def strain_energy(self, d: np.ndarray) -> float:
         """U(d) [J] (module docstring)."""
         eL, eN = self._strains(self._gradient(d))
-        dens = np.einsum("eqi,eij,eqj->eq", eN, self._D, eL + 0.5 * eN)
+        dens = np.sum(eN * self._stress(eL + 0.5 * eN), -1)
         return 0.5 * float(d @ (self.K @ d)) + float(np.sum(dens * self._wq))
 
     def stresses(self, d: np.ndarray) -> np.ndarray:
@@ -149,17 +167,28 @@ class PlaneTL:
         """f_int(d) = ∂U/∂d [N] (module docstring)."""
         return self.K @ d + self.nonlinear_force(d)
 
+    def _stress(self, e: np.ndarray) -> np.ndarray:
+        """D e per element, (ne, nq, 3), of Voigt strains e (ne, nq, 3)."""
+        return e @ self._D.transpose(0, 2, 1)
+
     def nonlinear_force(self, d: np.ndarray) -> np.ndarray:
         """f_int(d) − K d: b ∫ B_Lᵀ D ε_N + B_Nᵀ S dA, zero to second order at d = 0 [N]."""
-        H = self._gradient(d)
-        eL, eN = self._strains(H)
-        ne, nq = self._wq.shape
-        S = np.einsum("eij,eqj->eqi", self._D, eL + eN) * self._wq[..., None]
-        DeN = np.einsum("eij,eqj->eqi", self._D, eN) * self._wq[..., None]
-        BL, BN = self._linear_operator().reshape(ne, 3 * nq, 8), self._operators(H).reshape(ne, 3 * nq, 8)
-        fe = (DeN.reshape(ne, 1, 3 * nq) @ BL + S.reshape(ne, 1, 3 * nq) @ BN).reshape(ne, 2, 4)
-        out = np.bincount(self._gdofs.ravel(), weights=fe.ravel(), minlength=self.plane.basis.N)
-        return out[self.free]
+        h00, h01, h10, h11 = (self._A @ d).reshape(4, -1)  # H_cj at every point
+        eL = (h00, h11, h01 + h10)
+        eN = (0.5 * (h00 * h00 + h10 * h10), 0.5 * (h01 * h01 + h11 * h11), h00 * h01 + h10 * h11)
+        D, w = self._Dp, self._wq.ravel()
+        DeN = [w * (D[i, 0] * eN[0] + D[i, 1] * eN[1] + D[i, 2] * eN[2]) for i in range(3)]
+        Sxx, Szz, Sxz = (DeN[i] + w * (D[i, 0] * eL[0] + D[i, 1] * eL[1] + D[i, 2] * eL[2]) for i in range(3))
+        # (B_Lᵀ D ε_N + B_Nᵀ S) of component c = Σ_q P_cx N,x + P_cz N,z (the rows of the module docstring)
+        P = np.concatenate(
+            [
+                DeN[0] + Sxx * h00 + Sxz * h01,
+                DeN[2] + Szz * h01 + Sxz * h00,
+                DeN[2] + Sxx * h10 + Sxz * h11,
+                DeN[1] + Szz * h11 + Sxz * h10,
+            ]
+        )
+        return self._AT @ P
 
     def _element_tangents(self, d: np.ndarray) -> np.ndarray:
         """K_T − K per element, (ne, 8, 8), component-major DOFs."""
@@ -208,6 +237,25 @@ class PlaneTL:
     def tangent(self, d: np.ndarray) -> scipy.sparse.csr_matrix:
         """K_T(d) = ∂f_int/∂d (module docstring)."""
         return (self.K + self.tangent_nonlinear(d)).tocsr()
+
+    # ---- gauges -----------------------------------------------------------------------
+    def transverse_rows(self, O: np.ndarray) -> np.ndarray:
+        """Rows (k, n) reading the z displacements where the rows ``O`` (k, n) read the x displacements of the same
+        nodes (zero where a node's z DOF is fixed): with O a gauge's Δu_x/l (:meth:`PlaneModel.surface_strain`), Δu_z/l."""
+        O = np.atleast_2d(np.asarray(O, float))
+        nd = self.plane.basis.nodal_dofs
+        ix, iz = self._index[nd[0]], self._index[nd[1]]
+        both = (ix >= 0) & (iz >= 0)
+        Oz = np.zeros_like(O)
+        Oz[:, iz[both]] = O[:, ix[both]]
+        return Oz
+
+    @staticmethod
+    def gauge_strains(O: np.ndarray, Oz: np.ndarray, d: np.ndarray) -> np.ndarray:
+        """The strain a gauge reads, the stretch of its chord: |(l + Δu_x, Δu_z)|/l − 1 = √((1 + O·d)² + (Oz·d)²) − 1
+        (objective: zero under a rigid rotation, which the linear reading O·d = Δu_x/l turns into a false −θ²/2),
+        for the rows O (k, n) of :meth:`PlaneModel.surface_strain` and their :meth:`transverse_rows` Oz."""
+        return np.hypot(1.0 + O @ d, Oz @ d) - 1.0
 
     def linear_stiffness(self) -> scipy.sparse.csr_matrix:
         """b ∫ B_Lᵀ D B_L dA by this module's quadrature (equal to ``K`` to round-off: a check of the element data)."""
