@@ -1,7 +1,7 @@
 """Oracle for the large-deflection beam tests: a von Kármán Euler–Bernoulli beam with immovable ends.
 
-Written from the beam's energy, independently of the package's plane elements (Reddy, *An Introduction
-to Nonlinear Finite Element Analysis*, 2nd ed., ch. 5, the von Kármán beam): axial strain
+Written from the beam's energy, independently of the package's plane elements (the von Kármán beam of
+Reddy's *An Introduction to Nonlinear Finite Element Analysis*, its chapter on the bending of straight beams): axial strain
 ε = u' + ½ w'², curvature κ = w'', energy Π = ½ ∫ EA ε² + EI κ² dx − P w(x_P). With both ends
 axially immovable (u(0) = u(L) = 0) and no axial load, the axial force is constant along the beam and
 minimising over u gives ε ≡ ε̄ = (1/L) ∫ ½ w'² dx exactly, so
