@@ -300,6 +300,20 @@ _CONTEXT_DEFAULTS = {
 }
 
 
+# What a choice means where its name does not say it all (keyed by path, or by "format:path"): rendered
+# after the key's choices.
+_KEY_NOTES = {
+    "beam.kinematics": '`"von-karman"`: large deflection; for the plane beam it selects the total Lagrangian form '
+    "(Green–Lagrange strain, St Venant–Kirchhoff with the same layered D), which contains von Kármán's beam as its "
+    "moderate-rotation limit; stepped directly (no response engine, no contact kernels); an impact case's beam target takes it from its beam case",
+}
+
+
+def _note(k: Key) -> str:
+    """A key's note (:data:`_KEY_NOTES`), or ''."""
+    return _KEY_NOTES.get(f"{k.fmt}:{k.path}", _KEY_NOTES.get(k.path, ""))
+
+
 def _default(k: Key) -> str:
     from softimpact import units
 
@@ -347,6 +361,7 @@ def markdown(keys: dict[str, dict[str, Key]]) -> str:
         tops = list(dict.fromkeys(path.split(".")[0].split("[")[0] for path in keys[fmt]))
         for k in sorted(keys[fmt].values(), key=lambda k: (tops.index(k.path.split(".")[0].split("[")[0]), k.path)):
             limits = ", ".join(f"`{c}`" for c in k.choices) if k.choices else k.limit
+            limits = f"{limits}: {_note(k)}" if _note(k) else limits
             lines.append(f"| `{_cell(k.path)}` | {_cell(_type(k))} | {_cell(_default(k))} | {_cell(limits)} |")
         lines.append("")
     return "\n".join(lines)

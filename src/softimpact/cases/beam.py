@@ -86,11 +86,10 @@ class BeamKind:
 
         from ..output.beam import beam_summary
         from ..output.fields import FRAMES, sampled_steps
-        from ..workflows.beam_impact import BeamModel
         from .run import Run
 
         if model is None:
-            model = BeamModel(problem)
+            model = problem.model()  # a BeamModel, or with beam.kinematics = "von-karman" its total Lagrangian form
             result = model.direct(progress=progress, energy=energy, displacement=figures or fields)
         else:
             load = problem.load
@@ -128,7 +127,10 @@ class BeamKind:
     def prepare(self, data, base, runs, outputs=(), cases=()):
         from ..workflows.beam_impact import BeamModel
 
-        model = BeamModel(self.problem(data, base))
+        problem = self.problem(data, base)
+        if problem.kinematics != "linear":
+            return None  # no response engine on a nonlinear beam: each run builds and steps its own model
+        model = BeamModel(problem)
         # Several runs: only the kernels, the patch and the problem travel to the workers (the light
         # copy: no mesh, matrices or factor; 8 MB → under 1 MB); one run steps directly.
         return model.for_workers() if runs > 1 else model
@@ -139,7 +141,10 @@ class BeamKind:
         from ..workflows.beam_impact import BeamResult
 
         model = prepared
-        if model.stepper is not None:  # a group of one run: stepping beats building the kernels
+        if model is None:  # a nonlinear beam (prepare): the run's own problem, stepped directly
+            problem = self.problem(data, base)
+            result = problem.model().direct(energy=False, displacement=False)
+        elif model.stepper is not None:  # a group of one run: stepping beats building the kernels
             problem = model.problem
             result = model.direct(energy=False)
         else:

@@ -253,10 +253,10 @@ class ImpactKind:
         from ..output.impact import snapshot_steps
         from ..workflows.coupled import run_impact
 
-        if problem.target.kinematics == "von-karman":  # the nonlinear plate's own stepper (fem.vk_stepping)
+        if problem.target.kinematics == "von-karman":  # a nonlinear plate's or beam's own stepper (fem.vk_stepping)
             if method == "kernels":
                 raise InputError(
-                    'contact kernels need a linear target: the target\'s plate.kinematics = "von-karman" runs stepped directly '
+                    f'contact kernels need a linear target: the target\'s {problem.target.laminate_key.split(".")[0]}.kinematics = "von-karman" runs stepped directly '
                     "(a sweep of it steps every run; use linear kinematics for kernel runs)"
                 )
             method = "von-karman"

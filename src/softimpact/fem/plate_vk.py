@@ -47,7 +47,10 @@ over a 1000-step run.
 
 Solvers: :func:`solve_static` (load steps, full Newton per step, convergence reported) and
 :class:`VonKarmanNewmark` (implicit Newmark with Newton iterations per step, the same β, γ as
-:mod:`softimpact.fem.newmark`, energies reported).
+:mod:`softimpact.fem.newmark`, energies reported). Both take any geometrically nonlinear structure
+model with this interface: ``K`` (the linear stiffness), ``M``, ``n`` (free DOFs), ``internal_force(d)``,
+``nonlinear_force(d)`` (= internal_force(d) − K d), ``tangent(d)`` and ``strain_energy(d)``; the plate's
+:class:`PlateVK` and the plane beam's :class:`~softimpact.fem.plane_tl.PlaneTL`.
 """
 
 from __future__ import annotations
@@ -184,9 +187,10 @@ class PlateVK:
 
     def internal_force(self, d: np.ndarray) -> np.ndarray:
         """f_int(d) = ∂U/∂d [N] (module docstring)."""
-        return self.K @ d + self._nonlinear_force(d)
+        return self.K @ d + self.nonlinear_force(d)
 
-    def _nonlinear_force(self, d: np.ndarray) -> np.ndarray:
+    def nonlinear_force(self, d: np.ndarray) -> np.ndarray:
+        """f_int(d) − K d: the von Kármán part of the internal force [N]."""
         eL, eN, kappa, wx, wy = self._fields(self.expand(d))
         A, B = self._A, self._B
         N = (eL + eN) @ A.T if kappa is None else (eL + eN) @ A.T + kappa @ B.T
@@ -313,7 +317,7 @@ class StaticResult:
 
 
 def solve_static(
-    model: PlateVK, load: np.ndarray, *, load_steps: int = 10, load_factors=None, rtol: float = 1e-10, max_iterations: int = 30, kinematics: str = "von-karman"
+    model, load: np.ndarray, *, load_steps: int = 10, load_factors=None, rtol: float = 1e-10, max_iterations: int = 30, kinematics: str = "von-karman"
 ) -> StaticResult:
     """Static equilibrium f_int(u) = λ·load at λ = k/load_steps, k = 1 … load_steps (or at the
     increasing ``load_factors`` given), by full Newton with the consistent tangent, each step
@@ -379,7 +383,9 @@ class DynamicResult:
 
 class VonKarmanNewmark:
     """Implicit Newmark (β, γ of :class:`~softimpact.fem.newmark.NewmarkParameters`) for
-    M a + C v + f_int(u) = f(t), with Newton iterations per step on u_{n+1}:
+    M a + C v + f_int(u) = f(t) of a nonlinear structure ``model`` (:class:`PlateVK`,
+    :class:`~softimpact.fem.plane_tl.PlaneTL`: the interface of the module docstring), with Newton
+    iterations per step on u_{n+1}:
 
         r = f_{n+1} − M a_{n+1} − C v_{n+1} − f_int(u_{n+1}),   J = K_T(u_{n+1}) + a0 M + a1 C,
 
@@ -406,7 +412,7 @@ class VonKarmanNewmark:
 
     def __init__(
         self,
-        model: PlateVK,
+        model,
         dt: float,
         C=None,
         params: NewmarkParameters = NewmarkParameters(),
@@ -461,7 +467,7 @@ class VonKarmanNewmark:
         rhs = f1 + p
         last = scale = np.inf
         for it in range(1, self.max_iterations + 1):
-            r = rhs - self._keff @ u1 - model._nonlinear_force(u1)
+            r = rhs - self._keff @ u1 - model.nonlinear_force(u1)
             ek = None
             if extra is not None:
                 fe, ek = extra(u1)

@@ -9,9 +9,10 @@ snapshots)`` then ``.run()``:
 - ``"kernels"``: :class:`softimpact.fem.kernel_stepping.KernelStepper`, the scalar contact equation against
   the structure's impulse responses (``engine``: its :class:`softimpact.fem.kernels.ContactKernels`);
   milliseconds a run once built, equal to direct stepping to round-off, no structure energies.
-- ``"von-karman"``: :class:`softimpact.fem.vk_stepping.VonKarmanStepper`, a plate with von Kármán kinematics
-  (``engine``: its :class:`softimpact.fem.plate_vk.VonKarmanNewmark`): one Newton over the plate and the
-  contact a step; energies and snapshots.
+- ``"von-karman"``: :class:`softimpact.fem.vk_stepping.VonKarmanStepper`, a geometrically nonlinear structure
+  (a plate with von Kármán kinematics, a plane beam in total Lagrangian form; ``engine``: its
+  :class:`softimpact.fem.plate_vk.VonKarmanNewmark`): one Newton over the structure and the contact a step;
+  energies and snapshots.
 """
 
 from __future__ import annotations

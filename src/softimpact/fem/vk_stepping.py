@@ -1,26 +1,31 @@
-"""Coupled stepping of a rigid impactor on the von Kármán plate: one implementation of :class:`CoupledStepper`.
+"""Coupled stepping of a rigid impactor on a geometrically nonlinear structure: one implementation of :class:`CoupledStepper`.
 
-The structure is nonlinear (:mod:`softimpact.fem.plate_vk`), so its deflection under the contact force is no
+The structure is nonlinear (the von Kármán plate of :mod:`softimpact.fem.plate_vk`, the total Lagrangian plane
+beam of :mod:`softimpact.fem.plane_tl`: any model :class:`~softimpact.fem.plate_vk.VonKarmanNewmark` steps), so its deflection under the contact force is no
 longer w̃ + h_s(r)·F with a free response w̃ and a compliance h_s fixed for the run, the affine model the
 shared loop's contact Newton solves against. Each step therefore solves the coupled step first, monolithically,
 in :meth:`VonKarmanStepper.free_approach`: the plate's Newmark–Newton step (:meth:`VonKarmanNewmark.step`)
 with the contact as its ``extra(u)`` load, where for the plate's state u the impactor's Newmark step and the
 law give the force,
 
-    α = x̃ − β dt² F / m − c·u,   F = P(α, κα + q),   nodal loads F·s(a(α)) on the contact disc,
+    α = x̃ − β dt² F / m − c·u,   F = P(α, κα + q),   nodal loads F·s(a(α)) on the contact patch,
 
 (the scalar equation solved by the loop's own :func:`~softimpact.fem.impact.newton_contact` against a zero
-patch compliance), and its stiffness −dF/dw (a rank-one term on the disc's nodes) joins the Jacobian: one
+patch compliance), and its stiffness −dF/dw (a rank-one term on the patch's nodes) joins the Jacobian: one
 Newton over the membrane, bending and contact together. The converged step (u*, F*, r*) then fixes the affine
 model the loop sees: the bracket's top α̃ = x̃ − w̃ with w̃ = c·u* − h_s(r*)·F*, and any positive compliance
-h_s (here the linear plate's effective one, c·K_eff⁻¹·B, solved once) makes the loop's contact Newton land on
+h_s (here the linear structure's effective one, c·K_eff⁻¹·B, solved once) makes the loop's contact Newton land on
 α* = x̃ − β dt² F*/m − c·u* again (R(α*) = 0 exactly), to its tolerance. :meth:`apply` takes u* (the loop's
-force differs from F* by the contact Newton's tolerance only) and records the plate's energies (kinetic,
-the von Kármán strain energy), the work of the nodal contact forces, outputs and snapshots, as
+force differs from F* by the contact Newton's tolerance only) and records the structure's energies (kinetic,
+its nonlinear strain energy), the work of the nodal contact forces, outputs and snapshots, as
 :class:`softimpact.fem.direct.DirectStepper` does for a linear structure.
 
+The patch: the structure's own (a plate's contact disc, :class:`softimpact.fem.plate_loads.DiscShares`) or,
+without one, the cosine line patch over the struck face's nodes (:class:`~softimpact.fem.impact.ContactPatch`, a
+beam's), as :class:`softimpact.fem.direct.DirectStepper` takes it.
+
 Contact laws with memory (a HistoryLaw) are refused for now: the coupled step would need the law's branch
-inside the plate's Newton.
+inside the structure's Newton.
 """
 
 from __future__ import annotations
@@ -30,7 +35,7 @@ import scipy.sparse
 
 from ..errors import InputError
 from .direct import structure_history
-from .impact import ContactStructure, ImpactHistory, PatchCompliance, newton_contact
+from .impact import ContactPatch, ContactStructure, ImpactHistory, PatchCompliance, newton_contact
 from .newmark import NewmarkParameters, spd_factor
 from .plate_vk import VonKarmanNewmark
 from .stepping import CoupledStepper, check_time_step
@@ -51,11 +56,11 @@ class _Rigid:
 
 
 class VonKarmanStepper(CoupledStepper):
-    """:class:`CoupledStepper` of a von Kármán plate (module docstring): ``structure`` a
-    :class:`ContactStructure` over the plate's free DOFs (``M``, ``K`` its linear part, a contact disc as
-    ``patch``), ``engine`` its :class:`~softimpact.fem.plate_vk.VonKarmanNewmark` (required: it carries the
-    nonlinear plate); ``energy``: record the plate's kinetic and strain energies (else NaN); ``snapshots``:
-    step indices at which to keep the displacement of the free DOFs."""
+    """:class:`CoupledStepper` of a nonlinear structure (module docstring): ``structure`` a
+    :class:`ContactStructure` over the structure's free DOFs (``M``, ``K`` its linear part, a plate's contact
+    disc as ``patch`` or a beam's surface nodes), ``engine`` its :class:`~softimpact.fem.plate_vk.VonKarmanNewmark`
+    (required: it carries the nonlinear structure); ``energy``: record the structure's kinetic and strain
+    energies (else NaN); ``snapshots``: step indices at which to keep the displacement of the free DOFs."""
 
     def __init__(
         self,
@@ -74,31 +79,31 @@ class VonKarmanStepper(CoupledStepper):
     ):
         super().__init__(law, mass, velocity, time_step, steps, stop_after)
         if not isinstance(engine, VonKarmanNewmark):
-            raise InputError("the von Karman stepper needs the plate's VonKarmanNewmark as its engine (a linear structure steps 'direct' or 'kernels')")
+            raise InputError("the von Karman stepper needs the structure's VonKarmanNewmark as its engine (a linear structure steps 'direct' or 'kernels')")
         if self.memory:
             raise InputError(
-                f"a contact law with memory ({type(law).__name__}) on a von Karman plate is not implemented yet: use a memoryless law or linear kinematics"
+                f"a contact law with memory ({type(law).__name__}) on a von Karman target is not implemented yet: use a memoryless law or linear kinematics"
             )
-        if structure.patch is None:
-            raise InputError("the von Karman stepper loads a plate's contact disc: the structure has no patch")
         check_time_step(engine.dt, self.dt)
         self.nm, self.vk, self.params, self.energy = engine, engine.model, engine.params, energy
         n = self.vk.n
         self.c = np.asarray(structure.approach_row, float)
         self.dofs = np.asarray(structure.surface_dofs, int)
         self.sign = float(structure.load_sign)
-        self.patch = structure.patch
-        # The loop's affine model needs a positive compliance only (module docstring): the linear plate's, by one solve
+        self.patch = ContactPatch(structure.surface_x, structure.center) if structure.patch is None else structure.patch
+        # The loop's affine model needs a positive compliance only (module docstring): the linear structure's, by one solve
         z = spd_factor(scipy.sparse.csc_matrix(engine._keff)).solve(self.c)
         self.compliance = PatchCompliance(self.patch, self.sign * z[self.dofs])
         self._rigid = _Rigid(self.compliance.half_spacing)
         self.O = np.asarray(structure.outputs, float)
+        # a plane beam's output rows are gauge strains: read as their chords' stretch (fem.plane_tl), the plate's as rows
+        self.Oz = self.vk.transverse_rows(self.O) if hasattr(self.vk, "transverse_rows") else None
         keep = np.unique(np.asarray(snapshots, int))
         if keep.size and (keep.min() < 0 or keep.max() > self.steps):
             raise InputError(f"snapshots: step indices must lie in 0 … {self.steps}, got {snapshots!r}")
         self.keep, self.slot = keep, {int(k): i for i, k in enumerate(keep)}
         self.saved = np.zeros((self.vk.n, keep.size))
-        self.structure_iterations = 0  # the plate's Newton iterations, summed over the run
+        self.structure_iterations = 0  # the structure's Newton iterations, summed over the run
         self._n = n
 
     def _begin(self) -> None:
@@ -117,7 +122,7 @@ class VonKarmanStepper(CoupledStepper):
         self.structure_iterations = 0
 
     def _contact(self, u: np.ndarray, x_pred: float, q: float, index: int):
-        """(α, F, r, dF/dw) of the impactor against the plate held at ``u`` (zero force where apart)."""
+        """(α, F, r, dF/dw) of the impactor against the structure held at ``u`` (zero force where apart)."""
         w = float(self.c @ u)
         top = x_pred - w
         if top <= 0.0:
@@ -140,7 +145,7 @@ class VonKarmanStepper(CoupledStepper):
                 return force, None
             b = sign * self.patch.shares(r)[0]
             force[dofs] = f * b
-            # −∂(F b)/∂u = −(dF/dw) b cᵀ, kept symmetric as (−dF/dw)(c·b)/(b·b) b bᵀ on the disc's nodes (it shapes the steps only)
+            # −∂(F b)/∂u = −(dF/dw) b cᵀ, kept symmetric as (−dF/dw)(c·b)/(b·b) b bᵀ on the patch's nodes (it shapes the steps only)
             cb = float(c[dofs] @ b)
             scale = -dfdw * max(cb, 0.0) / float(b @ b)
             stiffness = scipy.sparse.coo_matrix(
@@ -161,7 +166,7 @@ class VonKarmanStepper(CoupledStepper):
         fs = f_star * self.patch.shares(r_star)[0] if f_star != 0.0 else np.zeros(dofs.size)
         w, k1 = self.w, k + 1
         w[k1] = float(self.c @ u1)
-        self.y[:, k1] = self.O @ u1
+        self.y[:, k1] = self.O @ u1 if self.Oz is None else self.vk.gauge_strains(self.O, self.Oz, u1)
         du = u1[dofs] - u[dofs]
         self.work[k1] = self.work[k] + 0.5 * sign * float((self.s_prev + fs) @ du)
         mid = 0.5 * (self.F[k] + f)
@@ -174,12 +179,12 @@ class VonKarmanStepper(CoupledStepper):
             self.saved[:, self.slot[k1]] = u1
 
     def approach_acceleration(self, k: int, a_new: float, impactor_acceleration: float) -> float:
-        """α̈_{k+1} = ẍ_{k+1} − c·ü_{k+1}, from the plate's state (kept for the next coupled step)."""
+        """α̈_{k+1} = ẍ_{k+1} − c·ü_{k+1}, from the structure's state (kept for the next coupled step)."""
         self._ala = impactor_acceleration - float(self.c @ self.acc)
         return self._ala
 
     def receding(self, k: int) -> bool:
-        """ẋ_k < ẇ_k = c·u̇_k, from the plate's state."""
+        """ẋ_k < ẇ_k = c·u̇_k, from the structure's state."""
         return self.xv[k] < float(self.c @ self.v)
 
     def history(self, last: int) -> ImpactHistory:

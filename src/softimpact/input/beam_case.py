@@ -1,6 +1,8 @@
 """Beam case files (``softimpact beam``, ``calibrate``): TOML → :class:`BeamProblem`.
 
-``[beam]`` (``[beam.laminate]`` or ``[beam.material]``, ``[beam.damping]``),
+``[beam]`` (``[beam.laminate]`` or ``[beam.material]``, ``[beam.damping]``, ``kinematics``:
+``"linear"``, the default, or ``"von-karman"``, large deflection: the plane model's total Lagrangian
+form, :mod:`softimpact.fem.plane_tl`),
 ``[load]`` (with its ``history`` and ``[[load.table]]`` rows), ``[solver]`` and
 ``[[gauges]]``; see README.md and ``data/cases/paper-long-beam.toml``.
 """
@@ -13,6 +15,7 @@ from pathlib import Path
 from .. import units
 from ..errors import InputError
 from ..fem.plane import SUPPORTS
+from ..fem.plate_vk import KINEMATICS
 from ..models.empirical import PRESETS, PROJECTILES, ScalingLaw
 from ..models.laminate import PLANES, PLIES, STRENGTH_KEYS, Blend, Ply, PlyStrength, Stack, parse_layup
 from ..models.materials import Material
@@ -233,6 +236,7 @@ def beam_problem(data: dict, base: Path = Path("."), history: int | None = None)
             b.string("plane", PLANES[0], choices=PLANES),
             b.string("mass", MASS_MATRICES[0], choices=MASS_MATRICES) == "lumped",
             damping,
+            kinematics=b.string("kinematics", KINEMATICS[0], choices=KINEMATICS),
         )
         with naming({k: f"beam.{k}" for k in ("length", "thickness", "width", "density", "elements")} | {"model": "beam.laminate.model"}):
             spec.plane_beam()

@@ -195,9 +195,9 @@ class Target(Protocol):
       read ("at_load", "at_<gauge>"), ``damage_gauges()`` the ``"damage"`` output group, ``damage_faces(gauges, damage)`` each damage point's (top, bottom) face strains,
       ``damage_section`` (plane, width) of a beam section or (None, None);
     - ``validity(max_deflection)`` the deflection envelope of its theory (``theory``: its label); ``kinematics``
-      ``"linear"`` or ``"von-karman"`` (a plate's: the coupled stepper that runs it);
+      ``"linear"`` or ``"von-karman"`` (a plate's or a beam's: the coupled stepper that runs it);
     - summary.json: ``gauge_summary(gauge)`` a gauge's entries, ``summary_extras(model, result)`` the target's
-      own block (a plate's ``target``), ``summary_keys`` its sweep outputs; ``deflected_shapes`` whether the
+      own block (``target``: a plate's model and deflection, a beam's kinematics), ``summary_keys`` its sweep outputs; ``deflected_shapes`` whether the
       impact command draws its deflected shapes.
     """
 

@@ -33,6 +33,7 @@ def beam_summary(model, result, validity) -> dict:
         "title": p.title,
         "dofs": model.plane.n,
         "elements": [p.beam.nx, p.beam.nz],
+        "kinematics": p.kinematics,
         "effective_moduli_Pa": model.moduli(),
         **beam_scalars(result),
         "gauges": gauges,

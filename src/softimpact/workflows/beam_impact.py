@@ -52,7 +52,10 @@ class BeamGauge:
 class BeamSpec:
     """The beam: free length [m] (support at x = 0), width [m], mesh, support, and
     either a laminate (``stack``, ``model`` smeared|layered) or an isotropic
-    ``material`` with a ``thickness``."""
+    ``material`` with a ``thickness``. ``kinematics``: ``"linear"`` (small strain, the
+    paper's model) or ``"von-karman"``, large deflection: for the plane model it selects
+    its total Lagrangian form (Green–Lagrange strain, :mod:`softimpact.fem.plane_tl`), which
+    contains the von Kármán beam as its moderate-rotation limit."""
 
     length: float
     width: float
@@ -66,8 +69,13 @@ class BeamSpec:
     plane: str = "strain"
     lumped: bool = False
     damping: tuple[float, float] = (0.0, 0.0)  # Rayleigh α [1/s], β [s]: C = αM + βK
+    kinematics: str = "linear"  # "von-karman": large deflection, the plane model's total Lagrangian form (fem.plane_tl)
 
     def __post_init__(self):
+        from ..fem.plate_vk import KINEMATICS
+
+        if self.kinematics not in KINEMATICS:
+            raise InputError(f"kinematics: {self.kinematics!r} is not one of {', '.join(KINEMATICS)}", "kinematics")
         if (self.stack is None) == (self.material is None):
             raise InputError("give exactly one of a laminate (stack) and an isotropic material", "stack")
         if self.model not in LAMINATE_MODELS:
@@ -150,16 +158,25 @@ class BeamProblem:
 
     def model(self, patch_radius: float | None = None, damage: bool = False) -> BeamModel:
         """The assembled :class:`BeamModel` of this problem (``patch_radius``: the widest contact radius it loads;
-        ``damage``: its contact structure also outputs the ``"damage"`` group, :meth:`damage_gauges`)."""
+        ``damage``: its contact structure also outputs the ``"damage"`` group, :meth:`damage_gauges`); with
+        ``kinematics = "von-karman"`` its total Lagrangian form (:class:`~softimpact.workflows._beam_tl_model.BeamTLModel`)."""
+        if self.kinematics != "linear":
+            from ._beam_tl_model import BeamTLModel
+
+            return BeamTLModel(self, patch_radius, damage=damage)
         return BeamModel(self, patch_radius, damage=damage)
 
     # --- the Target protocol (softimpact.models.protocols.Target) ---
 
     theory = "linear beam theory"  # the deflection envelope's label (models.validity.deflection_validity)
-    kinematics = "linear"  # (von Kármán beams: not implemented)
     laminate_key = "beam.laminate.ply"  # where a case gives the laminate's ply (messages)
     deflected_shapes = False  # the impact command draws no deflected shapes of a beam
     summary_keys = ()  # the sweep outputs of its summary extras (none)
+
+    @property
+    def kinematics(self) -> str:
+        """``"linear"`` or ``"von-karman"`` (the beam's: :class:`BeamSpec`)."""
+        return self.beam.kinematics
 
     @property
     def stack(self) -> Stack | None:
@@ -242,7 +259,10 @@ class BeamProblem:
         return self.beam.plane, self.beam.width
 
     def validity(self, max_deflection: float) -> Validity:
-        """The deflection envelope of linear beam theory (:func:`~softimpact.models.validity.deflection_validity`)."""
+        """The deflection envelope of linear beam theory (:func:`~softimpact.models.validity.deflection_validity`);
+        with large-deflection kinematics, the model past it, the ratio alone (no flag)."""
+        if self.kinematics != "linear":
+            return Validity({"deflection_over_thickness": abs(max_deflection) / self.beam.thickness})
         return deflection_validity(self.theory, max_deflection, self.beam.thickness)
 
     def gauge_summary(self, gauge: BeamGauge) -> dict:
@@ -250,8 +270,8 @@ class BeamProblem:
         return {}
 
     def summary_extras(self, model, result) -> dict:
-        """An impact's summary.json entries of the target: none for a beam."""
-        return {}
+        """An impact's summary.json ``target``: the beam's kinematics."""
+        return {"target": {"kinematics": self.kinematics}}
 
 
 def _finer(solver: SolverSpec, factor: int) -> SolverSpec:
@@ -310,7 +330,11 @@ class BeamModel(LinearModel):
         if outputs == "all":
             rows.append(pm.displacement(problem.load.position, "top", 1))
         O = np.array(rows) if rows else np.zeros((0, pm.n))
-        super().__init__(pm.M, pm.K, C, problem.solver, load_dofs, -1.0, O, patch, problem.load.contact_radius)
+        super().__init__(pm.M, pm.K, C, problem.solver, load_dofs, -1.0, O, patch, problem.load.contact_radius, stepper=self._structure_stepper(C))
+
+    def _structure_stepper(self, C):
+        """The stepper of the structure (None: the linear Newmark stepper; a nonlinear model's its own)."""
+        return None
 
     def gauge_rows(self) -> np.ndarray:
         """Indices of the gauge strain rows among the model's outputs (and the engine's kernel)."""
