@@ -197,7 +197,7 @@ def _impact(structure, at, impactor, law, time_step, duration, gauges, target_mo
 
 
 def _bar_impact(bar: Bar, at, sphere: Sphere, law, solver, gauges, units: str, title: str) -> BarResult:
-    from ..models.specimens import Gauge, Projectile
+    from ..models.specimens import Gauge, Impactor
     from ..workflows.bar_impact import BarImpactProblem
 
     if at is not None:
@@ -208,7 +208,7 @@ def _bar_impact(bar: Bar, at, sphere: Sphere, law, solver, gauges, units: str, t
     if _is_law_file(law) or (isinstance(law, str) and law in MATERIAL_LAWS):
         _, law, law_file = _law(law, None, sphere)
     gs = tuple(Gauge(str(n), _si(p, "length", f"gauges[{n!r}]")) for n, p in (gauges or {}).items())
-    projectile = Projectile(sphere.material, sphere.diameter, sphere.velocity, sphere.mass)
+    projectile = Impactor(sphere.mass, sphere.diameter, sphere.velocity, sphere.material)
     return _run(Case("bar", BarImpactProblem(bar.spec, projectile, solver, gs, law, title, units), () if law_file is None else (law_file,)))
 
 

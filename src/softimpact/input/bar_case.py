@@ -16,7 +16,7 @@ from .. import units
 from ..errors import InputError
 from ..fem.bar import Rod
 from ..models.contact_laws import HertzLaw
-from ..models.specimens import BarSpec, EndCap, Gauge, Projectile
+from ..models.specimens import BarSpec, EndCap, Gauge, Impactor
 from ..workflows.bar_impact import BarImpactProblem, check_problem
 from .contact_law import CONTACT_LAWS, read_contact_law
 from .projectile import read_sphere
@@ -69,7 +69,7 @@ def bar_problem(data: dict, base: Path = Path(".")) -> BarImpactProblem:
     p = top.table("projectile")
     sphere = read_sphere(p)
     material, diameter = sphere.material, sphere.diameter
-    projectile = Projectile(material, diameter, sphere.velocity, sphere.mass)
+    projectile = Impactor(sphere.mass, diameter, sphere.velocity, material)
     p.done()
     contact_tbl = top.table("contact", optional=True)
     law = "hertz"

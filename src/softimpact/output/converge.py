@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..units import display
-from .files import csv_text, figure_bytes, json_text
+from .files import case_record, csv_text, figure_bytes, json_text
 from .report import Section
 
 __all__ = ["converge_files", "converge_section", "order_phrase", "order_text", "output_label", "quantity_kind"]
@@ -127,7 +127,7 @@ def _summary(result, sizes, problem, kind: str) -> dict:
             }
             for o in result.outputs
         },
-        "case_SI": problem,
+        "case_SI": case_record(problem),
     }
 
 

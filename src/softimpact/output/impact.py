@@ -7,7 +7,7 @@ import math
 import numpy as np
 
 from ..units import display
-from .files import csv_text, figure_bytes, json_text, strain_peaks
+from .files import case_record, csv_text, figure_bytes, json_text, strain_peaks
 
 __all__ = ["damage_keys", "impact_summary", "impact_columns", "impact_files", "impact_figures", "snapshot_steps", "SNAPSHOTS"]
 
@@ -95,7 +95,7 @@ def impact_summary(problem, result, validity, damage: dict | None = None, damage
         **(extras or {}),
         **({"damage": damage} if damage is not None else {"damage_note": damage_note} if damage_note is not None else {}),
         "validity": validity.summary(),
-        "case_SI": problem,
+        "case_SI": case_record(problem),
     }
 
 

@@ -23,7 +23,7 @@ from ..fem.bar import BarModel, Rod
 from ..fem.impact import CoupledResult, simulate_coupled
 from ..fem.newmark import SolverSpec
 from ..models.contact_laws import HertzLaw, law_name, resolve_law
-from ..models.specimens import BarSpec, Gauge, Impactor, Projectile
+from ..models.specimens import BarSpec, Gauge, Impactor
 
 __all__ = [
     "BarImpactProblem",
@@ -47,7 +47,7 @@ class BarImpactProblem:
     contact law object (:func:`softimpact.models.contact_laws.resolve_law`)."""
 
     bar: BarSpec
-    projectile: Projectile
+    projectile: Impactor  # the sphere, with its material (the Hertz law on the bar's end needs it)
     solver: SolverSpec
     gauges: tuple[Gauge, ...]
     law: object = "hertz"
