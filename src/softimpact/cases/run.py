@@ -97,7 +97,7 @@ def impact_validity(problem, result, damage: dict | None = None) -> Validity:
     d = problem.impactor.diameter
     v = contact_validity(problem.law_name, float(np.max(result.approach)), float(np.max(result.contact_radius)), d)
     v += law_validity(problem.law, problem.impactor.velocity)  # the law's own envelope (ice: strain rate; gelatin: shock)
-    v += problem.target.validity(float(np.max(np.abs(result.deflection))))
+    v += problem.target.validity(float(np.max(np.abs(result.target_displacement))))
     if damage is not None:
         v += allowable_flags("the target's plies", damage["max_strain"])
     return v

@@ -114,7 +114,7 @@ def impact_columns(result, target: bool = True, energies: bool = True) -> dict[s
     if target:
         cols["approach_rate_m_s"] = result.approach_rate
         cols["contact_radius_m"] = result.contact_radius
-        cols["target_displacement_m"] = result.deflection
+        cols["target_displacement_m"] = result.target_displacement
     for name, eps in zip(result.strain_names, result.strain):
         cols[f"strain_{name}"] = eps
     if energies:
@@ -150,7 +150,7 @@ def impact_figures(problem, result, prefix: str = "") -> dict[str, bytes]:
 
     fig, ax = _figure()
     ax.plot(t, result.impactor_displacement * lu.factor, label="impactor displacement")
-    ax.plot(t, result.deflection * lu.factor, label="target mid-surface displacement")
+    ax.plot(t, result.target_displacement * lu.factor, label="target mid-surface displacement")
     ax.plot(t, result.approach * lu.factor, label="approach α (contact law's indentation)")
     ax.plot(t, result.contact_radius * lu.factor, "--", label="contact radius")
     ax.set_xlabel(f"time since first contact [{tu.label}]")

@@ -347,8 +347,8 @@ class PlateProblem:
 
     def summary_extras(self, model, result) -> dict:
         """An impact's summary.json ``target``: the plate model, and the mid-surface deflection under the
-        impact point (along the impact direction, down +) of ``result`` (a CoupledResult)."""
-        w = result.deflection
+        impact point (along the impact direction, down +) of ``result`` (a CoupledResult's ``target_displacement``)."""
+        w = result.target_displacement
         k = int(np.argmax(np.abs(w)))
         target = {
             "model": f"fsdt ({self.plate.element.upper()})",
