@@ -6,7 +6,6 @@ import time
 
 import numpy as np
 
-from ..cases.bar import run_bar
 from ..cases.run import execute
 from ..input.bar_case import load_bar_case
 from ..models.validity import warn
@@ -14,7 +13,7 @@ from ..output.bar import bar_files
 from ..units import display
 from . import Outcome, Progress, no_progress
 
-__all__ = ["bar", "run_bar"]  # run_bar: cases.bar's, re-exported (the Python API reads it here until it calls execute)
+__all__ = ["bar"]
 
 
 def gauge_lag(result, inferred) -> tuple[float, float] | None:
