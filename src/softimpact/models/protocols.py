@@ -127,8 +127,8 @@ class SettlingLaw(Protocol):
 
 @runtime_checkable
 class Pulse(Protocol):
-    """A force history: ``pulse(t)`` [N] for t [s] (scalar or array), its ``impulse`` ∫F dt [N·s]
-    and ``duration`` [s]."""
+    """A force history: ``pulse(t)`` [N] for t [s] (scalar or array), its ``impulse`` ∫F dt [N·s],
+    ``duration`` [s] and ``time_of_peak`` [s] (where F is largest: the end of its rise)."""
 
     def __call__(self, t): ...
 
@@ -137,6 +137,9 @@ class Pulse(Protocol):
 
     @property
     def duration(self) -> float: ...
+
+    @property
+    def time_of_peak(self) -> float: ...
 
 
 @runtime_checkable
@@ -159,7 +162,9 @@ class StructureModel(Protocol):
     (p, n_t) of a force history; ``engine()`` the response engine (impulse responses of the
     outputs, built once); ``respond`` and ``direct`` the same outputs through the engine or by
     stepping every DOF (with energies); ``contact_structure(point, reach)`` the structure as
-    the coupled stepper sees it; ``for_workers()`` a light copy that pickles small.
+    the coupled stepper sees it; ``for_workers()`` a light copy that pickles small; ``mesh`` the fem
+    object of its mesh: ``expand(u)`` the full DOF vectors of reduced ones and ``field_frames(full)``
+    (points, cells, point data, cell data) of a field file (:mod:`softimpact.output.fields`).
     """
 
     @property
@@ -176,6 +181,9 @@ class StructureModel(Protocol):
     def contact_structure(self, point, reach: float): ...
 
     def for_workers(self): ...
+
+    @property
+    def mesh(self): ...
 
 
 @runtime_checkable

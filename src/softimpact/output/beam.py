@@ -69,8 +69,7 @@ def beam_files(model, result, figures: bool = True, prefix: str = "", *, summary
 
         system = p.units
         files[prefix + "fig21-22-gauge-strains.png"] = figure_bytes(plots.beam_gauge_strains(result, system))
-        tp = getattr(p.load.history, "time_of_peak", result.time[np.argmax(result.force)])
-        T = getattr(p.load.history, "duration", result.time[-1] / 2)
+        tp, T = p.load.history.time_of_peak, p.load.history.duration
         files[prefix + "fig20-load-distribution.png"] = figure_bytes(plots.beam_load_distribution(model, result, system, [tp / 3, tp, (tp + T) / 2, 0.9 * T]))
         files[prefix + "fig18-mesh.png"] = figure_bytes(plots.beam_mesh(model, system, 4 * p.load.contact_radius))
         if result.displacement is not None:
@@ -114,7 +113,7 @@ def beam_section(model, result, prefix: str, summary: dict) -> Section:
         [
             f"Plane-strain four-node elements, {p.beam.nx} × {p.beam.nz} ({model.plane.n} DOF), {p.beam.model} laminate, "
             f"{p.beam.support}; force history F0 = {result.force.max() * fu.factor:.0f} {fu.label}, "
-            f"T = {getattr(p.load.history, 'duration', float('nan')) * tu.factor:.0f} {tu.label}, r0 = {p.load.contact_radius * lu.factor:.3g} {lu.label}. "
+            f"T = {p.load.history.duration * tu.factor:.0f} {tu.label}, r0 = {p.load.contact_radius * lu.factor:.3g} {lu.label}. "
             f"Energy balance (work − kinetic − strain): {summary.get('energy_balance_relative', float('nan')):.1e} relative.",
         ],
         [

@@ -223,7 +223,7 @@ class PlateProblem:
         for p in self.points:
             if not on_plate(p):
                 raise InputError(f"points: {p!r} m is off the plate")
-        rise = getattr(self.load.history, "time_of_peak", None)
+        rise = None if self.load.history is None else self.load.history.time_of_peak  # a Pulse (models.protocols); None: an impact's target
         if rise is not None and rise < MIN_STEPS_PER_RISE * self.solver.time_step:
             raise InputError(
                 f"time_step {self.solver.time_step * 1e6:.3g} us cannot resolve a pulse rising in "
@@ -522,6 +522,11 @@ class PlateModel(LinearModel):
     def contact_reach(self, point: tuple[float, float], diameter: float) -> float:
         """The impactor's diameter cut by the plate's edges (:func:`softimpact.fem.contact.plate_reach`)."""
         return plate_reach(self.fe, self.problem.plate.supports, point, diameter)
+
+    @property
+    def mesh(self):
+        """The plate's mesh (:class:`~softimpact.fem.plate.PlateFE`: ``expand``, ``field_frames``)."""
+        return self.fe
 
     def _drop_mesh(self, light) -> None:
         light.fe = None
