@@ -64,7 +64,7 @@ def bar_problem(data: dict, base: Path = Path(".")) -> BarImpactProblem:
     """A bar case (already parsed TOML) as a :class:`BarImpactProblem`."""
     top = Table(data)
     title = top.string("title", "")
-    system = read_units(top)
+    read_units(top)  # checked here; the display system is the edge's (input.toml.case_units), not the problem's
     bar = read_bar(top.table("bar"))
     p = top.table("projectile")
     sphere = read_sphere(p)
@@ -98,7 +98,7 @@ def bar_problem(data: dict, base: Path = Path(".")) -> BarImpactProblem:
         output.done()
     top.done()
     with naming({"gauges": "gauges", "law": "contact.law"}):
-        return BarImpactProblem(bar, projectile, solver, gauges, law, title, system, snapshots)
+        return BarImpactProblem(bar, projectile, solver, gauges, law, title, snapshots)
 
 
 def load_bar_case(case: str) -> tuple[BarImpactProblem, Path]:

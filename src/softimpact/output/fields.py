@@ -85,7 +85,7 @@ def field_frames(model, u: np.ndarray):
     """The mesh and per-frame data of a beam or plate model's reduced displacements ``u`` (n_free, n_frames):
     (points (n_nodes, 3), cells [("quad", (n_cells, 4))], point data {name: (n_frames, n_nodes, k)},
     cell data {name: (n_frames, n_cells)}), from the model's ``mesh``
-    (:class:`~softimpact.models.protocols.StructureModel`: its full vectors and their fields)."""
+    (:class:`~softimpact.models.protocols.MeshedModel`: its full vectors and their fields)."""
     mesh = model.mesh
     u = np.asarray(u, float).reshape(model.size, -1)
     points, cells, point_data, cell_data = mesh.field_frames(mesh.expand(u))

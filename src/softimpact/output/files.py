@@ -41,6 +41,7 @@ from ..formats._json import json_text, jsonable  # noqa: F401  (re-exported: the
 
 __all__ = [
     "case_record",
+    "with_units",
     "csv_text",
     "json_text",
     "jsonable",
@@ -81,6 +82,21 @@ def case_record(problem) -> dict:
     if imp is not None and imp.material is None:
         out["impactor"] = {"mass": imp.mass, "diameter": imp.diameter, "velocity": imp.velocity}
     return out
+
+
+def with_units(summary: dict, units: str) -> dict:
+    """summary.json's content with the display system ``units`` written into its resolved case
+    (``case_SI.units``, and ``case_SI.target.units`` of an impact's target), as the problems carried it
+    before: the display is the edges' choice (app, api), the problems hold SI only."""
+    case = summary.get("case_SI")
+    if case is None:
+        return summary
+    case = dict(case) if isinstance(case, dict) else case_record(case)
+    target = case.get("target")
+    if target is not None:
+        case["target"] = {**(dict(target) if isinstance(target, dict) else case_record(target)), "units": units}
+    case["units"] = units
+    return {**summary, "case_SI": case}
 
 
 def strain_peaks(time: np.ndarray, eps: np.ndarray, window_end: bool = False) -> dict:

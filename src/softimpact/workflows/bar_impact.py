@@ -52,7 +52,6 @@ class BarImpactProblem:
     gauges: tuple[Gauge, ...]
     law: object = "hertz"
     title: str = ""
-    units: str = "in-lbf-s"
     snapshots: tuple[float, ...] = ()  # instants [s] at which the strain along the bar is reported (those in the run)
 
     def __post_init__(self):

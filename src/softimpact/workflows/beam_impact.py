@@ -131,7 +131,6 @@ class BeamProblem:
     solver: SolverSpec
     gauges: tuple[BeamGauge, ...]
     title: str = ""
-    units: str = "in-lbf-s"
 
     def __post_init__(self):
         L = self.beam.length

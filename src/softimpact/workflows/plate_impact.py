@@ -174,7 +174,6 @@ class PlateProblem:
     gauges: tuple[PlateGauge, ...] = ()
     points: tuple[tuple[float, float], ...] = ()
     title: str = ""
-    units: str = "SI"  # display system of the outputs (the numbers stay SI)
     kinematics: str = "linear"
     in_plane: str = "immovable"
     analysis: str = "dynamic"
