@@ -19,7 +19,7 @@ from softimpact.models.hydrodynamic_law import HydrodynamicLaw
 from softimpact.models.materials import CATALOGUE, hexagonal_isotropic_moduli, sphere_mass
 from softimpact.models.projectiles import JONES_1997_FRESHWATER, WILBECK_GELATIN, PowerLawStrength
 from softimpact.models.protocols import ContactLaw
-from softimpact.models.specimens import Projectile
+from softimpact.models.specimens import Impactor
 from softimpact.models.threats import BIRD_MASSES, hail_terminal_velocity, sphere_diameter
 from softimpact.models.validity import hydrodynamic_validity, ice_strength_validity
 from softimpact.units import INCH
@@ -200,7 +200,7 @@ def _bar_run(law, d, V, duration, steps):
     # The paper's 36-in aluminium bar, made 2 in wide (no end cap) so the 31.8-50.8 mm spheres crush on its face;
     # the published tests' bar dimensions were not retrieved.
     bar = replace(base.bar, diameter=2.0 * INCH, end_cap=None)
-    p = Projectile.solid(ICE, d, V)
+    p = Impactor.solid(ICE, d, V)
     T = d / V
     problem = replace(base, bar=bar, projectile=p, law=law, solver=SolverSpec(T / steps, duration * T), snapshots=())
     return simulate_impact(problem), p

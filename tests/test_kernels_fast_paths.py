@@ -141,7 +141,7 @@ def test_a_clipped_force_equals_direct_stepping(beam):
     assert np.max(np.abs(fast.force - direct.force)) <= 1e-9 * peak
     assert np.max(np.abs(fast.approach - direct.approach)) <= 1e-9 * np.max(np.abs(direct.approach))
     assert np.max(np.abs(fast.contact_energy - direct.contact_energy)) <= 1e-9 * np.max(direct.contact_energy)
-    assert np.max(np.abs(fast.outputs - direct.outputs)) <= 1e-9 * np.max(np.abs(direct.outputs))
+    assert np.max(np.abs(fast.strain - direct.strain)) <= 1e-9 * np.max(np.abs(direct.strain))
     assert np.array_equal(fast.force > 0.0, direct.force > 0.0)
     # no contact disc where no force presses, the bodies overlapping or not; the disc's radius where it does
     for h in (fast, direct):

@@ -59,6 +59,6 @@ def test_execute_returns_warnings_as_objects_and_warns_nothing(beam_impact):
         warnings.simplefilter("always")
         run = execute(beam_impact)
     assert not [w for w in heard if issubclass(w.category, ValidityWarning)]
-    expected = np.max(np.abs(run.result.deflection)) / beam_impact.target.beam.thickness
+    expected = np.max(np.abs(run.result.target_displacement)) / beam_impact.target.beam.thickness
     assert run.warnings.values["deflection_over_thickness"] == pytest.approx(expected, rel=1e-12)
     assert run.summary["validity"]["deflection_over_thickness"] == pytest.approx(expected, rel=1e-12)

@@ -182,22 +182,22 @@ def _impact(structure, at, impactor, law, time_step, duration, gauges, target_mo
         from ..workflows.beam_impact import BeamLoad, BeamProblem
 
         with _naming():
-            target = BeamProblem(spec, BeamLoad(_si(at, "length", "at"), radius, None), solver, _beam_gauges(gauges), title, units)
+            target = BeamProblem(spec, BeamLoad(_si(at, "length", "at"), radius, None), solver, _beam_gauges(gauges), title)
     else:
         from ..workflows.plate_impact import PlateLoad, PlateProblem
 
         with _naming():
-            target = PlateProblem(spec, PlateLoad(_point(at, "at"), radius, None, grow=True), solver, _plate_gauges(gauges), title=title, units=units)
+            target = PlateProblem(spec, PlateLoad(_point(at, "at"), radius, None, grow=True), solver, _plate_gauges(gauges), title=title)
     from ..cases import KINDS
     from ..workflows.coupled import ImpactProblem
 
-    problem = ImpactProblem(target, "(Python API)", impactor.impactor, impactor.material, name, resolved, title, units)
+    problem = ImpactProblem(target, "(Python API)", impactor.impactor, impactor.material, name, resolved, title)
     KINDS["impact"].check(problem)  # the resource guards of the command, before anything is built
-    return _run(Case("impact", problem, () if law_file is None else (law_file,)))
+    return _run(Case("impact", problem, () if law_file is None else (law_file,), units=units))
 
 
 def _bar_impact(bar: Bar, at, sphere: Sphere, law, solver, gauges, units: str, title: str) -> BarResult:
-    from ..models.specimens import Gauge, Projectile
+    from ..models.specimens import Gauge, Impactor
     from ..workflows.bar_impact import BarImpactProblem
 
     if at is not None:
@@ -208,8 +208,8 @@ def _bar_impact(bar: Bar, at, sphere: Sphere, law, solver, gauges, units: str, t
     if _is_law_file(law) or (isinstance(law, str) and law in MATERIAL_LAWS):
         _, law, law_file = _law(law, None, sphere)
     gs = tuple(Gauge(str(n), _si(p, "length", f"gauges[{n!r}]")) for n, p in (gauges or {}).items())
-    projectile = Projectile(sphere.material, sphere.diameter, sphere.velocity, sphere.mass)
-    return _run(Case("bar", BarImpactProblem(bar.spec, projectile, solver, gs, law, title, units), () if law_file is None else (law_file,)))
+    projectile = Impactor(sphere.mass, sphere.diameter, sphere.velocity, sphere.material)
+    return _run(Case("bar", BarImpactProblem(bar.spec, projectile, solver, gs, law, title), () if law_file is None else (law_file,), units=units))
 
 
 @dataclass(frozen=True)
@@ -226,12 +226,16 @@ class Case:
         The files read (case first).
     warnings : tuple of str
         The warnings reading it raised (already shown; :func:`run` keeps them for manifest.json).
+    units : str
+        The display system of its figures and tables (the case file's ``units``: ``"in-lbf-s"`` or ``"SI"``);
+        the problem holds SI numbers only.
     """
 
     kind: str
     problem: object
     files: tuple = ()
     warnings: tuple = field(default=(), compare=False)
+    units: str = "in-lbf-s"
 
 
 def load(case, *, history: int | None = None) -> Case:
@@ -262,12 +266,14 @@ def load(case, *, history: int | None = None) -> Case:
     ('impact', 2.54)
     """
     from ..cases import case_kind
+    from ..input.toml import case_units
 
     with _Heard() as heard, python_terms():
         kind, _ = case_kind(str(case))
         problem, files = kind.load(str(case), history)
         kind.check(problem)
-    return Case(kind.name, problem, tuple(Path(f) for f in (files if isinstance(files, tuple) else (files,))), tuple(heard.texts))
+        system = case_units(str(case))
+    return Case(kind.name, problem, tuple(Path(f) for f in (files if isinstance(files, tuple) else (files,))), tuple(heard.texts), system)
 
 
 def run(problem, *, figures: bool = True):
@@ -317,9 +323,9 @@ def _run(case: Case, figures: bool = True):
     warn(run.warnings)
     kind = kind_for(run.problem).name  # an impact case on a bar target reads as a bar problem, and runs as one
     if kind == "bar":
-        return BarResult(run.problem, run.result, run.plain, run.inferred, case.files)
+        return BarResult(run.problem, run.result, run.plain, run.inferred, case.files, units=case.units)
     result_type = {"impact": ImpactResult, "beam": BeamResult, "plate": PlateResult}[kind]
-    return result_type(run.problem, run.result, run.model, case.files, run_summary=run.summary)
+    return result_type(run.problem, run.result, run.model, case.files, run_summary=run.summary, units=case.units)
 
 
 def _kind_of(problem) -> str:

@@ -156,6 +156,7 @@ class ImpactResult(_Written):
     case_files: tuple = field(repr=False, default=())
     warnings: tuple = field(repr=False, compare=False, default=())
     run_summary: dict = field(repr=False, compare=False, default=None)  # summary.json's content (cases.run.Run.summary)
+    units: str = field(repr=False, default="in-lbf-s")  # the display system of figures and tables (a case's ``units``): the numbers stay SI
     command = "softimpact impact"
 
     def __post_init__(self):
@@ -182,7 +183,7 @@ class ImpactResult(_Written):
         """The files of ``softimpact impact`` (history.csv, summary.json, figures), by name."""
         from ..output.impact import impact_files
 
-        return impact_files(self.problem, self.result, figures, model=self.model, summary=self.run_summary)
+        return impact_files(self.problem, self.result, figures, model=self.model, summary=self.run_summary, units=self.units)
 
     def to_frame(self):
         """The histories of history.csv as a pandas DataFrame indexed by time [s]; units in ``df.attrs["units"]``.
@@ -198,7 +199,7 @@ class ImpactResult(_Written):
         from ..units import display
 
         ax = _axes(ax)
-        fu, tu = display(self.problem.units, "force"), display(self.problem.units, "time")
+        fu, tu = display(self.units, "force"), display(self.units, "time")
         ax.plot(self.time * tu.factor, self.force * fu.factor)
         ax.set_xlabel(f"time [{tu.label}]")
         ax.set_ylabel(f"contact force [{fu.label}]")
@@ -246,6 +247,7 @@ class _Prescribed(_Written):
     case_files: tuple = field(repr=False, default=())
     warnings: tuple = field(repr=False, compare=False, default=())
     run_summary: dict = field(repr=False, compare=False, default=None)  # summary.json's content (cases.run.Run.summary)
+    units: str = field(repr=False, default="in-lbf-s")  # the display system of figures and tables (a case's ``units``): the numbers stay SI
 
     def __post_init__(self):
         _read_only(self.result)
@@ -287,7 +289,7 @@ class BeamResult(_Prescribed):
         """The files of ``softimpact beam``, by name."""
         from ..output.beam import beam_files
 
-        return beam_files(self.model, self.result, figures, summary=self.run_summary)
+        return beam_files(self.model, self.result, figures, summary=self.run_summary, units=self.units)
 
     def to_frame(self):
         """Force and gauge strains as a pandas DataFrame indexed by time [s]; units in ``df.attrs["units"]``."""
@@ -341,7 +343,7 @@ class PlateResult(_Prescribed):
         """The files of ``softimpact plate``, by name."""
         from ..output.plate import plate_files
 
-        return plate_files(self.model, self.result, figures, self.run_summary)
+        return plate_files(self.model, self.result, figures, self.run_summary, units=self.units)
 
     def to_frame(self):
         """Force, deflection under the load and gauge strains, indexed by time [s]; units in ``df.attrs["units"]``."""
@@ -395,6 +397,7 @@ class BarResult(_Written):
     inferred: object = field(repr=False, default=None)
     case_files: tuple = field(repr=False, default=())
     warnings: tuple = field(repr=False, compare=False, default=())
+    units: str = field(repr=False, default="in-lbf-s")  # the display system of figures and tables (a case's ``units``): the numbers stay SI
     command = "softimpact bar"
 
     def __post_init__(self):
@@ -418,7 +421,7 @@ class BarResult(_Written):
         """The files of ``softimpact bar``, by name."""
         from ..output.bar import bar_files
 
-        return bar_files(self.result, self.plain, self.inferred, figures)
+        return bar_files(self.result, self.plain, self.inferred, figures, units=self.units)
 
     def to_frame(self):
         """Contact force and gauge strains indexed by time [s]; units in ``df.attrs["units"]``."""

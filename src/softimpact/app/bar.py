@@ -6,15 +6,15 @@ import time
 
 import numpy as np
 
-from ..cases.bar import run_bar
 from ..cases.run import execute
 from ..input.bar_case import load_bar_case
+from ..input.toml import case_units
 from ..models.validity import warn
 from ..output.bar import bar_files
 from ..units import display
 from . import Outcome, Progress, no_progress
 
-__all__ = ["bar", "run_bar"]  # run_bar: cases.bar's, re-exported (the Python API reads it here until it calls execute)
+__all__ = ["bar"]
 
 
 def gauge_lag(result, inferred) -> tuple[float, float] | None:
@@ -29,12 +29,13 @@ def gauge_lag(result, inferred) -> tuple[float, float] | None:
 def bar(*, case: str, figures: bool = True, progress: Progress = no_progress) -> Outcome:
     """Run a bar case (file or built-in name)."""
     problem, path = load_bar_case(case)
+    system = case_units(path)
     t0 = time.perf_counter()
     run = execute(problem)
     result = run.result
-    files = bar_files(result, run.plain, run.inferred, figures, summary=run.summary)
+    files = bar_files(result, run.plain, run.inferred, figures, summary=run.summary, units=system)
     warn(run.warnings)
-    fu, tu = display(problem.units, "force"), display(problem.units, "time")
+    fu, tu = display(system, "force"), display(system, "time")
     line = (
         f"peak force {result.peak_force * fu.factor:.1f} {fu.label} at {result.time_of_peak * tu.factor:.1f} {tu.label}, "
         f"contact {result.contact_duration * tu.factor:.1f} {tu.label} ({time.perf_counter() - t0:.2f} s)"

@@ -8,6 +8,7 @@ import numpy as np
 
 from ..cases.run import execute
 from ..input.beam_case import load_beam_case
+from ..input.toml import case_units
 from ..output.beam import beam_files
 from ..output.fields import field_files
 from ..units import display
@@ -20,16 +21,17 @@ def beam(*, case: str, history: int | None = None, figures: bool = True, fields:
     """Run a beam case (file or built-in name), optionally with row ``history`` of its [[load.table]];
     ``fields``: also fields.xdmf/.h5, the displacement and strain fields (:mod:`softimpact.output.fields`)."""
     problem, path = load_beam_case(case, history)
+    system = case_units(path)
     t0 = time.perf_counter()
     steps = problem.solver.steps
     run = execute(problem, figures=figures, fields=fields, progress=lambda k: progress(k, steps, "stepping"))
     model, result = run.model, run.result
     progress(steps, steps, "stepping")
-    files = beam_files(model, result, figures, summary=run.summary)
+    files = beam_files(model, result, figures, summary=run.summary, units=system)
     if fields:
         kept = run.kept
         files.update(field_files(model, (kept, result.time[kept], result.displacement[:, kept])))
-    su = display(problem.units, "strain")
+    su = display(system, "strain")
     peaks = ", ".join(f"{g.name} {eps[np.argmax(np.abs(eps))] * su.factor:.0f} {su.label}" for g, eps in zip(problem.gauges, result.strain))
     line = f"{model.plane.n} DOF, {steps} steps ({time.perf_counter() - t0:.1f} s); peak strains {peaks}"
     return Outcome(files, line, (path,), run.warnings.flags)

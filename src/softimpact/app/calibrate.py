@@ -15,6 +15,7 @@ from .. import units
 from ..errors import InputError
 from ..input.beam_case import load_beam_case
 from ..input.series import CalibrationTest, is_calibration_series, load_calibration_series
+from ..input.toml import case_units
 from ..models.empirical import PROJECTILES
 from ..output.calibration import calibration_files, series_calibration_files
 from ..studies.calibration import DEFAULT_BUDGET, calibrate_tests, calibration_gates, calibration_model, series_fits
@@ -53,14 +54,15 @@ def calibrate_command(
             raise InputError("--measured/--velocity: not used with a series file (its [[test]] entries give them)")
         series = load_calibration_series(case)
         problem, case_path = load_beam_case(series.case)
+        system = case_units(series.case)
         radii = [t.contact_radius or problem.load.contact_radius for t in series.tests]
         models = calibration_model(problem, radii, fit_radius)
-        items = calibrate_tests(models, series.tests, series.projectile, series.constants, method, fit_radius, budget=budget, progress=progress)
+        items = calibrate_tests(models, series.tests, series.projectile, series.constants, method, fit_radius, budget=budget, progress=progress, units=system)
         warnings = tuple(i.error for i in items if i.calibration is None)
         if len(warnings) == len(items):
             raise InputError("no test of the series could be calibrated")
         gates = calibration_gates(items)
-        files = series_calibration_files(models, series, items, series_fits(series, items), figures, gates=gates)
+        files = series_calibration_files(models, series, items, series_fits(series, items), figures, gates=gates, units=system)
         line = f"{len(items) - len(warnings)} of {len(items)} tests calibrated ({time.perf_counter() - t0:.1f} s); calibration.json"
         return Outcome(files, line, (series.path, case_path, *(t.measured for t in series.tests)), warnings, gates)
     if not measured or not velocity:
@@ -69,15 +71,16 @@ def calibrate_command(
     r0 = units.parse(contact_radius, "length", "--contact-radius") if contact_radius else None
     tc = units.parse(contact_time, "time", "--contact-time") if contact_time else None
     problem, case_path = load_beam_case(case)
+    system = case_units(case)
     test = CalibrationTest(Path(measured).stem, Path(measured), V, r0, tc)
     models = calibration_model(problem, [r0 or problem.load.contact_radius], fit_radius)
-    items = calibrate_tests(models, [test], projectile, constants, method, fit_radius, budget=budget, progress=progress)
+    items = calibrate_tests(models, [test], projectile, constants, method, fit_radius, budget=budget, progress=progress, units=system)
     if items[0].calibration is None:
         raise InputError(items[0].error)
     gates = calibration_gates(items)
-    files = calibration_files(models, items, figures, single=True, gates=gates)
+    files = calibration_files(models, items, figures, single=True, gates=gates, units=system)
     c = items[0].calibration
-    fu, tu = units.display(problem.units, "force"), units.display(problem.units, "time")
+    fu, tu = units.display(system, "force"), units.display(system, "time")
     se = c.standard_errors.get("peak_force")
     line = (
         f"{c.method}: F0 {c.peak_force * fu.factor:.1f} {fu.label}{f' ± {se * fu.factor:.2g}' if se else ''}, "

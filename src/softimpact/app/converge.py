@@ -14,6 +14,7 @@ import time
 
 from ..cases import case_kind
 from ..errors import InputError
+from ..input.toml import case_units
 from ..output.converge import converge_files, order_phrase
 from ..workflows.convergence import study_case
 from . import Outcome, Progress, no_progress
@@ -33,7 +34,7 @@ def converge(*, case: str, levels: int = 3, ratio: int = 2, history: int | None 
     problem, inputs = kind.load(case, history)
     t0 = time.perf_counter()
     result, sizes = study_case(kind, problem, levels, ratio, progress)
-    files = converge_files(result, sizes, problem, kind.name, figures)
+    files = converge_files(result, sizes, problem, kind.name, figures, units=case_units(case))
     first = [o for o in result.outputs if o.kind == "history"]
     worst = max(first, key=lambda o: o.errors[0]) if first else max(result.outputs, key=lambda o: o.errors[0])
     unreliable = [o.name for o in result.outputs if not o.reliable]

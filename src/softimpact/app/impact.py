@@ -9,6 +9,7 @@ import numpy as np
 from ..cases import KINDS
 from ..cases.run import execute
 from ..input.impact_case import load_impact_case
+from ..input.toml import case_units
 from ..models.validity import warn
 from ..output.fields import field_files, kept_frames, select_kept
 from ..output.impact import impact_files
@@ -38,16 +39,17 @@ def impact(*, case: str, figures: bool = True, fields: bool = False, progress: P
     """Run an impact case (file or built-in name) on a beam or plate target; ``fields``: also
     fields.xdmf/.h5, the target's displacement fields (:mod:`softimpact.output.fields`)."""
     problem, inputs = load_impact_case(case)
+    system = case_units(inputs[0])
     KINDS["impact"].check(problem)  # the target's mesh and resources, the step against the contact's rise (exit 2)
     t0 = time.perf_counter()
     steps = problem.solver.steps
     run = execute(problem, figures=figures, fields=fields, progress=lambda k: progress(k, steps, "stepping"))
     result, model = run.result, run.model
-    files = impact_files(problem, select_kept(result, run.shown) if fields else result, figures, model=model, summary=run.summary)
+    files = impact_files(problem, select_kept(result, run.shown) if fields else result, figures, model=model, summary=run.summary, units=system)
     if fields:
         files.update(field_files(model, kept_frames(result, run.kept)))
     warn(run.warnings)
-    fu, tu, su = (display(problem.units, k) for k in ("force", "time", "strain"))
+    fu, tu, su = (display(system, k) for k in ("force", "time", "strain"))
     peaks = ", ".join(f"{n} {eps[np.argmax(np.abs(eps))] * su.factor:.0f} {su.label}" for n, eps in zip(result.strain_names, result.strain))
     T = "not separated" if not np.isfinite(result.contact_duration) else f"T {result.contact_duration * tu.factor:.1f} {tu.label}"
     unfinished = (

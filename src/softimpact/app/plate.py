@@ -8,6 +8,7 @@ import numpy as np
 
 from ..cases.run import execute
 from ..input.plate_case import load_plate_case
+from ..input.toml import case_units
 from ..output.fields import field_files, kept_frames, select_kept
 from ..output.plate import plate_files, plate_static_files
 from ..units import display
@@ -20,24 +21,25 @@ def plate(*, case: str, history: int | None = None, figures: bool = True, fields
     """Run a plate case (file or built-in name), optionally with row ``history`` of its [[load.table]];
     ``fields``: also fields.xdmf/.h5, the displacement fields (:mod:`softimpact.output.fields`)."""
     problem, path = load_plate_case(case, history)
+    system = case_units(path)
     t0 = time.perf_counter()
     if problem.analysis == "static":
         run = execute(problem)
-        s, lu = run.summary, display(problem.units, "length")
+        s, lu = run.summary, display(system, "length")
         its = s["newton"]["iterations"]
         line = (
             f"{s['dofs']} DOF, {problem.kinematics}, {len(its)} load steps ({sum(its)} Newton iterations, "
             f"{time.perf_counter() - t0:.1f} s); max deflection {s['max_deflection_m'] * lu.factor:.4g} {lu.label}"
         )
-        return Outcome(plate_static_files(s), line, (path,), run.warnings.flags)
+        return Outcome(plate_static_files(s, system), line, (path,), run.warnings.flags)
     steps = problem.solver.steps
     run = execute(problem, figures=figures, fields=fields, progress=lambda k: progress(k, steps, "stepping"))
     model, result = run.model, run.result
     progress(steps, steps, "stepping")
-    files = plate_files(model, select_kept(result, run.shown) if fields else result, figures, run.summary)
+    files = plate_files(model, select_kept(result, run.shown) if fields else result, figures, run.summary, units=system)
     if fields:
         files.update(field_files(model, kept_frames(result, run.kept)))
-    su, lu = display(problem.units, "strain"), display(problem.units, "length")
+    su, lu = display(system, "strain"), display(system, "length")
     peaks = "".join(f", {g.name} {eps[np.argmax(np.abs(eps))] * su.factor:.0f} {su.label}" for g, eps in zip(problem.gauges, result.strain))
     w = result.deflection[0]
     line = f"{model.size} DOF, {steps} steps ({time.perf_counter() - t0:.1f} s); peak deflection {w[np.argmax(np.abs(w))] * lu.factor:.3g} {lu.label}{peaks}"

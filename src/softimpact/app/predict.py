@@ -181,22 +181,18 @@ def _range_notes(law, velocity: str, V: float, d: float, units: str) -> list[str
 def _driven(bar: str | None, beam: str | None, pulse):
     """(the case files read, (time, force, gauges, strain) of the structure driven by ``pulse`` or None, the
     gauges' peak sense): the bar of a bar case or the beam of a beam case under the predicted force."""
+    from ..cases.run import execute
+
     if bar is not None:
         from ..input.bar_case import load_bar_case
-        from ..workflows.bar_impact import simulate_force
 
         problem, path = load_bar_case(bar)
-        res = simulate_force(problem.bar, problem.solver, problem.gauges, pulse)
+        res = execute(problem, force=pulse).result
         return [path], (res.time, res.force, problem.gauges, res.strain), "compressive"
     if beam is not None:
-        from dataclasses import replace
-
-        from ..cases.run import execute
         from ..input.beam_case import load_beam_case
-        from ..workflows.beam_impact import BeamLoad
 
         problem, path = load_beam_case(beam)
-        problem = replace(problem, load=BeamLoad(problem.load.position, problem.load.contact_radius, pulse))
-        res = execute(problem, energy=False).result
+        res = execute(problem, energy=False, force=pulse).result
         return [path], (res.time, res.force, problem.gauges, res.strain), "absolute"
     return [], None, ""

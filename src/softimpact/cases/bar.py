@@ -8,16 +8,16 @@ from pathlib import Path
 from ..errors import InputError
 from ._common import GAUGE_FIELDS, magnitude_and_history
 
-__all__ = ["BarKind", "run_bar"]
+__all__ = ["BarKind"]
 
 
-def run_bar(problem):
-    """The run, the same run without the end cap (None without one), and the force
+def _run_bar(problem, plain: bool = True):
+    """The run, the same run without the end cap (None without one, or without ``plain``), and the force
     read from the first gauge as (time, force, gauge name) (None without a gauge)."""
     from ..workflows.bar_impact import force_from_gauge, simulate_impact, without_end_cap
 
     result = simulate_impact(problem)
-    plain = simulate_impact(without_end_cap(problem)) if problem.bar.end_cap is not None else None
+    plain = simulate_impact(without_end_cap(problem)) if plain and problem.bar.end_cap is not None else None
     inferred = None
     if problem.gauges:
         t, f = force_from_gauge(result, 0)
@@ -66,14 +66,23 @@ class BarKind:
         energy=True,
         stop_after=None,
         progress=None,
+        force=None,
+        summary=True,
     ):
-        """The bar run (:func:`softimpact.cases.run.execute`; :func:`run_bar`: also the run without the end cap and
-        the force read from the first gauge); the stepping options of an impact do not apply."""
+        """The bar run (:func:`softimpact.cases.run.execute`; :func:`_run_bar`: also the run without the end cap,
+        unless not ``summary`` (the Run's summary then empty), and the force read from the first gauge); the stepping options of an impact do not
+        apply. ``force``: the bar driven by this prescribed end force F(t) instead (its
+        :class:`~softimpact.workflows.bar_impact.BarForceResult`; no summary, no envelope: no contact)."""
+        from ..models.validity import Validity
         from ..output.bar import bar_summary, bar_validity
         from .run import Run
 
-        result, plain, inferred = run_bar(problem)
-        return Run(result, None, bar_summary(result, plain), bar_validity(result), problem, plain=plain, inferred=inferred)
+        if force is not None:
+            from ..workflows.bar_impact import simulate_force
+
+            return Run(simulate_force(problem.bar, problem.solver, problem.gauges, force), None, {}, Validity({}), problem)
+        result, plain, inferred = _run_bar(problem, summary)
+        return Run(result, None, bar_summary(result, plain) if summary else {}, bar_validity(result), problem, plain=plain, inferred=inferred)
 
     def damage_refusal(self, problem):
         return None  # a bar has no damage outputs: the sweep's check of the outputs names it
@@ -92,9 +101,9 @@ class BarKind:
         """Pulse scalars, the force history and gauge peaks and histories of a run; its size (the
         Hermite rod's DOFs: an axial displacement and a strain per node)."""
         from ..fem.bar import Rod, assemble_rod
-        from ..workflows.bar_impact import simulate_impact
+        from .run import execute
 
-        r = simulate_impact(problem)
+        r = execute(problem, summary=False).result
         out = {
             "peak_force_N": r.peak_force,
             "time_of_peak_s": r.time_of_peak,
@@ -114,9 +123,9 @@ class BarKind:
 
     def run(self, prepared, data, base, outputs=(), problem=None):
         """One run of the case ``data`` (or of ``problem``, already read)."""
-        from ..workflows.bar_impact import simulate_impact
+        from .run import execute
 
-        return self.summary(None, simulate_impact(problem or self.problem(data, Path(base))))
+        return self.summary(None, execute(problem or self.problem(data, Path(base)), summary=False).result)
 
     def summary(self, problem, result, model=None):
         """The scalars of ``softimpact bar``'s summary.json (:func:`softimpact.output.bar.bar_summary`); ``validity_flags``:

@@ -77,17 +77,22 @@ class BeamKind:
         energy=True,
         stop_after=None,
         progress=None,
+        force=None,
+        summary=True,
     ):
         """The beam stepped directly (:func:`softimpact.cases.run.execute`), the whole displacement kept with
         ``figures`` or ``fields`` (the frames of the fields: ``kept``); a coupled run's options do not apply.
         ``model``: a model of the same beam, mesh and step to reuse (its patch reaching the problem's contact
-        radius), stepped under ``problem``'s force history and contact radius."""
+        radius), stepped under ``problem``'s force history and contact radius; ``force``: a force history F(t)
+        in place of the problem's (its load's ``history``); ``summary``: False leaves the Run's summary empty."""
         from dataclasses import replace
 
         from ..output.beam import beam_summary
         from ..output.fields import FRAMES, sampled_steps
         from .run import Run
 
+        if force is not None:
+            problem = replace(problem, load=replace(problem.load, history=force))
         if model is None:
             model = problem.model()  # a BeamModel, or with beam.kinematics = "von-karman" its total Lagrangian form
             result = model.direct(progress=progress, energy=energy, displacement=figures or fields)
@@ -97,7 +102,7 @@ class BeamKind:
             result = replace(result, problem=problem)
         kept = sampled_steps(problem.solver.steps, FRAMES if frames is None else frames) if fields else ()
         validity = beam_validity(result)
-        return Run(result, model, beam_summary(model, result, validity), validity, problem, kept=kept)
+        return Run(result, model, beam_summary(model, result, validity) if summary else {}, validity, problem, kept=kept)
 
     def damage_refusal(self, problem):
         from ..workflows.damage import damage_refusal
@@ -110,7 +115,7 @@ class BeamKind:
         from ..output.beam import beam_scalars
         from .run import execute
 
-        run = execute(problem, energy=False, progress=progress)
+        run = execute(problem, energy=False, progress=progress, summary=False)
         model, r = run.model, run.result
 
         out = {"peak_deflection_under_load_m": beam_scalars(r)["peak_deflection_under_load_m"]}
@@ -140,13 +145,15 @@ class BeamKind:
         from ..input.toml import Table, naming
         from ..workflows.beam_impact import BeamResult
 
+        from .run import execute
+
         model = prepared
         if model is None:  # a nonlinear beam (prepare): the run's own problem, stepped directly
             problem = self.problem(data, base)
-            result = problem.model().direct(energy=False, displacement=False)
+            result = execute(problem, energy=False, summary=False).result
         elif model.stepper is not None:  # a group of one run: stepping beats building the kernels
             problem = model.problem
-            result = model.direct(energy=False)
+            result = execute(problem, model=model, energy=False, summary=False).result
         else:
             # Only the force history differs within a group: parse it alone, on the group's problem.
             pulse = read_history(Table(data["load"], "load"), "history", Path(base))

@@ -77,24 +77,32 @@ class PlateKind:
         energy=True,
         stop_after=None,
         progress=None,
+        force=None,
+        summary=True,
     ):
         """The plate stepped directly (:func:`softimpact.cases.run.execute`), its displacement kept at the
         deflected-shape figure's instants (``figures``: ``shown``) and the fields' frames (``fields``: ``kept``);
-        its warnings: the symmetry edges that miss the load, then the envelopes. A coupled run's options do not apply."""
+        its warnings: the symmetry edges that miss the load, then the envelopes. A coupled run's options do not apply;
+        ``force``: a force history F(t) in place of the problem's (its load's ``history``); ``summary``: False leaves the Run's summary empty."""
+        from dataclasses import replace
+
         from ..models.validity import Validity
         from ..output.fields import FRAMES, sampled_steps
         from ..output.plate import plate_summary, plate_validity, snapshot_steps
         from .run import Run
 
+        if force is not None:
+            problem = replace(problem, load=replace(problem.load, history=force))
         if problem.analysis == "static":
             return self._static(problem, model)
         model = model or problem.model()
         steps = problem.solver.steps
         shown = snapshot_steps(steps) if figures else ()
         kept = sampled_steps(steps, FRAMES if frames is None else frames) if fields else ()
-        result = model.direct(progress=progress, energy=energy, snapshots=np.union1d(shown, kept).astype(int) if fields else shown)
+        snaps = np.union1d(shown, kept).astype(int) if fields else shown
+        result = model.direct(force, progress=progress, energy=energy, snapshots=snaps)  # force None: the model's problem's history
         validity = Validity({}, mirrored_loads(problem)) + plate_validity(result)
-        return Run(result, model, plate_summary(model, result), validity, problem, shown, kept)
+        return Run(result, model, plate_summary(model, result) if summary else {}, validity, problem, shown, kept)
 
     def _static(self, problem, model=None):
         """A static plate run (:func:`softimpact.workflows.plate_impact.solve_plate_static`): its summary and envelope;
@@ -124,12 +132,12 @@ class PlateKind:
 
     def study(self, problem, stride, progress=None):
         """Peak deflection under the load, gauge peaks and histories; the model's size."""
-        from ..workflows.plate_impact import PlateModel
+        from ..output.plate import plate_scalars
+        from .run import execute
 
         self._linear_dynamic_only(problem, "converge")
-        model = PlateModel(problem)
-        r = model.direct(progress=progress, energy=False, snapshots=[])
-        from ..output.plate import plate_scalars
+        run = execute(problem, energy=False, progress=progress, summary=False)
+        model, r = run.model, run.result
 
         out = {"peak_deflection_at_load_m": plate_scalars(r)["peak_deflection_at_load_m"], "deflection_at_load_history_m": r.deflection[0][::stride]}
         magnitude_and_history(out, [g.name for g in problem.gauges], r.strain, stride)
@@ -154,8 +162,10 @@ class PlateKind:
 
         model = prepared
         if model.stepper is not None:  # a group of one run: stepping beats building the kernels
+            from .run import execute
+
             problem = model.problem
-            result = model.direct(energy=False, snapshots=())
+            result = execute(problem, model=model, energy=False, summary=False).result
         else:
             # Only the force history differs within a group: parse it alone, on the group's problem.
             pulse = read_history(Table(data["load"], "load"), "history", Path(base))

@@ -8,7 +8,10 @@ kind of its problem (:func:`softimpact.cases.kind_for`, each kind's ``execute``)
   ``damage=False`` leaves them out: a sweep that asks for none);
 - the snapshots of the structure's displacement (``figures``: a plate's deflected shapes; ``fields``: the
   frames of fields.xdmf, at most ``frames`` of them, :func:`softimpact.output.fields.sampled_steps`);
-- how an impact is stepped (``method``: "direct", or "kernels" on contact kernels built once; ``energy``).
+- how an impact is stepped (``method``: "direct", or "kernels" on contact kernels built once; ``energy``);
+- a prescribed force instead of the case's (``force``: a bar's struck end driven by a pulse, ``softimpact
+  predict --bar``; a beam's or plate's force history replaced) and whether summary.json's content is made
+  (``summary``: sweeps and ``converge`` keep the run alone).
 
 A :class:`Run` carries the result, the model that ran, summary.json's content and the run's
 :class:`~softimpact.models.validity.Validity` (its warnings, as objects: the caller warns or lists them).
@@ -60,6 +63,8 @@ def execute(
     energy: bool = True,
     stop_after: float | None = None,
     progress: Callable[[int], None] | None = None,
+    force=None,
+    summary: bool = True,
 ) -> Run:
     """Run ``problem`` (a BarImpactProblem, BeamProblem, PlateProblem or ImpactProblem) through its kind.
 
@@ -68,9 +73,20 @@ def execute(
     sampled: :func:`~softimpact.output.fields.sampled_steps`); ``damage``: an impact's damage indices (when its target's laminate allows them);
     ``method``, ``kernels``, ``energy``, ``stop_after``: how an impact is stepped
     (:func:`softimpact.workflows.coupled.run_impact`); ``model``: a model of the same structure and step to
-    reuse; ``progress(k)``: called with the step index while stepping a beam or plate directly."""
+    reuse; ``progress(k)``: called with the step index while stepping a beam or plate directly.
+
+    ``force``: a prescribed force history F(t) [N] (a pulse) on a bar's struck end (the bar's response, no
+    contact: a :class:`~softimpact.workflows.bar_impact.BarForceResult`, no summary) or in place of a beam's or
+    plate's load history; ``summary``: False leaves the Run's summary empty (a plate: no natural frequencies;
+    a bar with an end cap: no run without it, summary.json's ``without_end_cap``), for sweeps and
+    ``converge``, which keep scalars of their own. An impact takes neither."""
     from . import kind_for
 
+    own = {}  # the options only bars, beams and plates have (an impact's execute takes neither)
+    if force is not None:
+        own["force"] = force
+    if not summary:
+        own["summary"] = False
     return kind_for(problem).execute(
         problem,
         figures=figures,
@@ -83,6 +99,7 @@ def execute(
         energy=energy,
         stop_after=stop_after,
         progress=progress,
+        **own,
     )
 
 
@@ -97,7 +114,7 @@ def impact_validity(problem, result, damage: dict | None = None) -> Validity:
     d = problem.impactor.diameter
     v = contact_validity(problem.law_name, float(np.max(result.approach)), float(np.max(result.contact_radius)), d)
     v += law_validity(problem.law, problem.impactor.velocity)  # the law's own envelope (ice: strain rate; gelatin: shock)
-    v += problem.target.validity(float(np.max(np.abs(result.deflection))))
+    v += problem.target.validity(float(np.max(np.abs(result.target_displacement))))
     if damage is not None:
         v += allowable_flags("the target's plies", damage["max_strain"])
     return v

@@ -134,7 +134,7 @@ def structure_history(st, last: int, solves: int) -> ImpactHistory:
         impactor_displacement=arr(st.x),
         impactor_velocity=arr(st.xv),
         target_displacement=st.w[sl],
-        outputs=st.y[:, sl],
+        strain=st.y[:, sl],
         structure_kinetic=st.ek[sl],
         structure_strain=st.es[sl],
         structure_work=st.work[sl],

@@ -184,7 +184,7 @@ class ImpactHistory:
     impactor_displacement: np.ndarray  # along the impact direction
     impactor_velocity: np.ndarray  # positive toward the structure
     target_displacement: np.ndarray  # w = approach_row·u
-    outputs: np.ndarray  # (n_out, steps + 1)
+    strain: np.ndarray  # (n_out, steps + 1): the structure's output rows (gauge strains, then any output groups)
     structure_kinetic: np.ndarray  # ½vᵀMv (nan when energies were not asked for)
     structure_strain: np.ndarray  # ½uᵀKu
     structure_work: np.ndarray  # Σ½(f_k + f_{k+1})·Δu, work of the nodal contact forces
@@ -382,7 +382,7 @@ class CoupledResult:
     approach: np.ndarray
     approach_rate: np.ndarray
     contact_radius: np.ndarray  # of the pressed disc [m]; 0 where the force is zero
-    deflection: np.ndarray  # (n,) m, mid-surface under the impact point, along the impact direction (into the target +)
+    target_displacement: np.ndarray  # (n,) m, mid-surface under the impact point, along the impact direction (into the target +)
     strain: np.ndarray  # (n_outputs, n): the structure's output rows (gauge strains)
     strain_names: tuple[str, ...]  # names of the rows of ``strain``
     energies: Energies
@@ -520,8 +520,8 @@ def coupled_result(h: ImpactHistory, impactor: Impactor, strain_names: tuple[str
         approach=al,
         approach_rate=h.approach_rate,
         contact_radius=h.contact_radius,
-        deflection=h.target_displacement,
-        strain=h.outputs,
+        target_displacement=h.target_displacement,
+        strain=h.strain,
         strain_names=tuple(strain_names),
         energies=energies,
         contacts=contacts,

@@ -125,7 +125,7 @@ class KernelStepper(CoupledStepper):
             impactor_displacement=arr(self.x),
             impactor_velocity=arr(self.xv),
             target_displacement=y[0, sl],
-            outputs=y[1:, sl],
+            strain=y[1:, sl],
             structure_kinetic=nan,
             structure_strain=nan.copy(),
             structure_work=nan.copy(),

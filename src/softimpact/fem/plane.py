@@ -22,7 +22,7 @@ import scipy.sparse
 
 from ..errors import InputError
 
-__all__ = ["PlaneBeam", "SUPPORTS"]
+__all__ = ["PlaneBeam", "SUPPORTS", "centre_strain"]
 
 SUPPORTS = ("clamped-free", "clamped-clamped", "simply-supported")
 
@@ -183,3 +183,34 @@ class PlaneModel:
         full = np.zeros((self.basis.N,) + u.shape[1:])
         full[self.free] = u
         return full
+
+    def field_frames(self, full: np.ndarray):
+        """The fields of full DOF vectors ``full`` (N, n_frames) for a field file (:mod:`softimpact.output.fields`):
+        points (n_nodes, 3) [m] in the x–z plane (file y = the thickness coordinate z), cells (n_cells, 4), point
+        data ``displacement`` (n_frames, n_nodes, 3) = (u_x, u_z, 0) and cell data at the element centres
+        (:func:`centre_strain`), each (n_frames, n_cells)."""
+        mesh = self.basis.mesh
+        points = np.column_stack((mesh.p[0], mesh.p[1], np.zeros(mesh.p.shape[1])))
+        cells = np.asarray(mesh.t.T, int)
+        nd = self.basis.nodal_dofs
+        ux, uz = full[nd[0]], full[nd[1]]
+        disp = np.stack((ux.T, uz.T, np.zeros_like(ux.T)), axis=-1)
+        strain = centre_strain(points[:, :2], cells, ux, uz)
+        return points, cells, {"displacement": disp}, {k: v.T for k, v in strain.items()}
+
+
+def centre_strain(points: np.ndarray, cells: np.ndarray, ux: np.ndarray, uz: np.ndarray) -> dict[str, np.ndarray]:
+    """Strain at the centre of each axis-aligned bilinear quad: ε_xx = ∂u_x/∂x, ε_zz = ∂u_z/∂z,
+    γ_xz = ∂u_x/∂z + ∂u_z/∂x. At the centre ∂N_i/∂x = s_i/(2·h_x), s_i = ±1 on the right/left
+    nodes (and so for z). ``points`` (n_nodes, 2) [m], ``cells`` (n_cells, 4) node indices,
+    ``ux``, ``uz`` (n_nodes, n_frames) [m]; returns arrays (n_cells, n_frames)."""
+    x, z = points[cells, 0], points[cells, 1]  # (n_cells, 4)
+    sx = np.sign(x - x.mean(axis=1, keepdims=True))
+    sz = np.sign(z - z.mean(axis=1, keepdims=True))
+    hx = x.max(axis=1) - x.min(axis=1)
+    hz = z.max(axis=1) - z.min(axis=1)
+
+    def d(u, s, h):  # (n_cells, n_frames)
+        return np.einsum("ck,ckf->cf", s, u[cells]) / (2.0 * h)[:, None]
+
+    return {"strain_xx": d(ux, sx, hx), "strain_zz": d(uz, sz, hz), "shear_strain_xz": d(ux, sz, hz) + d(uz, sx, hx)}

@@ -548,6 +548,20 @@ class PlateFE:
         full[self.free] = u
         return full
 
+    def field_frames(self, full: np.ndarray):
+        """The fields of full DOF vectors ``full`` (N, n_frames) for a field file (:mod:`softimpact.output.fields`):
+        points (n_nodes, 3) [m] of the mid-surface (z = 0), cells (n_cells, 4) (the node grid split into quads: an
+        MITC9 element shows as its four sub-quads), point data ``displacement`` (u, v, w) and ``rotation``
+        (φ_x, φ_y), each (n_frames, n_nodes, k); no cell data."""
+        xy = self.node_xy()
+        points = np.column_stack((xy[0], xy[1], np.zeros(xy.shape[1])))
+        g = self.grid_node
+        cells = np.column_stack((g[:-1, :-1].ravel(), g[1:, :-1].ravel(), g[1:, 1:].ravel(), g[:-1, 1:].ravel()))
+        nd = self.basis.nodal_dofs
+        disp = np.stack([full[nd[c]].T for c in (U, V, W)], axis=-1)
+        rot = np.stack([full[nd[c]].T for c in (PHI_X, PHI_Y)], axis=-1)
+        return points, cells, {"displacement": disp, "rotation": rot}, {}
+
     def load_vector(self, pressure) -> np.ndarray:
         """Consistent nodal loads (free DOFs) of a transverse pressure q(x, y) [Pa], up +,
         ``pressure`` a callable of (x, y) arrays or a constant (4 × 4 Gauss per element)."""

@@ -16,7 +16,7 @@ from .. import units
 from ..errors import InputError
 from ..fem.bar import Rod
 from ..models.contact_laws import HertzLaw
-from ..models.specimens import BarSpec, EndCap, Gauge, Projectile
+from ..models.specimens import BarSpec, EndCap, Gauge, Impactor
 from ..workflows.bar_impact import BarImpactProblem, check_problem
 from .contact_law import CONTACT_LAWS, read_contact_law
 from .projectile import read_sphere
@@ -64,12 +64,12 @@ def bar_problem(data: dict, base: Path = Path(".")) -> BarImpactProblem:
     """A bar case (already parsed TOML) as a :class:`BarImpactProblem`."""
     top = Table(data)
     title = top.string("title", "")
-    system = read_units(top)
+    read_units(top)  # checked here; the display system is the edge's (input.toml.case_units), not the problem's
     bar = read_bar(top.table("bar"))
     p = top.table("projectile")
     sphere = read_sphere(p)
     material, diameter = sphere.material, sphere.diameter
-    projectile = Projectile(material, diameter, sphere.velocity, sphere.mass)
+    projectile = Impactor(sphere.mass, diameter, sphere.velocity, material)
     p.done()
     contact_tbl = top.table("contact", optional=True)
     law = "hertz"
@@ -98,7 +98,7 @@ def bar_problem(data: dict, base: Path = Path(".")) -> BarImpactProblem:
         output.done()
     top.done()
     with naming({"gauges": "gauges", "law": "contact.law"}):
-        return BarImpactProblem(bar, projectile, solver, gauges, law, title, system, snapshots)
+        return BarImpactProblem(bar, projectile, solver, gauges, law, title, snapshots)
 
 
 def load_bar_case(case: str) -> tuple[BarImpactProblem, Path]:

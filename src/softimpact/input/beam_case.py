@@ -215,7 +215,7 @@ def beam_problem(data: dict, base: Path = Path("."), history: int | None = None)
     """A beam case (parsed TOML) as a BeamProblem; ``history`` picks a row of [[load.table]] (1-based)."""
     top = Table(data)
     title = top.string("title", "")
-    system = read_units(top)
+    read_units(top)  # checked here; the display system is the edge's (input.toml.case_units), not the problem's
     b = top.table("beam")
     elements = b.raw("elements", [200, 6])
     if not (isinstance(elements, list) and len(elements) == 2 and all(isinstance(e, int) and not isinstance(e, bool) and e >= 1 for e in elements)):
@@ -251,7 +251,7 @@ def beam_problem(data: dict, base: Path = Path("."), history: int | None = None)
     top.done()
     keys = {"position": "load.position", "gauges": "gauges", "time_step": "solver.time_step", "history": "load.history"}
     with naming(keys):
-        return BeamProblem(spec, BeamLoad(position, radius, pulse), solver, tuple(gauges), title, system)
+        return BeamProblem(spec, BeamLoad(position, radius, pulse), solver, tuple(gauges), title)
 
 
 def load_beam_case(case: str, history: int | None = None):

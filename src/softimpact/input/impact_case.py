@@ -79,7 +79,7 @@ def impact_problem(data: dict, base: Path = Path(".")) -> tuple[ImpactProblem, t
     """An impact case (parsed TOML) as an ImpactProblem, and the files it read (target case, law file)."""
     top = Table(data)
     title = top.string("title", "")
-    system = read_units(top)
+    read_units(top)  # checked here; the display system is the edge's (input.toml.case_units), not the problem's
     t = top.table("target")
     target, target_path, (_, _, read_gauges, check) = _target(t, base)
     if check is not None:
@@ -102,7 +102,7 @@ def impact_problem(data: dict, base: Path = Path(".")) -> tuple[ImpactProblem, t
     with naming({"gauges": "gauges", "time_step": "solver.time_step", "position": f"target.case ({target_path}): load.position"}):
         resolved = target.for_impact(solver, gauges)  # the force comes from the contact
     files = (target_path,) if law_path is None else (target_path, law_path)
-    return ImpactProblem(resolved, str(target_path), impactor, material, name, law, title, system), files
+    return ImpactProblem(resolved, str(target_path), impactor, material, name, law, title), files
 
 
 def load_impact_case(case: str) -> tuple[ImpactProblem, tuple[Path, ...]]:

@@ -95,7 +95,7 @@ def plate_problem(data: dict, base: Path = Path("."), history: int | None = None
     """A plate case (parsed TOML) as a PlateProblem; ``history`` picks a row of [[load.table]] (1-based)."""
     top = Table(data)
     title = top.string("title", "")
-    system = read_units(top)
+    read_units(top)  # checked here; the display system is the edge's (input.toml.case_units), not the problem's
     p = top.table("plate")
     model = p.string("model", PLATE_MODELS[0], choices=PLATE_MODELS)
     if model == "solid":
@@ -158,7 +158,6 @@ def plate_problem(data: dict, base: Path = Path("."), history: int | None = None
             solver,
             gauges,
             title=title,
-            units=system,
             kinematics=kinematics,
             in_plane=in_plane,
             analysis=analysis,

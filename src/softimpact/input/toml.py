@@ -22,7 +22,7 @@ from ..errors import InputError
 from ..fem.newmark import NewmarkParameters, SolverSpec
 from ..models.materials import Material, lookup
 
-__all__ = ["Table", "naming", "builtin_cases", "locate", "load_toml", "read_material", "read_solver", "read_units"]
+__all__ = ["Table", "naming", "builtin_cases", "locate", "load_toml", "read_material", "read_solver", "read_units", "case_units"]
 
 _MISSING = object()
 
@@ -197,3 +197,9 @@ def read_solver(tbl: Table) -> SolverSpec:
 def read_units(top: Table) -> str:
     """The display system of a case (``units = "in-lbf-s" | "SI"``)."""
     return top.string("units", "in-lbf-s", choices=tuple(units.DISPLAY_SYSTEMS))
+
+
+def case_units(case) -> str:
+    """The display system of a case file or built-in name (its ``units``, :func:`read_units`): a choice of the
+    edges (app, api) for tables and figures; the problem read from the case holds SI numbers only."""
+    return read_units(Table(load_toml(locate(str(case)))))

@@ -122,7 +122,7 @@ PRESETS = {
 @dataclass(frozen=True)
 class ProjectilePreset:
     """A named projectile of the paper: diameter [m], mass [kg], its material and scaling law
-    (the sphere that strikes, with its velocity, is :class:`softimpact.models.specimens.Projectile`)."""
+    (the sphere that strikes, with its velocity, is :class:`softimpact.models.specimens.Impactor`)."""
 
     name: str
     diameter: float

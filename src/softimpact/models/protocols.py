@@ -37,6 +37,7 @@ __all__ = [
     "Pulse",
     "ContactPatch",
     "StructureModel",
+    "MeshedModel",
 ]
 
 
@@ -127,8 +128,8 @@ class SettlingLaw(Protocol):
 
 @runtime_checkable
 class Pulse(Protocol):
-    """A force history: ``pulse(t)`` [N] for t [s] (scalar or array), its ``impulse`` ∫F dt [N·s]
-    and ``duration`` [s]."""
+    """A force history: ``pulse(t)`` [N] for t [s] (scalar or array), its ``impulse`` ∫F dt [N·s],
+    ``duration`` [s] and ``time_of_peak`` [s] (where F is largest: the end of its rise)."""
 
     def __call__(self, t): ...
 
@@ -137,6 +138,9 @@ class Pulse(Protocol):
 
     @property
     def duration(self) -> float: ...
+
+    @property
+    def time_of_peak(self) -> float: ...
 
 
 @runtime_checkable
@@ -159,7 +163,8 @@ class StructureModel(Protocol):
     (p, n_t) of a force history; ``engine()`` the response engine (impulse responses of the
     outputs, built once); ``respond`` and ``direct`` the same outputs through the engine or by
     stepping every DOF (with energies); ``contact_structure(point, reach)`` the structure as
-    the coupled stepper sees it; ``for_workers()`` a light copy that pickles small.
+    the coupled stepper sees it; ``for_workers()`` a light copy that pickles small. A beam's or
+    plate's model is also a :class:`MeshedModel` (its fields go to a field file).
     """
 
     @property
@@ -179,11 +184,24 @@ class StructureModel(Protocol):
 
 
 @runtime_checkable
+class MeshedModel(Protocol):
+    """A :class:`StructureModel` whose displacements make fields (a beam's, a plate's; not the bar's): ``mesh``
+    the fem object of its mesh, with ``expand(u)`` the full DOF vectors of reduced ones and ``field_frames(full)``
+    (points, cells, point data, cell data) of a field file (:mod:`softimpact.output.fields`)."""
+
+    @property
+    def size(self) -> int: ...
+
+    @property
+    def mesh(self): ...
+
+
+@runtime_checkable
 class Target(Protocol):
     """The structure an impactor strikes, at problem level (:class:`softimpact.workflows.beam_impact.BeamProblem`,
     :class:`softimpact.workflows.plate_impact.PlateProblem`): everything above ``fem`` asks it, never its type.
 
-    - ``load`` (its ``position``: the impact point, ``contact_radius``), ``solver``, ``gauges``, ``units``, ``title``;
+    - ``load`` (its ``position``: the impact point, ``contact_radius``), ``solver``, ``gauges``, ``title`` (its display system is the edges': a case's ``units``, read by the app and the API);
     - ``model(patch_radius, damage=False)`` its :class:`StructureModel` (with ``damage``, the contact structure's
       outputs carry the ``"damage"`` group after the ``"gauges"``); ``check()`` resolution and resource guards;
       ``refine(factor)`` the same target with mesh and time step refined; ``elements`` its mesh (a list);

@@ -1,5 +1,6 @@
 """Force pulses F(t) [N], t [s] from first contact. Each has ``__call__(t)``,
-``impulse`` [N·s] and ``duration`` [s] (the time after which F = 0).
+``impulse`` [N·s], ``duration`` [s] (the time after which F = 0) and ``time_of_peak`` [s]
+(:class:`softimpact.models.protocols.Pulse`).
 The eq-15 fit to a record is :func:`softimpact.models.pulse_fit.fit_pulse`.
 """
 
@@ -95,6 +96,11 @@ class TailedPulse:
     def duration(self) -> float:
         return self.tail_start + self.decay * math.log(1e3)
 
+    @property
+    def time_of_peak(self) -> float:
+        """The main pulse's t_F0: the tail starts below F0 (level < 1) and only falls."""
+        return self.main.time_of_peak
+
     @classmethod
     def with_impulse(cls, main: SkewedPulse, level: float, impulse: float) -> TailedPulse:
         """The tail whose decay makes the total impulse ``impulse`` (≥ the main pulse's)."""
@@ -132,3 +138,8 @@ class TabulatedPulse:
     @property
     def duration(self) -> float:
         return float(self.time[-1])
+
+    @property
+    def time_of_peak(self) -> float:
+        """The time of the largest sample (the first, where several are equal): linear in between, F peaks on a sample."""
+        return float(self.time[int(np.argmax(self.force))])

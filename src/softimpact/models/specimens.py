@@ -1,7 +1,7 @@
 """Specimens: the parameter objects of test articles and instruments (SI).
 
-A bar (:class:`BarSpec`, with an optional :class:`EndCap`), a sphere striking
-it (:class:`Projectile`) and a strain gauge on it (:class:`Gauge`); the bridge
+A bar (:class:`BarSpec`, with an optional :class:`EndCap`), the sphere striking
+it or a beam or plate (:class:`Impactor`) and a strain gauge on it (:class:`Gauge`); the bridge
 that turns its resistance change into volts is :class:`softimpact.models.bridge.Bridge`.
 Positions on a bar are measured from the struck end. Every workflow that needs one takes it
 from here, so workflows never import each other for their inputs.
@@ -16,7 +16,7 @@ from ..errors import InputError
 from ..units import INCH
 from .materials import Material, sphere_mass
 
-__all__ = ["EndCap", "BarSpec", "Projectile", "Gauge", "Impactor", "GAUGE_LENGTH"]
+__all__ = ["EndCap", "BarSpec", "Impactor", "Gauge", "GAUGE_LENGTH"]
 
 GAUGE_LENGTH = 0.031 * INCH  # m: the paper's strain gauges, 0.031 in (docs/modelling-notes.md); the default of beam and plate gauges
 
@@ -51,24 +51,6 @@ class BarSpec:
 
 
 @dataclass(frozen=True)
-class Projectile:
-    """A sphere: material, diameter [m], impact velocity [m/s], mass [kg]."""
-
-    material: Material
-    diameter: float
-    velocity: float
-    mass: float
-
-    def __post_init__(self):
-        Impactor(self.mass, self.diameter, self.velocity)  # the same rule on every path: positive, velocity toward the target
-
-    @classmethod
-    def solid(cls, material: Material, diameter: float, velocity: float) -> Projectile:
-        """A solid sphere whose mass follows from density and diameter."""
-        return cls(material, diameter, velocity, sphere_mass(material, diameter))
-
-
-@dataclass(frozen=True)
 class Gauge:
     """A strain gauge at ``position`` [m] from the struck end."""
 
@@ -78,17 +60,28 @@ class Gauge:
 
 @dataclass(frozen=True)
 class Impactor:
-    """A rigid impactor: mass [kg], diameter [m], velocity [m/s] toward the structure."""
+    """A sphere striking a structure: mass [kg], diameter [m], velocity [m/s] toward the structure, and
+    its ``material`` where a contact law needs one (Hertz on a bar's end, ice, gelatin); None for a rigid
+    impactor whose law is given whole (a coupled impact case carries its material beside it).
+
+    The one sphere of every path: the ``projectile`` of bar cases and series, the ``impactor`` of impact
+    cases (docs/naming.md)."""
 
     mass: float
     diameter: float
     velocity: float
+    material: Material | None = None
 
     def __post_init__(self):
         for name in ("mass", "diameter", "velocity"):
             v = getattr(self, name)
             if not (math.isfinite(v) and v > 0):
                 raise InputError(f"impactor.{name} must be positive, got {v!r}", name)
+
+    @classmethod
+    def solid(cls, material: Material, diameter: float, velocity: float) -> Impactor:
+        """A solid sphere of ``material`` whose mass follows from density and diameter."""
+        return cls(sphere_mass(material, diameter), diameter, velocity, material)
 
     @property
     def momentum(self) -> float:

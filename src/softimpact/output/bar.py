@@ -6,7 +6,7 @@ import numpy as np
 
 from ..fem.bar import Rod
 from ..units import display
-from .files import csv_text, figure_bytes, json_text, strain_peaks
+from .files import csv_text, figure_bytes, json_text, strain_peaks, with_units
 from .impact import impact_columns
 from .report import Section
 
@@ -79,18 +79,19 @@ def _case(p) -> dict:
         "gauges": p.gauges,
         "contact": p.law_name,
         "title": p.title,
-        "units": p.units,
         "snapshots": p.snapshots,
         "law": None if isinstance(p.law, str) else p.law,
     }
 
 
-def bar_files(result, plain=None, inferred=None, figures: bool = True, prefix: str = "", summary: dict | None = None) -> dict[str, bytes | str]:
+def bar_files(
+    result, plain=None, inferred=None, figures: bool = True, prefix: str = "", summary: dict | None = None, *, units: str = "in-lbf-s"
+) -> dict[str, bytes | str]:
     """history.csv, summary.json, strain-along-bar.csv and (optionally) Figs 4–6 and the energy plot.
 
     ``plain``: the same run without the end cap (Fig 5); ``inferred``: (time, force,
     gauge name), the force read from a gauge (Fig 5); ``summary``: the run path's :func:`bar_summary`
-    (made here when None).
+    (made here when None); ``units``: the display system of the figures (and summary.json's ``case_SI.units``).
     """
     from . import plots
 
@@ -98,7 +99,7 @@ def bar_files(result, plain=None, inferred=None, figures: bool = True, prefix: s
     cols = impact_columns(result, target=False, energies=False)
     cols["energy_total_J"] = result.energies.mechanical
     summary = bar_summary(result, plain) if summary is None else summary
-    files = {prefix + "history.csv": csv_text(cols), prefix + "summary.json": json_text(summary)}
+    files = {prefix + "history.csv": csv_text(cols), prefix + "summary.json": json_text(with_units(summary, units))}
     L_over_c = p.bar.length / Rod.of(p.bar).wave_speed
     chosen = [t for t in p.snapshots if t <= result.time[-1]]
     instants = np.array(chosen) if chosen else np.linspace(0.0, min(result.time[-1], 2.0 * L_over_c), 7)[1:]
@@ -109,7 +110,7 @@ def bar_files(result, plain=None, inferred=None, figures: bool = True, prefix: s
         along[f"strain_t{result.time[k] / MICROSECOND:.1f}us"] = result.bar_strain[:, k]
     files[prefix + "strain-along-bar.csv"] = csv_text(along)
     if figures:
-        system = p.units
+        system = units
         files[prefix + "fig04-gauge-strain.png"] = figure_bytes(plots.bar_gauge_strain(result, system))
         files[prefix + "fig05-contact-force.png"] = figure_bytes(plots.bar_contact_force(result, plain, inferred, system))
         files[prefix + "fig06-strain-along-bar.png"] = figure_bytes(plots.bar_strain_profiles(result, instants, system))
@@ -117,11 +118,11 @@ def bar_files(result, plain=None, inferred=None, figures: bool = True, prefix: s
     return files
 
 
-def bar_section(result, plain, lag, prefix: str) -> Section:
-    """The report section of the calibration test; ``lag``: the gauge-derived force's
+def bar_section(result, plain, lag, prefix: str, units: str = "in-lbf-s") -> Section:
+    """The report section of the calibration test, in display ``units``; ``lag``: the gauge-derived force's
     (peak ratio, time lag [s]) against the contact force, or None without a gauge."""
     p = result.problem
-    sysname = p.units
+    sysname = units
     fu, tu, su = display(sysname, "force"), display(sysname, "time"), display(sysname, "strain")
     iu, vu = display(sysname, "impulse"), display(sysname, "velocity")
     reading = "The force read from the gauge is F = −EA·ε(t + x/c)."

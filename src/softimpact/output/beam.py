@@ -6,7 +6,7 @@ import numpy as np
 
 from ..models.features import first_zero_crossing
 from ..units import display
-from .files import csv_text, energy_balance, figure_bytes, json_text, strain_peaks
+from .files import csv_text, energy_balance, figure_bytes, json_text, strain_peaks, with_units
 from .report import Section
 
 __all__ = ["beam_summary", "beam_scalars", "beam_files", "beam_section"]
@@ -55,8 +55,9 @@ def beam_scalars(result) -> dict:
     }
 
 
-def beam_files(model, result, figures: bool = True, prefix: str = "", *, summary: dict) -> dict[str, bytes | str]:
-    """history.csv, summary.json (``summary``: :func:`beam_summary`'s, from the run path) and Figs 18, 20–22 and the deformed beam."""
+def beam_files(model, result, figures: bool = True, prefix: str = "", *, summary: dict, units: str = "in-lbf-s") -> dict[str, bytes | str]:
+    """history.csv, summary.json (``summary``: :func:`beam_summary`'s, from the run path) and Figs 18, 20–22 and the deformed beam,
+    in display ``units`` (also summary.json's ``case_SI.units``)."""
     p = result.problem
     cols = {"time_s": result.time, "force_N": result.force}
     for g, eps in zip(p.gauges, result.strain):
@@ -64,14 +65,13 @@ def beam_files(model, result, figures: bool = True, prefix: str = "", *, summary
     for g, bend in zip(p.gauges, result.bending):
         cols[f"bending_strain_{g.name}"] = bend
     cols["deflection_under_load_m"] = result.deflection
-    files = {prefix + "history.csv": csv_text(cols), prefix + "summary.json": json_text(summary)}
+    files = {prefix + "history.csv": csv_text(cols), prefix + "summary.json": json_text(with_units(summary, units))}
     if figures:
         from . import plots
 
-        system = p.units
+        system = units
         files[prefix + "fig21-22-gauge-strains.png"] = figure_bytes(plots.beam_gauge_strains(result, system))
-        tp = getattr(p.load.history, "time_of_peak", result.time[np.argmax(result.force)])
-        T = getattr(p.load.history, "duration", result.time[-1] / 2)
+        tp, T = p.load.history.time_of_peak, p.load.history.duration
         files[prefix + "fig20-load-distribution.png"] = figure_bytes(plots.beam_load_distribution(model, result, system, [tp / 3, tp, (tp + T) / 2, 0.9 * T]))
         files[prefix + "fig18-mesh.png"] = figure_bytes(plots.beam_mesh(model, system, 4 * p.load.contact_radius))
         if result.displacement is not None:
@@ -79,11 +79,11 @@ def beam_files(model, result, figures: bool = True, prefix: str = "", *, summary
     return files
 
 
-def beam_section(model, result, prefix: str, summary: dict) -> Section:
-    """The report section of a beam run (``summary``: :func:`beam_summary`'s): moduli, gauge strains, Figs 18, 20–22."""
+def beam_section(model, result, prefix: str, summary: dict, units: str = "in-lbf-s") -> Section:
+    """The report section of a beam run (``summary``: :func:`beam_summary`'s) in display ``units``: moduli, gauge strains, Figs 18, 20–22."""
     p = result.problem
-    su, tu = display(p.units, "strain"), display(p.units, "time")
-    lu, fu, pu = display(p.units, "length"), display(p.units, "force"), display(p.units, "stress")
+    su, tu = display(units, "strain"), display(units, "time")
+    lu, fu, pu = display(units, "length"), display(units, "force"), display(units, "stress")
     bs = summary["effective_moduli_Pa"].get("bending_stiffness_per_width_N_m", {})
     moduli = summary["effective_moduli_Pa"]
     rows = [
@@ -92,7 +92,7 @@ def beam_section(model, result, prefix: str, summary: dict) -> Section:
         if k in moduli
     ]
     if bs:
-        mu = display(p.units, "moment")
+        mu = display(units, "moment")
         rows.append(["bending stiffness per width, smeared (E·h³/12)", f"{bs['smeared_EI_per_width'] * mu.factor:.4g} {mu.label}"])
         if "clt_D11" in bs:
             rows.append(["bending stiffness per width, real stacking (CLT D11)", f"{bs['clt_D11'] * mu.factor:.4g} {mu.label}"])
@@ -115,7 +115,7 @@ def beam_section(model, result, prefix: str, summary: dict) -> Section:
         [
             f"Plane-strain four-node elements, {p.beam.nx} × {p.beam.nz} ({model.plane.n} DOF), {p.beam.model} laminate, "
             f"{p.beam.support}; force history F0 = {result.force.max() * fu.factor:.0f} {fu.label}, "
-            f"T = {getattr(p.load.history, 'duration', float('nan')) * tu.factor:.0f} {tu.label}, r0 = {p.load.contact_radius * lu.factor:.3g} {lu.label}. "
+            f"T = {p.load.history.duration * tu.factor:.0f} {tu.label}, r0 = {p.load.contact_radius * lu.factor:.3g} {lu.label}. "
             f"Energy balance (work − kinetic − strain): {summary.get('energy_balance_relative', float('nan')):.1e} relative.",
         ],
         [

@@ -136,11 +136,14 @@ def calibration_entry(item, gauges) -> dict:
     return entry
 
 
-def calibration_files(model, items, figures: bool, prefix: str = "", truths=None, single: bool = False, gates=()) -> dict[str, bytes | str]:
-    """calibration.json (with the quality ``gates``), a history CSV per test (history.csv for a single test), figures."""
+def calibration_files(
+    model, items, figures: bool, prefix: str = "", truths=None, single: bool = False, gates=(), units: str = "in-lbf-s"
+) -> dict[str, bytes | str]:
+    """calibration.json (with the quality ``gates``), a history CSV per test (history.csv for a single test), figures
+    in display ``units``."""
     from . import plots
 
-    system = model.problem.units
+    system = units
     gauges = [g.name for g in model.problem.gauges]
     files: dict[str, bytes | str] = {}
     for k, item in enumerate(items):
@@ -177,12 +180,14 @@ def tables_rows(items):
     ]
 
 
-def series_calibration_files(model, series, items, fits, figures: bool, prefix: str = "", truths=None, gates=()) -> dict[str, bytes | str]:
+def series_calibration_files(
+    model, series, items, fits, figures: bool, prefix: str = "", truths=None, gates=(), units: str = "in-lbf-s"
+) -> dict[str, bytes | str]:
     """Per-test files, the Tables II/III layout, the scaling fit of the calibrated histories
-    (``fits``, None for fewer than two tests), Figs 23–25."""
+    (``fits``, None for fewer than two tests), Figs 23–25, in display ``units`` (the beam case's)."""
     from . import plots
 
-    files = calibration_files(model, items, figures, prefix, truths, gates=gates)
+    files = calibration_files(model, items, figures, prefix, truths, gates=gates, units=units)
     rows = tables_rows(items)
     cols = {k: [] for k in ("test", "velocity_m_s", "peak_force_N", "time_of_peak_s", "duration_s", "contact_radius_m")}
     for item in items:
@@ -198,7 +203,7 @@ def series_calibration_files(model, series, items, fits, figures: bool, prefix: 
         groups = {"calibrated": [r[:4] for r in rows]}
         if series.reference:
             groups["Table II/III (paper)"] = [r[:4] for r in series.reference]
-        files[prefix + "fig23-25-force-scaling.png"] = figure_bytes(plots.beam_force_scaling(groups, model.problem.units))
+        files[prefix + "fig23-25-force-scaling.png"] = figure_bytes(plots.beam_force_scaling(groups, units))
     return files
 
 
@@ -277,12 +282,12 @@ def _section_figures(items, prefix: str) -> list[tuple[str, str]]:
     return figs
 
 
-def calibration_section(model, series, items, comparison, prefix: str, figures: bool, paper_method=None) -> Section:
+def calibration_section(model, series, items, comparison, prefix: str, figures: bool, paper_method=None, units: str = "in-lbf-s") -> Section:
     """Tables II/III: the paper's histories beside ours, with the bar model and the scaling of both.
 
     ``comparison``: a :class:`SeriesComparison` computed by the caller.
     """
-    system = model.problem.units
+    system = units
     fu, tu, lu, vu, su = units = tuple(display(system, k) for k in ("force", "time", "length", "velocity", "strain"))
     rows = _history_rows(items, series, comparison, units)
     header = [

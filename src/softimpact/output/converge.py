@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..units import display
-from .files import csv_text, figure_bytes, json_text
+from .files import case_record, csv_text, figure_bytes, json_text, with_units
 from .report import Section
 
 __all__ = ["converge_files", "converge_section", "order_phrase", "order_text", "output_label", "quantity_kind"]
@@ -127,7 +127,7 @@ def _summary(result, sizes, problem, kind: str) -> dict:
             }
             for o in result.outputs
         },
-        "case_SI": problem,
+        "case_SI": case_record(problem),
     }
 
 
@@ -195,17 +195,19 @@ def _history_figure(result, time: np.ndarray, system: str, title: str):
     return fig
 
 
-def converge_files(result, sizes, problem, kind: str, figures: bool = True, prefix: str = "", case_level: int = 0) -> dict[str, bytes | str]:
+def converge_files(
+    result, sizes, problem, kind: str, figures: bool = True, prefix: str = "", case_level: int = 0, *, units: str = "in-lbf-s"
+) -> dict[str, bytes | str]:
     """convergence.csv, summary.json and (optionally) the error and history figures of ``problem`` (any kind:
-    each has its ``title`` and display ``units``); ``case_level``: which level is the case's own discretisation
+    each has its ``title``), in display ``units`` (also summary.json's ``case_SI.units``); ``case_level``: which level is the case's own discretisation
     (0 unless the study started below it)."""
-    files = {prefix + "convergence.csv": csv_text(_rows(result)), prefix + "summary.json": json_text(_summary(result, sizes, problem, kind))}
+    files = {prefix + "convergence.csv": csv_text(_rows(result)), prefix + "summary.json": json_text(with_units(_summary(result, sizes, problem, kind), units))}
     if figures:
         title = problem.title or kind
-        files[prefix + "convergence.png"] = figure_bytes(_error_figure(result, f"Discretisation error: {title}", case_level, problem.units))
+        files[prefix + "convergence.png"] = figure_bytes(_error_figure(result, f"Discretisation error: {title}", case_level, units))
         if any(o.kind == "history" for o in result.outputs):
             time = problem.solver.times()
-            files[prefix + "histories.png"] = figure_bytes(_history_figure(result, time, problem.units, f"Histories at each level: {title}"))
+            files[prefix + "histories.png"] = figure_bytes(_history_figure(result, time, units, f"Histories at each level: {title}"))
     return files
 
 

@@ -36,6 +36,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..fem.plane import centre_strain as beam_cell_strain  # noqa: F401  (re-exported: the cell strain of the beam's fields)
+
 __all__ = ["FRAMES", "sampled_steps", "field_frames", "write_fields", "field_files", "select_kept", "beam_cell_strain"]
 
 FRAMES = 200  # frames at most in a field file: ParaView scrubs them smoothly, and a 200-frame beam file stays a few MB
@@ -79,51 +81,15 @@ def select_kept(result, steps):
     return replace(result, displacement=result.displacement[:, _columns(result, steps)], kept=steps)
 
 
-def beam_cell_strain(points: np.ndarray, cells: np.ndarray, ux: np.ndarray, uz: np.ndarray) -> dict[str, np.ndarray]:
-    """Strain at the centre of each axis-aligned bilinear quad: ε_xx = ∂u_x/∂x, ε_zz = ∂u_z/∂z,
-    γ_xz = ∂u_x/∂z + ∂u_z/∂x. At the centre ∂N_i/∂x = s_i/(2·h_x), s_i = ±1 on the right/left
-    nodes (and so for z). ``points`` (n_nodes, 2) [m], ``cells`` (n_cells, 4) node indices,
-    ``ux``, ``uz`` (n_nodes, n_frames) [m]; returns arrays (n_cells, n_frames)."""
-    x, z = points[cells, 0], points[cells, 1]  # (n_cells, 4)
-    sx = np.sign(x - x.mean(axis=1, keepdims=True))
-    sz = np.sign(z - z.mean(axis=1, keepdims=True))
-    hx = x.max(axis=1) - x.min(axis=1)
-    hz = z.max(axis=1) - z.min(axis=1)
-
-    def d(u, s, h):  # (n_cells, n_frames)
-        return np.einsum("ck,ckf->cf", s, u[cells]) / (2.0 * h)[:, None]
-
-    return {"strain_xx": d(ux, sx, hx), "strain_zz": d(uz, sz, hz), "shear_strain_xz": d(ux, sz, hz) + d(uz, sx, hx)}
-
-
 def field_frames(model, u: np.ndarray):
     """The mesh and per-frame data of a beam or plate model's reduced displacements ``u`` (n_free, n_frames):
     (points (n_nodes, 3), cells [("quad", (n_cells, 4))], point data {name: (n_frames, n_nodes, k)},
-    cell data {name: (n_frames, n_cells)})."""
+    cell data {name: (n_frames, n_cells)}), from the model's ``mesh``
+    (:class:`~softimpact.models.protocols.MeshedModel`: its full vectors and their fields)."""
+    mesh = model.mesh
     u = np.asarray(u, float).reshape(model.size, -1)
-    plane = getattr(model, "plane", None)
-    if plane is not None:  # a beam: the plane-strain Q4 mesh
-        mesh = plane.basis.mesh
-        points = np.column_stack((mesh.p[0], mesh.p[1], np.zeros(mesh.p.shape[1])))
-        cells = np.asarray(mesh.t.T, int)
-        full = plane.expand(u)
-        nd = plane.basis.nodal_dofs
-        ux, uz = full[nd[0]], full[nd[1]]
-        disp = np.stack((ux.T, uz.T, np.zeros_like(ux.T)), axis=-1)
-        strain = beam_cell_strain(points[:, :2], cells, ux, uz)
-        return points, [("quad", cells)], {"displacement": disp}, {k: v.T for k, v in strain.items()}
-    fe = model.fe  # a plate: the mid-surface node grid split into quads
-    from ..fem.plate import PHI_X, PHI_Y, U, V, W
-
-    xy = fe.node_xy()
-    points = np.column_stack((xy[0], xy[1], np.zeros(xy.shape[1])))
-    g = fe.grid_node
-    cells = np.column_stack((g[:-1, :-1].ravel(), g[1:, :-1].ravel(), g[1:, 1:].ravel(), g[:-1, 1:].ravel()))
-    full = fe.expand(u)
-    nd = fe.basis.nodal_dofs
-    disp = np.stack([full[nd[c]].T for c in (U, V, W)], axis=-1)
-    rot = np.stack([full[nd[c]].T for c in (PHI_X, PHI_Y)], axis=-1)
-    return points, [("quad", cells)], {"displacement": disp, "rotation": rot}, {}
+    points, cells, point_data, cell_data = mesh.field_frames(mesh.expand(u))
+    return points, [("quad", cells)], point_data, cell_data
 
 
 def write_fields(path, model, frames, *, force: bool = False) -> np.ndarray:

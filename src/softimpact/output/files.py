@@ -40,6 +40,8 @@ from ..errors import InputError
 from ..formats._json import json_text, jsonable  # noqa: F401  (re-exported: the writers of output/ use them from here)
 
 __all__ = [
+    "case_record",
+    "with_units",
     "csv_text",
     "json_text",
     "jsonable",
@@ -67,6 +69,34 @@ LOCK = ".softimpact.lock"  # held in DIR while a run computes and writes: a seco
 # unchanged is the user's, and stops a run before any computing (``force`` to proceed).
 STATE_FOLDERS = ("checkpoints",)  # a resumable run's own state (sweep checkpoints): read and rewritten by the next run, never the user's
 OUTPUT_SUFFIXES = (".csv", ".json", ".png", ".svg", ".pdf", ".html", ".parquet", ".xdmf", ".h5", ".vtu")
+
+
+def case_record(problem) -> dict:
+    """summary.json's ``case_SI``: the resolved problem's fields (SI), as written before; an ``impactor``
+    without a material of its own (a coupled case's, whose material is its ``impactor_material``) is
+    written as its mass, diameter and velocity."""
+    from dataclasses import fields
+
+    out = {f.name: getattr(problem, f.name) for f in fields(problem)}  # the fields by name, in their declared order (asdict's)
+    imp = out.get("impactor")
+    if imp is not None and imp.material is None:
+        out["impactor"] = {"mass": imp.mass, "diameter": imp.diameter, "velocity": imp.velocity}
+    return out
+
+
+def with_units(summary: dict, units: str) -> dict:
+    """summary.json's content with the display system ``units`` written into its resolved case
+    (``case_SI.units``, and ``case_SI.target.units`` of an impact's target), as the problems carried it
+    before: the display is the edges' choice (app, api), the problems hold SI only."""
+    case = summary.get("case_SI")
+    if case is None:
+        return summary
+    case = dict(case) if isinstance(case, dict) else case_record(case)
+    target = case.get("target")
+    if target is not None:
+        case["target"] = {**(dict(target) if isinstance(target, dict) else case_record(target)), "units": units}
+    case["units"] = units
+    return {**summary, "case_SI": case}
 
 
 def strain_peaks(time: np.ndarray, eps: np.ndarray, window_end: bool = False) -> dict:

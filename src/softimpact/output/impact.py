@@ -7,7 +7,7 @@ import math
 import numpy as np
 
 from ..units import display
-from .files import csv_text, figure_bytes, json_text, strain_peaks
+from .files import case_record, csv_text, figure_bytes, json_text, strain_peaks, with_units
 
 __all__ = ["damage_keys", "impact_summary", "impact_columns", "impact_files", "impact_figures", "snapshot_steps", "SNAPSHOTS"]
 
@@ -95,7 +95,7 @@ def impact_summary(problem, result, validity, damage: dict | None = None, damage
         **(extras or {}),
         **({"damage": damage} if damage is not None else {"damage_note": damage_note} if damage_note is not None else {}),
         "validity": validity.summary(),
-        "case_SI": problem,
+        "case_SI": case_record(problem),
     }
 
 
@@ -114,7 +114,7 @@ def impact_columns(result, target: bool = True, energies: bool = True) -> dict[s
     if target:
         cols["approach_rate_m_s"] = result.approach_rate
         cols["contact_radius_m"] = result.contact_radius
-        cols["target_displacement_m"] = result.deflection
+        cols["target_displacement_m"] = result.target_displacement
     for name, eps in zip(result.strain_names, result.strain):
         cols[f"strain_{name}"] = eps
     if energies:
@@ -128,11 +128,11 @@ def impact_columns(result, target: bool = True, energies: bool = True) -> dict[s
     return cols
 
 
-def impact_figures(problem, result, prefix: str = "") -> dict[str, bytes]:
-    """force-history.png, approach.png, gauge-strains.png, energy.png."""
+def impact_figures(problem, result, prefix: str = "", units: str = "in-lbf-s") -> dict[str, bytes]:
+    """force-history.png, approach.png, gauge-strains.png, energy.png, in display ``units``."""
     from .plots import _figure
 
-    system = problem.units
+    system = units
     tu, fu, lu, su = (display(system, k) for k in ("time", "force", "length", "strain"))
     t = result.time * tu.factor
     out = {}
@@ -150,7 +150,7 @@ def impact_figures(problem, result, prefix: str = "") -> dict[str, bytes]:
 
     fig, ax = _figure()
     ax.plot(t, result.impactor_displacement * lu.factor, label="impactor displacement")
-    ax.plot(t, result.deflection * lu.factor, label="target mid-surface displacement")
+    ax.plot(t, result.target_displacement * lu.factor, label="target mid-surface displacement")
     ax.plot(t, result.approach * lu.factor, label="approach α (contact law's indentation)")
     ax.plot(t, result.contact_radius * lu.factor, "--", label="contact radius")
     ax.set_xlabel(f"time since first contact [{tu.label}]")
@@ -189,9 +189,9 @@ def impact_figures(problem, result, prefix: str = "") -> dict[str, bytes]:
     return out
 
 
-def plate_impact_figures(problem, model, result, prefix: str = "") -> dict[str, bytes]:
+def plate_impact_figures(problem, model, result, prefix: str = "", units: str = "in-lbf-s") -> dict[str, bytes]:
     """plate-mesh.png (the impact point, the widest contact disc reached, the gauges) and
-    deflection.png (the mid-surface at the kept instants)."""
+    deflection.png (the mid-surface at the kept instants), in display ``units``."""
     from types import SimpleNamespace
 
     from . import plate_plots
@@ -199,21 +199,21 @@ def plate_impact_figures(problem, model, result, prefix: str = "") -> dict[str, 
     p = problem.target
     r_max = float(np.max(result.contact_radius))
     shown = SimpleNamespace(fe=model.fe, problem=p)
-    lu = display(problem.units, "length")
+    lu = display(units, "length")
     label = f"widest contact disc (r = {r_max * lu.factor:.3g} {lu.label})"
-    out = {prefix + "plate-mesh.png": figure_bytes(plate_plots.plate_mesh(shown, problem.units, patch=(r_max, label)))}
+    out = {prefix + "plate-mesh.png": figure_bytes(plate_plots.plate_mesh(shown, units, patch=(r_max, label)))}
     if result.displacement is not None and result.displacement.shape[1]:
-        out[prefix + "deflection.png"] = figure_bytes(plate_plots.plate_deflection(model, result, problem.units))
+        out[prefix + "deflection.png"] = figure_bytes(plate_plots.plate_deflection(model, result, units))
     return out
 
 
-def impact_files(problem, result, figures: bool = True, prefix: str = "", model=None, *, summary: dict) -> dict[str, bytes | str]:
+def impact_files(problem, result, figures: bool = True, prefix: str = "", model=None, *, summary: dict, units: str = "in-lbf-s") -> dict[str, bytes | str]:
     """history.csv, summary.json (``summary``: :func:`impact_summary`'s, from the run path) and (optionally) the
-    figures; for a target that draws its deflected shapes (a plate, ``model`` its PlateModel) also its mesh and
+    figures in display ``units`` (also summary.json's ``case_SI.units``); for a target that draws its deflected shapes (a plate, ``model`` its PlateModel) also its mesh and
     deflected shapes. ``result``'s gauges only: its other output groups (the damage strains) fed ``summary``."""
-    files = {prefix + "history.csv": csv_text(impact_columns(result)), prefix + "summary.json": json_text(summary)}
+    files = {prefix + "history.csv": csv_text(impact_columns(result)), prefix + "summary.json": json_text(with_units(summary, units))}
     if figures:
-        files.update(impact_figures(problem, result, prefix))
+        files.update(impact_figures(problem, result, prefix, units))
         if problem.target.deflected_shapes and model is not None:
-            files.update(plate_impact_figures(problem, model, result, prefix))
+            files.update(plate_impact_figures(problem, model, result, prefix, units))
     return files

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .files import csv_text, energy_balance, figure_bytes, json_text, strain_peaks
+from .files import csv_text, energy_balance, figure_bytes, json_text, strain_peaks, with_units
 
 __all__ = [
     "plate_validity",
@@ -88,21 +88,21 @@ def plate_scalars(result) -> dict:
     }
 
 
-def plate_files(model, result, figures: bool = True, summary: dict | None = None) -> dict[str, bytes | str]:
+def plate_files(model, result, figures: bool = True, summary: dict | None = None, *, units: str = "in-lbf-s") -> dict[str, bytes | str]:
     """history.csv, summary.json (``summary``: the run path's :func:`plate_summary`, made here when None) and,
-    with figures, plate-mesh.png, deflection.png, histories.png."""
+    with figures, plate-mesh.png, deflection.png, histories.png, in display ``units`` (also summary.json's ``case_SI.units``)."""
     p = result.problem
     cols = {"time_s": result.time, "force_N": result.force, "deflection_m": result.deflection[0]}
     for g, eps in zip(p.gauges, result.strain):
         cols[f"strain_{g.name}"] = eps
-    files = {"history.csv": csv_text(cols), "summary.json": json_text(plate_summary(model, result) if summary is None else summary)}
+    files = {"history.csv": csv_text(cols), "summary.json": json_text(with_units(plate_summary(model, result) if summary is None else summary, units))}
     if figures:
         from . import plate_plots
 
-        files["plate-mesh.png"] = figure_bytes(plate_plots.plate_mesh(model, p.units))
-        files["histories.png"] = figure_bytes(plate_plots.plate_histories(result, p.units))
+        files["plate-mesh.png"] = figure_bytes(plate_plots.plate_mesh(model, units))
+        files["histories.png"] = figure_bytes(plate_plots.plate_histories(result, units))
         if result.displacement is not None and result.displacement.shape[1]:
-            files["deflection.png"] = figure_bytes(plate_plots.plate_deflection(model, result, p.units))
+            files["deflection.png"] = figure_bytes(plate_plots.plate_deflection(model, result, units))
     return files
 
 
@@ -151,6 +151,6 @@ def plate_static_summary(model, result) -> dict:
     }
 
 
-def plate_static_files(summary: dict) -> dict[str, str]:
-    """summary.json of a static plate run (:func:`plate_static_summary`): no history, no figures."""
-    return {"summary.json": json_text(summary)}
+def plate_static_files(summary: dict, units: str = "in-lbf-s") -> dict[str, str]:
+    """summary.json of a static plate run (:func:`plate_static_summary`; ``units``: its ``case_SI.units``): no history, no figures."""
+    return {"summary.json": json_text(with_units(summary, units))}

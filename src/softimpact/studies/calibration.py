@@ -253,16 +253,17 @@ def calibrate_tests(
     deconvolve=True,
     budget: float = DEFAULT_BUDGET,
     progress: Callable[[int, int, str], None] = _silent,
+    units: str = "in-lbf-s",
 ) -> list[CalibratedTest]:
     """Calibrate each test on a model whose discretisation error is checked (and refined within
     ``budget`` seconds); a bad test (unreadable record, velocity out of the constants' range, no
-    fit) is reported and the others go on."""
+    fit) is reported and the others go on (``units``: the display system of those reports)."""
     out = []
     problem = models.problem
     max_level = models.affordable(budget)
     for i, test in enumerate(tests):
         try:
-            start = start_pulse(projectile, constants, test.velocity, problem.units)
+            start = start_pulse(projectile, constants, test.velocity, units)
             t, strains = read_strains(test.measured)
             measured = Measured(test.measured.name, t, strains)
             r0 = test.contact_radius or problem.load.contact_radius

@@ -46,6 +46,11 @@ class PlateVKModel:
 
     coupled_stepper = "von-karman"
 
+    @property
+    def mesh(self):
+        """The plate's mesh seen with its supports and ``vk``'s free DOFs (``fe``: ``expand``, ``field_frames``)."""
+        return self.fe
+
     def __init__(self, problem: PlateProblem, damage: bool = False):
         from ..fem.plate_vk import PlateVK, VonKarmanNewmark
 

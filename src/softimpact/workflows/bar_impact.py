@@ -23,7 +23,7 @@ from ..fem.bar import BarModel, Rod
 from ..fem.impact import CoupledResult, simulate_coupled
 from ..fem.newmark import SolverSpec
 from ..models.contact_laws import HertzLaw, law_name, resolve_law
-from ..models.specimens import BarSpec, Gauge, Impactor, Projectile
+from ..models.specimens import BarSpec, Gauge, Impactor
 
 __all__ = [
     "BarImpactProblem",
@@ -47,12 +47,11 @@ class BarImpactProblem:
     contact law object (:func:`softimpact.models.contact_laws.resolve_law`)."""
 
     bar: BarSpec
-    projectile: Projectile
+    projectile: Impactor  # the sphere, with its material (the Hertz law on the bar's end needs it)
     solver: SolverSpec
     gauges: tuple[Gauge, ...]
     law: object = "hertz"
     title: str = ""
-    units: str = "in-lbf-s"
     snapshots: tuple[float, ...] = ()  # instants [s] at which the strain along the bar is reported (those in the run)
 
     def __post_init__(self):

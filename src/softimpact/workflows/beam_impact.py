@@ -139,7 +139,6 @@ class BeamProblem:
     solver: SolverSpec
     gauges: tuple[BeamGauge, ...]
     title: str = ""
-    units: str = "in-lbf-s"
 
     def __post_init__(self):
         L = self.beam.length
@@ -148,7 +147,7 @@ class BeamProblem:
         for g in self.gauges:
             if not (0 <= g.position - g.length / 2 and g.position + g.length / 2 <= L):
                 raise InputError(f"gauge {g.name!r}: position {g.position!r} m puts the gauge off the beam (0 to {L!r} m)", "gauges")
-        rise = getattr(self.load.history, "time_of_peak", None)
+        rise = None if self.load.history is None else self.load.history.time_of_peak  # a Pulse (models.protocols); None: an impact's target
         if rise is not None and rise < MIN_STEPS_PER_RISE * self.solver.time_step:
             raise InputError(
                 f"a time step of {self.solver.time_step * 1e6:.4g} us cannot resolve a pulse rising in {rise * 1e6:.4g} us "
@@ -379,6 +378,11 @@ class BeamModel(LinearModel):
     def contact_groups(self) -> dict[str, tuple[int, ...]]:
         """``"gauges"`` (the problem's) and ``"damage"`` (:meth:`BeamProblem.damage_gauges`, when built with it)."""
         return output_groups(gauges=len(self.problem.gauges), damage=len(self.damage))
+
+    @property
+    def mesh(self):
+        """The plane-strain mesh (:class:`~softimpact.fem.plane.PlaneModel`: ``expand``, ``field_frames``)."""
+        return self.plane
 
     def _drop_mesh(self, light) -> None:
         light.plane = None

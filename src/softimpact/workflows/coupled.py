@@ -60,7 +60,6 @@ class ImpactProblem:
     law_name: str
     law: object
     title: str = ""
-    units: str = "in-lbf-s"
 
     @property
     def solver(self) -> SolverSpec:

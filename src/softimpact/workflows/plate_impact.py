@@ -174,7 +174,6 @@ class PlateProblem:
     gauges: tuple[PlateGauge, ...] = ()
     points: tuple[tuple[float, float], ...] = ()
     title: str = ""
-    units: str = "SI"  # display system of the outputs (the numbers stay SI)
     kinematics: str = "linear"
     in_plane: str = "immovable"
     analysis: str = "dynamic"
@@ -223,7 +222,7 @@ class PlateProblem:
         for p in self.points:
             if not on_plate(p):
                 raise InputError(f"points: {p!r} m is off the plate")
-        rise = getattr(self.load.history, "time_of_peak", None)
+        rise = None if self.load.history is None else self.load.history.time_of_peak  # a Pulse (models.protocols); None: an impact's target
         if rise is not None and rise < MIN_STEPS_PER_RISE * self.solver.time_step:
             raise InputError(
                 f"time_step {self.solver.time_step * 1e6:.3g} us cannot resolve a pulse rising in "
@@ -347,8 +346,8 @@ class PlateProblem:
 
     def summary_extras(self, model, result) -> dict:
         """An impact's summary.json ``target``: the plate model, and the mid-surface deflection under the
-        impact point (along the impact direction, down +) of ``result`` (a CoupledResult)."""
-        w = result.deflection
+        impact point (along the impact direction, down +) of ``result`` (a CoupledResult's ``target_displacement``)."""
+        w = result.target_displacement
         k = int(np.argmax(np.abs(w)))
         target = {
             "model": f"fsdt ({self.plate.element.upper()})",
@@ -522,6 +521,11 @@ class PlateModel(LinearModel):
     def contact_reach(self, point: tuple[float, float], diameter: float) -> float:
         """The impactor's diameter cut by the plate's edges (:func:`softimpact.fem.contact.plate_reach`)."""
         return plate_reach(self.fe, self.problem.plate.supports, point, diameter)
+
+    @property
+    def mesh(self):
+        """The plate's mesh (:class:`~softimpact.fem.plate.PlateFE`: ``expand``, ``field_frames``)."""
+        return self.fe
 
     def _drop_mesh(self, light) -> None:
         light.fe = None

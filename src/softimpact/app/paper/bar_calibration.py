@@ -8,6 +8,7 @@ from ...output.bar import bar_files, bar_section
 from ...output.report import Section
 from ...units import display
 from ..bar import gauge_lag
+from .notes import SYSTEM
 
 __all__ = ["bar_calibration_sections"]
 
@@ -26,7 +27,7 @@ def bar_calibration_sections(figures: bool, files: dict) -> list[Section]:
 def bar_summary(result, lag) -> str:
     """The bar calibration's headline, in the case's units as its table: peak contact force and contact duration, and how
     far the gauge-derived force's peak falls from it (``lag``: :func:`~softimpact.app.bar.gauge_lag`, None without a gauge)."""
-    fu, tu = display(result.problem.units, "force"), display(result.problem.units, "time")
+    fu, tu = display(SYSTEM, "force"), display(SYSTEM, "time")
     line = (
         f"Bar calibration: peak contact force {result.peak_force * fu.factor:.1f} {fu.label}, "
         f"contact duration {result.contact_duration * tu.factor:.1f} {tu.label}"

@@ -48,7 +48,6 @@ def beam_as_plate(plate_element: float = STRIP_ELEMENT, progress: Progress = no_
             problem.solver,
             tuple(PlateGauge(g.name, (g.position, 0.0), g.surface, "x", g.length) for g in problem.gauges),
             title=problem.title,
-            units=problem.units,
         )
         models = (
             BeamModel(problem, patch_radius=rmax),

@@ -202,7 +202,7 @@ def _predicted_rows(cs, law):
         target = replace(problem, load=BeamLoad(problem.load.position, r0p, None), solver=SolverSpec(QUESTION_STEP, QUESTION_WINDOW, problem.solver.newmark))
         if model is None:
             model = BeamModel(target)  # row 1's r0 serves the prescribed-force runs of the strain figure
-        ip = ImpactProblem(target, cs.case, Impactor(P.mass, P.diameter, V), lookup(P.material), "identified", law.law(P.mass, P.diameter, V), "", SYSTEM)
+        ip = ImpactProblem(target, cs.case, Impactor(P.mass, P.diameter, V), lookup(P.material), "identified", law.law(P.mass, P.diameter, V), "")
         # the strain figure shows row 1 over the whole window; the others need the pulse only
         res = execute(ip, damage=False, model=model, energy=False, stop_after=None if not curves else QUESTION_AFTER).result
         F0c, Tc, _ = pulse_figures(res.time, res.force)
@@ -301,7 +301,7 @@ def _coupled_figures(law, models) -> list[np.ndarray]:
             target = replace(
                 problem, load=BeamLoad(problem.load.position, r0p, None), solver=SolverSpec(QUESTION_STEP, QUESTION_WINDOW, problem.solver.newmark)
             )
-            ip = ImpactProblem(target, cs.case, Impactor(P.mass, P.diameter, V), lookup(P.material), "identified", law.law(P.mass, P.diameter, V), "", SYSTEM)
+            ip = ImpactProblem(target, cs.case, Impactor(P.mass, P.diameter, V), lookup(P.material), "identified", law.law(P.mass, P.diameter, V), "")
             res = execute(ip, damage=False, model=model, energy=False, stop_after=QUESTION_AFTER).result
             F0c, Tc, _ = pulse_figures(res.time, res.force)
             figs.append((F0c, res.time_of_peak, Tc))
