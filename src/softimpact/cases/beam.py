@@ -144,7 +144,6 @@ class BeamKind:
         from ..input.beam_case import read_history
         from ..input.toml import Table, naming
         from ..workflows.beam_impact import BeamResult
-
         from .run import execute
 
         model = prepared
