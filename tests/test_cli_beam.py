@@ -50,3 +50,14 @@ def test_bad_input(tmp_path, old, new, key):
     lines = [line for line in result.output.splitlines() if line.strip()]
     assert len(lines) == 1 and key in lines[0]
     assert not out.exists() or not any(out.iterdir())
+
+
+def test_run_shorter_than_the_pulse_draws_its_figures(tmp_path):
+    """A run that ends before the prescribed pulse does (100 µs of a 415 µs pulse) still writes Fig 20, at the
+    instants inside the run, and its force history is the pulse's own first 100 µs (the skewed pulse peaks at 35 µs)."""
+    text = BASE.replace('duration = "1000 us"', 'duration = "100 us"')
+    result, out = _run(tmp_path, text)
+    assert result.exit_code == 0, result.output
+    assert (out / "fig20-load-distribution.png").stat().st_size > 0
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["peak_force_N"] == pytest.approx(42 * 4.4482216152605, rel=1e-3)  # the case's history (42 lbf)

@@ -298,8 +298,10 @@ def beam_load_distribution(model, result, system: str, instants):
     loads = model.nodal_loads(result.force)
     x = (model.patch.x - model.patch.center) * lu.factor
     dt = result.time[1] - result.time[0]
-    for t in instants:
-        k = int(round(t / dt))
+    last = len(result.time) - 1
+    kept = [t for t in instants if round(t / dt) <= last] or [result.time[-1]]  # a run shorter than the pulse: its instants only
+    for t in kept:
+        k = min(int(round(t / dt)), last)
         r = model.patch.half_width(result.force, model.problem.load.contact_radius)[k]
         ax.plot(
             x,
@@ -365,8 +367,10 @@ def beam_deformed(model, result, system: str, instants):
     full = pm.expand(result.displacement)
     dofs = pm.basis.nodal_dofs[1, nodes]
     dt = result.time[1] - result.time[0]
-    for t in instants:
-        k = int(round(t / dt))
+    last = len(result.time) - 1
+    kept = [t for t in instants if round(t / dt) <= last] or [result.time[-1]]  # a run shorter than the pulse: its instants only
+    for t in kept:
+        k = min(int(round(t / dt)), last)
         ax.plot(x * lu.factor, full[dofs, k] * lu.factor, label=f"t = {result.time[k] * tu.factor:.0f} {tu.label}")
     ax.axvline(model.problem.load.position * lu.factor, color="k", lw=0.6, ls=":")
     ax.set_xlabel(f"x, from the clamp [{lu.label}]")
