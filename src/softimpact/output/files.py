@@ -435,6 +435,8 @@ def write_outputs(out_dir, files: dict[str, bytes | str], inputs=(), manifest: d
     never replaced (InputError naming it, nothing written) unless ``force``.
     Returns the paths written (the manifest not included).
     """
+    if "\x00" in str(out_dir):  # no file system takes it (os raises ValueError, not OSError)
+        raise InputError(f"--out: {str(out_dir)!r} holds a NUL character, which no folder name can")
     out = Path(out_dir)
     protected = {Path(p).resolve() for p in inputs}
     names = list(files) + ([MANIFEST] if manifest is not None else [])
