@@ -147,7 +147,7 @@ PNG_COLOURS = 256  # a figure's PNG as a palette of this many colours, when that
 
 
 def _small_png(data: bytes) -> bytes:
-    """A matplotlib PNG (RGBA, opaque) about three times smaller: its colours reduced to a palette of
+    """A matplotlib PNG (RGBA, opaque) about 2.5 times smaller (55 ms a figure): its colours reduced to a palette of
     PNG_COLOURS (median cut, no dithering: a plot's few hundred distinct colours plus its anti-aliasing);
     kept as it was when the palette moves the pixels' channels by more than half a level of 255 on average (a figure
     of many shades: none of the report's, measured 0.05-0.3), or when the result is not smaller."""
@@ -159,11 +159,12 @@ def _small_png(data: bytes) -> bytes:
             return data  # a transparent figure keeps its alpha
         rgb = image.convert("RGB")
     palette = rgb.quantize(PNG_COLOURS, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE)
-    error = np.abs(np.asarray(palette.convert("RGB"), dtype=np.int16) - np.asarray(rgb, dtype=np.int16))
+    # every third row: the mean to well within its threshold at a third of the cost
+    error = np.abs(np.asarray(palette.convert("RGB"), dtype=np.int16)[::3] - np.asarray(rgb, dtype=np.int16)[::3])
     if error.mean() > 0.5:
         return data
     out = io.BytesIO()
-    palette.save(out, format="PNG", optimize=True)
+    palette.save(out, format="PNG")  # zlib's default level: optimize=True or level 9 would save 9 % more for twice the time
     return out.getvalue() if out.tell() < len(data) else data
 
 
