@@ -93,7 +93,7 @@ def test_fit_recovers_table_one_from_the_builtin_series(tmp_path):
     assert "pooled" in data and "softimpact_version" in data
 
 
-FAMILIES = ("knee", "ramp-under", "linear", "power-law", "free-ramp")  # the reduction's tail families (issues 22, 32)
+FAMILIES = ("knee", "ramp-under", "linear", "power-law", "free-ramp", "early-ramp")  # the reduction's tail families (issues 22, 32)
 
 
 def test_fit_writes_the_tail_shape_term(tmp_path):

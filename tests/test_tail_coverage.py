@@ -39,17 +39,27 @@ def _record(V, rng, level=0.15, centre=0.62, width=0.05, tau=0.4, beta=0.6):
     return t, main + tail + 0.01 * F0 * rng.standard_normal(t.size)
 
 
-@pytest.fixture(scope="module")
-def series():
-    """The six tests' reported (main-pulse) points and each record's tail-family fits."""
+def _series(**tail):
     rng = np.random.default_rng(3208)
     points, shapes = [], {}
     for k, V in enumerate(VELOCITIES):
-        t, F = _record(V, rng)
+        t, F = _record(V, rng, **tail)
         main = fit_main_pulse(t, F).fit.pulse
         points.append(TestPoint(f"V{k}", V, MASS, D, main.peak_force, main.time_of_peak, main.duration, float(np.trapezoid(F, t))))
         shapes[f"V{k}"] = fit_tail_shapes(t, F)
     return points, shapes
+
+
+@pytest.fixture(scope="module")
+def series():
+    """The six tests' reported (main-pulse) points and each record's tail-family fits."""
+    return _series()
+
+
+@pytest.fixture(scope="module")
+def early_step():
+    """A logistic step of 20 % of F0 whose lower flank (centre 0.55 T, width 0.15 T) is already under the peak."""
+    return _series(level=0.2, centre=0.55, width=0.15)
 
 
 def test_accepted_families_alone_miss_alpha2(series):
@@ -65,7 +75,7 @@ def test_accepted_families_alone_miss_alpha2(series):
             for p, s in zip(points, shapes.values())
         ]
         alpha2[fam] = fit_scaling(pts).origin["alpha2"].slope
-    aic = {f: a for f, a in term.aic.items() if f != "free-ramp"}  # the four families of issue 22
+    aic = {f: a for f, a in term.aic.items() if f not in ("free-ramp", "early-ramp")}  # the four families of issue 22
     old = max(abs(alpha2[f] - line.slope) for f in aic if aic[f] - min(aic.values()) < 4.0)
     assert not line.slope_ci[0] - old <= ALPHA["alpha2"] <= line.slope_ci[1] + old
 
@@ -84,5 +94,19 @@ def test_unbounded_alphas_are_named(series):
     points, shapes = series
     (fit,) = with_tail_shapes(fit_groups(points), shapes).values()
     term = fit.tail_shape
-    expected = {n for n, line in fit.origin.items() if term.half_widths[n] > 0.5 * (line.slope_ci[1] - line.slope_ci[0])}
+    expected = {n for n, line in fit.origin.items() if term.half_widths[n] + 0.5 * term.lower_extra.get(n, 0.0) > 0.5 * (line.slope_ci[1] - line.slope_ci[0])}
     assert set(term.unbounded) == expected and "alpha2" in expected
+
+
+def test_a_tail_under_the_peak_moves_only_alpha1s_lower_bound(early_step):
+    """A tail already rising under the peak makes the reported α1 too high, past the symmetric widening; the interval's
+    lower bound alone is moved (by half the early-ramp family's distance below it) and then holds Table I's α1."""
+    points, shapes = early_step
+    (fit,) = with_tail_shapes(fit_groups(points), shapes).values()
+    term, line = fit.tail_shape, fit.origin["alpha1"]
+    hw = term.half_widths["alpha1"]
+    assert line.slope > ALPHA["alpha1"] and line.slope_ci[0] - hw > ALPHA["alpha1"]  # a tail only adds force: F0 too high
+    lo, hi = term.interval("alpha1", line)
+    assert hi == line.slope_ci[1] + hw and lo < line.slope_ci[0] - hw
+    assert term.lower_extra["alpha1"] == pytest.approx(0.5 * (line.slope - term.alphas["early-ramp"]["alpha1"]), rel=1e-12)
+    assert lo <= ALPHA["alpha1"] <= hi

@@ -46,7 +46,7 @@ def series():
 
 
 def test_every_tail_family_is_fitted(series):
-    """Each record gets the five families (knee, ramp-under, linear, power law, free ramp) with a finite AIC."""
+    """Each record gets the six families (knee, ramp-under, linear, power law, free ramp, early ramp) with a finite AIC."""
     _, shapes = series
     for fits in shapes.values():
         assert tuple(f.family for f in fits) == TAIL_FAMILIES and all(math.isfinite(f.aic) for f in fits)

@@ -310,7 +310,8 @@ def calibration_section(model, series, items, comparison, prefix: str, figures: 
         "SYNTHETIC MEASUREMENTS: " + series.synthetic + ". Calibration by least squares on all of both gauge records "
         "(F0, tF0, T and the time origin). The model's discretisation error is checked first: estimated by Richardson "
         "from the case's mesh and one refinement, corrected for in a second fit, and the mesh refined (within a time "
-        "budget) until that correction moves no parameter by more than half its noise standard error. ± are standard "
+        "budget) until that correction moves no parameter by more than half its noise standard error.",
+        "± are standard "
         "errors of the noise and of the remaining discretisation error together. The latter comes from the calibrated "
         "parameters' own Richardson study on three levels: its error estimate is one standard uncertainty (the last "
         "change when the levels alternate, and for t_F0 also when the coarsest level has fewer than 10 steps in the rise). "

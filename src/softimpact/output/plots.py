@@ -422,43 +422,79 @@ def calibration_forces(cal, deconvolved, system: str, title: str, truth=None):
     return fig
 
 
+REPORT_FONT_PT = 10  # text of the report's multi-panel figures: shown at >= 8 pt when a 10-in figure is shrunk to the report's ~970 px
+
+
+def _superscript(n: int) -> str:
+    return str(n).translate(str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹"))
+
+
+def _decade(values) -> int:
+    """The power of ten (a multiple of 3) that brings the largest of ``values`` below 1000: the axis is
+    labelled in scaled units (``10⁶ (in/s)²``), never with matplotlib's offset or multiplier."""
+    top = float(np.max(np.abs(values))) if np.size(values) else 0.0
+    return 3 * int(np.floor(np.log10(top) / 3)) if top >= 1000 else 0
+
+
+def _plain_axes(ax):
+    """No offset or scientific multiplier on either axis (the tick labels carry the values)."""
+    ax.ticklabel_format(axis="both", style="plain", useOffset=False)
+
+
 def beam_force_scaling(groups, system: str):
     """Figs 23–25: F0 against V², 1/T against V, t_F0/T against V, for each beam (groups: label → rows
-    of (V, F0, tF0, T) in SI; labels ending in '(paper)' are drawn as open markers), each with its
-    line through the origin (eqs 4-6)."""
+    of (V, F0, tF0, T) in SI; labels ending in '(paper)' are drawn as open markers, as in the paper, large
+    and above ours, which are small filled markers, so that neither hides the other), each with its line
+    through the origin (eqs 4-6; the paper's dotted). Two by two, the fourth panel the legend; V² in scaled
+    units and 1/T in 1/ms (no offset notation); text at :data:`REPORT_FONT_PT`."""
     import matplotlib.pyplot as plt
 
-    vu, fu, tu = display(system, "velocity"), display(system, "force"), display(system, "time")
-    fig, axes = plt.subplots(1, 3, figsize=(13, 3.8), layout="constrained")
-    for i, (label, rows) in enumerate(groups.items()):
+    vu, fu = display(system, "velocity"), display(system, "force")
+    prepared = []
+    for label, rows in groups.items():
         rows = np.asarray(rows, float)
-        if rows.size == 0:
-            continue
-        V, F0, tp, T = rows.T
-        paper = label.endswith("(paper)")
-        color = f"C{i // 2}" if len(groups) > 2 else f"C{i}"
-        style = dict(marker="o", mfc="none" if paper else None, ls="", color=color, label=label)
-        line = dict(color=color, ls=":" if paper else "-", lw=0.8)
-        x, v = (V * vu.factor) ** 2, V * vu.factor
-        axes[0].plot(x, F0 * fu.factor, **style)
-        axes[1].plot(v, 1 / (T * tu.factor), **style)
-        axes[2].plot(v, tp / T, **style)
-        # Eqs (4)-(6) through the origin: F0 ∝ V², 1/T ∝ V, tF0/T constant.
-        xs, vs = np.linspace(0, x.max() * 1.05, 50), np.linspace(0, v.max() * 1.05, 50)
-        axes[0].plot(xs, xs * (x @ (F0 * fu.factor)) / (x @ x), **line)
-        axes[1].plot(vs, vs * (v @ (1 / (T * tu.factor))) / (v @ v), **line)
-        axes[2].plot(vs, np.full_like(vs, np.mean(tp / T)), **line)
-    axes[0].set_xlabel(f"V² [({vu.label})²]")
-    axes[0].set_ylabel(f"F0 [{fu.label}]")
-    axes[0].set_title("Fig 23: force amplitude against V²")
-    axes[1].set_xlabel(f"V [{vu.label}]")
-    axes[1].set_ylabel(f"1/T [1/{tu.label}]")
-    axes[1].set_title("Fig 24: inverse contact time against V")
-    axes[2].set_xlabel(f"V [{vu.label}]")
-    axes[2].set_ylabel("tF0 / T")
-    axes[2].set_ylim(0, 0.3)
-    axes[2].set_title("Fig 25: skewness against V")
-    for ax in axes:
-        ax.grid(True, alpha=0.3)
-        ax.legend(fontsize="x-small")
+        if rows.size:
+            prepared.append((label, rows.reshape(-1, 4)))
+    v2 = np.concatenate([(r[:, 0] * vu.factor) ** 2 for _, r in prepared]) if prepared else np.zeros(0)
+    k = _decade(v2)
+    with plt.rc_context({"font.size": REPORT_FONT_PT}):
+        fig, grid = plt.subplots(2, 2, figsize=(10, 7.2), layout="constrained")
+        axes, key = grid.ravel()[:3], grid.ravel()[3]
+        for i, (label, rows) in enumerate(prepared):
+            V, F0, tp, T = rows.T
+            paper = label.endswith("(paper)")
+            color = f"C{i // 2}" if len(groups) > 2 else f"C{i}"
+            if paper:
+                style = dict(marker="o", ms=10, mew=1.5, mfc="none", ls="", color=color, zorder=3, label=label)
+            else:
+                style = dict(marker="o", ms=5, ls="", color=color, zorder=2, label=label)
+            line = dict(color=color, ls=":" if paper else "-", lw=1.3 if paper else 1.0, zorder=1)
+            x, v = (V * vu.factor) ** 2 / 10.0**k, V * vu.factor
+            inv_T = 1e-3 / T  # 1/ms
+            axes[0].plot(x, F0 * fu.factor, **style)
+            axes[1].plot(v, inv_T, **style)
+            axes[2].plot(v, tp / T, **style)
+            # Eqs (4)-(6) through the origin: F0 ∝ V², 1/T ∝ V, tF0/T constant.
+            xs, vs = np.linspace(0, x.max() * 1.05, 50), np.linspace(0, v.max() * 1.05, 50)
+            axes[0].plot(xs, xs * (x @ (F0 * fu.factor)) / (x @ x), **line)
+            axes[1].plot(vs, vs * (v @ inv_T) / (v @ v), **line)
+            axes[2].plot(vs, np.full_like(vs, np.mean(tp / T)), **line)
+        scale = f"10{_superscript(k)} " if k else ""
+        axes[0].set_xlabel(f"V² [{scale}({vu.label})²]")
+        axes[0].set_ylabel(f"F0 [{fu.label}]")
+        axes[0].set_title("Fig 23: force amplitude against V²")
+        axes[1].set_xlabel(f"V [{vu.label}]")
+        axes[1].set_ylabel("1/T [1/ms]")
+        axes[1].set_title("Fig 24: inverse contact time against V")
+        axes[2].set_xlabel(f"V [{vu.label}]")
+        axes[2].set_ylabel("tF0 / T")
+        axes[2].set_ylim(0, 0.3)
+        axes[2].set_title("Fig 25: skewness against V")
+        for ax in axes:
+            ax.grid(True, alpha=0.3)
+            _plain_axes(ax)
+        key.axis("off")
+        handles, labels = axes[0].get_legend_handles_labels()
+        if handles:
+            key.legend(handles, labels, loc="center", frameon=False, title="filled: ours; open: the paper's; lines: fits through the origin")
     return fig

@@ -165,6 +165,7 @@ def scaling_data(fits) -> dict:
             "alphas": t.alphas,
             "error_half_width": t.errors,
             "half_width": t.half_widths,
+            "lower_extra": t.lower_extra,
             "ci95_with_tail_shape": {n: list(t.interval(n, line)) for n, line in g.origin.items()},
             "not_bounded_by_data": list(t.unbounded),
             "statement": _unbounded_text(g),
@@ -216,15 +217,21 @@ def _tail_shape_paragraph(fits) -> list[str]:
     terms = [(label, g.tail_shape) for label, g in fits.items() if g.tail_shape is not None]
     if terms:
         paragraphs.append(
-            "The tail's shape is not known, and where the tail ramps in under the falling main pulse it moves T and tF0. Five "
+            "The tail's shape is not known, and where the tail ramps in under the falling main pulse it moves T and tF0. Six "
             "tail families (a knee with an exponential decay; a tail ramping in linearly under the main pulse then decaying "
             "exponentially, linearly or as a power law; a free ramp, concave or convex, ending before or after T, then a stretched "
-            "exponential) are fitted to every record. The true tail is in none of them, so none is rejected on its AIC: for every "
-            "family the distance of its α's from the reported ones plus what its own fit's standard errors (tail parameters free) "
-            "leave of them is taken, and the largest is added to each side of the 95 % interval (last column; tail_shape in "
-            "scaling.json, per test in tests.csv): "
+            "exponential; the same free ramp starting at first contact) are fitted to every record. The true tail is in none of "
+            "them, so none is rejected on its AIC: for every family but the last the distance of its α's from the reported ones "
+            "plus what its own fit's standard errors (tail parameters free) leave of them is taken, and the largest is added to "
+            "each side of the 95 % interval (last column; tail_shape in scaling.json, per test in tests.csv)."
+        )
+        paragraphs.append(
+            "A tail that already rises under the peak adds to the recorded F0, so α1 can only be too high by it: the lower bound "
+            "of α1 alone is moved down by half the distance of the last family's α1 below the reported one (lower_extra in "
+            "scaling.json). "
             + "; ".join(
-                f"{label}: best by AIC {t.best}, α2 ±{t.half_widths['alpha2']:.3f}, α3 ±{t.half_widths['alpha3']:.3f}"
+                f"{label}: best by AIC {t.best}, α1 ±{t.half_widths['alpha1']:.3f} and {t.lower_extra.get('alpha1', 0.0):.3f} lower, "
+                f"α2 ±{t.half_widths['alpha2']:.3f}, α3 ±{t.half_widths['alpha3']:.3f}"
                 + (f", not bounded by the records better than the tail's shape: {', '.join(t.unbounded)}" if t.unbounded else "")
                 for label, t in terms
             )

@@ -15,7 +15,7 @@ from ..models.pulse_fit import fit_main_pulse
 
 __all__ = ["TAIL_FAMILIES", "TailShapeFit", "fit_tail_shapes"]
 
-TAIL_FAMILIES = ("knee", "ramp-under", "linear", "power-law", "free-ramp")
+TAIL_FAMILIES = ("knee", "ramp-under", "linear", "power-law", "free-ramp", "early-ramp")
 
 
 def _eq15(x, F0, tp, T):
@@ -35,13 +35,18 @@ def _tail_model(family: str, x, F0, tp, T, q):
     - power-law: the same rise, then (1 + (x − T)/τ)^(−n) (q = L, s, τ/T, n);
     - free-ramp: a rise L·F0·r^p, r from 0 at s·T to 1 at e·T = (s + w)·T (its end free, before or
       after T; p < 1 concave, p > 1 convex), then a stretched exponential exp(−((x − e·T)/τ)^β)
-      (q = L, s, w, p, τ/T, β): the least constrained tail, whose main pulse the data bound least.
+      (q = L, s, w, p, τ/T, β): the least constrained tail, whose main pulse the data bound least;
+    - early-ramp: the free ramp started at first contact (s = 0: q = L, e, p, τ/T, β), a tail already
+      under the peak, so part of the recorded peak; its F0 counts in the widening only where the
+      record cannot exclude it (:func:`softimpact.workflows.scaling.tail_shape_term`).
     """
     if family == "knee":
         level, tau = q[0], q[1] * T
         xk = tp + 2 * (T - tp) / np.pi * math.acos(min(max(level, 0.0), 1.0))
         return np.where(x < xk, _eq15(x, F0, tp, T), level * F0 * np.exp(-np.maximum(x - xk, 0.0) / tau))
-    if family == "free-ramp":
+    if family in ("free-ramp", "early-ramp"):
+        if family == "early-ramp":
+            q = (q[0], 0.0, *q[1:])
         L, s, e, p, tau, beta = q[0], q[1] * T, (q[1] + q[2]) * T, q[3], q[4] * T, q[5]
         r = np.clip((x - s) / max(e - s, 1e-12 * T), 0.0, 1.0)
         return _eq15(x, F0, tp, T) + np.where(x < e, L * F0 * r**p, L * F0 * np.exp(-((np.maximum(x - e, 0.0) / tau) ** beta)))
@@ -63,7 +68,10 @@ class TailShapeFit:
     start [s], the residual sum of squares [N²] over n samples, k parameters, and
     AIC = n·ln(RSS/n) + 2k (Akaike; Gaussian residuals of unknown variance); ``se_*``: the standard
     errors of F0 [N], t_F0 and T [s] from the fit's Jacobian, s²(JᵀJ)⁻¹ (with the tail's own
-    parameters free: what the record leaves of them once this family's tail may take any of its shapes)."""
+    parameters free: what the record leaves of them once this family's tail may take any of its shapes);
+    ``correlation_length``: the residual's correlation length [samples] (the first lag where its
+    autocorrelation falls below 1/e, at least 1): n/correlation_length is about how many independent
+    samples the record holds against this family, the scale of a likelihood ratio between two tails."""
 
     family: str
     peak_force: float
@@ -76,6 +84,7 @@ class TailShapeFit:
     se_peak_force: float = math.nan
     se_time_of_peak: float = math.nan
     se_duration: float = math.nan
+    correlation_length: int = 1
 
     @property
     def aic(self) -> float:
@@ -102,6 +111,8 @@ def fit_tail_shapes(t, F, families=TAIL_FAMILIES) -> tuple[TailShapeFit, ...]:
             q0, qlo, qhi = [level0, tau0], [0.005, 0.01], [0.7, 50.0]
         elif family == "free-ramp":
             q0, qlo, qhi = [level0, 0.5, 0.5, 1.0, tau0, 1.0], [0.0, 0.0, 0.05, 0.1, 0.01, 0.3], [0.7, 0.999, 2.0, 6.0, 50.0, 3.0]
+        elif family == "early-ramp":
+            q0, qlo, qhi = [level0, 1.0, 2.0, tau0, 1.0], [0.0, 0.1, 0.1, 0.01, 0.3], [0.7, 3.0, 8.0, 50.0, 3.0]
         else:
             q0, qlo, qhi = [level0, 0.5, tau0], [0.0, 0.0, 0.01], [0.7, 0.999, 50.0]
             if family == "linear":
@@ -120,13 +131,13 @@ def fit_tail_shapes(t, F, families=TAIL_FAMILIES) -> tuple[TailShapeFit, ...]:
         sol = least_squares(residual, p0, bounds=(lo, hi), x_scale=np.array([0.02, 1.0, 0.1, 1.0] + [0.1] * len(q0)))
         t0, f0, tp, T = sol.x[0] * T0, sol.x[1] * F0s, sol.x[2] * T0, sol.x[3] * T0
         rss = float(sol.fun @ sol.fun) * F0s**2
-        se = _standard_errors(sol, np.array([F0s, T0, T0]))
-        out.append(TailShapeFit(family, float(f0), float(min(tp, 0.999 * T)), float(T), float(t0), rss, int(t.size), len(p0), *se))
+        *se, B = _standard_errors(sol, np.array([F0s, T0, T0]))
+        out.append(TailShapeFit(family, float(f0), float(min(tp, 0.999 * T)), float(T), float(t0), rss, int(t.size), len(p0), *se, B))
     return tuple(out)
 
 
-def _standard_errors(sol, scales) -> tuple[float, float, float]:
-    """Standard errors of (F0, t_F0, T) [N, s, s] of a tail fit, robust to a residual that is not white
+def _standard_errors(sol, scales) -> tuple[float, float, float, int]:
+    """Standard errors of (F0, t_F0, T) [N, s, s] of a tail fit and the residual's correlation length B [samples], robust to a residual that is not white
     (the misfit of a tail shape that is not the true one is structured under the pulse): the
     Newey–West (1987) covariance (JᵀJ)⁻¹·Σ_l w_l·Gᵀ_l G·(JᵀJ)⁻¹ of the scaled parameters, G_i = J_i·r_i,
     Bartlett weights w_l = 1 − l/(B + 1) to the residual's correlation length B (the first lag where
@@ -145,4 +156,4 @@ def _standard_errors(sol, scales) -> tuple[float, float, float]:
     bread = np.linalg.pinv(J.T @ J)
     cov = bread @ meat @ bread
     se = np.sqrt(np.maximum(np.diag(cov)[1:4], 0.0)) * scales
-    return float(se[0]), float(se[1]), float(se[2])
+    return float(se[0]), float(se[1]), float(se[2]), B

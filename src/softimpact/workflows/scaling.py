@@ -40,6 +40,8 @@ __all__ = [
     "tail_shape_term",
     "TAIL_SE_FACTOR",
     "TAIL_BEYOND_FAMILIES",
+    "TAIL_UNDER_PEAK",
+    "UNDER_PEAK_FAMILY",
 ]
 
 MIN_VELOCITY_SPREAD = 0.1  # (V_max − V_min)/mean V of a group: below, a law in V is not determined by its tests
@@ -133,9 +135,13 @@ class TailShapeTerm:
     reported one plus its error, plus TAIL_BEYOND_FAMILIES of the range of the families' α's (the
     true shape lies outside the families and may move the α's past the farthest of them), added to
     each side of the 95 % interval (a systematic range, not a random error: added linearly, not in
-    quadrature). ``unbounded``: the α's whose tail-shape
-    half-width exceeds their statistical (Student) half-width: the records do not bound them
-    better than the tail's unknown shape does."""
+    quadrature). The family UNDER_PEAK_FAMILY (a tail ramping in from first contact, so part of the
+    recorded peak) is left out of that largest distance and that range: the records reject it, yet a
+    tail they cannot tell apart may already lie under the peak, and a tail only adds force, so the
+    reported F0 can only be too high by it. ``lower_extra`` (α name → extension of the interval's lower
+    bound only) is TAIL_UNDER_PEAK of how far below the reported α1 that family's α1 lies.
+    ``unbounded``: the α's whose tail-shape half-width (plus half of ``lower_extra``) exceeds their
+    statistical (Student) half-width: the records do not bound them better than the tail's unknown shape does."""
 
     aic: dict
     best: str
@@ -144,11 +150,12 @@ class TailShapeTerm:
     half_widths: dict
     errors: dict = field(default_factory=dict)
     unbounded: tuple[str, ...] = ()
+    lower_extra: dict = field(default_factory=dict)
 
     def interval(self, name: str, line: LineFit) -> tuple[float, float]:
-        """The 95 % interval of α ``name`` widened by the tail-shape term."""
+        """The 95 % interval of α ``name`` widened by the tail-shape term (its lower bound by ``lower_extra`` too)."""
         hw = self.half_widths.get(name, 0.0)
-        return (line.slope_ci[0] - hw, line.slope_ci[1] + hw)
+        return (line.slope_ci[0] - hw - self.lower_extra.get(name, 0.0), line.slope_ci[1] + hw)
 
 
 @dataclass(frozen=True)
@@ -205,6 +212,14 @@ TAIL_SE_FACTOR = 1.96  # the tail fits' standard errors taken at 95 % (two-sided
 # on 60 others, seed 3208: benchmarks/tail_coverage.py, BENCHMARKS.md "Tail-shape coverage"; without it α2 held
 # the truth in 75 % of the series, every miss on a logistic step under the pulse).
 TAIL_BEYOND_FAMILIES = 0.5
+# A tail ramping in from first contact (the reduction's family "early-ramp") puts part of itself under the peak; the
+# records reject that family's shape, yet on a logistic step under the pulse (rising from 0.3-0.6 T) the reported α1
+# lay above the truth and outside the other families' widening (3 of 40 hidden series of seed 11, 8 of 60 of seed
+# 3208). A tail only adds force, so α1's lower bound alone is moved, by this part of the distance of that family's α1
+# below the reported one: 0.17 was the least that held the truth in all 40 series of seed 11, half is taken (as for
+# TAIL_BEYOND_FAMILIES), then checked on the 60 series of seed 3208 (benchmarks/tail_coverage.py, BENCHMARKS.md).
+UNDER_PEAK_FAMILY = "early-ramp"
+TAIL_UNDER_PEAK = 0.5
 _TAIL_SE = (("peak_force", 0), ("time_of_peak", 1), ("duration", 2))  # TestPoint field, index in a (se_F0, se_tF0, se_T) row
 
 
@@ -233,13 +248,17 @@ def tail_shape_term(fit: ScalingFit, family_points: dict, aic: dict, family_erro
     accepted = tuple(f for f in aic if aic[f] - aic[best] < TAIL_DELTA_AIC)
     alphas = {f: _alphas(pts, fit.label) for f, pts in family_points.items()}
     errors = {f: _family_error(family_points[f], e, fit.label, alphas[f]) for f, e in (family_errors or {}).items()}
+    spread = [f for f in family_points if f != UNDER_PEAK_FAMILY] or list(family_points)
     half = {}
     for n in fit.origin:
-        values = [alphas[f][n] for f in family_points]
-        farthest = max(abs(alphas[f][n] - fit.origin[n].slope) + errors.get(f, {}).get(n, 0.0) for f in family_points)
+        values = [alphas[f][n] for f in spread]
+        farthest = max(abs(alphas[f][n] - fit.origin[n].slope) + errors.get(f, {}).get(n, 0.0) for f in spread)
         half[n] = farthest + TAIL_BEYOND_FAMILIES * (max(values) - min(values))
-    unbounded = tuple(n for n, h in half.items() if h > 0.5 * (fit.origin[n].slope_ci[1] - fit.origin[n].slope_ci[0]))
-    return TailShapeTerm(dict(aic), best, accepted, alphas, half, errors, unbounded)
+    lower = {}
+    if UNDER_PEAK_FAMILY in alphas and "alpha1" in fit.origin:
+        lower["alpha1"] = TAIL_UNDER_PEAK * max(0.0, fit.origin["alpha1"].slope - alphas[UNDER_PEAK_FAMILY]["alpha1"])
+    unbounded = tuple(n for n, h in half.items() if h + 0.5 * lower.get(n, 0.0) > 0.5 * (fit.origin[n].slope_ci[1] - fit.origin[n].slope_ci[0]))
+    return TailShapeTerm(dict(aic), best, accepted, alphas, half, errors, unbounded, lower)
 
 
 def fit_gates(fits: dict[str, ScalingFit]) -> tuple[Gate, ...]:

@@ -66,7 +66,7 @@ def calibration_sections(figures: bool, files: dict) -> list[Section]:
                 [
                     "The shorter beam takes a lower, longer force at a given velocity (the paper's finding: flexural waves "
                     "reflected from the boundaries shape the force history). Filled: calibrated here; open: the paper's tables; "
-                    "lines: fits through the origin of eqs (4)-(6)."
+                    "lines: fits through the origin of eqs (4)-(6), solid ours, dotted the paper's."
                 ],
                 [],
                 [("calibration-fig23-25.png", "Figs 23-25: F0 against V², 1/T against V and tF0/T against V, long and short beams")],

@@ -100,7 +100,9 @@ def _identified_law(figures: bool, files: dict, prefix: str):
 
 def _prediction_table(predictions):
     """The identified law's pulses on the bar at the tested impacts, each with its 95 % predictive interval."""
-    fu, tu = display(SYSTEM, "force"), display(SYSTEM, "time")
+    fu, tu, iu = display(SYSTEM, "force"), display(SYSTEM, "time"), display(SYSTEM, "impulse")
+    # the impulse in the table's own system (no mN·s beside lbf), its seconds as ms: a few tenths, not 0.000x
+    i_factor, i_label = (iu.factor * 1e3, iu.label[:-1] + "ms") if iu.label.endswith("·s") else (iu.factor, iu.label)
     rows = []
     for p in predictions:
         (F0, tp, T, I), (hF, ht, hT, hI) = p.values, p.half_widths
@@ -111,10 +113,10 @@ def _prediction_table(predictions):
                 f"{F0 * fu.factor:.1f} ± {hF * fu.factor:.1f}",
                 f"{tp * tu.factor:.1f} ± {ht * tu.factor:.1f}",
                 f"{T * tu.factor:.0f} ± {hT * tu.factor:.0f}",
-                f"{I * 1e3:.2f} ± {hI * 1e3:.2f}",
+                f"{I * i_factor:.3g} ± {hI * i_factor:.2g}",
             ]
         )
-    header = ["d [in]", "V [in/s]", f"F0 [{fu.label}]", f"tF0 [{tu.label}]", f"T [{tu.label}]", "I [mN·s]"]
+    header = ["d [in]", "V [in/s]", f"F0 [{fu.label}]", f"tF0 [{tu.label}]", f"T [{tu.label}]", f"I [{i_label}]"]
     return ("The identified law on the bar: pulses with 95 % predictive intervals (parameters and closure misfit)", header, rows)
 
 
