@@ -94,3 +94,17 @@ def test_an_unknown_family_is_refused():
 
     with pytest.raises(InputError, match="soft, crushing"):
         identify_series(ROD, [], family="rubber")
+
+
+def test_the_command_and_the_api_take_the_law_family():
+    """`softimpact identify --law crushing` and si.identify(law=...) exist, with the families as the choices."""
+    from click.testing import CliRunner
+
+    import softimpact as si
+    from softimpact.cli import main
+
+    res = CliRunner().invoke(main, ["identify", "--help"])
+    assert res.exit_code == 0 and "--law" in res.output and "crushing" in res.output
+    assert "law" in si.identify.__doc__
+    res = CliRunner().invoke(main, ["identify", "paper-rubber-series", "--law", "rubber"])
+    assert res.exit_code == 2 and "rubber" in res.output
