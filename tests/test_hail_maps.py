@@ -91,3 +91,33 @@ def test_the_fte_fit_r2_is_the_explained_fraction():
     p = np.polyfit(x, y, 1)
     r2 = 1 - np.sum((y - np.polyval(p, x)) ** 2) / np.sum((y - y.mean()) ** 2)
     assert fte_fit(rows).r2 == pytest.approx(r2, rel=1e-10)
+
+
+def _fake_rows(fte_of):
+    """Rows on Rhymer's grid with FTE = fte_of(h/D) (unit mass), peak force at each panel's threshold."""
+    from softimpact.studies.hail import RHYMER_DIAMETERS
+
+    out = []
+    for index in ("olsson", "delamination"):
+        for h in RHYMER_THICKNESSES:
+            for d in RHYMER_DIAMETERS:
+                v = math.sqrt(2 * fte_of(h / d))
+                validity = {"deflection_over_thickness": 0.2, "strain_rate_over_fitted_max": 30.0, "flags": ["the crushing strength (x): strain rate"]}
+                out.append(HailRow(h, d, 1.0, index, v, v, 0.1, 1e3 * h / 1e-3, 1e3 * h / 1e-3, validity, 0.1, "wave-controlled"))
+    return tuple(out)
+
+
+@pytest.mark.parametrize("fte_of, verdict", [(lambda x: 3 + 200 * x, "meets"), (lambda x: 20 + 15 * math.sin(300 * x), "does NOT meet")])
+def test_the_report_section_states_the_fit_and_whether_it_meets_the_trend(monkeypatch, fte_of, verdict):
+    """The hail section reports the FTE fit's R², says whether it meets R² ≥ 0.95, and writes the map's CSV (no figures)."""
+    import softimpact.app.paper.hail as section
+
+    rows = _fake_rows(fte_of)
+    monkeypatch.setattr(section, "_rows", lambda: rows)
+    files = {}
+    s = section.hail_section(False, files)
+    text = " ".join(s.paragraphs)
+    assert f"This {verdict} the published trend" in text
+    assert f"R² = {fte_fit(rows).r2:.2f}" in s.summary[0]
+    assert files["hail/hail-map.csv"].count("\n") == len(rows) + 1
+    assert not s.figures and len(s.tables[0][2]) == 6
