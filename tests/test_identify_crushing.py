@@ -108,3 +108,18 @@ def test_the_command_and_the_api_take_the_law_family():
     assert "law" in si.identify.__doc__
     res = CliRunner().invoke(main, ["identify", "paper-rubber-series", "--law", "rubber"])
     assert res.exit_code == 2 and "rubber" in res.output
+
+
+def test_law_json_of_a_crushing_law_names_its_family_and_reference_rate(noisy):
+    """law.json of a crushing identification says family "crushing", its reference rate and the coefficient at 1 s⁻¹."""
+    import json
+
+    from softimpact.app.identify import _crushing_law_json
+    from softimpact.formats._json import json_text
+    from softimpact.formats.law_json import law_summary
+
+    law, _ = noisy
+    out = json.loads(_crushing_law_json(json_text(law_summary(law, [f"t{i}" for i in range(len(law.rms_per_test))])), law))
+    assert out["family"] == "crushing" and set(out["parameters"]) == {"strength_ref", "rate_exponent"}
+    assert out["reference_rate_1_s"] == pytest.approx(law.reference_rate)
+    assert out["coefficient_at_1_per_s_Pa"] == pytest.approx(law.values[0] * law.reference_rate ** (-law.values[1]))
