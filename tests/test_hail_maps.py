@@ -121,3 +121,14 @@ def test_the_report_section_states_the_fit_and_whether_it_meets_the_trend(monkey
     assert f"R² = {fte_fit(rows).r2:.2f}" in s.summary[0]
     assert files["hail/hail-map.csv"].count("\n") == len(rows) + 1
     assert not s.figures and len(s.tables[0][2]) == 6
+
+
+def test_an_identified_crushing_law_maps_as_the_same_strength_does(one_point):
+    """An identified law holding Jones 1997's strength (8.9 MPa·ε̇^0.15, written at a 1000 1/s reference) gives the catalogue ice's onset velocity."""
+    from softimpact.workflows.identification import CRUSHING_PARAMETERS, CrushingIdentifiedLaw
+
+    ref = 1000.0
+    law = CrushingIdentifiedLaw(CRUSHING_PARAMETERS, np.array([8.9e6 * ref**0.15, 0.15]), np.zeros(2), ref, 0.0508, np.zeros(1), 0.0)
+    rows = hail_map(law, thicknesses=(4.66e-3,), diameters=(50.8e-3,), layups=(RHYMER_LAYUPS[2],), meshes=MESHES, duration=1e-3, indices=("olsson",))
+    expected = next(r for r in one_point if r.index == "olsson").velocity
+    assert rows[0].velocity == pytest.approx(expected, rel=2e-3)

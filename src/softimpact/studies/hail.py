@@ -131,8 +131,14 @@ def hail_structures(thickness: float, layup: str, law, meshes, duration: float, 
     out = []
     for n, dt in meshes:
         target = plate_problem(hail_plate_case(thickness, layup, n, duration), locate(BASE_CASE).parent)
-        out.append(structure(f"{thickness * 1e3:.2f} mm", target, widest, law.density, dt, duration, law))
+        out.append(structure(f"{thickness * 1e3:.2f} mm", target, widest, _density(law), dt, duration, law))
     return out[1], out[0]
+
+
+def _density(law) -> float:
+    """The spheres' density [kg/m³]: the law's own (:class:`CatalogueIce`), else the catalogue's ice (an identified
+    crushing law holds no density: its tests' spheres were ice)."""
+    return getattr(law, "density", None) or projectile_material("ice").density
 
 
 def run_validity(problem, result):
@@ -218,7 +224,8 @@ def hail_map(
     rtol: float = 1e-3,
 ):
     """The hail map (module docstring): one :class:`HailRow` per thickness, index and diameter, ice of ``law``
-    (:class:`CatalogueIce` or an identified crushing law) between ``lo`` and ``hi`` m/s. ``meshes``: ((elements, step)
+    (:class:`CatalogueIce` or an identified crushing law,
+    :class:`~softimpact.workflows.identification.CrushingIdentifiedLaw`) between ``lo`` and ``hi`` m/s. ``meshes``: ((elements, step)
     coarse, fine), default ((4, 4 µs), (8, 2 µs))."""
     from ..fem.contact import group_outputs
     from ..workflows.coupled import run_impact
@@ -232,7 +239,7 @@ def hail_map(
             for d in diameters:
                 v = threshold_velocity(fine, law, d, index, lo, hi, rtol=rtol, runs=runs)
                 vc = threshold_velocity(coarse, law, d, index, lo, hi, rtol=rtol, guess=v, beta=2.0, runs=runs) if math.isfinite(v) else math.nan
-                mass = law.density * math.pi / 6.0 * d**3
+                mass = _density(law) * math.pi / 6.0 * d**3
                 peak, validity = math.nan, {"flags": []}
                 if math.isfinite(v):
                     problem = fine.problem_at(law, d, v)
