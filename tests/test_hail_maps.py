@@ -6,18 +6,17 @@ import math
 import numpy as np
 import pytest
 
+from softimpact.app.paper.hail import BASE_CASE, hail_plate_case, panel_target
 from softimpact.fem.contact import group_outputs
 from softimpact.input.plate_case import plate_problem
 from softimpact.input.toml import locate
 from softimpact.studies.hail import (
-    BASE_CASE,
     RHYMER_LAYUPS,
     RHYMER_THICKNESSES,
     CatalogueIce,
     HailRow,
     fte_fit,
     hail_map,
-    hail_plate_case,
 )
 from softimpact.workflows.coupled import run_impact
 
@@ -40,7 +39,7 @@ def test_the_panels_have_rhymers_thicknesses(h, layup):
 @pytest.fixture(scope="module")
 def one_point():
     """The onset of a 50.8-mm sphere on the 4.66-mm panel, on the map's coarse meshes."""
-    rows = hail_map(CatalogueIce(), thicknesses=(4.66e-3,), diameters=(50.8e-3,), layups=(RHYMER_LAYUPS[2],), meshes=MESHES, duration=1e-3)
+    rows = hail_map(CatalogueIce(), panel_target, thicknesses=(4.66e-3,), diameters=(50.8e-3,), layups=(RHYMER_LAYUPS[2],), meshes=MESHES, duration=1e-3)
     return rows
 
 
@@ -48,7 +47,7 @@ def _direct_peak(row: HailRow, velocity: float) -> float:
     """The coupled peak force of the same impact stepped directly (the reference, not the kernels)."""
     from softimpact.studies.hail import hail_structures
 
-    fine, _ = hail_structures(row.thickness, RHYMER_LAYUPS[2], CatalogueIce(), MESHES, 1e-3, row.diameter)
+    fine, _ = hail_structures(panel_target, row.thickness, RHYMER_LAYUPS[2], CatalogueIce(), MESHES, 1e-3, row.diameter)
     problem = fine.problem_at(CatalogueIce(), row.diameter, velocity)
     _, result = run_impact(problem, fine.model, energy=False, method="direct")
     return max(c.peak_force for c in group_outputs(result, fine.model.contact_groups()).contacts)
@@ -129,6 +128,8 @@ def test_an_identified_crushing_law_maps_as_the_same_strength_does(one_point):
 
     ref = 1000.0
     law = CrushingIdentifiedLaw(CRUSHING_PARAMETERS, np.array([8.9e6 * ref**0.15, 0.15]), np.zeros(2), ref, 0.0508, np.zeros(1), 0.0)
-    rows = hail_map(law, thicknesses=(4.66e-3,), diameters=(50.8e-3,), layups=(RHYMER_LAYUPS[2],), meshes=MESHES, duration=1e-3, indices=("olsson",))
+    rows = hail_map(
+        law, panel_target, thicknesses=(4.66e-3,), diameters=(50.8e-3,), layups=(RHYMER_LAYUPS[2],), meshes=MESHES, duration=1e-3, indices=("olsson",)
+    )
     expected = next(r for r in one_point if r.index == "olsson").velocity
     assert rows[0].velocity == pytest.approx(expected, rel=2e-3)

@@ -4,7 +4,9 @@ and the failure threshold energy FTE = ½·m·V*² against thickness over diamet
 
 The panels (Rhymer, Kim & Roach, Composites Part A 43 (2012) 1134-1144, doi:10.1016/j.compositesa.2012.02.017,
 abstract): T800/3900-2 carbon/epoxy tape, quasi-isotropic, three thicknesses 1.59, 3.11 and 4.66 mm, each struck
-by ice spheres of 38.1, 50.8 and 61.0 mm. What was not retrieved, and what stands in for it:
+by ice spheres of 38.1, 50.8 and 61.0 mm. The panels are given as a function that builds each one's plate
+target (the report's, :func:`softimpact.app.paper.hail.panel_target`, from a case file: studies read no files).
+What was not retrieved, and what the report stands in for it:
 
 - the ply: T800/3900-2 is not in the catalogue; the catalogue's IM7/8552 (intermediate-modulus fibre, toughened
   epoxy; its moduli, strengths and G_IIc) stands in, with the ply thickness set so the panel has Rhymer's thickness;
@@ -38,7 +40,6 @@ import numpy as np
 
 from ..models.crushing_law import CrushingLaw
 from ..models.delamination import REGIME_BOUNDS, response_regime
-from ..models.laminate import PLIES
 from ..models.projectiles import projectile_material
 from .thresholds import ONSET, gci_two_meshes, structure, threshold_velocity
 
@@ -51,7 +52,6 @@ __all__ = [
     "CatalogueIce",
     "HailRow",
     "FteFit",
-    "hail_plate_case",
     "hail_structures",
     "hail_map",
     "fte_fit",
@@ -63,7 +63,6 @@ RHYMER_DIAMETERS = (38.1e-3, 50.8e-3, 61.0e-3)  # m: the same tests' ice spheres
 RHYMER_LAYUPS = ("[45/0/-45/90]s", "[45/0/-45/90]2s", "[45/0/-45/90]3s")  # a choice: quasi-isotropic, 8, 16, 24 plies
 STAND_IN_PLY = "IM7/8552"  # for T800/3900-2, not in the catalogue
 HAIL_INDICES = (ONSET, "delamination")  # Olsson's onset, Davies–Zhang beside it
-BASE_CASE = "hail-plate-qi"  # the panel's size, supports and load point
 
 
 @dataclass(frozen=True)
@@ -86,52 +85,15 @@ class CatalogueIce:
         return CrushingLaw(mass, diameter, self.strength or projectile_material("ice").strength)
 
 
-def _ply_table(thickness: float) -> dict:
-    """The stand-in ply as a case file's inline ply: the catalogue's IM7/8552, its thickness ``thickness`` [m]."""
-    p = PLIES[STAND_IN_PLY]
-    s = p.strength
-    pa = {k: f"{getattr(p, k)!r} Pa" for k in ("E1", "E2", "E3", "G12", "G13", "G23")}
-    strengths = {"Xt": s.Xt, "Xc": s.Xc, "Yt": s.Yt, "Yc": s.Yc, "S": s.S12, "S23": s.S23}
-    return {
-        "name": f"{p.name} (stand-in for T800/3900-2)",
-        **pa,
-        "nu12": p.nu12,
-        "nu13": p.nu13,
-        "nu23": p.nu23,
-        "density": f"{p.density!r} kg/m^3",
-        "thickness": f"{thickness!r} m",
-        **{k: f"{v!r} Pa" for k, v in strengths.items()},
-        "G_IIc": f"{s.GIIc!r} J/m^2",
-        "source": f"{p.source}; thickness set to the panel's over its plies",
-    }
-
-
-def hail_plate_case(thickness: float, layup: str, elements: int, duration: float) -> dict:
-    """The panel as a plate case (parsed TOML): :data:`BASE_CASE` with the stand-in ply of ``thickness``/plies,
-    ``layup``, ``elements`` a side, ``duration`` [s]; no gauges."""
-    from ..input.toml import load_toml, locate
-    from ..models.laminate import parse_layup
-
-    data = load_toml(locate(BASE_CASE))
-    plies = len(parse_layup(layup))
-    data["title"] = f"Rhymer's {thickness * 1e3:.2f}-mm panel, {layup} of the {STAND_IN_PLY} stand-in"
-    data["plate"]["laminate"] = {"ply": _ply_table(thickness / plies), "layup": layup}
-    data["plate"]["elements"] = [elements, elements]
-    data["solver"]["duration"] = f"{duration / 1e-6!r} us"
-    data.pop("gauges", None)
-    return data
-
-
-def hail_structures(thickness: float, layup: str, law, meshes, duration: float, widest: float):
+def hail_structures(panel_target, thickness: float, layup: str, law, meshes, duration: float, widest: float):
     """(map mesh, coarse mesh) :class:`~softimpact.studies.thresholds.ThresholdStructure` of one panel:
-    ``meshes`` ((elements a side, time step [s]) coarse, fine); spheres up to ``widest`` [m] of ice."""
-    from ..input.plate_case import plate_problem
-    from ..input.toml import locate
-
+    ``panel_target(thickness, layup, elements, duration)`` the resolved plate target (a
+    :class:`~softimpact.models.protocols.Target`; the report builds it from a case file,
+    :func:`softimpact.app.paper.hail.panel_target`), ``meshes`` ((elements a side, time step [s]) coarse,
+    fine); spheres up to ``widest`` [m] of ice."""
     out = []
     for n, dt in meshes:
-        target = plate_problem(hail_plate_case(thickness, layup, n, duration), locate(BASE_CASE).parent)
-        out.append(structure(f"{thickness * 1e3:.2f} mm", target, widest, _density(law), dt, duration, law))
+        out.append(structure(f"{thickness * 1e3:.2f} mm", panel_target(thickness, layup, n, duration), widest, _density(law), dt, duration, law))
     return out[1], out[0]
 
 
@@ -213,6 +175,7 @@ def _threshold_force(s, index: str) -> float:
 
 def hail_map(
     law,
+    panel_target,
     thicknesses=RHYMER_THICKNESSES,
     diameters=RHYMER_DIAMETERS,
     layups=RHYMER_LAYUPS,
@@ -225,7 +188,8 @@ def hail_map(
 ):
     """The hail map (module docstring): one :class:`HailRow` per thickness, index and diameter, ice of ``law``
     (:class:`CatalogueIce` or an identified crushing law,
-    :class:`~softimpact.workflows.identification.CrushingIdentifiedLaw`) between ``lo`` and ``hi`` m/s. ``meshes``: ((elements, step)
+    :class:`~softimpact.workflows.identification.CrushingIdentifiedLaw`) on the panels of ``panel_target``
+    (:func:`hail_structures`) between ``lo`` and ``hi`` m/s. ``meshes``: ((elements, step)
     coarse, fine), default ((4, 4 µs), (8, 2 µs))."""
     from ..fem.contact import group_outputs
     from ..workflows.coupled import run_impact
@@ -233,7 +197,7 @@ def hail_map(
     meshes = meshes or ((4, 4e-6), (8, 2e-6))
     rows = []
     for h, layup in zip(thicknesses, layups):
-        fine, coarse = hail_structures(h, layup, law, meshes, duration, max(diameters))
+        fine, coarse = hail_structures(panel_target, h, layup, law, meshes, duration, max(diameters))
         runs: dict = {}
         for index in indices:
             for d in diameters:

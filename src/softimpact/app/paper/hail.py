@@ -9,6 +9,7 @@ import math
 
 import numpy as np
 
+from ...models.laminate import PLIES
 from ...models.validity import DEFLECTION_OVER_THICKNESS
 from ...output.files import csv_text, figure_bytes
 from ...output.plots import _figure
@@ -25,7 +26,9 @@ from ...studies.hail import (
 )
 from ...studies.thresholds import ONSET
 
-__all__ = ["hail_section", "paper_hail_map"]
+__all__ = ["hail_section", "paper_hail_map", "hail_plate_case", "panel_target"]
+
+BASE_CASE = "hail-plate-qi"  # the panel's size, supports and load point
 
 HAIL_MESHES = ((4, 4e-6), (8, 2e-6))  # (elements a side, step): coarse, map's — the section costs about 40 s of CPU
 HAIL_DURATION = 1.5e-3  # s: the peaks come by 1.21 ms (measured: the 1.59-mm panel, 61-mm sphere; a 4-ms run has the same peak)
@@ -39,9 +42,54 @@ MISSING = (
 )
 
 
+def _ply_table(thickness: float) -> dict:
+    """The stand-in ply as a case file's inline ply: the catalogue's IM7/8552, its thickness ``thickness`` [m]."""
+    p = PLIES[STAND_IN_PLY]
+    s = p.strength
+    pa = {k: f"{getattr(p, k)!r} Pa" for k in ("E1", "E2", "E3", "G12", "G13", "G23")}
+    strengths = {"Xt": s.Xt, "Xc": s.Xc, "Yt": s.Yt, "Yc": s.Yc, "S": s.S12, "S23": s.S23}
+    return {
+        "name": f"{p.name} (stand-in for T800/3900-2)",
+        **pa,
+        "nu12": p.nu12,
+        "nu13": p.nu13,
+        "nu23": p.nu23,
+        "density": f"{p.density!r} kg/m^3",
+        "thickness": f"{thickness!r} m",
+        **{k: f"{v!r} Pa" for k, v in strengths.items()},
+        "G_IIc": f"{s.GIIc!r} J/m^2",
+        "source": f"{p.source}; thickness set to the panel's over its plies",
+    }
+
+
+def hail_plate_case(thickness: float, layup: str, elements: int, duration: float) -> dict:
+    """The panel as a plate case (parsed TOML): :data:`BASE_CASE` with the stand-in ply of ``thickness``/plies,
+    ``layup``, ``elements`` a side, ``duration`` [s]; no gauges."""
+    from ...input.toml import load_toml, locate
+    from ...models.laminate import parse_layup
+
+    data = load_toml(locate(BASE_CASE))
+    plies = len(parse_layup(layup))
+    data["title"] = f"Rhymer's {thickness * 1e3:.2f}-mm panel, {layup} of the {STAND_IN_PLY} stand-in"
+    data["plate"]["laminate"] = {"ply": _ply_table(thickness / plies), "layup": layup}
+    data["plate"]["elements"] = [elements, elements]
+    data["solver"]["duration"] = f"{duration / 1e-6!r} us"
+    data.pop("gauges", None)
+    return data
+
+
+def panel_target(thickness: float, layup: str, elements: int, duration: float):
+    """The resolved plate target of :func:`hail_plate_case` (what :func:`softimpact.studies.hail.hail_map` builds its
+    threshold structures on)."""
+    from ...input.plate_case import plate_problem
+    from ...input.toml import locate
+
+    return plate_problem(hail_plate_case(thickness, layup, elements, duration), locate(BASE_CASE).parent)
+
+
 @functools.lru_cache(maxsize=1)
 def _rows() -> tuple:
-    return tuple(hail_map(CatalogueIce(), meshes=HAIL_MESHES, duration=HAIL_DURATION, lo=HAIL_RANGE[0], hi=HAIL_RANGE[1]))
+    return tuple(hail_map(CatalogueIce(), panel_target, meshes=HAIL_MESHES, duration=HAIL_DURATION, lo=HAIL_RANGE[0], hi=HAIL_RANGE[1]))
 
 
 def paper_hail_map() -> list[dict]:
