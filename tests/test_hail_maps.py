@@ -122,6 +122,7 @@ def test_the_report_section_states_the_fit_and_whether_it_meets_the_trend(monkey
     assert not s.figures and len(s.tables[0][2]) == 6
 
 
+@pytest.mark.slow  # a second map (about 3 s): a consistency check of the law's two paths
 def test_an_identified_crushing_law_maps_as_the_same_strength_does(one_point):
     """An identified law holding Jones 1997's strength (8.9 MPa·ε̇^0.15, written at a 1000 1/s reference) gives the catalogue ice's onset velocity."""
     from softimpact.workflows.identification import CRUSHING_PARAMETERS, CrushingIdentifiedLaw
