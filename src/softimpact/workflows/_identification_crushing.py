@@ -22,7 +22,7 @@ noise: the rate exponent off by up to 4 of its Jacobian half-widths with every s
 95 % intervals: with :data:`JACKKNIFE_MIN_TESTS` tests or more, the delete-one-test jackknife's covariance
 ((n − 1)/n·Σ(θ₋ᵢ − θ̄)(θ₋ᵢ − θ̄)ᵀ) and Student's t with n − 1 degrees of freedom: the tests are independent,
 the samples within one are not (that random walk), and the Jacobian's s²·(JᵀJ)⁻¹, which takes them as
-independent, covered the truth in 12 of 16 draws (measured; the jackknife on 12 tests: 16 of 16). With fewer
+independent, covered the truth 12 times in 16 (6 tests, 8 noise draws, measured; the jackknife on 12 tests: 16 of 16). With fewer
 tests, ±1.96·sqrt(diag(s²·(JᵀJ)⁻¹)). The law is memoryless and its force is exact along the true α, α̇ (noise-free
 synthetic records give the parameters to 1e-8): no second stage on coupled runs (the closure runs them).
 
