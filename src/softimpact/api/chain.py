@@ -131,7 +131,9 @@ def predict(**options) -> CommandResult:
 
 @takes(IDENTIFY, "series")
 def identify(series, **options) -> CommandResult:
-    """Identify a soft projectile's contact law from a series of bar tests (law.json).
+    """Identify a soft projectile's contact law from a series of bar tests (law.json): the visco-elastic
+    soft law, or with ``law="crushing"`` an ice sphere's crushing strength law (its strength at a reference
+    rate and its rate exponent, law.json's family "crushing").
 
     Parameters
     ----------

@@ -24,6 +24,9 @@ m, diameter d and velocity V; and the bar as a :class:`~softimpact.fem.bar.Rod`
    F0 so every test weighs the same. 95 % intervals from the Jacobian at the optimum,
    ±1.96·sqrt(diag(s²(JᵀJ)⁻¹)). Then :func:`refine` adjusts the parameters on the
    coupled bar simulations themselves (F0, t_F0, T, I of every test).
+   The crushing family of ice spheres (``family="crushing"`` of :func:`identify_series`) fits its
+   strength law along the same approach instead (:mod:`._identification_crushing`: strength at a
+   reference rate and rate exponent, delete-one-test jackknife intervals) and is not refined.
 3. Closure. The identified law in a coupled impactor–bar simulation
    (:func:`softimpact.fem.impact.integrate_impact` on the same rod) gives a force
    history per test; F0 (peak), T (duration of the eq-15 fit of the main pulse, as
