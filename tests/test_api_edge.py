@@ -6,7 +6,7 @@ from pathlib import Path
 import pytest
 
 import softimpact as si
-from softimpact.app.options import CALIBRATE, CONVERGE, PREDICT, SERIES
+from softimpact.app.options import CALIBRATE, CONVERGE, IDENTIFY, PREDICT, SERIES
 from softimpact.cli import main
 from softimpact.errors import InputError
 
@@ -62,7 +62,7 @@ def test_a_records_arrays_are_read_only():
         ("converge", si.converge, CONVERGE),
         ("reduce", si.reduce, SERIES),
         ("fit", si.fit, SERIES),
-        ("identify", si.identify, SERIES),
+        ("identify", si.identify, IDENTIFY),
     ],
 )
 def test_the_api_and_the_command_line_show_the_same_options_and_defaults(command, function, table):

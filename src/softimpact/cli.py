@@ -34,7 +34,7 @@ import warnings
 import click
 
 from . import __version__
-from .app.options import CALIBRATE, CONVERGE, PREDICT, SERIES
+from .app.options import CALIBRATE, CONVERGE, IDENTIFY, PREDICT, SERIES
 from .errors import EXIT_CHECK, EXIT_INPUT, EXIT_INTERNAL, CheckFailed, InputError, SoftimpactWarning, SolverFailed
 
 __all__ = ["main"]
@@ -535,9 +535,9 @@ def impact_cmd(case, out, figures, fields):
     _run(impact, out, case=case, figures=figures, fields=fields)
 
 
-@_command("identify", "A soft projectile's contact law from bar tests (law.json).", options=SERIES, accept_poor=True)
+@_command("identify", "A soft projectile's contact law from bar tests (law.json).", options=IDENTIFY, accept_poor=True)
 @click.argument("series")
-def identify_cmd(series, out, figures, accept_poor):
+def identify_cmd(series, out, law, figures, accept_poor):
     """Identify one contact law of a SERIES of bar tests (file or built-in name): reduce the
     records, reconstruct force against approach, fit, then check by coupled bar simulations.
 
@@ -546,7 +546,7 @@ def identify_cmd(series, out, figures, accept_poor):
     """
     from .app.identify import identify
 
-    _run(identify, out, accept_poor, series_name=series, figures=figures)
+    _run(identify, out, accept_poor, series_name=series, law=law, figures=figures)
 
 
 @_command("paper", "The whole paper, end to end, into report.html.")

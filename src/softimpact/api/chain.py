@@ -8,7 +8,7 @@ from __future__ import annotations
 import warnings
 from pathlib import Path
 
-from ..app.options import CALIBRATE, CONVERGE, PREDICT, SERIES
+from ..app.options import CALIBRATE, CONVERGE, IDENTIFY, PREDICT, SERIES
 from ..errors import SoftimpactWarning
 from ._edge import _Heard, _one_line
 from ._options import given, python_terms, takes
@@ -129,9 +129,11 @@ def predict(**options) -> CommandResult:
     return _command("softimpact predict", lambda: command(**given_), PREDICT)
 
 
-@takes(SERIES, "series")
+@takes(IDENTIFY, "series")
 def identify(series, **options) -> CommandResult:
-    """Identify a soft projectile's contact law from a series of bar tests (law.json).
+    """Identify a soft projectile's contact law from a series of bar tests (law.json): the visco-elastic
+    soft law, or with ``law="crushing"`` an ice sphere's crushing strength law (its strength at a reference
+    rate and its rate exponent, law.json's family "crushing").
 
     Parameters
     ----------
@@ -160,7 +162,7 @@ def identify(series, **options) -> CommandResult:
     from ..app.identify import identify as command
 
     given_ = given(identify, options)
-    return _command("softimpact identify", lambda: command(series_name=str(series), **given_), SERIES)
+    return _command("softimpact identify", lambda: command(series_name=str(series), **given_), IDENTIFY)
 
 
 @takes(CALIBRATE, "case")

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["Option", "FIGURES", "SERIES", "PREDICT", "CALIBRATE", "CONVERGE", "DISPLAY_SYSTEMS", "defaults"]
+__all__ = ["Option", "FIGURES", "SERIES", "IDENTIFY", "PREDICT", "CALIBRATE", "CONVERGE", "DISPLAY_SYSTEMS", "defaults"]
 
 
 @dataclass(frozen=True)
@@ -66,6 +66,17 @@ DISPLAY_SYSTEMS = ("in-lbf-s", "SI")  # the display systems of :func:`softimpact
 FIGURES = Option("figures", "Draw the figures (the numbers are written either way).", True, type=bool)
 
 SERIES = (FIGURES,)  # reduce, fit and identify: a series (file or built-in name) and the figures
+
+IDENTIFY = (
+    Option(
+        "law",
+        "The law family to identify: the visco-elastic soft law (rubber, gel) or the crushing law of ice spheres "
+        "(its strength at a reference rate and the rate exponent).",
+        "soft",
+        choices=("soft", "crushing"),
+    ),
+    FIGURES,
+)
 
 PREDICT = (
     Option("projectile", "A named projectile (rubber-1/2in, rubber-3/8in), or give the mass and the diameter."),

@@ -42,7 +42,7 @@ from dataclasses import dataclass
 from ..errors import InputError
 from .projectiles import PowerLawStrength, projectile_material
 
-__all__ = ["SphereFlowLaw", "CrushingLaw", "sphere_crush_depth", "crushed_area", "centre_of_mass_advance", "rigid_target_pulse"]
+__all__ = ["SphereFlowLaw", "CrushingLaw", "sphere_crush_depth", "sphere_crush_depths", "crushed_area", "centre_of_mass_advance", "rigid_target_pulse"]
 
 DEPTH_TOL = 1e-14  # relative tolerance on u = s/d in the inversion of X(s)
 CONSUMED = 1.0 - 1e-9  # u beyond which the sphere is all crushed: no section, no force
@@ -81,6 +81,30 @@ def sphere_crush_depth(x: float) -> float:
             return nxt
         u = nxt
     return u
+
+
+def sphere_crush_depths(x):
+    """:func:`sphere_crush_depth` of an array x = X/d (any shape): Newton from u = x on X(u) − x, which is
+    monotone (φ ≥ 0) and convex-concave; each step clipped to [0, 1] and a bisection step taken where
+    Newton leaves the bracket, to DEPTH_TOL. 0 where x ≤ 0, 1 where x ≥ ½."""
+    import numpy as np
+
+    x = np.asarray(x, float)
+    xc = np.clip(x, 0.0, 0.5)
+    lo, hi = np.zeros_like(xc), np.ones_like(xc)
+    u = np.minimum(xc, 0.999)
+    for _ in range(100):
+        r = u - u**3 + 0.5 * u**4 - xc
+        hi = np.where(r > 0.0, u, hi)
+        lo = np.where(r > 0.0, lo, u)
+        phi = (1.0 - u) ** 2 * (1.0 + 2.0 * u)
+        nxt = u - r / np.maximum(phi, 1e-300)
+        nxt = np.where((nxt > lo) & (nxt < hi), nxt, 0.5 * (lo + hi))
+        done = np.all((np.abs(nxt - u) <= DEPTH_TOL * np.maximum(u, 1e-300)) | (hi - lo <= DEPTH_TOL))
+        u = nxt
+        if done:
+            break
+    return np.where(x <= 0.0, 0.0, np.where(x >= 0.5, 1.0, u))
 
 
 def crushed_area(s: float, d: float) -> float:

@@ -24,6 +24,9 @@ m, diameter d and velocity V; and the bar as a :class:`~softimpact.fem.bar.Rod`
    F0 so every test weighs the same. 95 % intervals from the Jacobian at the optimum,
    ±1.96·sqrt(diag(s²(JᵀJ)⁻¹)). Then :func:`refine` adjusts the parameters on the
    coupled bar simulations themselves (F0, t_F0, T, I of every test).
+   The crushing family of ice spheres (``family="crushing"`` of :func:`identify_series`) fits its
+   strength law along the same approach instead (:mod:`._identification_crushing`: strength at a
+   reference rate and rate exponent, delete-one-test jackknife intervals) and is not refined.
 3. Closure. The identified law in a coupled impactor–bar simulation
    (:func:`softimpact.fem.impact.integrate_impact` on the same rod) gives a force
    history per test; F0 (peak), T (duration of the eq-15 fit of the main pulse, as
@@ -44,6 +47,7 @@ from ..fem.bar import Rod, assemble_rod
 from ..fem.contact import rod_contact_structure
 from ..fem.impact import ContactStructure, integrate_impact
 from ..models.pulse_fit import MAIN_PULSE_CUTOFF, fit_main_pulse
+from ._identification_crushing import CRUSHING_PARAMETERS, CrushingIdentifiedLaw, identify_crushing  # the crushing family (ice)
 from ._identification_fit import (  # steps 1 and 2: the approach and the F(α, α̇) fit
     CLOSURE_SCALE,
     LOWER,
@@ -83,7 +87,13 @@ __all__ = [
     "refine",
     "PARAMETERS",
     "arm_stress",
+    "CRUSHING_PARAMETERS",
+    "CrushingIdentifiedLaw",
+    "identify_crushing",
+    "LAW_FAMILIES",
 ]
+
+LAW_FAMILIES = ("soft", "crushing")  # what identify fits: the visco-elastic soft law, or the crushing law of ice
 
 
 @dataclass(frozen=True)
@@ -316,14 +326,22 @@ def _silent(done: int, total: int, label: str) -> None:
     """The default progress callback: silent."""
 
 
-def identify_series(rod: Rod, reduced, refined: bool = True, progress=_silent):
+def identify_series(rod: Rod, reduced, refined: bool = True, progress=_silent, family: str = "soft"):
     """Fit the law on the reconstructed F(α, α̇) of the reduced tests on the bar ``rod``, refine it
     on the coupled bar simulations (:func:`refine`; one run per diameter per evaluation, 200 steps
     per pulse), run the :func:`closure` on every test. ``progress(done, total, label)``.
-    Returns (tests, law, approaches, closure)."""
+    ``family`` (:data:`LAW_FAMILIES`): "soft", the visco-elastic soft law, or "crushing", an ice sphere's
+    crushing strength law (:func:`identify_crushing`: memoryless and exact along the reconstructed
+    approach, so not refined). Returns (tests, law, approaches, closure)."""
+    if family not in LAW_FAMILIES:
+        raise InputError(f"identify: law family must be one of {', '.join(LAW_FAMILIES)}, got {family!r}", "law")
     tests = bar_tests(reduced)
     progress(0, 3, "fitting F(alpha)")
-    law, approaches = identify(tests, rod)
+    if family == "crushing":
+        law, approaches = identify_crushing(tests, rod)
+        refined = False
+    else:
+        law, approaches = identify(tests, rod)
     if refined:
         progress(1, 3, "refining on coupled bar runs")
         law = refine(law, tests, rod)
@@ -389,7 +407,7 @@ def predict_pulses(
     tests = tuple(tests)
     structure = _rod_structure(rod)
     C = law.covariance if law.covariance is not None else np.diag((law.half_widths / Z95) ** 2)
-    free = [i for i in range(N_PARAMETERS) if C[i, i] > 0]
+    free = [i for i in range(len(law.values)) if C[i, i] > 0]
     Cf = C[np.ix_(free, free)]
     # what the law cannot reproduce, per figure: RMS relative closure error (F0, t_F0, T, I)
     e = closure.errors

@@ -18,6 +18,7 @@ from .beam_as_plate import beam_as_plate_section
 from .beams import beam_sections
 from .calibrations import calibration_sections
 from .discretisation import discretisation_sections
+from .hail import hail_section
 from .notes import NOTES, SYSTEM
 from .question import question_section
 from .rubber_series import rubber_series_sections
@@ -35,6 +36,7 @@ STEPS = (
     ("damage thresholds (sweep)", lambda figures, files: [threshold_section(figures, files)]),
     ("the paper's question: coupled impact from bar tests", lambda figures, files: [question_section(figures, files)]),
     ("beams as 1-inch-wide plates: the plane-strain assumption", lambda figures, files: [beam_as_plate_section(figures, files)]),
+    ("hail on Rhymer's panels", lambda figures, files: [hail_section(figures, files)]),
 )
 
 
