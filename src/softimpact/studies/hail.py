@@ -113,7 +113,7 @@ def run_validity(problem, result):
     d = problem.impactor.diameter
     v = contact_validity(problem.law_name, float(np.max(result.approach)), float(np.max(result.contact_radius)), d)
     v += law_validity(problem.law, problem.impactor.velocity)
-    return v + problem.target.validity(float(np.max(np.abs(result.deflection))))
+    return v + problem.target.validity(float(np.max(np.abs(result.target_displacement))))
 
 
 @dataclass(frozen=True)
