@@ -64,8 +64,8 @@ the law's 5–95 % as the same fractions of the nominal threshold), widened by i
 That carry-over assumes the law's and the strengths' relative effect on V* is the same on both kinematics. A nonlinear
 threshold then costs its root-finding (secant steps from the linear threshold: two or three runs), one run at V* for its
 validity and the coarse mesh's root-finding: on the report's quarter plate (16 MITC4 elements a side, 2 µs, 200 steps)
-a von Kármán run costs about 10 linear direct runs (2.8 s against 0.27 s on a loaded 2-core machine), and a nonlinear
-threshold with its coarse mesh (8 a side, 4 µs) about 15 s there.
+a von Kármán run costs about 12 linear direct runs (0.84 s against 0.07 s of CPU), and a nonlinear threshold with its
+coarse mesh's (8 a side, 4 µs) about 4 s of CPU (measured on a shared 2-core machine, 8 thresholds in 32 s).
 """
 
 from __future__ import annotations
