@@ -209,9 +209,11 @@ def threshold_map_figure(rows: list[dict], prescribed: list[dict], system: str, 
 
 
 def kinematics_map_figure(rows: list[dict], system: str, title: str):
-    """One structure's threshold maps on two kinematics, one panel per index: each map's median against the diameter
+    """One structure's threshold maps on two kinematics, one column per index: above, each map's median against the diameter
     (solid: linear, dashed: von Kármán; markers open where the row is outside validity) and its 5–95 % band (shaded;
-    hatched for the von Kármán map); ``rows``: :meth:`softimpact.studies.thresholds.MapRow.as_dict` rows of both maps."""
+    hatched for the von Kármán map); below, the ratio of the second map's nominal threshold to the first's on the map's mesh
+    and on the coarser one (``threshold_velocity_coarse_mesh_m_s``, when given); ``rows``:
+    :meth:`softimpact.studies.thresholds.MapRow.as_dict` rows of both maps."""
     import matplotlib.pyplot as plt
 
     from ..units import display
@@ -219,13 +221,16 @@ def kinematics_map_figure(rows: list[dict], system: str, title: str):
     vu, lu = display(system, "velocity"), display(system, "length")
     indices = list(dict.fromkeys(r["index"] for r in rows))
     kinds = list(dict.fromkeys(r["kinematics"] for r in rows))
-    fig, axes = plt.subplots(1, len(indices), figsize=(4.4 * len(indices), 4), sharey=True, squeeze=False)
+    fig, axes = plt.subplots(2, len(indices), figsize=(4.4 * len(indices), 6.2), sharex=True, squeeze=False, gridspec_kw={"height_ratios": [2, 1]})
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
-    for ax, index in zip(axes[0], indices):
+    for col, index in enumerate(indices):
+        ax, below = axes[0][col], axes[1][col]
+        maps = []
         for j, kind in enumerate(kinds):
             mine = sorted((r for r in rows if r["index"] == index and r["kinematics"] == kind), key=lambda r: r["diameter_m"])
             if not mine:
                 continue
+            maps.append(mine)
             c = colours[j % len(colours)]
             d = _median_line(ax, mine, lu.factor, vu.factor, c, f"{kind}", "-" if j == 0 else "--", "o" if j == 0 else "s")
             lo, hi = (np.array([r[f"threshold_velocity_{q}_m_s"] for r in mine]) * vu.factor for q in ("p05", "p95"))
@@ -233,9 +238,19 @@ def kinematics_map_figure(rows: list[dict], system: str, title: str):
                 ax.fill_between(d, lo, hi, color=c, alpha=0.15)
             else:
                 ax.fill_between(d, lo, hi, facecolor="none", edgecolor=c, hatch="//", lw=0.0)
+        if len(maps) == 2 and len(maps[0]) == len(maps[1]):
+            d = np.array([r["diameter_m"] for r in maps[0]]) * lu.factor
+            for key, style, label in (("threshold_velocity_nominal_m_s", "-o", "map's mesh"), ("threshold_velocity_coarse_mesh_m_s", ":^", "coarser mesh")):
+                ratio = np.array([b.get(key, np.nan) / a.get(key, np.nan) for a, b in zip(*maps)], float)
+                if np.isfinite(ratio).any():
+                    below.plot(d, ratio, style, color="k", ms=4, label=label)
+            below.axhline(1.0, color="0.6", lw=0.8)
+            below.set_ylabel(f"{kinds[1]} / {kinds[0]}", fontsize=8)
+            below.legend(fontsize=7)
         ax.set_title(index, fontsize=9)
-        ax.set_xlabel(f"impactor diameter [{lu.label}]")
+        below.set_xlabel(f"impactor diameter [{lu.label}]")
         ax.grid(alpha=0.3)
+        below.grid(alpha=0.3)
     axes[0][0].set_ylabel(f"threshold velocity [{vu.label}]")
     axes[0][0].legend(fontsize=7, title="open markers: outside validity" if _outside(rows).any() else None, title_fontsize=7)
     fig.suptitle(title, fontsize=10)

@@ -651,7 +651,8 @@ def _kinematics_files(linear: list[dict], nonlinear: list[dict], figures: bool, 
             f"{prefix}plate-kinematics-map.png",
             "The plate's threshold maps with linear (solid, shaded band) and von Kármán kinematics (dashed, hatched band: the linear "
             "map's relative band carried over, widened by the nonlinear map's own GCI), per index, against the ball's diameter; "
-            "open markers: outside validity at the threshold",
+            "open markers: outside validity at the threshold; below, the ratio of the von Kármán threshold to the linear one on the map's "
+            "mesh and on the coarser mesh",
         )
     ]
 
