@@ -151,7 +151,8 @@ def paper_identification():
 def _map_structures(name: str, law, kinematics: str = "linear"):
     """(map mesh, coarse mesh) :class:`~softimpact.studies.thresholds.ThresholdStructure` of a paper beam
     (layered laminate) or of the plate's quarter (:func:`paper_plate_case`, MITC4); with ``kinematics`` other than
-    "linear" the plate on :data:`VK_PLATE_MESHES` with that kinematics (and the linear plate there with "linear-vk-meshes")."""
+    "linear" the plate on :data:`VK_PLATE_MESHES` with that kinematics (and the linear plate there with "linear-vk-meshes"),
+    a beam on the linear map's meshes with ``[beam] kinematics`` set (for a build whose beam case takes the key)."""
     from ...input.beam_case import beam_problem
     from ...input.plate_case import plate_problem
     from ...input.toml import load_toml, locate
@@ -173,6 +174,8 @@ def _map_structures(name: str, law, kinematics: str = "linear"):
             data = load_toml(locate(name))
             data["beam"]["elements"] = [nx, nz]
             data["beam"]["laminate"]["model"] = "layered"
+            if kinematics.removesuffix("-vk-meshes") != "linear":  # a beam case that takes kinematics (the maps' meshes)
+                data["beam"]["kinematics"] = kinematics
             label = f"{name.removeprefix('paper-').removesuffix('-beam')} beam"
             out.append(structure(label, beam_problem(data, locate(name).parent), widest, rho, dt, MAP_DURATION, law))
     return out[1], out[0]
