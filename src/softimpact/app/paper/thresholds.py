@@ -486,6 +486,8 @@ def _onset_table(onset: list[dict], vu) -> tuple[tuple, list[str]]:
 
     def cell(r):
         ratio = f"{r['regime']}, M_i/M_p {r['impactor_over_target_mass']:.2g}"
+        if r.get("inside_validity") is not None:  # the validity at the threshold (threshold-maps' table has its flags)
+            ratio += f", w/h {r['deflection_over_thickness']:.2f}" + ("" if r["inside_validity"] else ", outside validity")
         if not r["draws_reaching_1"]:
             return f"above {MAP_RANGE_IN_S[1]:.0f} ({ratio})"
         m, lo, hi = (r[f"threshold_velocity_{q}_m_s"] * vu.factor for q in ("median", "p05", "p95"))
@@ -494,7 +496,7 @@ def _onset_table(onset: list[dict], vu) -> tuple[tuple, list[str]]:
     rows = [[n] + [cell(next(r for r in onset if (r["structure"], r["diameter_m"]) == (n, d))) for d in diameters] for n in names]
     table = (
         f"Onset map (coupled impact, identified law): velocity [{vu.label}] at which the peak force reaches Olsson's F_d, median [5-95 %], "
-        "with the row's response regime",
+        "with the row's response regime, w/h at the threshold and whether it lies outside validity (onset-map.csv: its flags)",
         ["structure"] + [f"d = {d / INCH:.3g} in" for d in diameters],
         rows,
     )
