@@ -104,17 +104,10 @@ def execute(
 
 
 def impact_validity(problem, result, damage: dict | None = None) -> Validity:
-    """The envelopes of a coupled run (:mod:`softimpact.models.validity`): the contact law's approach and
+    """The envelopes of a coupled run (:func:`softimpact.models.validity.coupled_validity`): the contact law's approach and
     contact radius against the impactor's size, the law's own envelope, the target's deflection against its thickness (its theory,
     :meth:`~softimpact.models.protocols.Target.validity`), and with ``damage`` (summary.json's) the strains
     against the ply allowables."""
-    from ..models.contact_laws import law_validity
-    from ..models.validity import allowable_flags, contact_validity
+    from ..models.validity import coupled_validity
 
-    d = problem.impactor.diameter
-    v = contact_validity(problem.law_name, float(np.max(result.approach)), float(np.max(result.contact_radius)), d)
-    v += law_validity(problem.law, problem.impactor.velocity)  # the law's own envelope (ice: strain rate; gelatin: shock)
-    v += problem.target.validity(float(np.max(np.abs(result.target_displacement))))
-    if damage is not None:
-        v += allowable_flags("the target's plies", damage["max_strain"])
-    return v
+    return coupled_validity(problem, result, None if damage is None else damage["max_strain"])

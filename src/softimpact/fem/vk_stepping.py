@@ -24,8 +24,10 @@ The patch: the structure's own (a plate's contact disc, :class:`softimpact.fem.p
 without one, the cosine line patch over the struck face's nodes (:class:`~softimpact.fem.impact.ContactPatch`, a
 beam's), as :class:`softimpact.fem.direct.DirectStepper` takes it.
 
-Contact laws with memory (a HistoryLaw) are refused for now: the coupled step would need the law's branch
-inside the structure's Newton.
+A contact law with memory (a HistoryLaw: the identified law's Maxwell arm) enters the coupled step as the branch
+the loop's contact Newton uses for that step (:meth:`VonKarmanStepper._branch`): its state is advanced here from
+the loop's converged α and α̇ with the loop's own calls (``settle``'s state, or ``advance``), and taken again from
+the loop after each coast, so the plate's Newton and the loop's contact Newton solve the same law.
 """
 
 from __future__ import annotations
@@ -80,10 +82,6 @@ class VonKarmanStepper(CoupledStepper):
         super().__init__(law, mass, velocity, time_step, steps, stop_after)
         if not isinstance(engine, VonKarmanNewmark):
             raise InputError("the von Karman stepper needs the structure's VonKarmanNewmark as its engine (a linear structure steps 'direct' or 'kernels')")
-        if self.memory:
-            raise InputError(
-                f"a contact law with memory ({type(law).__name__}) on a von Karman target is not implemented yet: use a memoryless law or linear kinematics"
-            )
         check_time_step(engine.dt, self.dt)
         self.nm, self.vk, self.params, self.energy = engine, engine.model, engine.params, energy
         n = self.vk.n
@@ -120,6 +118,26 @@ class VonKarmanStepper(CoupledStepper):
         self._ala = 0.0  # α̈ at the step's start (the loop's local, kept by approach_acceleration)
         self._zero = np.zeros(n)
         self.structure_iterations = 0
+        # a law with memory: its state at step _law_k (the loop's, mirrored), resynchronised after each coast
+        self._law_state, self._law_k, self._law_coasted, self._law_branch = self.state, 0, self.coasted, self.branch
+
+    def _branch(self, k: int):
+        """The law's branch for the step from k (the loop's: the state after its converged step k, module docstring)."""
+        if not self.memory:
+            return self.law
+        if self.coasted != self._law_coasted:  # a coast: the loop keeps its state on self across it
+            self._law_state, self._law_k, self._law_coasted = self.state, k, self.coasted
+            self._law_branch = self.branch
+        law = self.law
+        while self._law_k < k:
+            i = self._law_k + 1
+            if self.settles:
+                self._law_state, self._law_branch, _ = law.settle(self._law_state, self.al[i], self.ald[i])
+            else:
+                self._law_state = law.advance(self._law_state, self.al[i], self.ald[i])
+                self._law_branch = law.branch(self._law_state)
+            self._law_k = i
+        return self._law_branch
 
     def _contact(self, u: np.ndarray, x_pred: float, q: float, index: int):
         """(α, F, r, dF/dw) of the impactor against the structure held at ``u`` (zero force where apart)."""
@@ -127,9 +145,10 @@ class VonKarmanStepper(CoupledStepper):
         top = x_pred - w
         if top <= 0.0:
             return top, 0.0, 0.0, 0.0
-        a, f, r, _ = newton_contact(self.law, self._rigid, self.hm, self.kappa, q, top, top, index, self.dt, caps=self.caps)
+        law = self._branch(index - 1)
+        a, f, r, _ = newton_contact(law, self._rigid, self.hm, self.kappa, q, top, top, index, self.dt, caps=self.caps)
         rate = self.kappa * a + q
-        slope = self.law.stiffness(a, rate) + self.kappa * self.law.damping(a, rate) if f > 0.0 else 0.0
+        slope = law.stiffness(a, rate) + self.kappa * law.damping(a, rate) if f > 0.0 else 0.0
         return a, f, r, -slope / (1.0 + self.hm * slope)
 
     def free_approach(self, k: int) -> float:

@@ -124,11 +124,10 @@ def warn_outside(ranges: dict | None, velocity: float, diameter: float, path: Pa
     velocities, diameters or masses of its tests, or 20 % off their projectiles' density m/(π d³/6):
     another material; :mod:`softimpact.models.validity`): the law is then an extrapolation. A law.json
     without the record (written before it was kept) is warned as unchecked."""
-    import math
     import warnings
 
     from ..errors import SoftimpactWarning
-    from ..models.validity import range_flags, warn
+    from ..models.validity import identified_range_validity, warn
 
     what = f"the law of {path.name}"
     if ranges is None:  # a law.json written before the ranges were recorded
@@ -138,15 +137,10 @@ def warn_outside(ranges: dict | None, velocity: float, diameter: float, path: Pa
             stacklevel=3,
         )
         return
-    checks = [("velocity", velocity, ranges["velocity_m_s"], "m/s"), ("diameter", diameter, ranges["diameter_m"], "m")]
-    proj = ranges.get("projectile")
-    if proj is None:
+    if ranges.get("projectile") is None:
         warnings.warn(
             f"{what} does not record the projectile it was identified on (mass, density): the impactor's mass and material cannot be checked",
             SoftimpactWarning,
             stacklevel=3,
         )
-    elif mass is not None:
-        density = mass / (math.pi / 6 * diameter**3)
-        checks += [("mass", mass, proj["mass_kg"], "kg"), ("density", density, proj["density_kg_m3"], "kg/m^3")]
-    warn(range_flags(f"the impactor for {what}", checks))
+    warn(identified_range_validity(ranges, velocity, diameter, mass, what))

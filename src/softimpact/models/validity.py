@@ -233,3 +233,45 @@ def hydrodynamic_validity(diameter: float, velocity: float, hugoniot) -> Validit
 
 
 __all__ += ["HYDRO_RELEASE_DEPTH_OVER_DIAMETER", "ice_strength_validity", "hydrodynamic_validity"]
+
+
+# --- A coupled impact's envelopes, composed once (the impact command's and the threshold maps' rows) ---
+
+
+def coupled_validity(problem, result, max_strain_index: float | None = None) -> Validity:
+    """The envelopes of a coupled impact run, in the impact command's order: the contact law's approach and contact
+    radius against the impactor's diameter (:func:`contact_validity`), the law's own envelope
+    (:func:`softimpact.models.contact_laws.law_validity`), the target's peak deflection under the impact point against its
+    thickness (``problem.target.validity``: its theory's; none past the linear limit for a von Kármán target) and,
+    with ``max_strain_index`` (the run's maximum-strain index over the target's damage points), the strains against
+    the ply allowables (:func:`allowable_flags`). ``problem``: an impact problem (``law_name``, ``law``, ``impactor``,
+    ``target``); ``result``: its coupled result (``approach`` [m], ``contact_radius`` [m] and ``target_displacement`` [m] histories)."""
+    import numpy as np
+
+    from .contact_laws import law_validity
+
+    d = problem.impactor.diameter
+    v = contact_validity(problem.law_name, float(np.max(result.approach)), float(np.max(result.contact_radius)), d)
+    v += law_validity(problem.law, problem.impactor.velocity)
+    v += problem.target.validity(float(np.max(np.abs(result.target_displacement))))
+    if max_strain_index is not None:
+        v += allowable_flags("the target's plies", max_strain_index)
+    return v
+
+
+def identified_range_validity(ranges: dict | None, velocity: float, diameter: float, mass: float | None, what: str) -> Validity:
+    """An identified law used on an impactor (velocity [m/s], diameter [m], mass [kg] or None) against the tests it was
+    identified on (``ranges``: its law.json's ``identified_on``, with ``velocity_m_s``, ``diameter_m`` and optionally
+    ``projectile`` ``mass_kg`` and ``density_kg_m3`` ranges; None: nothing recorded, nothing checked): :func:`range_flags`
+    of each (an ``extrapolated_*`` flag beyond :data:`RANGE_SLACK`, the density beyond :data:`DENSITY_SLACK`)."""
+    if ranges is None:
+        return Validity({})
+    checks = [("velocity", velocity, ranges["velocity_m_s"], "m/s"), ("diameter", diameter, ranges["diameter_m"], "m")]
+    proj = ranges.get("projectile")
+    if proj is not None and mass is not None:
+        density = mass / (math.pi / 6 * diameter**3)
+        checks += [("mass", mass, proj["mass_kg"], "kg"), ("density", density, proj["density_kg_m3"], "kg/m^3")]
+    return range_flags(f"the impactor for {what}", checks)
+
+
+__all__ += ["coupled_validity", "identified_range_validity"]

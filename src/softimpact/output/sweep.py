@@ -20,6 +20,7 @@ __all__ = [
     "sweep_files",
     "threshold_figure",
     "threshold_map_figure",
+    "kinematics_map_figure",
     "threshold_csv",
     "save_checkpoint",
     "load_checkpoint",
@@ -83,10 +84,20 @@ def parquet_bytes(cols: dict) -> bytes:
 
 def threshold_csv(th: list[dict]) -> str:
     """Threshold rows (:func:`softimpact.workflows.sweep_stats.thresholds`, or a threshold map's rows,
-    :meth:`softimpact.studies.thresholds.MapRow.as_dict`) as CSV text."""
-    text = ("levels", "index", "structure", "regime")
+    :meth:`softimpact.studies.thresholds.MapRow.as_dict`) as CSV text: a map row's ``validity_flags`` (a list of names)
+    joined by ", " (as runs.parquet's), ``inside_validity`` true/false (empty: not checked, no threshold)."""
+    text = ("levels", "index", "structure", "regime", "kinematics", "band_from", "validity_flags", "inside_validity")
+
+    def cell(t, k):
+        v = t.get(k, np.nan)
+        if isinstance(v, (list, tuple)):
+            return ", ".join(v)
+        if k == "inside_validity":
+            return "" if v is None or v is np.nan else str(bool(v)).lower()
+        return v
+
     return csv_text(
-        {k: np.array([t[k] for t in th], dtype=object if k in text or k.endswith("_bound") else float) for k in dict.fromkeys(k for t in th for k in t)}
+        {k: np.array([cell(t, k) for t in th], dtype=object if k in text or k.endswith("_bound") else float) for k in dict.fromkeys(k for t in th for k in t)}
     )
 
 
@@ -135,10 +146,27 @@ def threshold_figure(th: list[dict], system: str, title: str = "Threshold veloci
     return fig
 
 
+def _outside(rows: list[dict]) -> np.ndarray:
+    """Whether each map row lies outside the models' validity at its threshold (``inside_validity`` false)."""
+    return np.array([r.get("inside_validity") is False for r in rows], bool)
+
+
+def _median_line(ax, rows: list[dict], x_factor: float, v_factor: float, colour, label: str, style: str = "-", marker: str = "o"):
+    """A map's median against the diameter (line), markers filled where the row is inside validity and open where outside."""
+    d = np.array([r["diameter_m"] for r in rows]) * x_factor
+    med = np.array([r["threshold_velocity_median_m_s"] for r in rows]) * v_factor
+    out = _outside(rows)
+    ax.plot(d, med, style, color=colour, label=label)
+    ax.plot(d[~out], med[~out], marker, color=colour, ms=5, ls="none")
+    ax.plot(d[out], med[out], marker, color=colour, mfc="none", ms=5, ls="none")
+    return d
+
+
 def threshold_map_figure(rows: list[dict], prescribed: list[dict], system: str, title: str):
     """Threshold velocity against impactor diameter, one panel per structure: each index's median
     (line) and 5–95 % band (shaded) from a threshold map (:meth:`softimpact.studies.thresholds.MapRow.as_dict`
-    rows), and beside it the carried-over prescribed-force thresholds (``prescribed``: rows with
+    rows; open markers: the row's run at its threshold is outside the models' validity, ``inside_validity`` false), and
+    beside it the carried-over prescribed-force thresholds (``prescribed``: rows with
     ``structure``, ``index``, ``diameter_m`` and the median, p05 and p95 velocities) as points with their band."""
     import matplotlib.pyplot as plt
 
@@ -152,10 +180,9 @@ def threshold_map_figure(rows: list[dict], prescribed: list[dict], system: str, 
     for ax, name in zip(axes[0], structures):
         for j, index in enumerate(indices):
             mine = sorted((r for r in rows if r["structure"] == name and r["index"] == index), key=lambda r: r["diameter_m"])
-            d = np.array([r["diameter_m"] for r in mine]) * lu.factor
-            med, lo, hi = (np.array([r[f"threshold_velocity_{q}_m_s"] for r in mine]) * vu.factor for q in ("median", "p05", "p95"))
             c = colours[j % len(colours)]
-            ax.plot(d, med, "-o", color=c, ms=4, label=f"{index}: coupled, identified law")
+            d = _median_line(ax, mine, lu.factor, vu.factor, c, f"{index}: coupled, identified law")
+            lo, hi = (np.array([r[f"threshold_velocity_{q}_m_s"] for r in mine]) * vu.factor for q in ("p05", "p95"))
             ax.fill_between(d, lo, hi, color=c, alpha=0.2)
             old = sorted((p for p in prescribed if p["structure"] == name and p["index"] == index), key=lambda p: p["diameter_m"])
             if old:
@@ -175,7 +202,57 @@ def threshold_map_figure(rows: list[dict], prescribed: list[dict], system: str, 
         ax.set_xlabel(f"impactor diameter [{lu.label}]")
         ax.grid(alpha=0.3)
     axes[0][0].set_ylabel(f"threshold velocity [{vu.label}]")
-    axes[0][0].legend(fontsize=7)
+    axes[0][0].legend(fontsize=7, title="open circles: outside validity" if _outside(rows).any() else None, title_fontsize=7)
+    fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+    return fig
+
+
+def kinematics_map_figure(rows: list[dict], system: str, title: str):
+    """One structure's threshold maps on two kinematics, one column per index: above, each map's median against the diameter
+    (solid: linear, dashed: von Kármán; markers open where the row is outside validity) and its 5–95 % band (shaded;
+    hatched for the von Kármán map); below, the ratio of the second map's nominal threshold to the first's on the map's mesh
+    and on the coarser one (``threshold_velocity_coarse_mesh_m_s``, when given); ``rows``:
+    :meth:`softimpact.studies.thresholds.MapRow.as_dict` rows of both maps."""
+    import matplotlib.pyplot as plt
+
+    from ..units import display
+
+    vu, lu = display(system, "velocity"), display(system, "length")
+    indices = list(dict.fromkeys(r["index"] for r in rows))
+    kinds = list(dict.fromkeys(r["kinematics"] for r in rows))
+    fig, axes = plt.subplots(2, len(indices), figsize=(4.4 * len(indices), 6.2), sharex=True, squeeze=False, gridspec_kw={"height_ratios": [2, 1]})
+    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for col, index in enumerate(indices):
+        ax, below = axes[0][col], axes[1][col]
+        maps = []
+        for j, kind in enumerate(kinds):
+            mine = sorted((r for r in rows if r["index"] == index and r["kinematics"] == kind), key=lambda r: r["diameter_m"])
+            if not mine:
+                continue
+            maps.append(mine)
+            c = colours[j % len(colours)]
+            d = _median_line(ax, mine, lu.factor, vu.factor, c, f"{kind}", "-" if j == 0 else "--", "o" if j == 0 else "s")
+            lo, hi = (np.array([r[f"threshold_velocity_{q}_m_s"] for r in mine]) * vu.factor for q in ("p05", "p95"))
+            if j == 0:
+                ax.fill_between(d, lo, hi, color=c, alpha=0.15)
+            else:
+                ax.fill_between(d, lo, hi, facecolor="none", edgecolor=c, hatch="//", lw=0.0)
+        if len(maps) == 2 and len(maps[0]) == len(maps[1]):
+            d = np.array([r["diameter_m"] for r in maps[0]]) * lu.factor
+            for key, style, label in (("threshold_velocity_nominal_m_s", "-o", "map's mesh"), ("threshold_velocity_coarse_mesh_m_s", ":^", "coarser mesh")):
+                ratio = np.array([b.get(key, np.nan) / a.get(key, np.nan) for a, b in zip(*maps)], float)
+                if np.isfinite(ratio).any():
+                    below.plot(d, ratio, style, color="k", ms=4, label=label)
+            below.axhline(1.0, color="0.6", lw=0.8)
+            below.set_ylabel(f"{kinds[1]} / {kinds[0]}", fontsize=8)
+            below.legend(fontsize=7)
+        ax.set_title(index, fontsize=9)
+        below.set_xlabel(f"impactor diameter [{lu.label}]")
+        ax.grid(alpha=0.3)
+        below.grid(alpha=0.3)
+    axes[0][0].set_ylabel(f"threshold velocity [{vu.label}]")
+    axes[0][0].legend(fontsize=7, title="open markers: outside validity" if _outside(rows).any() else None, title_fontsize=7)
     fig.suptitle(title, fontsize=10)
     fig.tight_layout()
     return fig

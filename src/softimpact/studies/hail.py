@@ -105,15 +105,11 @@ def _density(law) -> float:
 
 def run_validity(problem, result):
     """The validity of one coupled run, composed as the single impact run composes it
-    (``softimpact.cases.run.impact_validity``, which studies may not import): the contact law's approach and
-    contact radius against the sphere, the law's own envelope, the target's deflection against its thickness."""
-    from ..models.contact_laws import law_validity
-    from ..models.validity import contact_validity
+    (:func:`softimpact.models.validity.coupled_validity`): the contact law's approach and contact radius against the
+    sphere, the law's own envelope, the target's deflection against its thickness."""
+    from ..models.validity import coupled_validity
 
-    d = problem.impactor.diameter
-    v = contact_validity(problem.law_name, float(np.max(result.approach)), float(np.max(result.contact_radius)), d)
-    v += law_validity(problem.law, problem.impactor.velocity)
-    return v + problem.target.validity(float(np.max(np.abs(result.target_displacement))))
+    return coupled_validity(problem, result)
 
 
 @dataclass(frozen=True)

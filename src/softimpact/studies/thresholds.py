@@ -42,6 +42,30 @@ Bands (:func:`threshold_map`) combine three sources, stated in each row:
 The 5–95 % band is that of the law draws × strength factors (each law draw paired with every one
 of ``strength_quantiles`` equally spaced normal quantiles of s), widened by (c). The median is
 that of the law draws at s = 1.
+
+Each row also states whether its threshold lies inside the models' validity: the coupled run of the law's mean
+at the nominal V* (the map's own run there, kept from the root-finding) checked as the impact command checks a
+single run (:func:`softimpact.models.validity.coupled_validity`): the approach and the contact radius against the
+ball, the law's own envelope, the peak deflection under the impact point over the thickness (mid-surface; the linear
+limit w/h = 0.5) and the maximum-strain index over the damage points against the ply allowables; and, as the command
+warns when it reads an identified law, the ball's velocity, diameter, mass and density against the tests the law was
+identified on (``extrapolated_*`` flags; those ratios are not columns). The ratios are
+columns under the impact summary's names (``deflection_over_thickness``, ``contact_radius_over_projectile_radius``,
+``max_strain_index``, ...), the flags raised by name (``validity_flags``, :data:`~softimpact.models.validity.FLAG_LABELS`)
+and ``inside_validity`` whether none was.
+
+Nonlinear maps: on a target whose kinematics is "von-karman" (:class:`ThresholdStructure` ``stepping``) no kernels are
+built (they hold a linear structure's impulse responses) and every run is stepped directly by the target's nonlinear
+stepper (:data:`softimpact.workflows.coupled.METHODS`); the thresholds come from the same root-finding on the law's mean.
+Its bands cost a threshold per law draw; with ``band_from`` (the linear map's rows of the same structure, index and
+diameters) the nonlinear row carries over the linear row's RELATIVE law and strength band instead (median, p05, p95 and
+the law's 5–95 % as the same fractions of the nominal threshold), widened by its own two-mesh GCI, and says so
+(``band_from`` "linear map"; "own draws" otherwise), and the linear row's β (the strengths' share moves as s^(1/β)).
+That carry-over assumes the law's and the strengths' relative effect on V* is the same on both kinematics. A nonlinear
+threshold then costs its root-finding (secant steps from the linear threshold: two or three runs), one run at V* for its
+validity and the coarse mesh's root-finding: on the report's quarter plate (16 MITC4 elements a side, 2 µs, 200 steps)
+a von Kármán run costs about 12 linear direct runs (0.84 s against 0.07 s of CPU), and a nonlinear threshold with its
+coarse mesh's (8 a side, 4 µs) about 4 s of CPU (measured on a shared 2-core machine, 8 thresholds in 32 s).
 """
 
 from __future__ import annotations
@@ -58,6 +82,7 @@ from ..fem.newmark import SolverSpec
 from ..models.delamination import REGIME_BOUNDS, response_regime
 from ..models.materials import Material
 from ..models.specimens import Impactor
+from ..models.validity import Validity, coupled_validity, identified_range_validity
 from ..workflows.coupled import ImpactProblem, impact_kernels, run_impact
 from ..workflows.damage import coupled_damage, delamination_force, olsson_force
 
@@ -72,6 +97,7 @@ __all__ = [
     "threshold_map",
     "law_draws",
     "gci_two_meshes",
+    "run_validity",
 ]
 
 INDICES = ("tsai_wu", "delamination")  # the damage indices thresholded by default
@@ -85,7 +111,10 @@ class MapRow:
     (``p05``, ``p95``, widened by ``gci``); ``law_p05``/``law_p95`` the law's draws alone,
     ``beta`` the local power of I in V at the threshold, ``gci`` [m/s] the discretisation
     error, ``coarse`` [m/s] the threshold on the coarser mesh; ``draws`` and ``reached`` the law
-    draws and how many reached 1 within the velocity range (NaN thresholds otherwise)."""
+    draws and how many reached 1 within the velocity range (NaN thresholds otherwise); ``mass_ratio`` and ``regime``
+    the response regime; ``ratios`` and ``flags`` the validity of the law's mean run at ``nominal`` (module docstring;
+    empty when no threshold), ``kinematics`` the target's, ``band_from`` where the band comes from ("own draws" or
+    "linear map": then ``beta`` is the linear row's too), ``runs`` the runs the nominal root-finding took."""
 
     structure: str
     index: str
@@ -104,8 +133,19 @@ class MapRow:
     reached: int
     mass_ratio: float = math.nan  # the impactor's mass over the target's (the row's validity)
     regime: str = ""  # its response regime (module docstring)
+    ratios: dict = dataclasses.field(default_factory=dict)  # the nominal run's validity ratios at V* (summary names)
+    flags: tuple[str, ...] = ()  # the validity flags it raises, by name (models.validity.FLAG_LABELS)
+    kinematics: str = "linear"  # the target's: "linear" (kernel runs) or "von-karman" (stepped directly)
+    band_from: str = "own draws"  # where the band comes from: "own draws", or "linear map" (relative widths carried over)
+    runs: int = 0  # the coupled runs the nominal threshold took (its root-finding)
+
+    @property
+    def inside(self) -> bool | None:
+        """Whether the nominal run at V* raises no validity flag; None when no threshold was reached (nothing checked)."""
+        return None if not self.ratios else not self.flags
 
     def as_dict(self) -> dict:
+        """The row under its CSV/JSON names (SI): the thresholds and band, then the validity columns."""
         return {
             "structure": self.structure,
             "index": self.index,
@@ -124,20 +164,37 @@ class MapRow:
             "draws_reaching_1": self.reached,
             "impactor_over_target_mass": self.mass_ratio,
             "regime": self.regime,
+            "kinematics": self.kinematics,
+            "band_from": self.band_from,
+            "nominal_threshold_runs": self.runs,
+            **{k: float(v) for k, v in self.ratios.items()},
+            "validity_flags": list(self.flags),
+            "inside_validity": self.inside,
         }
 
 
 @dataclass
 class ThresholdStructure:
     """A structure ready for threshold runs: its impact problem, its model (with the target's
-    ``"damage"`` output group) and its contact kernels (built once, for the widest diameter). Not frozen: the
-    kernels keep a cache of the smaller impactors' contact discs."""
+    ``"damage"`` output group) and its contact kernels (built once, for the widest diameter; None on a nonlinear
+    target, whose runs are stepped directly). Not frozen: the kernels keep a cache of the smaller impactors' contact discs."""
 
     name: str
     problem: ImpactProblem
     model: object
     kernels: object
     density: float  # kg/m³ of the impactor
+
+    @property
+    def kinematics(self) -> str:
+        """The target's kinematics: "linear", or "von-karman" (large deflection)."""
+        return getattr(self.problem.target, "kinematics", "linear")
+
+    @property
+    def stepping(self) -> str:
+        """How a direct run of this structure is stepped (:func:`~softimpact.workflows.coupled.run_impact`'s ``method``):
+        "direct" on a linear target, its kinematics' own stepper ("von-karman") otherwise."""
+        return "direct" if self.kinematics == "linear" else self.kinematics
 
     def problem_at(self, law, diameter: float, velocity: float) -> ImpactProblem:
         """The problem for a ball of ``diameter`` [m] at ``velocity`` [m/s] under the identified ``law`` (an IdentifiedLaw)."""
@@ -148,7 +205,8 @@ class ThresholdStructure:
 
 def structure(name: str, target, widest: float, density: float, time_step: float, duration: float, law) -> ThresholdStructure:
     """A :class:`ThresholdStructure` from a resolved target ``target`` (a :class:`~softimpact.models.protocols.Target`:
-    its load position and contact radius used, its force history dropped, :meth:`~softimpact.models.protocols.Target.for_impact`),
+    its load position and contact radius used, its force history dropped, :meth:`~softimpact.models.protocols.Target.for_impact`;
+    its kinematics kept: a "von-karman" target gets no kernels and steps every run),
     for balls up to ``widest`` [m] of ``density`` [kg/m³], stepped at ``time_step`` [s] for ``duration`` [s];
     ``law``: the identified law (its mean; any law serves for the build, the kernels hold none)."""
     resolved = target.for_impact(SolverSpec(time_step, duration), ())
@@ -158,7 +216,8 @@ def structure(name: str, target, widest: float, density: float, time_step: float
     if not resolved.has_damage_outputs:
         raise InputError(f"{name}: no damage outputs (the laminate needs a layup and a ply with strengths)")
     model = problem.model(damage=True)
-    kernels = impact_kernels(problem, model)
+    linear = getattr(resolved, "kinematics", "linear") == "linear"
+    kernels = impact_kernels(problem, model) if linear else None  # a nonlinear target steps every run (module docstring)
     return ThresholdStructure(name, problem, model, kernels, density)
 
 
@@ -175,13 +234,31 @@ def damage_index(problem: ImpactProblem, result, index: str, scale: float = 1.0)
     return coupled_damage(problem.target, result, ("at_load",)).points["at_load"].peak[index] / scale
 
 
+def _method(s: ThresholdStructure, method: str) -> str:
+    """The run method actually used: "kernels" on a linear structure, else the structure's direct stepping."""
+    return "kernels" if method == "kernels" and s.kernels is not None else s.stepping
+
+
 def _run(s: ThresholdStructure, law, diameter: float, velocity: float, method: str = "kernels"):
     problem = s.problem_at(law, diameter, velocity)
-    if method == "kernels":
-        _, result = run_impact(problem, s.model, energy=False, method="kernels", kernels=s.kernels)
-    else:
-        _, result = run_impact(problem, s.model, energy=False, method="direct")
+    method = _method(s, method)
+    _, result = run_impact(problem, s.model, energy=False, method=method, kernels=s.kernels if method == "kernels" else None)
     return problem, group_outputs(result, s.model.contact_groups())
+
+
+def run_validity(problem: ImpactProblem, result, identified=None) -> Validity:
+    """The validity of one coupled run of a threshold map (``result`` with its ``"damage"`` output group), checked as
+    the impact command checks its run (:func:`~softimpact.models.validity.coupled_validity`, the maximum-strain index
+    over the target's damage points: :func:`~softimpact.workflows.damage.coupled_damage`'s, as in summary.json) and,
+    with the ``identified`` law (an IdentifiedLaw), the impactor against the tests it was identified on, as the command
+    warns when it reads the law (:func:`~softimpact.models.validity.identified_range_validity`)."""
+    dmg = coupled_damage(problem.target, result, impactor_mass=problem.impactor.mass).summary()
+    v = coupled_validity(problem, result, dmg["max_strain"])
+    if identified is not None:
+        i = problem.impactor
+        ranges = identified_range_validity(getattr(identified, "identified_on", None), i.velocity, i.diameter, i.mass, "the identified law")
+        v += Validity({}, ranges.flags, ranges.names)  # its flags (the command's warnings); its ratios stay out of the row
+    return v
 
 
 def index_at(s: ThresholdStructure, law, diameter: float, velocity: float, index: str, method: str = "kernels", runs: dict | None = None) -> float:
@@ -190,7 +267,7 @@ def index_at(s: ThresholdStructure, law, diameter: float, velocity: float, index
     objects by identity: for one caller that keeps them alive), so a run every index reads is made once."""
     if runs is None:
         return damage_index(*_run(s, law, diameter, velocity, method), index)
-    key = (id(s), id(law), diameter, velocity, method)
+    key = (id(s), id(law), diameter, velocity, _method(s, method))
     if key not in runs:
         runs[key] = _run(s, law, diameter, velocity, method)
     return damage_index(*runs[key], index)
@@ -208,6 +285,7 @@ def threshold_velocity(
     beta: float | None = None,
     method: str = "kernels",
     runs: dict | None = None,
+    evaluated: list | None = None,
 ) -> float:
     """The velocity V* [m/s] in [``lo``, ``hi``] at which ``index`` first reaches 1 (kernel runs):
     a geometric scan (ratio 1.5) for the first level where I ≥ 1, then Brent's method on
@@ -219,10 +297,14 @@ def threshold_velocity(
     more than once in the range may then give a crossing other than the first: the
     indices here grow monotonically with V over the ranges used (they follow the peak force).
     ``method``: "kernels" (the runs of a map) or "direct" (each run stepped directly: the reference);
-    ``runs``: as :func:`index_at`'s (the scans of two indices share their runs)."""
+    ``runs``: as :func:`index_at`'s (the scans of two indices share their runs); ``evaluated``: a list the velocities
+    evaluated are appended to (its length: the root-finding's cost in runs, some maybe shared through ``runs``).
+    On a nonlinear structure (no kernels) ``method`` "kernels" steps each run directly (:attr:`ThresholdStructure.stepping`)."""
     from scipy.optimize import brentq
 
     def g(lnv):
+        if evaluated is not None:
+            evaluated.append(math.exp(lnv))
         return math.log(max(index_at(s, law, diameter, math.exp(lnv), index, method, runs), 1e-300))
 
     if guess is not None and beta is not None and math.isfinite(guess) and beta > 0:
@@ -297,14 +379,17 @@ def threshold_map(
     coarse: ThresholdStructure | None = None,
     indices=INDICES,
     seed: int = 1,
+    band_from: list[MapRow] | None = None,
 ) -> list[MapRow]:
     """The threshold map of structure ``s`` (module docstring): one :class:`MapRow` per index (``indices``: of
-    :data:`INDICES` and :data:`ONSET`; ``(ONSET,)`` the onset map) and diameter [m], with its regime, velocity range
-    [``lo``, ``hi``] m/s; ``coarse``: the same structure on the mesh
-    (and step) coarser by 2, for the discretisation error (None: no estimate, ``gci`` NaN)."""
+    :data:`INDICES` and :data:`ONSET`; ``(ONSET,)`` the onset map) and diameter [m], with its regime and its
+    validity at the nominal threshold, velocity range [``lo``, ``hi``] m/s; ``coarse``: the same structure on the mesh
+    (and step) coarser by 2, for the discretisation error (None: no estimate, ``gci`` NaN). ``band_from``: rows of
+    a map of the same structure (the linear one) whose relative band this map carries over instead of drawing its own
+    (module docstring; each index and diameter must have its row there); their thresholds also start the root-finding."""
     from scipy.stats import norm
 
-    drawn = law_draws(law, draws, seed)
+    drawn = law_draws(law, draws, seed) if band_from is None else []
     q = norm.ppf((np.arange(strength_quantiles) + 0.5) / strength_quantiles)
     factors = np.maximum(1.0 + strength_cov * q, 0.05)
     rows = []
@@ -312,25 +397,91 @@ def threshold_map(
     for index in indices:
         for d in diameters:
             mass = s.density * math.pi / 6.0 * d**3
-            nominal = threshold_velocity(s, law, d, index, lo, hi, runs=runs)
-            beta = math.nan
+            ref = None if band_from is None else _row_of(band_from, index, d)
+            evaluated: list = []
+            guess = dict(guess=ref.nominal, beta=ref.beta) if ref is not None else {}
+            nominal = threshold_velocity(s, law, d, index, lo, hi, runs=runs, evaluated=evaluated, **guess)
+            beta, ratios, flags = (math.nan if ref is None else ref.beta), {}, ()
             if math.isfinite(nominal):
-                i1, i2 = (index_at(s, law, d, nominal * f, index, runs=runs) for f in (0.98, 1.02))
-                beta = math.log(i2 / i1) / math.log(1.02 / 0.98)
-            vs = np.array([threshold_velocity(s, lw, d, index, lo, hi, guess=nominal, beta=beta, runs=runs) for lw in drawn] or [nominal], float)
-            ok = vs[np.isfinite(vs)]
+                if ref is None:  # (a carried band carries its β too: two runs fewer a threshold)
+                    i1, i2 = (index_at(s, law, d, nominal * f, index, runs=runs) for f in (0.98, 1.02))
+                    beta = math.log(i2 / i1) / math.log(1.02 / 0.98)
+                validity = run_validity(*_cached_run(s, law, d, nominal, runs), law)
+                ratios, flags = dict(validity.values), tuple(validity.names)
             coarse_v = threshold_velocity(coarse, law, d, index, lo, hi, guess=nominal, beta=beta, runs=runs) if coarse is not None else math.nan
             gci = gci_two_meshes(nominal, coarse_v)
-            if ok.size and math.isfinite(beta) and beta > 0:
-                combined = (ok[:, None] * factors[None, :] ** (1.0 / beta)).ravel()
-                lo_b, hi_b = np.percentile(combined, [5, 95])
-                widen = gci if math.isfinite(gci) else 0.0
-                p05, p95 = float(lo_b - widen), float(hi_b + widen)
-                med = float(np.median(ok))
-                law_lo, law_hi = (float(x) for x in np.percentile(ok, [5, 95]))
+            widen = gci if math.isfinite(gci) else 0.0
+            if ref is not None:
+                count, reached = ref.draws, ref.reached if math.isfinite(nominal) else 0
+                p05, p95, med, law_lo, law_hi = _carried_band(ref, nominal, widen)
             else:
-                p05 = p95 = med = law_lo = law_hi = math.nan
+                vs = np.array([threshold_velocity(s, lw, d, index, lo, hi, guess=nominal, beta=beta, runs=runs) for lw in drawn] or [nominal], float)
+                ok = vs[np.isfinite(vs)]
+                count, reached = len(vs), int(ok.size)
+                if ok.size and math.isfinite(beta) and beta > 0:
+                    combined = (ok[:, None] * factors[None, :] ** (1.0 / beta)).ravel()
+                    lo_b, hi_b = np.percentile(combined, [5, 95])
+                    p05, p95 = float(lo_b - widen), float(hi_b + widen)
+                    med = float(np.median(ok))
+                    law_lo, law_hi = (float(x) for x in np.percentile(ok, [5, 95]))
+                else:
+                    p05 = p95 = med = law_lo = law_hi = math.nan
             ratio = mass / s.problem.target.mass
             regime = response_regime(mass, s.problem.target.mass, wave_below=REGIME_BOUNDS[0], quasi_static_above=REGIME_BOUNDS[1])
-            rows.append(MapRow(s.name, index, d, mass, nominal, med, p05, p95, law_lo, law_hi, beta, gci, coarse_v, len(vs), int(ok.size), ratio, regime))
+            rows.append(
+                MapRow(
+                    s.name,
+                    index,
+                    d,
+                    mass,
+                    nominal,
+                    med,
+                    p05,
+                    p95,
+                    law_lo,
+                    law_hi,
+                    beta,
+                    gci,
+                    coarse_v,
+                    count,
+                    reached,
+                    ratio,
+                    regime,
+                    ratios,
+                    flags,
+                    s.kinematics,
+                    "own draws" if ref is None else "linear map",
+                    len(evaluated),
+                )
+            )
     return rows
+
+
+def _cached_run(s: ThresholdStructure, law, diameter: float, velocity: float, runs: dict):
+    """The map's coupled run at ``velocity`` (made once: :func:`index_at`'s cache)."""
+    index_at(s, law, diameter, velocity, INDICES[0], runs=runs)
+    return runs[(id(s), id(law), diameter, velocity, _method(s, "kernels"))]
+
+
+def _row_of(rows: list[MapRow], index: str, diameter: float) -> MapRow:
+    """The row of ``rows`` for ``index`` and ``diameter`` [m] (to 1e-9 relative)."""
+    for r in rows:
+        if r.index == index and math.isclose(r.diameter, diameter, rel_tol=1e-9):
+            return r
+    raise InputError(f"band_from: no row for {index} at d = {diameter:.6g} m (the linear map must have the same indices and diameters)")
+
+
+def _carried_band(ref: MapRow, nominal: float, widen: float) -> tuple[float, float, float, float, float]:
+    """(p05, p95, median, law_p05, law_p95) [m/s] at ``nominal`` from the linear row ``ref``'s band relative to its own
+    nominal threshold (its band before its GCI widening), widened by this map's ``widen`` [m/s] on both sides."""
+    if not (math.isfinite(nominal) and math.isfinite(ref.nominal) and ref.nominal > 0):
+        return (math.nan,) * 5
+    w = ref.gci if math.isfinite(ref.gci) else 0.0
+    rel = nominal / ref.nominal
+    return (
+        (ref.p05 + w) * rel - widen,
+        (ref.p95 - w) * rel + widen,
+        ref.median * rel,
+        ref.law_p05 * rel,
+        ref.law_p95 * rel,
+    )
