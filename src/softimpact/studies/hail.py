@@ -98,9 +98,9 @@ def hail_structures(panel_target, thickness: float, layup: str, law, meshes, dur
 
 
 def _density(law) -> float:
-    """The spheres' density [kg/m³]: the law's own (:class:`CatalogueIce`), else the catalogue's ice (an identified
-    crushing law holds no density: its tests' spheres were ice)."""
-    return getattr(law, "density", None) or projectile_material("ice").density
+    """The spheres' density [kg/m³]: the catalogue's ice, for either law of the maps (:class:`CatalogueIce` is the
+    catalogue's ice; an identified crushing law holds no density, and its tests' spheres were ice)."""
+    return projectile_material("ice").density
 
 
 def run_validity(problem, result):

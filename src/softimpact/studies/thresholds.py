@@ -188,7 +188,7 @@ class ThresholdStructure:
     @property
     def kinematics(self) -> str:
         """The target's kinematics: "linear", or "von-karman" (large deflection)."""
-        return getattr(self.problem.target, "kinematics", "linear")
+        return self.problem.target.kinematics
 
     @property
     def stepping(self) -> str:
@@ -216,7 +216,7 @@ def structure(name: str, target, widest: float, density: float, time_step: float
     if not resolved.has_damage_outputs:
         raise InputError(f"{name}: no damage outputs (the laminate needs a layup and a ply with strengths)")
     model = problem.model(damage=True)
-    linear = getattr(resolved, "kinematics", "linear") == "linear"
+    linear = resolved.kinematics == "linear"
     kernels = impact_kernels(problem, model) if linear else None  # a nonlinear target steps every run (module docstring)
     return ThresholdStructure(name, problem, model, kernels, density)
 
@@ -256,7 +256,7 @@ def run_validity(problem: ImpactProblem, result, identified=None) -> Validity:
     v = coupled_validity(problem, result, dmg["max_strain"])
     if identified is not None:
         i = problem.impactor
-        ranges = identified_range_validity(getattr(identified, "identified_on", None), i.velocity, i.diameter, i.mass, "the identified law")
+        ranges = identified_range_validity(identified.identified_on, i.velocity, i.diameter, i.mass, "the identified law")
         v += Validity({}, ranges.flags, ranges.names)  # its flags (the command's warnings); its ratios stay out of the row
     return v
 
