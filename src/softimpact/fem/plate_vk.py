@@ -154,14 +154,28 @@ class PlateVK:
         # global DOFs per element, component-major: dofs[e, c, k] of component comps[c] at local node k
         self._gdofs = 5 * nodes[:, None, :] + np.array(self._comps)[None, :, None]
         self._A, self._B = sec.A, sec.B
+        # One sparse operator from the free DOFs to every gradient at every quadrature point, rows (component, ∂x|∂y,
+        # element, point): a gradient pass is one product and the element forces' assembly its transpose's (instead of
+        # an einsum and a scatter per component)
+        ne, nq, npe = self._Dx.shape
+        nc = len(self._comps)
+        cols = self._index[self._gdofs]  # (ne, nc, npe), −1 on fixed DOFs (zero there: dropped)
+        data = np.stack([self._Dx, self._Dy])  # (2, ne, nq, npe)
+        rows = np.arange(nc * 2 * ne * nq).reshape(nc, 2, ne, nq)
+        R = np.broadcast_to(rows[..., None], (nc, 2, ne, nq, npe))
+        Cc = np.broadcast_to(cols.transpose(1, 0, 2)[:, None, :, None, :], (nc, 2, ne, nq, npe))
+        Dd = np.broadcast_to(data[None], (nc, 2, ne, nq, npe))
+        keep = Cc >= 0
+        self._G = scipy.sparse.csr_matrix((Dd[keep], (R[keep], Cc[keep])), shape=(nc * 2 * ne * nq, self.n))
+        self._GT = self._G.T.tocsr()
 
-    def _fields(self, d_full: np.ndarray):
-        """ε_L, ε_N, κ (or None), ∇w at the quadrature points, each (ne, nq, ·)."""
-        de = d_full[self._gdofs]  # (ne, nc, npe)
-        Dx, Dy = self._Dx, self._Dy
+    def _fields(self, d: np.ndarray):
+        """ε_L, ε_N, κ (or None), ∇w at the quadrature points, each (ne, nq, ·), of the reduced vector ``d``."""
+        ne, nq, _ = self._Dx.shape
+        g = (self._G @ d).reshape(len(self._comps), 2, ne, nq)
 
         def grad(c):
-            return np.einsum("eqp,ep->eq", Dx, de[:, c]), np.einsum("eqp,ep->eq", Dy, de[:, c])
+            return g[c, 0], g[c, 1]
 
         ux, uy = grad(0)
         vx, vy = grad(1)
@@ -181,22 +195,17 @@ class PlateVK:
         full[self.free] = d
         return full
 
-    def _scatter(self, fe_vec: np.ndarray) -> np.ndarray:
-        """Reduced vector from element vectors of shape (ne, nc, npe)."""
-        out = np.bincount(self._gdofs.ravel(), weights=fe_vec.ravel(), minlength=self.fe.basis.N)
-        return out[self.free]
-
     # ---- energy, force, tangent -------------------------------------------------------
     def strain_energy(self, d: np.ndarray) -> float:
         """U(d) [J] (module docstring)."""
-        eL, eN, kappa, _, _ = self._fields(self.expand(d))
+        eL, eN, kappa, _, _ = self._fields(d)
         m = eL @ self._A.T if kappa is None else eL @ self._A.T + kappa @ self._B.T
         dens = np.einsum("eqi,eqi->eq", eN, m + 0.5 * eN @ self._A.T)
         return 0.5 * float(d @ (self.K @ d)) + float(np.sum(dens * self._wq))
 
     def membrane_forces(self, d: np.ndarray) -> np.ndarray:
         """N = A ε0 + B κ at the quadrature points, shape (ne, nq, 3) [N/m]."""
-        eL, eN, kappa, _, _ = self._fields(self.expand(d))
+        eL, eN, kappa, _, _ = self._fields(d)
         N = (eL + eN) @ self._A.T
         return N if kappa is None else N + kappa @ self._B.T
 
@@ -205,28 +214,21 @@ class PlateVK:
         return self.K @ d + self._nonlinear_force(d)
 
     def _nonlinear_force(self, d: np.ndarray) -> np.ndarray:
-        eL, eN, kappa, wx, wy = self._fields(self.expand(d))
+        eL, eN, kappa, wx, wy = self._fields(d)
         A, B = self._A, self._B
         N = (eL + eN) @ A.T if kappa is None else (eL + eN) @ A.T + kappa @ B.T
         nN = (eN @ A.T) * self._wq[..., None]  # A ε_N: the extra membrane force of the linear strains' work
-        Dx, Dy = self._Dx, self._Dy
-        nc = len(self._comps)
-        fe = np.zeros((Dx.shape[0], nc, Dx.shape[2]))
-        fe[:, 0] = np.einsum("eqp,eq->ep", Dx, nN[..., 0]) + np.einsum("eqp,eq->ep", Dy, nN[..., 2])
-        fe[:, 1] = np.einsum("eqp,eq->ep", Dy, nN[..., 1]) + np.einsum("eqp,eq->ep", Dx, nN[..., 2])
         Nw = N * self._wq[..., None]
-        Qx = wx * Nw[..., 0] + wy * Nw[..., 2]
-        Qy = wy * Nw[..., 1] + wx * Nw[..., 2]
-        fe[:, 2] = np.einsum("eqp,eq->ep", Dx, Qx) + np.einsum("eqp,eq->ep", Dy, Qy)
+        # the weighted stresses each gradient row meets: (component, ∂x|∂y) of the gradient operator's rows
+        S = [(nN[..., 0], nN[..., 2]), (nN[..., 2], nN[..., 1]), (wx * Nw[..., 0] + wy * Nw[..., 2], wy * Nw[..., 1] + wx * Nw[..., 2])]
         if self.coupled:
             mN = (eN @ B.T) * self._wq[..., None]  # B ε_N: the extra moment
-            fe[:, 3] = np.einsum("eqp,eq->ep", Dx, mN[..., 0]) + np.einsum("eqp,eq->ep", Dy, mN[..., 2])
-            fe[:, 4] = np.einsum("eqp,eq->ep", Dy, mN[..., 1]) + np.einsum("eqp,eq->ep", Dx, mN[..., 2])
-        return self._scatter(fe)
+            S += [(mN[..., 0], mN[..., 2]), (mN[..., 2], mN[..., 1])]
+        return self._GT @ np.stack([np.stack(pair) for pair in S]).ravel()
 
     def _element_tangents(self, d: np.ndarray) -> np.ndarray:
         """The nonlinear part of the element tangents, shape (ne, nc·npe, nc·npe), component-major."""
-        eL, eN, kappa, wx, wy = self._fields(self.expand(d))
+        eL, eN, kappa, wx, wy = self._fields(d)
         A, B = self._A, self._B
         N = (eL + eN) @ A.T if kappa is None else (eL + eN) @ A.T + kappa @ B.T
         Dx, Dy = self._Dx, self._Dy
