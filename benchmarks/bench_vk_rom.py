@@ -11,7 +11,7 @@ plate, 48 × 48 MITC9, 0.5 µs steps) with ``kinematics = "von-karman"`` (immova
 
 Prints peak force and contact time of each, the reduced model's errors against the full one, and the times.
 
-Usage: python benchmarks/bench_vk_rom.py [--velocity V] [--steps N] [--vectors R] [--nonlinear RN] [--repeat K]
+Usage: python benchmarks/bench_vk_rom.py [--velocity V] [--steps N] [--configs R:RN,...] [--repeat K]
 """
 
 import argparse
@@ -38,8 +38,7 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--velocity", type=float, default=400.0)
     ap.add_argument("--steps", type=int, default=600)
-    ap.add_argument("--vectors", type=int, default=VECTORS)
-    ap.add_argument("--nonlinear", type=int, default=NONLINEAR)
+    ap.add_argument("--configs", default=f"{VECTORS}:{NONLINEAR}", help="reduced models to try, vectors:nonlinear[,...]")
     ap.add_argument("--repeat", type=int, default=3)
     args = ap.parse_args()
     p, _ = load_impact_case("plate-ss-8in-impact")
@@ -55,30 +54,32 @@ def main() -> None:
         _, full = run_impact(vk, m, energy=False, method="von-karman", stop_after=STOP_AFTER)
         t_full, c_full = time.perf_counter() - t0, time.process_time() - c0
         st = m.contact_structure(vk.position, m.contact_reach(vk.position, vk.impactor.diameter))
-        t0, c0 = time.perf_counter(), time.process_time()
-        rom = PlateVKROM(m.vk, st.approach_row, args.vectors, args.nonlinear, C=st.C)
-        t_build, c_build = time.perf_counter() - t0, time.process_time() - c0
-        runs = []
-        for _ in range(args.repeat):
+        thick = m.vk.plate.section.thickness
+        print(f"{args.velocity:g} in/s, {m.vk.n} DOF full, max w/h {abs(full.deflection).max() / thick:.2f}")
+        print(f"linear      peak {r_lin.peak_force:9.2f} N  contact {r_lin.contact_duration * 1e6:8.2f} us")
+        print(f"full VK     peak {full.peak_force:9.2f} N  contact {full.contact_duration * 1e6:8.2f} us  run {t_full:8.2f} s wall, {c_full:8.2f} s CPU")
+        print(
+            f"linear - full: peak {r_lin.peak_force / full.peak_force - 1:+.3%}, contact {r_lin.contact_duration / full.contact_duration - 1:+.3%}", flush=True
+        )
+        for config in args.configs.split(","):
+            vectors, nonlinear = (int(x) for x in config.split(":"))
             t0, c0 = time.perf_counter(), time.process_time()
-            s = ReducedVonKarmanStepper(
-                st, vk.law, vk.impactor.mass, vk.impactor.velocity, dt, args.steps, vk.solver.newmark, engine=rom, energy=False, stop_after=STOP_AFTER
+            rom = PlateVKROM(m.vk, st.approach_row, vectors, nonlinear, C=st.C)
+            t_build, c_build = time.perf_counter() - t0, time.process_time() - c0
+            runs = []
+            for _ in range(args.repeat):
+                t0, c0 = time.perf_counter(), time.process_time()
+                s = ReducedVonKarmanStepper(
+                    st, vk.law, vk.impactor.mass, vk.impactor.velocity, dt, args.steps, vk.solver.newmark, engine=rom, energy=False, stop_after=STOP_AFTER
+                )
+                red = coupled_result(s.run(), vk.impactor, tuple(st.output_names))
+                runs.append((time.perf_counter() - t0, time.process_time() - c0))
+            print(
+                f"reduced {rom.r:3d} vectors ({rom.rn:2d} nonlinear): peak {red.peak_force:9.2f} N ({red.peak_force / full.peak_force - 1:+.3%}), "
+                f"contact {red.contact_duration * 1e6:8.2f} us ({red.contact_duration / full.contact_duration - 1:+.3%}); "
+                f"run {min(x[0] for x in runs):6.3f} s wall, {min(x[1] for x in runs):6.3f} s CPU (best of {args.repeat}); build {t_build:.2f} s wall, {c_build:.2f} s CPU",
+                flush=True,
             )
-            red = coupled_result(s.run(), vk.impactor, tuple(st.output_names))
-            runs.append((time.perf_counter() - t0, time.process_time() - c0))
-    thick = m.vk.plate.section.thickness
-    w = abs(red.deflection).max()
-    print(f"{args.velocity:g} in/s, {m.vk.n} DOF full, reduced: {rom.r} Ritz vectors ({rom.rn} nonlinear), max w/h {w / thick:.2f}")
-    print(f"linear      peak {r_lin.peak_force:9.2f} N  contact {r_lin.contact_duration * 1e6:8.2f} us")
-    print(f"full VK     peak {full.peak_force:9.2f} N  contact {full.contact_duration * 1e6:8.2f} us  run {t_full:8.2f} s wall, {c_full:8.2f} s CPU")
-    print(
-        f"reduced VK  peak {red.peak_force:9.2f} N  contact {red.contact_duration * 1e6:8.2f} us  run {min(x[0] for x in runs):8.3f} s wall, {min(x[1] for x in runs):8.3f} s CPU (best of {args.repeat})"
-    )
-    print(f"reduced build {t_build:.2f} s wall, {c_build:.2f} s CPU")
-    print(
-        f"reduced - full: peak {red.peak_force / full.peak_force - 1:+.3%}, contact {red.contact_duration / full.contact_duration - 1:+.3%}; "
-        f"linear - full: peak {r_lin.peak_force / full.peak_force - 1:+.3%}, contact {r_lin.contact_duration / full.contact_duration - 1:+.3%}"
-    )
 
 
 if __name__ == "__main__":

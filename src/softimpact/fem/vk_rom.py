@@ -8,7 +8,7 @@ linear stiffness and the mass do not couple the sets, and the membrane strain ε
 energy as ½∫ε0ᵀ A ε0. The reduction:
 
 1. **Bending basis** Φ (n_b, r): the load-dependent Ritz vectors of the contact point (Wilson, Yuan & Dickens'
-   construction; a Krylov space of K_bb⁻¹ M_bb started at K_bb⁻¹ c, c the approach row), M-orthonormalised and
+   construction, cited from the method's standard name; a Krylov space of K_bb⁻¹ M_bb started at K_bb⁻¹ c, c the approach row), M-orthonormalised and
    turned into the Rayleigh–Ritz modes of the space (Φᵀ M Φ = I, Φᵀ K Φ = Λ diagonal). The first vector is the
    contact point's static deflection: the static correction of the contact load is in the basis.
 2. **Membrane, condensed** with the in-plane inertia neglected (in-plane waves are far faster than bending ones):
@@ -21,6 +21,9 @@ energy as ½∫ε0ᵀ A ε0. The reduction:
 
    G_N the pairs' ∫ε_Nᵀ A ε_N (the element rule of :class:`~softimpact.fem.plate_vk.PlateVK`), and its gradient
    and Hessian are a cubic force and its tangent (:meth:`PlateVKROM.force`, two products with (r², r²) tables).
+   Only the first ``nonlinear`` Krylov vectors (the static deflection under the ball and its first dynamic
+   corrections: the stretching is local to the contact as much as global) carry these terms, a = Tq their
+   coordinates; the other Ritz coordinates stay linear (their pairs would cost r⁴ a product).
    The coefficients are those of the stiffness evaluation procedure (STEP) and implicit condensation of
    non-intrusive nonlinear reduced models (Muravyov & Rizzi 2003; Hollkamp & Gordon 2008: cited from the methods'
    standard names), here computed from the element integrals rather than fitted to static solves of the full
