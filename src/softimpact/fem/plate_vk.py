@@ -38,12 +38,14 @@ In-plane restraint of the supported edges (``in_plane``), on top of the plate's 
 ``free`` and ``symmetry`` edges keep their own conditions (a mirror plane has zero normal
 in-plane displacement), so a quarter of a symmetric plate can be modelled.
 
-Cost (the issue's 8 × 8 in plate, 48 × 48 MITC9, 45 505 DOF with the membrane DOFs that the linear
-symmetric model drops, 27 455; one core of a loaded 2-core machine, dt = 1 µs): internal force
-12 ms, tangent 0.25 s, a factorisation of the Jacobian 2.5 s (13.4 M stored entries against the
-linear factor's 4.9 M), a solve 35–75 ms; ``"modified"`` Newmark–Newton takes two solves a step
-on one factor (88 ms a step after it) against 20 ms a step of the linear direct run: about 4.5×
-over a 1000-step run.
+Cost (the 8 × 8 in plate, 48 × 48 MITC9, 45 505 DOF with the membrane DOFs that the linear
+symmetric model drops, 27 455): with a section without B coupling, K and M are kept free of their
+round-off membrane–bending entries (:meth:`PlateVK._uncoupled`), so the Jacobian at rest factors as a
+bending and a membrane block, 7.0 M stored entries against 13.3 M as one pattern (the linear factor:
+4.9 M); gradients at the quadrature points are one sparse product. In the coupled impact
+(plate-ss-8in-impact, 500 steps of 0.5 µs) ``"modified"`` Newmark–Newton keeps the factor of the first
+step (three solves a step: the contact's stiffness is not in it) and the run costs 3.4× the linear
+direct run's stepping wall-clock, 4.1× its CPU time (benchmarks/bench_vk_ratio.py, BENCHMARKS.md).
 
 Solvers: :func:`solve_static` (load steps, full Newton per step, convergence reported) and
 :class:`VonKarmanNewmark` (implicit Newmark with Newton iterations per step, the same β, γ as
