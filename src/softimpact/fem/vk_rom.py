@@ -45,6 +45,7 @@ to memoryless contact laws.
 from __future__ import annotations
 
 import numpy as np
+from scipy.linalg import lu_factor, lu_solve
 
 from ..errors import InputError
 from .direct import structure_history
@@ -166,13 +167,16 @@ class PlateVKROM:
         h = np.where(np.eye(r, dtype=bool), 1.0, 0.5)  # Σ_ij q_i q_j e'_ij with e'_ij = e_ij/2 off the diagonal
         gamma = h[:, :, None, None] * h[None, None] * G[pidx[:, :, None, None], pidx[None, None]]
         self._g1 = gamma.reshape(r * r, r * r)  # Γ_(ab)(kl)
+        self._G, self._gp = G, np.where(I == J, 1.0, 0.5)[:, None] * G  # N over the pairs: N_(ab) = Σ_(k≤l) h_ab G a_k a_l
         self._g2 = gamma.transpose(0, 2, 1, 3).reshape(r * r, r * r)  # Γ_(ab)(jl) = Γ_ajbl
 
     # ---- the reduced model ----------------------------------------------------------------
     def nonlinear_force(self, q: np.ndarray) -> np.ndarray:
         """∂Π/∂q − Λq (r,): on a = Tq, 2 N(a) a with N_ab = Σ Γ_abkl a_k a_l, carried to q by Tᵀ (module docstring)."""
         a = self.T @ q
-        N = (self._g1 @ np.outer(a, a).ravel()).reshape(self.rn, self.rn)
+        I, J = self.pairs[:, 0], self.pairs[:, 1]
+        N = np.empty((self.rn, self.rn))
+        N[I, J] = N[J, I] = self._gp @ (a[I] * a[J])  # the symmetric N from its pairs (a quarter of the r⁴ product)
         return self.T.T @ (2.0 * (N @ a))
 
     def nonlinear_tangent(self, q: np.ndarray) -> np.ndarray:
@@ -192,9 +196,8 @@ class PlateVKROM:
 
     def energy(self, q: np.ndarray) -> float:
         """Π(q) [J]: the strain energy of the plate at d(q) (:meth:`expand`)."""
-        a = self.T @ q
-        A = np.outer(a, a).ravel()
-        return 0.5 * float(self.lam @ (q * q)) + 0.5 * float(A @ (self._g1 @ A))
+        sp = self.products(q)
+        return 0.5 * float(self.lam @ (q * q)) + 0.5 * float(sp @ (self._G @ sp))
 
     def expand(self, q: np.ndarray) -> np.ndarray:
         """The plate's displacement d(q) over ``vk``'s free DOFs: Φq on the bending set, Σ q_i q_j Ψ_ij on the membrane set."""
@@ -312,12 +315,14 @@ class ReducedVonKarmanStepper(CoupledStepper):
         h = self.extra_h(r)[0]
         return a, f, r, -slope / (1.0 + (self.hm + h) * slope), h
 
-    def _solve(self, Jn: np.ndarray, res: np.ndarray, u: np.ndarray | None) -> np.ndarray:
-        """(K_eff + Jn + u cᵀ)⁻¹ res, dense (r, r): Jn the von Kármán terms' Jacobian, u cᵀ the contact's."""
-        J = self._keff + Jn
-        if u is not None:
-            J += np.outer(u, self.cr)
-        return np.linalg.solve(J, res)
+    def _solve(self, lu, res: np.ndarray, u: np.ndarray | None) -> np.ndarray:
+        """(K_eff + Jn + u cᵀ)⁻¹ res from ``lu``, the LU factor of K_eff + Jn (the step's), and the contact's rank
+        one u cᵀ by Sherman–Morrison."""
+        x = lu_solve(lu, res, check_finite=False)
+        if u is None:
+            return x
+        y = lu_solve(lu, u, check_finite=False)
+        return x - y * (float(self.cr @ x) / (1.0 + float(self.cr @ y)))
 
     def free_approach(self, k: int) -> float:
         """The coupled step to k + 1 (one Newton over q and the contact); w̃ = c·q* + h(r*)F* − h_s(r*)F*."""
@@ -331,6 +336,7 @@ class ReducedVonKarmanStepper(CoupledStepper):
             gm = self.params.gamma
             p = p - C @ (v + dt * (1 - gm) * a - dt * gm * (self.a0 * q + self.a2 * v + self.a3 * a))
         scale = max(np.linalg.norm(p), 1e-300)
+        lu = None
         for it in range(1, self.max_iterations + 1):
             _, f, r, dfdw, h = self._contact(q1, x_pred, qq, k + 1)
             res = p - self._keff @ q1 - rom.nonlinear_force(q1)
@@ -343,7 +349,9 @@ class ReducedVonKarmanStepper(CoupledStepper):
                 scale = max(scale, np.linalg.norm(res))
             elif np.linalg.norm(res) <= self.rtol * scale:
                 break
-            q1 = q1 + self._solve(rom.nonlinear_tangent(q1), res, u)
+            if lu is None:  # the von Kármán terms' Jacobian at the step's first iterate, factored and kept for the step (a step moves it little)
+                lu = lu_factor(self._keff + rom.nonlinear_tangent(q1), check_finite=False)
+            q1 = q1 + self._solve(lu, res, u)
         else:
             raise RuntimeError(f"reduced Newmark–Newton did not converge in {self.max_iterations} iterations (step {k + 1})")
         self.structure_iterations += it - 1  # (f, r, h: the contact at the converged q1, from its last evaluation)
