@@ -58,8 +58,8 @@ from .stepping import CoupledStepper, check_time_step
 __all__ = ["PlateVKROM", "ReducedVonKarmanStepper"]
 
 # Defaults from benchmarks/bench_vk_rom.py on the 48 × 48 MITC9 plate at 1500 in/s (w/h 0.7; BENCHMARKS.md): 80 and 24
-# put the peak force 1.8 % and the contact time 0.1 % from the full run's; 60 and 16 cost less (0.5 s CPU a run
-# on a loaded machine) but miss the contact time by 2.6 %; the error does not fall monotonically with either.
+# put the peak force 1.8 % and the contact time 0.1 % from the full run's at 0.44 s CPU a run; 60 and 16 cost less
+# (0.33 s) but miss the contact time by 2.6 %; the error does not fall monotonically with either.
 VECTORS = 80  # Ritz vectors (the contact's dynamic compliance converges slowly with them)
 NONLINEAR = 24  # the first Krylov vectors (static deflection and its dynamic corrections) that carry the von Kármán terms
 CHUNK = 256  # elements per block while the pair integrals are summed (memory: pairs × CHUNK × nq × 3 floats)
