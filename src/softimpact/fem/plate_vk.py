@@ -45,7 +45,7 @@ bending and a membrane block, 7.0 M stored entries against 13.3 M as one pattern
 4.9 M); gradients at the quadrature points are one sparse product. In the coupled impact
 (plate-ss-8in-impact, 500 steps of 0.5 µs) ``"modified"`` Newmark–Newton keeps the factor of the first
 step (three solves a step: the contact's stiffness is not in it) and the run costs 3.4× the linear
-direct run's stepping wall-clock, 4.1× its CPU time (benchmarks/bench_vk_ratio.py, BENCHMARKS.md).
+direct run's stepping wall-clock, 3.7–4.1× its CPU time (benchmarks/bench_vk_ratio.py, BENCHMARKS.md).
 
 Solvers: :func:`solve_static` (load steps, full Newton per step, convergence reported) and
 :class:`VonKarmanNewmark` (implicit Newmark with Newton iterations per step, the same β, γ as
