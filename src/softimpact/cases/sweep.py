@@ -51,6 +51,7 @@ __all__ = [
 Progress = Callable[[int, int, str], None]  # progress(done, total, label)
 CHECKPOINTS = "checkpoints"  # folder in OUT holding one JSON file per finished chunk
 FLAG_COLUMN = "flag."  # runs.parquet: one boolean column flag.<name> per validity flag raised by any run
+BLAS_THREADS = 1  # BLAS threads of a sweep's runs, in the plain loop and in each Dask task (why: _blas_limited)
 _ADDRESS = re.compile(r"^(?:(tcp|tls|inproc|ucx|ws|wss)://)?(\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9_.-]+):([0-9]{1,5})$")
 
 
@@ -217,6 +218,33 @@ def group_chunk(kind: str, base: str, runs: int, items, outputs) -> list[dict]:
     return run_chunk(kind, prepare_group(kind, [d for _, d in items], base, runs, outputs), items, base, outputs)
 
 
+def _blas_limited():
+    """The BLAS thread pools held to :data:`BLAS_THREADS` (threadpoolctl) while a sweep's chunks run. A run's products
+    are small, and OpenBLAS splits those past ~10 000 terms (a kernel run's history dot product) over its threads,
+    which spin waiting for a core another process holds: beside one busy process on a 2-core machine a 20 000-term
+    dot product took 1.6 ms on two threads against 55 µs on one, and a 50-run chunk of the plate's Monte Carlo
+    minutes instead of seconds (benchmarks/bench_sweep_busy.py). Dask's nanny already starts its workers with one
+    BLAS thread (its ``pre-spawn-environ``); the plain loop runs in the user's process, which had the default."""
+    from threadpoolctl import threadpool_limits
+
+    return threadpool_limits(BLAS_THREADS, user_api="blas")
+
+
+def _limited(fn, *args):
+    """``fn(*args)`` under :func:`_blas_limited`: a Dask task of the sweep (whatever the worker's environment)."""
+    with _blas_limited():
+        return fn(*args)
+
+
+def _local_workers(workers: int) -> int:
+    """At most the cores this process may run on: each worker runs one run at a time, and more workers than cores
+    only share them (with the scheduler's and the nanny's processes besides)."""
+    import os
+
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+    return max(1, min(workers, cores))
+
+
 def _client(workers: int, scheduler: str | None):
     try:
         from distributed import Client, LocalCluster
@@ -232,7 +260,7 @@ def _client(workers: int, scheduler: str | None):
     # Dask's statistical profiler samples the task thread every 10 ms and, holding the GIL,
     # doubles the cost of a millisecond-sized run: off for the local cluster.
     with dask.config.set({"distributed.worker.profile.enabled": False}):
-        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None)
+        cluster = LocalCluster(n_workers=_local_workers(workers), threads_per_worker=1, processes=True, dashboard_address=None)
     return Client(cluster), cluster
 
 
@@ -269,10 +297,11 @@ def execute(plan: SweepPlan, out: Path | None, workers: int = 0, scheduler: str 
     for c in pending:
         by_group.setdefault(c.group, []).append(c)
     if workers == 0 and not scheduler:
-        for chunks in by_group.values():
-            prepared = prepare_group(kind, [d for c in chunks for _, d in c.items], base, chunks[0].group_size, spec.outputs)
-            for c in chunks:
-                finish(c, run_chunk(kind, prepared, c.items, base, spec.outputs))
+        with _blas_limited():
+            for chunks in by_group.values():
+                prepared = prepare_group(kind, [d for c in chunks for _, d in c.items], base, chunks[0].group_size, spec.outputs)
+                for c in chunks:
+                    finish(c, run_chunk(kind, prepared, c.items, base, spec.outputs))
         return rows, sum(len(c.items) for c in pending)
     client, cluster = _client(workers, scheduler)
     try:
@@ -282,13 +311,13 @@ def execute(plan: SweepPlan, out: Path | None, workers: int = 0, scheduler: str 
         for chunks in by_group.values():
             first = chunks[0]
             if len(chunks) == 1 and first.group_size == len(first.items):
-                f = client.submit(group_chunk, kind, base, first.group_size, first.items, spec.outputs, pure=False)
+                f = client.submit(_limited, group_chunk, kind, base, first.group_size, first.items, spec.outputs, pure=False)
                 futures[f] = first
                 continue
             group = [d for c in chunks for _, d in c.items]
-            prepared = client.submit(prepare_group, kind, group, base, first.group_size, spec.outputs, pure=False)
+            prepared = client.submit(_limited, prepare_group, kind, group, base, first.group_size, spec.outputs, pure=False)
             for c in chunks:
-                futures[client.submit(run_chunk, kind, prepared, c.items, base, spec.outputs, pure=False)] = c
+                futures[client.submit(_limited, run_chunk, kind, prepared, c.items, base, spec.outputs, pure=False)] = c
         for f in as_completed(list(futures)):
             finish(futures[f], f.result())
     finally:

@@ -38,12 +38,14 @@ In-plane restraint of the supported edges (``in_plane``), on top of the plate's 
 ``free`` and ``symmetry`` edges keep their own conditions (a mirror plane has zero normal
 in-plane displacement), so a quarter of a symmetric plate can be modelled.
 
-Cost (the issue's 8 × 8 in plate, 48 × 48 MITC9, 45 505 DOF with the membrane DOFs that the linear
-symmetric model drops, 27 455; one core of a loaded 2-core machine, dt = 1 µs): internal force
-12 ms, tangent 0.25 s, a factorisation of the Jacobian 2.5 s (13.4 M stored entries against the
-linear factor's 4.9 M), a solve 35–75 ms; ``"modified"`` Newmark–Newton takes two solves a step
-on one factor (88 ms a step after it) against 20 ms a step of the linear direct run: about 4.5×
-over a 1000-step run.
+Cost (the 8 × 8 in plate, 48 × 48 MITC9, 45 505 DOF with the membrane DOFs that the linear
+symmetric model drops, 27 455): with a section without B coupling, K and M are kept free of their
+round-off membrane–bending entries (:meth:`PlateVK._uncoupled`), so the Jacobian at rest factors as a
+bending and a membrane block, 7.0 M stored entries against 13.3 M as one pattern (the linear factor:
+4.9 M); gradients at the quadrature points are one sparse product. In the coupled impact
+(plate-ss-8in-impact, 500 steps of 0.5 µs) ``"modified"`` Newmark–Newton keeps the factor of the first
+step (three solves a step: the contact's stiffness is not in it) and the run costs 3.4× the linear
+direct run's stepping wall-clock, 3.7–4.1× its CPU time (benchmarks/bench_vk_ratio.py, BENCHMARKS.md).
 
 Solvers: :func:`solve_static` (load steps, full Newton per step, convergence reported) and
 :class:`VonKarmanNewmark` (implicit Newmark with Newton iterations per step, the same β, γ as
@@ -69,6 +71,7 @@ __all__ = ["DynamicResult", "IN_PLANE", "KINEMATICS", "PlateVK", "StaticResult",
 
 KINEMATICS = ("linear", "von-karman")
 IN_PLANE = ("immovable", "movable")
+UNCOUPLED = 1e-12  # membrane–bending entries of K and M below this fraction of the largest diagonal entry are round-off of B = 0
 
 
 class PlateVK:
@@ -91,7 +94,24 @@ class PlateVK:
         self.K = fe.K[self.free][:, self.free].tocsr()
         self.M = fe.M[self.free][:, self.free].tocsr()
         self._elements()
+        if not self.coupled:
+            self.K, self.M = self._uncoupled(self.K), self._uncoupled(self.M)
         self._pattern = None
+
+    def _uncoupled(self, A: scipy.sparse.csr_matrix) -> scipy.sparse.csr_matrix:
+        """``A`` without its membrane–bending entries when they are round-off (all below ``UNCOUPLED`` of its largest
+        diagonal entry: a section with B = 0 assembles them as ~1e-20 relative noise, 1.5 M of them on the 48 × 48
+        MITC9 plate), so that the linear K and M, and the Jacobian at rest, split into a bending block and a membrane
+        block that factor apart (13.3 M stored entries of one factor fall to the blocks' few; a solve costs less in
+        proportion); ``A`` unchanged otherwise."""
+        coo = A.tocoo()
+        comp = self.free % 5  # the plate numbers DOFs 5·node + component
+        bending = np.isin(comp, (W, PHI_X, PHI_Y))
+        cross = bending[coo.row] != bending[coo.col]
+        if not np.any(cross) or np.abs(coo.data[cross]).max() > UNCOUPLED * np.abs(A.diagonal()).max():
+            return A
+        keep = ~cross
+        return scipy.sparse.csr_matrix((coo.data[keep], (coo.row[keep], coo.col[keep])), shape=A.shape)
 
     # ---- supports -------------------------------------------------------------------
     def _support_dofs(self) -> np.ndarray:
@@ -139,14 +159,28 @@ class PlateVK:
         # global DOFs per element, component-major: dofs[e, c, k] of component comps[c] at local node k
         self._gdofs = 5 * nodes[:, None, :] + np.array(self._comps)[None, :, None]
         self._A, self._B = sec.A, sec.B
+        # One sparse operator from the free DOFs to every gradient at every quadrature point, rows (component, ∂x|∂y,
+        # element, point): a gradient pass is one product and the element forces' assembly its transpose's (instead of
+        # an einsum and a scatter per component)
+        ne, nq, npe = self._Dx.shape
+        nc = len(self._comps)
+        cols = self._index[self._gdofs]  # (ne, nc, npe), −1 on fixed DOFs (zero there: dropped)
+        data = np.stack([self._Dx, self._Dy])  # (2, ne, nq, npe)
+        rows = np.arange(nc * 2 * ne * nq).reshape(nc, 2, ne, nq)
+        R = np.broadcast_to(rows[..., None], (nc, 2, ne, nq, npe))
+        Cc = np.broadcast_to(cols.transpose(1, 0, 2)[:, None, :, None, :], (nc, 2, ne, nq, npe))
+        Dd = np.broadcast_to(data[None], (nc, 2, ne, nq, npe))
+        keep = Cc >= 0
+        self._G = scipy.sparse.csr_matrix((Dd[keep], (R[keep], Cc[keep])), shape=(nc * 2 * ne * nq, self.n))
+        self._GT = self._G.T.tocsr()
 
-    def _fields(self, d_full: np.ndarray):
-        """ε_L, ε_N, κ (or None), ∇w at the quadrature points, each (ne, nq, ·)."""
-        de = d_full[self._gdofs]  # (ne, nc, npe)
-        Dx, Dy = self._Dx, self._Dy
+    def _fields(self, d: np.ndarray):
+        """ε_L, ε_N, κ (or None), ∇w at the quadrature points, each (ne, nq, ·), of the reduced vector ``d``."""
+        ne, nq, _ = self._Dx.shape
+        g = (self._G @ d).reshape(len(self._comps), 2, ne, nq)
 
         def grad(c):
-            return np.einsum("eqp,ep->eq", Dx, de[:, c]), np.einsum("eqp,ep->eq", Dy, de[:, c])
+            return g[c, 0], g[c, 1]
 
         ux, uy = grad(0)
         vx, vy = grad(1)
@@ -166,22 +200,17 @@ class PlateVK:
         full[self.free] = d
         return full
 
-    def _scatter(self, fe_vec: np.ndarray) -> np.ndarray:
-        """Reduced vector from element vectors of shape (ne, nc, npe)."""
-        out = np.bincount(self._gdofs.ravel(), weights=fe_vec.ravel(), minlength=self.fe.basis.N)
-        return out[self.free]
-
     # ---- energy, force, tangent -------------------------------------------------------
     def strain_energy(self, d: np.ndarray) -> float:
         """U(d) [J] (module docstring)."""
-        eL, eN, kappa, _, _ = self._fields(self.expand(d))
+        eL, eN, kappa, _, _ = self._fields(d)
         m = eL @ self._A.T if kappa is None else eL @ self._A.T + kappa @ self._B.T
         dens = np.einsum("eqi,eqi->eq", eN, m + 0.5 * eN @ self._A.T)
         return 0.5 * float(d @ (self.K @ d)) + float(np.sum(dens * self._wq))
 
     def membrane_forces(self, d: np.ndarray) -> np.ndarray:
         """N = A ε0 + B κ at the quadrature points, shape (ne, nq, 3) [N/m]."""
-        eL, eN, kappa, _, _ = self._fields(self.expand(d))
+        eL, eN, kappa, _, _ = self._fields(d)
         N = (eL + eN) @ self._A.T
         return N if kappa is None else N + kappa @ self._B.T
 
@@ -191,28 +220,21 @@ class PlateVK:
 
     def nonlinear_force(self, d: np.ndarray) -> np.ndarray:
         """f_int(d) − K d: the von Kármán part of the internal force [N]."""
-        eL, eN, kappa, wx, wy = self._fields(self.expand(d))
+        eL, eN, kappa, wx, wy = self._fields(d)
         A, B = self._A, self._B
         N = (eL + eN) @ A.T if kappa is None else (eL + eN) @ A.T + kappa @ B.T
         nN = (eN @ A.T) * self._wq[..., None]  # A ε_N: the extra membrane force of the linear strains' work
-        Dx, Dy = self._Dx, self._Dy
-        nc = len(self._comps)
-        fe = np.zeros((Dx.shape[0], nc, Dx.shape[2]))
-        fe[:, 0] = np.einsum("eqp,eq->ep", Dx, nN[..., 0]) + np.einsum("eqp,eq->ep", Dy, nN[..., 2])
-        fe[:, 1] = np.einsum("eqp,eq->ep", Dy, nN[..., 1]) + np.einsum("eqp,eq->ep", Dx, nN[..., 2])
         Nw = N * self._wq[..., None]
-        Qx = wx * Nw[..., 0] + wy * Nw[..., 2]
-        Qy = wy * Nw[..., 1] + wx * Nw[..., 2]
-        fe[:, 2] = np.einsum("eqp,eq->ep", Dx, Qx) + np.einsum("eqp,eq->ep", Dy, Qy)
+        # the weighted stresses each gradient row meets: (component, ∂x|∂y) of the gradient operator's rows
+        S = [(nN[..., 0], nN[..., 2]), (nN[..., 2], nN[..., 1]), (wx * Nw[..., 0] + wy * Nw[..., 2], wy * Nw[..., 1] + wx * Nw[..., 2])]
         if self.coupled:
             mN = (eN @ B.T) * self._wq[..., None]  # B ε_N: the extra moment
-            fe[:, 3] = np.einsum("eqp,eq->ep", Dx, mN[..., 0]) + np.einsum("eqp,eq->ep", Dy, mN[..., 2])
-            fe[:, 4] = np.einsum("eqp,eq->ep", Dy, mN[..., 1]) + np.einsum("eqp,eq->ep", Dx, mN[..., 2])
-        return self._scatter(fe)
+            S += [(mN[..., 0], mN[..., 2]), (mN[..., 2], mN[..., 1])]
+        return self._GT @ np.stack([np.stack(pair) for pair in S]).ravel()
 
     def _element_tangents(self, d: np.ndarray) -> np.ndarray:
         """The nonlinear part of the element tangents, shape (ne, nc·npe, nc·npe), component-major."""
-        eL, eN, kappa, wx, wy = self._fields(self.expand(d))
+        eL, eN, kappa, wx, wy = self._fields(d)
         A, B = self._A, self._B
         N = (eL + eN) @ A.T if kappa is None else (eL + eN) @ A.T + kappa @ B.T
         Dx, Dy = self._Dx, self._Dy

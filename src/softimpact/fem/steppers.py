@@ -13,14 +13,18 @@ snapshots)`` then ``.run()``:
   (a plate with von Kármán kinematics, a plane beam in total Lagrangian form; ``engine``: its
   :class:`softimpact.fem.plate_vk.VonKarmanNewmark`): one Newton over the structure and the contact a step;
   energies and snapshots.
+- ``"von-karman-rom"``: :class:`softimpact.fem.vk_rom.ReducedVonKarmanStepper`, the same plate on its reduced
+  nonlinear model (``engine``: its :class:`softimpact.fem.vk_rom.PlateVKROM`, built once; or the plate's
+  VonKarmanNewmark, the reduced model then built for the run): a fraction of a second a run.
 """
 
 from __future__ import annotations
 
 from .direct import DirectStepper
 from .kernel_stepping import KernelStepper
+from .vk_rom import ReducedVonKarmanStepper
 from .vk_stepping import VonKarmanStepper
 
 __all__ = ["STEPPERS"]
 
-STEPPERS = {"direct": DirectStepper, "kernels": KernelStepper, "von-karman": VonKarmanStepper}
+STEPPERS = {"direct": DirectStepper, "kernels": KernelStepper, "von-karman": VonKarmanStepper, "von-karman-rom": ReducedVonKarmanStepper}

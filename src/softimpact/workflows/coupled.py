@@ -44,7 +44,7 @@ __all__ = [
     "METHODS",
 ]
 
-METHODS = ("auto", "kernels", "direct", "von-karman")  # run_impact's ways to step a coupled impact (the last: a von Kármán plate's)
+METHODS = ("auto", "kernels", "direct", "von-karman", "von-karman-rom")  # run_impact's ways to step a coupled impact (the last two: a von Kármán plate's, full and reduced)
 
 
 @dataclass(frozen=True)
