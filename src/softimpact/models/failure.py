@@ -38,6 +38,8 @@ __all__ = [
     "strength_of",
     "ply_stresses",
     "failure_indices",
+    "HASHIN_MODES",
+    "hashin_modes",
     "davies_zhang_force",
     "InterlaminarShear",
     "interlaminar_shear",
@@ -120,6 +122,29 @@ def failure_indices(ply, strength: PlyStrength, strain: np.ndarray, stress: np.n
     )
     hashin = np.sqrt(np.maximum(np.maximum(fibre, matrix), 0.0))
     return {"max_strain": max_strain, "tsai_wu": tsai_wu, "hashin": hashin}
+
+
+HASHIN_MODES = ("fibre_tension", "fibre_compression", "matrix_tension", "matrix_compression")
+
+
+def hashin_modes(strength: PlyStrength, stress: np.ndarray) -> dict[str, np.ndarray]:
+    """Hashin's (1980, plane stress) four modes separately, square-rooted as :func:`failure_indices`' ``hashin`` (their
+    largest): a mode is 0 where its sign condition does not hold (fibre: σ1 ≥ 0 tension, σ1 < 0 compression; matrix:
+    σ2 ≥ 0 tension, σ2 < 0 compression). ``stress`` as :func:`failure_indices` takes it."""
+    ax = 1 if stress.ndim >= 2 else 0
+    s1, s2, s6 = np.take(stress, 0, ax), np.take(stress, 1, ax), np.take(stress, 2, ax)
+    X = strength
+
+    def root(v):
+        return np.sqrt(np.maximum(v, 0.0))
+
+    matrix_c = (s2 / (2 * X.S23)) ** 2 + ((X.Yc / (2 * X.S23)) ** 2 - 1) * s2 / X.Yc + (s6 / X.S12) ** 2
+    return {
+        "fibre_tension": np.where(s1 >= 0, root((s1 / X.Xt) ** 2 + (s6 / X.S12) ** 2), 0.0),
+        "fibre_compression": np.where(s1 < 0, np.abs(s1) / X.Xc, 0.0),
+        "matrix_tension": np.where(s2 >= 0, root((s2 / X.Yt) ** 2 + (s6 / X.S12) ** 2), 0.0),
+        "matrix_compression": np.where(s2 < 0, root(matrix_c), 0.0),
+    }
 
 
 def davies_zhang_force(E: float, nu: float, thickness: float, GIIc: float) -> float:

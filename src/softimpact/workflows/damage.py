@@ -32,7 +32,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..models.delamination import REGIME_BOUNDS, REGIME_BOUNDS_NOTE, onset_thresholds, response_regime
-from ..models.failure import CRITERIA, PlyStrength, davies_zhang_force, failure_indices, interlaminar_shear, ply_stresses
+from ..models.failure import CRITERIA, HASHIN_MODES, PlyStrength, davies_zhang_force, failure_indices, hashin_modes, interlaminar_shear, ply_stresses
 from ..models.laminate import Stack, abd, engineering_constants
 
 __all__ = [
@@ -51,6 +51,8 @@ __all__ = [
     "damage_unavailable",
     "damage_refusal",
     "PointDamage",
+    "PlyFailure",
+    "plies_failed",
     "ImpactDamage",
     "point_damage",
     "impact_damage",
@@ -263,6 +265,59 @@ class PointDamage:
     face: dict
 
 
+VERDICT_PLIES = 3  # failed plies the verdict names (summary.json's plies_failed lists them all)
+
+
+@dataclass(frozen=True)
+class PlyFailure:
+    """The first failure of one ply by Hashin's modes over a run: ``ply`` (1 = the top ply) of fibre ``angle`` [°],
+    the ``mode`` that reached 1 first (one of :data:`~softimpact.models.failure.HASHIN_MODES`; the largest of them if
+    two did at the same sample), at ``sample`` of the run's histories, time ``time`` [s] (None without the times),
+    at damage point ``point`` on ``face`` ("top" or "bottom") of the ply."""
+
+    ply: int
+    angle: float
+    mode: str
+    sample: int
+    time: float | None
+    point: str
+    face: str
+
+    def summary(self) -> dict:
+        """summary.json's entry: {ply, angle_deg, mode, time_s, point, face}."""
+        return {"ply": self.ply, "angle_deg": self.angle, "mode": self.mode, "time_s": self.time, "point": self.point, "face": self.face}
+
+    def phrase(self) -> str:
+        """ "ply 4 (90°) matrix tension at 0.153 ms"."""
+        when = f"at {self.time * 1e3:.3g} ms" if self.time is not None else f"at sample {self.sample}"
+        return f"ply {self.ply} ({self.angle:g}°) {self.mode.replace('_', ' ')} {when}"
+
+
+def plies_failed(stack, strength: PlyStrength, points: dict, time: np.ndarray | None = None) -> tuple[PlyFailure, ...]:
+    """Every ply that fails by one of Hashin's modes (:func:`~softimpact.models.failure.hashin_modes` reaching 1) at
+    any of ``points`` (name → (mid-plane strains, curvatures), each (3, n_t)), both faces of the ply, with the mode
+    that failed first and when (``time`` (n_t,) [s]); in the order they failed. No degradation follows: the run's
+    stiffness stays the intact laminate's, so what comes after a ply's first failure is that of an intact ply."""
+    z, angles = ply_faces(stack)
+    first: dict[int, tuple] = {}  # ply index → (sample, −value, mode, point, face)
+    for name, (e0, k) in points.items():
+        _, stress = ply_stresses(stack.ply, angles, e0, k, z)
+        modes = hashin_modes(strength, stress)
+        v = np.stack([np.asarray(modes[m]).reshape(len(z), -1) for m in HASHIN_MODES])  # (4, 2·n_plies, n_t)
+        failed = (v >= 1.0).any(axis=0)
+        for j in np.flatnonzero(failed.any(axis=-1)):
+            i = int(np.argmax(failed[j]))
+            m = int(np.argmax(v[:, j, i]))
+            key = (i, -float(v[m, j, i]), HASHIN_MODES[m], name, ("top", "bottom")[j % 2])
+            if j // 2 not in first or key < first[j // 2]:
+                first[j // 2] = key
+    out = [
+        PlyFailure(p + 1, float(stack.angles[p]), mode, i, None if time is None else float(np.asarray(time)[i]), name, face)
+        for p, (i, _, mode, name, face) in first.items()
+    ]
+    return tuple(sorted(out, key=lambda f: (f.sample, f.ply)))
+
+
 @dataclass(frozen=True)
 class ImpactDamage:
     """Damage of a coupled impact: first-ply failure by point, the Davies–Zhang threshold
@@ -278,6 +333,7 @@ class ImpactDamage:
     interlaminar_z: float
     onset: Onset | None = None
     interfaces: tuple[Interface, ...] = ()  # between plies of different orientation, top first
+    plies_failed: tuple[PlyFailure, ...] = ()  # by Hashin's modes, in the order they failed
 
     def first_ply_failure(self) -> tuple[str, float]:
         """The criterion with the largest first-ply failure index over the points, and that index."""
@@ -297,6 +353,12 @@ class ImpactDamage:
             onset_word = "delamination onset reached" if o.ratio >= 1 else "below delamination onset"
             parts.append(f"{onset_word}: F_max/F_d (Olsson) {o.ratio:.2f}{caveat}")
         parts.append(f"first-ply failure {'reached' if fpf >= 1 else 'not reached'}: {c.replace('_', ' ')} {fpf:.2f}")
+        if self.plies_failed:
+            shown = ", ".join(f.phrase() for f in self.plies_failed[:VERDICT_PLIES])
+            more = len(self.plies_failed) - VERDICT_PLIES
+            parts.append(f"plies failed (Hashin's first mode): {shown}" + (f" and {more} more" if more > 0 else ""))
+        else:
+            parts.append("no ply failed by Hashin's modes")
         return "; ".join(parts)
 
     def summary(self) -> dict:
@@ -317,6 +379,7 @@ class ImpactDamage:
                 out.update(regime=o.regime, impactor_over_target_mass=o.mass_ratio, target_mass_kg=o.target_mass, regime_note=o.regime_note)
         out["interfaces"] = [i.summary() for i in self.interfaces]
         out["interface_shear_max_Pa"] = max((i.shear_max for i in self.interfaces), default=0.0)
+        out["plies_failed"] = [f.summary() for f in self.plies_failed]
         out["verdict"] = self.verdict()
         for name, p in self.points.items():
             out[name] = {**p.peak, "worst_ply": {c: {"ply": p.ply[c], "face": p.face[c]} for c in CRITERIA}}
@@ -351,6 +414,7 @@ def impact_damage(
     *,
     impactor_mass: float | None = None,
     target_mass: float | None = None,
+    time: np.ndarray | None = None,
 ) -> ImpactDamage:
     """Damage of a coupled impact.
 
@@ -358,7 +422,8 @@ def impact_damage(
     for a beam section, the faces' mean and difference over h on a plate); ``force`` (n_t,) [N];
     ``contact_radius`` (n_t,) [m]; ``width`` [m] of a beam, None on a plate; ``peak_force`` [N] the
     peak set against the Davies–Zhang and Olsson thresholds (default the largest sample of ``force``);
-    ``impactor_mass`` and ``target_mass`` [kg] give the response regime (:func:`onset`).
+    ``impactor_mass`` and ``target_mass`` [kg] give the response regime (:func:`onset`); ``time`` (n_t,) [s] the
+    times at which the plies failed (:func:`plies_failed`).
 
     Interlaminar shear under the load (:func:`softimpact.models.failure.interlaminar_shear`) from
     the transverse shear resultant beside the load: on a beam q = F/(2b), the load shared by the
@@ -403,6 +468,7 @@ def impact_damage(
         best[2],
         onset(stack, strength.GIIc, peak, impactor_mass, target_mass),
         interfaces,
+        plies_failed(stack, strength, points, time),
     )
 
 
@@ -445,4 +511,5 @@ def coupled_damage(target, result, points: tuple[str, ...] | None = None, *, imp
         peak,
         impactor_mass=impactor_mass,
         target_mass=target_mass,
+        time=result.time,
     )
