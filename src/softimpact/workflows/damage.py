@@ -46,6 +46,7 @@ __all__ = [
     "delamination_force",
     "olsson_force",
     "Interface",
+    "mean_shear_resultant",
     "Onset",
     "onset",
     "damage_unavailable",
@@ -217,11 +218,16 @@ class Interface:
     angles: tuple[float, float]
     z: float
     shear_max: float
+    shear_mean: float | None = None  # over the disc (plate) or the length (beam) ``mean_radius`` around the load
+    mean_radius: float | None = None
 
     def summary(self) -> dict:
-        """summary.json's entry: {between, z_m, shear_max_Pa}."""
+        """summary.json's entry: {between, z_m, shear_max_Pa, shear_mean_Pa, shear_mean_radius_m}."""
         a, b = (f"{x:g}" for x in self.angles)
-        return {"between": f"plies {self.upper}/{self.lower} ({a}/{b})", "z_m": self.z, "shear_max_Pa": self.shear_max}
+        out = {"between": f"plies {self.upper}/{self.lower} ({a}/{b})", "z_m": self.z, "shear_max_Pa": self.shear_max}
+        if self.shear_mean is not None:
+            out.update(shear_mean_Pa=self.shear_mean, shear_mean_radius_m=self.mean_radius)
+        return out
 
 
 @dataclass(frozen=True)
@@ -379,6 +385,7 @@ class ImpactDamage:
                 out.update(regime=o.regime, impactor_over_target_mass=o.mass_ratio, target_mass_kg=o.target_mass, regime_note=o.regime_note)
         out["interfaces"] = [i.summary() for i in self.interfaces]
         out["interface_shear_max_Pa"] = max((i.shear_max for i in self.interfaces), default=0.0)
+        out["interface_shear_mean_max_Pa"] = max((i.shear_mean or 0.0 for i in self.interfaces), default=0.0)
         out["plies_failed"] = [f.summary() for f in self.plies_failed]
         out["verdict"] = self.verdict()
         for name, p in self.points.items():
@@ -397,6 +404,24 @@ def point_damage(stack, strength: PlyStrength, e0: np.ndarray, k: np.ndarray) ->
         j = int(np.argmax(v))
         peak[c], ply[c], face[c] = float(v[j]), j // 2 + 1, ("top", "bottom")[j % 2]
     return PointDamage(peak, ply, face)
+
+
+def mean_shear_resultant(force, contact_radius, radius: float, width: float | None) -> np.ndarray:
+    """The transverse shear resultant [N/m] averaged around the load, by equilibrium under Hertz's pressure
+    p ∝ sqrt(1 − r²/a²) on the contact disc of radius a = ``contact_radius`` (≤ ``radius``), per sample of ``force`` [N].
+
+    Plate (``width`` None): the radial resultant q(r) = F(r)/(2πr), F(r) the load inside r (F·(1 − (1 − r²/a²)^{3/2})
+    inside the disc), averaged over the disc of radius R: (1/πR²)∫₀^R q·2πr dr = F·(R − 3πa/16)/(πR²).
+    Beam of width b: the line load (3F/4a)(1 − x²/a²) (the disc's pressure summed across the width) gives the shear
+    force V(x) = (F/2)(3ξ − ξ³)/2, ξ = x/a, then F/2 beyond the disc; its mean over 0 ≤ x ≤ R, per unit width:
+    F·(R − 3a/8)/(2bR). Both stay finite as a → 0 (F/(πR), F/(2b)), unlike the resultant at the disc's edge,
+    F/(2πa) on a plate."""
+    F, a = np.abs(np.asarray(force, float)), np.asarray(contact_radius, float)
+    if np.any(a > radius * (1 + 1e-12)):
+        raise InputError(f"the averaging radius {radius:g} m must cover the contact disc (largest radius {float(np.max(a)):g} m)", "radius")
+    if width is None:
+        return F * (radius - 3 * np.pi * a / 16) / (np.pi * radius**2)
+    return F * (radius - 3 * a / 8) / (2 * width * radius)
 
 
 # Directions [°] of the radial shear resultant checked under a plate's load (the largest is kept).
@@ -436,25 +461,33 @@ def impact_damage(
     """
     force = np.asarray(force, float)
     out = {name: point_damage(stack, strength, e0, k) for name, (e0, k) in points.items()}
+    radius_hist = np.asarray(contact_radius, float) * np.ones_like(force)
     if width is not None:
         q, dirs = np.max(np.abs(force)) / (2 * width), (0.0,)
     else:
-        a = np.maximum(np.asarray(contact_radius, float), stack.thickness / 2)
+        a = np.maximum(radius_hist, stack.thickness / 2)
         q, dirs = float(np.max(np.abs(force) / (2 * np.pi * a))), RADIAL_DIRECTIONS
+    # The converged measure: the resultant averaged over the disc (length) covering the widest contact and one
+    # laminate thickness beyond it (Saint-Venant), fixed for the run.
+    mean_radius = float(np.max(radius_hist, initial=0.0)) + stack.thickness
+    q_mean = float(np.max(mean_shear_resultant(force, radius_hist, mean_radius, width), initial=0.0))
     best = (0.0, 0.0, 0.0)
     per_interface = np.zeros(len(stack.angles) - 1)
+    per_interface_mean = np.zeros_like(per_interface)
     z = np.zeros_like(per_interface)
     for d in dirs:
         ils = interlaminar_shear(stack.ply, stack.angles, strength, d)
         if ils.z.size == 0:
             continue
-        tau = np.hypot(ils.tau_xz, ils.tau_yz) * q
+        unit = np.hypot(ils.tau_xz, ils.tau_yz)
+        tau = unit * q
         per_interface, z = np.maximum(per_interface, tau), ils.z
+        per_interface_mean = np.maximum(per_interface_mean, unit * q_mean)
         j = int(np.argmax(ils.index))
         best = max(best, (float(ils.index[j] * q), float(tau.max()), float(ils.z[j])))
     angles = stack.angles
     interfaces = tuple(
-        Interface(i + 1, i + 2, (float(angles[i]), float(angles[i + 1])), float(z[i]), float(per_interface[i]))
+        Interface(i + 1, i + 2, (float(angles[i]), float(angles[i + 1])), float(z[i]), float(per_interface[i]), float(per_interface_mean[i]), mean_radius)
         for i in range(len(angles) - 1)
         if angles[i] != angles[i + 1]
     )
