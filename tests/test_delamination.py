@@ -280,8 +280,8 @@ ELEMENT_STRONG = 0.05e-3
 def enf_strong_curve():
     L, a0 = 50e-3, 35e-3
     spec = enf(E=E, h=H, width=B_W, half_span=L, a0=a0, law=LAW_STRONG, element=ELEMENT_STRONG, refine=(a0 - 0.5e-3, a0 + 4e-3), control="sliding")
-    # The tip sliding: 0.4 µm steps through the peak (the zone forms by 2·G_IIc/S = 4.4 µm), then 2 µm steps.
-    targets = np.concatenate([[1e-9], np.linspace(0, 8e-6, 21)[1:], np.linspace(8e-6, 3e-5, 12)[1:]])
+    # The tip sliding: 0.5 µm steps through the peak (the zone forms by 2·G_IIc/S = 4.4 µm), then 2.7 µm steps.
+    targets = np.concatenate([[1e-9], np.linspace(0, 8e-6, 17)[1:], np.linspace(8e-6, 2.4e-5, 7)[1:]])
     return L, a0, solve_quasistatic(spec, targets)
 
 
@@ -296,7 +296,7 @@ def test_enf_within_two_percent_of_lefm_once_the_zone_is_small(enf_strong_curve)
     ref = _lefm_branch(c.displacement, lefm.compliance, lambda a: lefm.critical_load(a, LAW_STRONG.GIIc), a0, L)
     assert np.max(np.abs(c.force / ref - 1)) < 0.02
     growing = c.crack_tip > a0 + 0.5e-3
-    assert growing.sum() >= 5 and c.crack_tip.max() > a0 + 2.5e-3
+    assert growing.sum() >= 5 and c.crack_tip.max() > a0 + 2e-3
     assert np.max(np.abs(c.force[growing] / ref[growing] - 1)) < 0.01
     assert np.all(c.elements_in_zone[growing] >= 10)
 
