@@ -74,19 +74,25 @@ def test_mean_refuses_a_radius_inside_the_contact():
         mean_shear_resultant(1.0, 2e-3, 1e-3, None)
 
 
-def test_damage_block_lists_the_mean_interface_shear_with_its_radius():
-    """impact_damage on a [90/0]2s plate with F(t) a half sine and a Hertz-like a(t): each interface between 90° and 0°
-    plies has shear_mean_Pa = its equilibrium shear per unit resultant × max_t F·(R − 3πa/16)/(πR²), R = max a + h
-    (written out here), not above its point value shear_max_Pa, and the damage block carries the largest of them."""
+@pytest.mark.parametrize("width", [None, 25e-3])
+def test_damage_block_lists_the_mean_interface_shear_with_its_radius(width):
+    """impact_damage on a [90/0]2s plate (beam of width 25 mm) with F(t) a half sine and a Hertz-like a(t): each
+    interface between 90° and 0° plies has shear_mean_Pa = its equilibrium shear per unit resultant × max_t
+    F·(R − 3πa/16)/(πR²) (F·(R − 3a/8)/(2bR)), R = max a + h (written out here), not above its point value
+    shear_max_Pa, and the damage block carries the largest of them."""
     stack = Stack(PLY, (90.0, 0.0, 90.0, 0.0, 0.0, 90.0, 0.0, 90.0))
     t = np.linspace(0, 1e-4, 401)
     F = 2000.0 * np.sin(math.pi * t / t[-1])
     a = 1.5e-3 * np.sqrt(F / F.max())
     zero = np.zeros((3, t.size))
-    d = impact_damage(stack, X, {"at_load": (zero, zero)}, F, a, None, time=t).summary()
+    d = impact_damage(stack, X, {"at_load": (zero, zero)}, F, a, width, time=t).summary()
     R = a.max() + stack.thickness
-    q = np.max(F * (R - 3 * math.pi * a / 16) / (math.pi * R * R))
-    unit = np.max([np.hypot(s.tau_xz, s.tau_yz) for s in (interlaminar_shear(PLY, stack.angles, X, dd) for dd in RADIAL_DIRECTIONS)], axis=0)
+    if width is None:
+        q = np.max(F * (R - 3 * math.pi * a / 16) / (math.pi * R * R))
+    else:
+        q = np.max(F * (R - 3 * a / 8) / (2 * width * R))
+    directions = RADIAL_DIRECTIONS if width is None else (0.0,)
+    unit = np.max([np.hypot(s.tau_xz, s.tau_yz) for s in (interlaminar_shear(PLY, stack.angles, X, dd) for dd in directions)], axis=0)
     assert len(d["interfaces"]) == 6
     for i in d["interfaces"]:
         k = int(i["between"].split()[1].split("/")[0]) - 1  # the interface below ply k + 1
