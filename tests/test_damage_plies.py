@@ -6,8 +6,8 @@ import math
 import numpy as np
 import pytest
 
-from softimpact.models.failure import HASHIN_MODES, failure_indices, hashin_modes
-from softimpact.models.laminate import PLIES, Stack, ply_stiffness, reduced_stiffness
+from softimpact.models.failure import HASHIN_MODES, discounted_abd, failure_indices, hashin_modes
+from softimpact.models.laminate import PLIES, Stack, abd, ply_stiffness, reduced_stiffness
 from softimpact.workflows.damage import impact_damage, plies_failed
 
 PLY = PLIES["T300/934"]
@@ -95,3 +95,45 @@ def test_the_damage_block_and_the_verdict_list_the_failed_plies():
     small = {"at_load": (np.stack([1e-4 * ex, 0 * ex, 0 * ex]), np.zeros((3, t.size)))}
     d0 = impact_damage(CROSS, X, small, force, 1e-3 + 0 * t, None, time=t).summary()
     assert d0["plies_failed"] == [] and "no ply failed by Hashin's modes" in d0["verdict"]
+
+
+def test_discounted_abd_of_an_intact_laminate_is_clt():
+    """With no ply failed, the plane-stress ABD from the engineering constants equals lamination theory's from the
+    plies' 3-D stiffnesses (models.laminate.abd), to 1e-9, for a layup with ±45° plies."""
+    stack = Stack(PLY, (45.0, -45.0, 0.0, 90.0, 30.0))
+    for mine, ref in zip(discounted_abd(stack, {}), abd(stack.ply_stiffnesses(), [PLY.thickness] * 5)):
+        assert np.allclose(mine, ref, rtol=1e-9, atol=1e-9 * np.abs(ref).max())
+
+
+def test_ply_discount_by_mode_against_hand_sums():
+    """[0/90]s with both 90° plies failed in matrix tension (retained 0): a 90° ply keeps only its fibre, E1 along y, so
+    A11 = 2t·Q11, A22 = 2t·(Q22 + E1), A66 = 2t·G12, and D11 = Q11·(2/3)((h/2)³ − (h/4)³); the top 0° ply's fibre failure
+    then removes its share of D11, (2/3)·Q11·((h/2)³ − (h/4)³)/2."""
+    t, h = PLY.thickness, 4 * PLY.thickness
+    A, _, D = discounted_abd(CROSS, {2: "matrix_tension", 3: "matrix_tension"}, retained=0.0)
+    assert A[0, 0] == pytest.approx(2 * t * Q[0, 0], rel=1e-12)
+    assert A[1, 1] == pytest.approx(2 * t * (Q[1, 1] + PLY.E1), rel=1e-12)
+    assert A[2, 2] == pytest.approx(2 * t * Q[2, 2], rel=1e-12)
+    outer = 2 / 3 * ((h / 2) ** 3 - (h / 4) ** 3)
+    assert D[0, 0] == pytest.approx(Q[0, 0] * outer, rel=1e-12)
+    _, B1, D1 = discounted_abd(CROSS, {1: "fibre_compression", 2: "matrix_tension", 3: "matrix_tension"}, retained=0.0)
+    assert D1[0, 0] == pytest.approx(Q[0, 0] * outer / 2, rel=1e-12)
+    assert B1[0, 0] == pytest.approx(Q[0, 0] * ((h / 4) ** 2 - (h / 2) ** 2) / 2, rel=1e-12)  # the bottom 0° ply alone (z from −h/2 to −h/4): unsymmetric
+
+
+def test_verdict_gives_the_bending_stiffness_left():
+    """After the tension ramp fails all four plies (90° matrix, then 0° fibre) the damage block's residual D11 and D22
+    ratios are the discounted laminate's over the intact one's (about 1e-6: every ply discounted), the verdict says so,
+    and an intact run keeps 1."""
+    t = np.linspace(0, 1e-3, 2001)
+    ex = 0.03 * t / t[-1]
+    pts = {"at_load": (np.stack([ex, 0 * ex, 0 * ex]), np.zeros((3, t.size)))}
+    d = impact_damage(CROSS, X, pts, np.ones_like(t), 1e-3 + 0 * t, None, time=t).summary()
+    D0 = discounted_abd(CROSS, {})[2]
+    D = discounted_abd(CROSS, {1: "fibre_tension", 2: "matrix_tension", 3: "matrix_tension", 4: "fibre_tension"})[2]
+    assert d["residual_D11_ratio"] == pytest.approx(D[0, 0] / D0[0, 0], rel=1e-12) and d["residual_D11_ratio"] < 1e-5
+    assert d["residual_D22_ratio"] == pytest.approx(D[1, 1] / D0[1, 1], rel=1e-12)
+    assert "bending stiffness left after the ply discount D11 0%" in d["verdict"]
+    small = {"at_load": (np.stack([1e-4 * ex, 0 * ex, 0 * ex]), np.zeros((3, t.size)))}
+    d0 = impact_damage(CROSS, X, small, np.ones_like(t), 1e-3 + 0 * t, None, time=t).summary()
+    assert (d0["residual_D11_ratio"], d0["residual_D22_ratio"]) == (1.0, 1.0) and "bending stiffness left" not in d0["verdict"]

@@ -32,7 +32,17 @@ import numpy as np
 
 from ..errors import InputError
 from ..models.delamination import REGIME_BOUNDS, REGIME_BOUNDS_NOTE, onset_thresholds, response_regime
-from ..models.failure import CRITERIA, HASHIN_MODES, PlyStrength, davies_zhang_force, failure_indices, hashin_modes, interlaminar_shear, ply_stresses
+from ..models.failure import (
+    CRITERIA,
+    HASHIN_MODES,
+    PlyStrength,
+    davies_zhang_force,
+    discounted_abd,
+    failure_indices,
+    hashin_modes,
+    interlaminar_shear,
+    ply_stresses,
+)
 from ..models.laminate import Stack, abd, engineering_constants
 
 __all__ = [
@@ -54,6 +64,7 @@ __all__ = [
     "PointDamage",
     "PlyFailure",
     "plies_failed",
+    "residual_bending",
     "ImpactDamage",
     "point_damage",
     "impact_damage",
@@ -340,6 +351,7 @@ class ImpactDamage:
     onset: Onset | None = None
     interfaces: tuple[Interface, ...] = ()  # between plies of different orientation, top first
     plies_failed: tuple[PlyFailure, ...] = ()  # by Hashin's modes, in the order they failed
+    residual_bending: tuple[float, float] = (1.0, 1.0)  # D11, D22 after the ply discount over the intact ones
 
     def first_ply_failure(self) -> tuple[str, float]:
         """The criterion with the largest first-ply failure index over the points, and that index."""
@@ -363,6 +375,8 @@ class ImpactDamage:
             shown = ", ".join(f.phrase() for f in self.plies_failed[:VERDICT_PLIES])
             more = len(self.plies_failed) - VERDICT_PLIES
             parts.append(f"plies failed (Hashin's first mode): {shown}" + (f" and {more} more" if more > 0 else ""))
+            d11, d22 = self.residual_bending
+            parts.append(f"bending stiffness left after the ply discount D11 {d11:.0%}, D22 {d22:.0%}")
         else:
             parts.append("no ply failed by Hashin's modes")
         return "; ".join(parts)
@@ -387,6 +401,7 @@ class ImpactDamage:
         out["interface_shear_max_Pa"] = max((i.shear_max for i in self.interfaces), default=0.0)
         out["interface_shear_mean_max_Pa"] = max((i.shear_mean or 0.0 for i in self.interfaces), default=0.0)
         out["plies_failed"] = [f.summary() for f in self.plies_failed]
+        out["residual_D11_ratio"], out["residual_D22_ratio"] = self.residual_bending
         out["verdict"] = self.verdict()
         for name, p in self.points.items():
             out[name] = {**p.peak, "worst_ply": {c: {"ply": p.ply[c], "face": p.face[c]} for c in CRITERIA}}
@@ -492,6 +507,7 @@ def impact_damage(
         if angles[i] != angles[i + 1]
     )
     peak = float(np.max(force) if peak_force is None else peak_force)
+    failed = plies_failed(stack, strength, points, time)
     return ImpactDamage(
         out,
         delamination_force(stack, strength.GIIc),
@@ -501,8 +517,20 @@ def impact_damage(
         best[2],
         onset(stack, strength.GIIc, peak, impactor_mass, target_mass),
         interfaces,
-        plies_failed(stack, strength, points, time),
+        failed,
+        residual_bending(stack, failed),
     )
+
+
+def residual_bending(stack, failed: tuple[PlyFailure, ...]) -> tuple[float, float]:
+    """(D11, D22) of ``stack`` after the ply discount of the ``failed`` plies (:func:`~softimpact.models.failure.discounted_abd`:
+    a matrix failure keeps the fibre, a fibre failure removes the ply) over the intact laminate's: what bending
+    stiffness the run left. Not fed back into the run (its stiffness stays the intact laminate's)."""
+    if not failed:
+        return 1.0, 1.0
+    D0 = discounted_abd(stack, {})[2]
+    D = discounted_abd(stack, {f.ply: f.mode for f in failed})[2]
+    return float(D[0, 0] / D0[0, 0]), float(D[1, 1] / D0[1, 1])
 
 
 def face_points(stack, faces: dict, plane: str | None) -> dict:
