@@ -318,6 +318,7 @@ NEWTON_TOL = 1e-7  # residual norm relative to the largest of the load and the i
 STEP_TOL = 1e-10  # a full Newton correction below this fraction of |u|: converged (the round-off floor)
 LINE_SEARCH_AFTER = 8  # plain Newton iterations before the backtracking starts
 LINE_SEARCH_MIN = 1.0 / 16  # smallest fraction of a Newton step the backtracking tries
+ROUNDOFF = 1e-12  # the beams' force's round-off floor relative to |K0|·|u| (about 10⁴ ε: sums of ~10 terms, an n_dof-long norm)
 MIN_STEP_FRACTION = 1.0 / 1024  # of the requested control increment: below it the solver gives up
 
 
@@ -339,6 +340,7 @@ class _Bordered:
         self.g = g = np.asarray(spec.load, float)[idx]
         c = np.asarray(spec.control, float)[idx]
         self.K0f = K0f = self.K0[idx][:, idx]
+        self.K0f_abs = abs(K0f)  # |K0|: the round-off floor of the beams' force |K0|·|u|·ε (residual)
         self.nf = nf = idx.size
         # The bordered matrix [[K0 + K_i, −g], [cᵀ, 0]] as coo triplets.
         red = np.full(n, -1)
@@ -367,8 +369,11 @@ class _Bordered:
         fi, ke, d_new = self.ifc.element_arrays(self.full(uf), dmg_old)
         fb = self.K0f @ uf
         r = lam * self.g - (fb + fi[self.idx])
-        # The residual's round-off floor: the beams' and the interfaces' forces cancel to the load.
-        scale = max(abs(lam) * np.linalg.norm(self.g), np.linalg.norm(fb), np.linalg.norm(fi), 1e-30)
+        # The residual's round-off floor: the beams' and the interfaces' forces cancel to the load, and each entry of
+        # the beams' force K0·u is a sum of terms |K0|·|u| far larger than it on fine elements (EI/L_e³ grows as
+        # L_e⁻³): their round-off, ε·|K0|·|u|, sits above NEWTON_TOL·|K0·u| once L_e is a few hundredths of h.
+        floor = ROUNDOFF / NEWTON_TOL * np.linalg.norm(self.K0f_abs @ np.abs(uf))
+        scale = max(abs(lam) * np.linalg.norm(self.g), np.linalg.norm(fb), np.linalg.norm(fi), floor, 1e-30)
         return r, ke.ravel()[self.keep], d_new, scale
 
     def newton(self, uf, lam, trial, dmg):

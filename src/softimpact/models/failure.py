@@ -38,6 +38,10 @@ __all__ = [
     "strength_of",
     "ply_stresses",
     "failure_indices",
+    "HASHIN_MODES",
+    "hashin_modes",
+    "PLY_DISCOUNT_RETAINED",
+    "discounted_abd",
     "davies_zhang_force",
     "InterlaminarShear",
     "interlaminar_shear",
@@ -120,6 +124,68 @@ def failure_indices(ply, strength: PlyStrength, strain: np.ndarray, stress: np.n
     )
     hashin = np.sqrt(np.maximum(np.maximum(fibre, matrix), 0.0))
     return {"max_strain": max_strain, "tsai_wu": tsai_wu, "hashin": hashin}
+
+
+HASHIN_MODES = ("fibre_tension", "fibre_compression", "matrix_tension", "matrix_compression")
+
+
+def hashin_modes(strength: PlyStrength, stress: np.ndarray) -> dict[str, np.ndarray]:
+    """Hashin's (1980, plane stress) four modes separately, square-rooted as :func:`failure_indices`' ``hashin`` (their
+    largest): a mode is 0 where its sign condition does not hold (fibre: σ1 ≥ 0 tension, σ1 < 0 compression; matrix:
+    σ2 ≥ 0 tension, σ2 < 0 compression). ``stress`` as :func:`failure_indices` takes it."""
+    ax = 1 if stress.ndim >= 2 else 0
+    s1, s2, s6 = np.take(stress, 0, ax), np.take(stress, 1, ax), np.take(stress, 2, ax)
+    X = strength
+
+    def root(v):
+        return np.sqrt(np.maximum(v, 0.0))
+
+    matrix_c = (s2 / (2 * X.S23)) ** 2 + ((X.Yc / (2 * X.S23)) ** 2 - 1) * s2 / X.Yc + (s6 / X.S12) ** 2
+    return {
+        "fibre_tension": np.where(s1 >= 0, root((s1 / X.Xt) ** 2 + (s6 / X.S12) ** 2), 0.0),
+        "fibre_compression": np.where(s1 < 0, np.abs(s1) / X.Xc, 0.0),
+        "matrix_tension": np.where(s2 >= 0, root((s2 / X.Yt) ** 2 + (s6 / X.S12) ** 2), 0.0),
+        "matrix_compression": np.where(s2 < 0, root(matrix_c), 0.0),
+    }
+
+
+PLY_DISCOUNT_RETAINED = 1e-6  # the fraction of a discounted modulus kept (0 would leave a singular stiffness)
+
+
+def _discounted_q(ply, mode: str | None, retained: float) -> np.ndarray:
+    """Plane-stress Q (1, 2, 12) of a ply after the discount of ``mode``: none intact; a matrix mode keeps the
+    fibre (E2, G12 × ``retained``, ν21 = ν12·E2/E1 following); a fibre mode discounts the whole ply (E1, E2, G12)."""
+    E1, E2, G12, nu12 = ply.E1, ply.E2, ply.G12, ply.nu12
+    if mode in ("matrix_tension", "matrix_compression"):
+        E2, G12 = retained * E2, retained * G12
+    elif mode in ("fibre_tension", "fibre_compression"):
+        E1, E2, G12 = retained * E1, retained * E2, retained * G12
+    elif mode is not None:
+        raise InputError(f"unknown Hashin mode {mode!r}: one of {', '.join(HASHIN_MODES)}", "mode")
+    nu21 = nu12 * E2 / E1 if E1 > 0 else 0.0  # retained 0: a removed ply
+    d = 1 - nu12 * nu21
+    return np.array([[E1 / d, nu12 * E2 / d, 0.0], [nu12 * E2 / d, E2 / d, 0.0], [0.0, 0.0, G12]])
+
+
+def discounted_abd(stack, failed: dict, retained: float = PLY_DISCOUNT_RETAINED) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """A, B, D (per unit width, plies top first, z up) of ``stack`` with the plies of ``failed`` (ply number, 1 = top →
+    its Hashin mode, :data:`HASHIN_MODES`) discounted by mode: a ply-discount model chosen here (no source retrieved):
+    a matrix failure keeps only the fibre's stiffness (E2 and G12 × ``retained``), a fibre failure removes the ply
+    (E1, E2 and G12 × ``retained``). Each ply's Q is the plane-stress one of its engineering constants, turned to the
+    laminate's axes by Q̄ = Tᵀ·Q·T with T the engineering strain transformation of :func:`ply_stresses`."""
+    t, n = stack.ply.thickness, len(stack.angles)
+    h = n * t
+    A, B, D = np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3))
+    for k, angle in enumerate(stack.angles):
+        c, s = math.cos(math.radians(angle)), math.sin(math.radians(angle))
+        T = np.array([[c * c, s * s, c * s], [s * s, c * c, -c * s], [-2 * c * s, 2 * c * s, c * c - s * s]])
+        Qbar = T.T @ _discounted_q(stack.ply, failed.get(k + 1), retained) @ T
+        zt = h / 2 - k * t
+        zb = zt - t
+        A += Qbar * (zt - zb)
+        B += Qbar * (zt**2 - zb**2) / 2
+        D += Qbar * (zt**3 - zb**3) / 3
+    return A, B, D
 
 
 def davies_zhang_force(E: float, nu: float, thickness: float, GIIc: float) -> float:

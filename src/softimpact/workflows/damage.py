@@ -32,7 +32,17 @@ import numpy as np
 
 from ..errors import InputError
 from ..models.delamination import REGIME_BOUNDS, REGIME_BOUNDS_NOTE, onset_thresholds, response_regime
-from ..models.failure import CRITERIA, PlyStrength, davies_zhang_force, failure_indices, interlaminar_shear, ply_stresses
+from ..models.failure import (
+    CRITERIA,
+    HASHIN_MODES,
+    PlyStrength,
+    davies_zhang_force,
+    discounted_abd,
+    failure_indices,
+    hashin_modes,
+    interlaminar_shear,
+    ply_stresses,
+)
 from ..models.laminate import Stack, abd, engineering_constants
 
 __all__ = [
@@ -46,11 +56,15 @@ __all__ = [
     "delamination_force",
     "olsson_force",
     "Interface",
+    "mean_shear_resultant",
     "Onset",
     "onset",
     "damage_unavailable",
     "damage_refusal",
     "PointDamage",
+    "PlyFailure",
+    "plies_failed",
+    "residual_bending",
     "ImpactDamage",
     "point_damage",
     "impact_damage",
@@ -215,11 +229,16 @@ class Interface:
     angles: tuple[float, float]
     z: float
     shear_max: float
+    shear_mean: float | None = None  # over the disc (plate) or the length (beam) ``mean_radius`` around the load
+    mean_radius: float | None = None
 
     def summary(self) -> dict:
-        """summary.json's entry: {between, z_m, shear_max_Pa}."""
+        """summary.json's entry: {between, z_m, shear_max_Pa, shear_mean_Pa, shear_mean_radius_m}."""
         a, b = (f"{x:g}" for x in self.angles)
-        return {"between": f"plies {self.upper}/{self.lower} ({a}/{b})", "z_m": self.z, "shear_max_Pa": self.shear_max}
+        out = {"between": f"plies {self.upper}/{self.lower} ({a}/{b})", "z_m": self.z, "shear_max_Pa": self.shear_max}
+        if self.shear_mean is not None:
+            out.update(shear_mean_Pa=self.shear_mean, shear_mean_radius_m=self.mean_radius)
+        return out
 
 
 @dataclass(frozen=True)
@@ -263,6 +282,59 @@ class PointDamage:
     face: dict
 
 
+VERDICT_PLIES = 3  # failed plies the verdict names (summary.json's plies_failed lists them all)
+
+
+@dataclass(frozen=True)
+class PlyFailure:
+    """The first failure of one ply by Hashin's modes over a run: ``ply`` (1 = the top ply) of fibre ``angle`` [°],
+    the ``mode`` that reached 1 first (one of :data:`~softimpact.models.failure.HASHIN_MODES`; the largest of them if
+    two did at the same sample), at ``sample`` of the run's histories, time ``time`` [s] (None without the times),
+    at damage point ``point`` on ``face`` ("top" or "bottom") of the ply."""
+
+    ply: int
+    angle: float
+    mode: str
+    sample: int
+    time: float | None
+    point: str
+    face: str
+
+    def summary(self) -> dict:
+        """summary.json's entry: {ply, angle_deg, mode, time_s, point, face}."""
+        return {"ply": self.ply, "angle_deg": self.angle, "mode": self.mode, "time_s": self.time, "point": self.point, "face": self.face}
+
+    def phrase(self) -> str:
+        """ "ply 4 (90°) matrix tension at 0.153 ms"."""
+        when = f"at {self.time * 1e3:.3g} ms" if self.time is not None else f"at sample {self.sample}"
+        return f"ply {self.ply} ({self.angle:g}°) {self.mode.replace('_', ' ')} {when}"
+
+
+def plies_failed(stack, strength: PlyStrength, points: dict, time: np.ndarray | None = None) -> tuple[PlyFailure, ...]:
+    """Every ply that fails by one of Hashin's modes (:func:`~softimpact.models.failure.hashin_modes` reaching 1) at
+    any of ``points`` (name → (mid-plane strains, curvatures), each (3, n_t)), both faces of the ply, with the mode
+    that failed first and when (``time`` (n_t,) [s]); in the order they failed. No degradation follows: the run's
+    stiffness stays the intact laminate's, so what comes after a ply's first failure is that of an intact ply."""
+    z, angles = ply_faces(stack)
+    first: dict[int, tuple] = {}  # ply index → (sample, −value, mode, point, face)
+    for name, (e0, k) in points.items():
+        _, stress = ply_stresses(stack.ply, angles, e0, k, z)
+        modes = hashin_modes(strength, stress)
+        v = np.stack([np.asarray(modes[m]).reshape(len(z), -1) for m in HASHIN_MODES])  # (4, 2·n_plies, n_t)
+        failed = (v >= 1.0).any(axis=0)
+        for j in np.flatnonzero(failed.any(axis=-1)):
+            i = int(np.argmax(failed[j]))
+            m = int(np.argmax(v[:, j, i]))
+            key = (i, -float(v[m, j, i]), HASHIN_MODES[m], name, ("top", "bottom")[j % 2])
+            if j // 2 not in first or key < first[j // 2]:
+                first[j // 2] = key
+    out = [
+        PlyFailure(p + 1, float(stack.angles[p]), mode, i, None if time is None else float(np.asarray(time)[i]), name, face)
+        for p, (i, _, mode, name, face) in first.items()
+    ]
+    return tuple(sorted(out, key=lambda f: (f.sample, f.ply)))
+
+
 @dataclass(frozen=True)
 class ImpactDamage:
     """Damage of a coupled impact: first-ply failure by point, the Davies–Zhang threshold
@@ -278,6 +350,8 @@ class ImpactDamage:
     interlaminar_z: float
     onset: Onset | None = None
     interfaces: tuple[Interface, ...] = ()  # between plies of different orientation, top first
+    plies_failed: tuple[PlyFailure, ...] = ()  # by Hashin's modes, in the order they failed
+    residual_bending: tuple[float, float] = (1.0, 1.0)  # D11, D22 after the ply discount over the intact ones
 
     def first_ply_failure(self) -> tuple[str, float]:
         """The criterion with the largest first-ply failure index over the points, and that index."""
@@ -297,6 +371,14 @@ class ImpactDamage:
             onset_word = "delamination onset reached" if o.ratio >= 1 else "below delamination onset"
             parts.append(f"{onset_word}: F_max/F_d (Olsson) {o.ratio:.2f}{caveat}")
         parts.append(f"first-ply failure {'reached' if fpf >= 1 else 'not reached'}: {c.replace('_', ' ')} {fpf:.2f}")
+        if self.plies_failed:
+            shown = ", ".join(f.phrase() for f in self.plies_failed[:VERDICT_PLIES])
+            more = len(self.plies_failed) - VERDICT_PLIES
+            parts.append(f"plies failed (Hashin's first mode): {shown}" + (f" and {more} more" if more > 0 else ""))
+            d11, d22 = self.residual_bending
+            parts.append(f"bending stiffness left after the ply discount D11 {d11:.0%}, D22 {d22:.0%}")
+        else:
+            parts.append("no ply failed by Hashin's modes")
         return "; ".join(parts)
 
     def summary(self) -> dict:
@@ -317,6 +399,9 @@ class ImpactDamage:
                 out.update(regime=o.regime, impactor_over_target_mass=o.mass_ratio, target_mass_kg=o.target_mass, regime_note=o.regime_note)
         out["interfaces"] = [i.summary() for i in self.interfaces]
         out["interface_shear_max_Pa"] = max((i.shear_max for i in self.interfaces), default=0.0)
+        out["interface_shear_mean_max_Pa"] = max((i.shear_mean or 0.0 for i in self.interfaces), default=0.0)
+        out["plies_failed"] = [f.summary() for f in self.plies_failed]
+        out["residual_D11_ratio"], out["residual_D22_ratio"] = self.residual_bending
         out["verdict"] = self.verdict()
         for name, p in self.points.items():
             out[name] = {**p.peak, "worst_ply": {c: {"ply": p.ply[c], "face": p.face[c]} for c in CRITERIA}}
@@ -336,6 +421,24 @@ def point_damage(stack, strength: PlyStrength, e0: np.ndarray, k: np.ndarray) ->
     return PointDamage(peak, ply, face)
 
 
+def mean_shear_resultant(force, contact_radius, radius: float, width: float | None) -> np.ndarray:
+    """The transverse shear resultant [N/m] averaged around the load, by equilibrium under Hertz's pressure
+    p ∝ sqrt(1 − r²/a²) on the contact disc of radius a = ``contact_radius`` (≤ ``radius``), per sample of ``force`` [N].
+
+    Plate (``width`` None): the radial resultant q(r) = F(r)/(2πr), F(r) the load inside r (F·(1 − (1 − r²/a²)^{3/2})
+    inside the disc), averaged over the disc of radius R: (1/πR²)∫₀^R q·2πr dr = F·(R − 3πa/16)/(πR²).
+    Beam of width b: the line load (3F/4a)(1 − x²/a²) (the disc's pressure summed across the width) gives the shear
+    force V(x) = (F/2)(3ξ − ξ³)/2, ξ = x/a, then F/2 beyond the disc; its mean over 0 ≤ x ≤ R, per unit width:
+    F·(R − 3a/8)/(2bR). Both stay finite as a → 0 (F/(πR), F/(2b)), unlike the resultant at the disc's edge,
+    F/(2πa) on a plate."""
+    F, a = np.abs(np.asarray(force, float)), np.asarray(contact_radius, float)
+    if np.any(a > radius * (1 + 1e-12)):
+        raise InputError(f"the averaging radius {radius:g} m must cover the contact disc (largest radius {float(np.max(a)):g} m)", "radius")
+    if width is None:
+        return F * (radius - 3 * np.pi * a / 16) / (np.pi * radius**2)
+    return F * (radius - 3 * a / 8) / (2 * width * radius)
+
+
 # Directions [°] of the radial shear resultant checked under a plate's load (the largest is kept).
 RADIAL_DIRECTIONS = (0.0, 45.0, 90.0, 135.0)
 
@@ -351,6 +454,7 @@ def impact_damage(
     *,
     impactor_mass: float | None = None,
     target_mass: float | None = None,
+    time: np.ndarray | None = None,
 ) -> ImpactDamage:
     """Damage of a coupled impact.
 
@@ -358,7 +462,8 @@ def impact_damage(
     for a beam section, the faces' mean and difference over h on a plate); ``force`` (n_t,) [N];
     ``contact_radius`` (n_t,) [m]; ``width`` [m] of a beam, None on a plate; ``peak_force`` [N] the
     peak set against the Davies–Zhang and Olsson thresholds (default the largest sample of ``force``);
-    ``impactor_mass`` and ``target_mass`` [kg] give the response regime (:func:`onset`).
+    ``impactor_mass`` and ``target_mass`` [kg] give the response regime (:func:`onset`); ``time`` (n_t,) [s] the
+    times at which the plies failed (:func:`plies_failed`).
 
     Interlaminar shear under the load (:func:`softimpact.models.failure.interlaminar_shear`) from
     the transverse shear resultant beside the load: on a beam q = F/(2b), the load shared by the
@@ -371,29 +476,38 @@ def impact_damage(
     """
     force = np.asarray(force, float)
     out = {name: point_damage(stack, strength, e0, k) for name, (e0, k) in points.items()}
+    radius_hist = np.asarray(contact_radius, float) * np.ones_like(force)
     if width is not None:
         q, dirs = np.max(np.abs(force)) / (2 * width), (0.0,)
     else:
-        a = np.maximum(np.asarray(contact_radius, float), stack.thickness / 2)
+        a = np.maximum(radius_hist, stack.thickness / 2)
         q, dirs = float(np.max(np.abs(force) / (2 * np.pi * a))), RADIAL_DIRECTIONS
+    # The converged measure: the resultant averaged over the disc (length) covering the widest contact and one
+    # laminate thickness beyond it (Saint-Venant), fixed for the run.
+    mean_radius = float(np.max(radius_hist, initial=0.0)) + stack.thickness
+    q_mean = float(np.max(mean_shear_resultant(force, radius_hist, mean_radius, width), initial=0.0))
     best = (0.0, 0.0, 0.0)
     per_interface = np.zeros(len(stack.angles) - 1)
+    per_interface_mean = np.zeros_like(per_interface)
     z = np.zeros_like(per_interface)
     for d in dirs:
         ils = interlaminar_shear(stack.ply, stack.angles, strength, d)
         if ils.z.size == 0:
             continue
-        tau = np.hypot(ils.tau_xz, ils.tau_yz) * q
+        unit = np.hypot(ils.tau_xz, ils.tau_yz)
+        tau = unit * q
         per_interface, z = np.maximum(per_interface, tau), ils.z
+        per_interface_mean = np.maximum(per_interface_mean, unit * q_mean)
         j = int(np.argmax(ils.index))
         best = max(best, (float(ils.index[j] * q), float(tau.max()), float(ils.z[j])))
     angles = stack.angles
     interfaces = tuple(
-        Interface(i + 1, i + 2, (float(angles[i]), float(angles[i + 1])), float(z[i]), float(per_interface[i]))
+        Interface(i + 1, i + 2, (float(angles[i]), float(angles[i + 1])), float(z[i]), float(per_interface[i]), float(per_interface_mean[i]), mean_radius)
         for i in range(len(angles) - 1)
         if angles[i] != angles[i + 1]
     )
     peak = float(np.max(force) if peak_force is None else peak_force)
+    failed = plies_failed(stack, strength, points, time)
     return ImpactDamage(
         out,
         delamination_force(stack, strength.GIIc),
@@ -403,7 +517,20 @@ def impact_damage(
         best[2],
         onset(stack, strength.GIIc, peak, impactor_mass, target_mass),
         interfaces,
+        failed,
+        residual_bending(stack, failed),
     )
+
+
+def residual_bending(stack, failed: tuple[PlyFailure, ...]) -> tuple[float, float]:
+    """(D11, D22) of ``stack`` after the ply discount of the ``failed`` plies (:func:`~softimpact.models.failure.discounted_abd`:
+    a matrix failure keeps the fibre, a fibre failure removes the ply) over the intact laminate's: what bending
+    stiffness the run left. Not fed back into the run (its stiffness stays the intact laminate's)."""
+    if not failed:
+        return 1.0, 1.0
+    D0 = discounted_abd(stack, {})[2]
+    D = discounted_abd(stack, {f.ply: f.mode for f in failed})[2]
+    return float(D[0, 0] / D0[0, 0]), float(D[1, 1] / D0[1, 1])
 
 
 def face_points(stack, faces: dict, plane: str | None) -> dict:
@@ -445,4 +572,5 @@ def coupled_damage(target, result, points: tuple[str, ...] | None = None, *, imp
         peak,
         impactor_mass=impactor_mass,
         target_mass=target_mass,
+        time=result.time,
     )
