@@ -23,11 +23,13 @@ def snapshot_steps(steps: int) -> np.ndarray:
 def damage_keys(points) -> tuple[str, ...]:
     """The dotted ``damage`` outputs of summary.json (sweeps) for damage ``points`` ("at_load", "at_<gauge>"):
     the worst of each criterion, the delamination and interlaminar scalars (Davies–Zhang, Olsson's onset, the
-    interfaces' largest shear, the mass ratio of the regime), and each point's criteria."""
+    interfaces' largest shear and largest shear averaged around the load, the mass ratio of the regime, the bending
+    stiffness left by the failed plies), and each point's criteria."""
     from ..models.failure import CRITERIA
 
     keys = [f"damage.{c}" for c in CRITERIA] + [f"damage.{k}" for k in ("delamination", "threshold_force_N", "interlaminar_shear_max_Pa", "interlaminar_index")]
     keys += [f"damage.{k}" for k in ("olsson_threshold_force_N", "peak_over_olsson", "interface_shear_max_Pa", "impactor_over_target_mass")]
+    keys += [f"damage.{k}" for k in ("interface_shear_mean_max_Pa", "residual_D11_ratio", "residual_D22_ratio")]
     return tuple(keys + [f"damage.{p}.{c}" for p in points for c in CRITERIA])
 
 
