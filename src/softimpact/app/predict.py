@@ -35,7 +35,7 @@ def predict(
     target: str,
     bar: str | None,
     beam: str | None,
-    units: str,
+    units: str | None,
     figures: bool,
     progress: Progress = no_progress,
 ) -> Outcome:
