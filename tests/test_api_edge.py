@@ -6,7 +6,7 @@ from pathlib import Path
 import pytest
 
 import softimpact as si
-from softimpact.app.options import CALIBRATE, CONVERGE, IDENTIFY, PREDICT, SERIES
+from softimpact.app.options import CALIBRATE, CONVERGE, IDENTIFY, PREDICT, SERIES, SWEEP
 from softimpact.cli import main
 from softimpact.errors import InputError
 
@@ -63,16 +63,17 @@ def test_a_records_arrays_are_read_only():
         ("reduce", si.reduce, SERIES),
         ("fit", si.fit, SERIES),
         ("identify", si.identify, IDENTIFY),
+        ("sweep", si.sweep, SWEEP),
     ],
 )
 def test_the_api_and_the_command_line_show_the_same_options_and_defaults(command, function, table):
     """`softimpact COMMAND --help` and si.COMMAND list the same options with the same defaults, the table's (out and the figure format are the command line's own)."""
     cli = {p.name: p.default for p in main.commands[command].params if p.name not in ("out", "accept_poor") and not p.opts[0].startswith("--figure-format")}
-    cli = {k: v for k, v in cli.items() if k not in ("case", "series")}
+    cli = {k: v for k, v in cli.items() if k not in ("case", "series", "spec")}
     api = {
         p.name: (None if p.default is inspect.Parameter.empty else p.default)
         for p in inspect.signature(function).parameters.values()
-        if p.name not in ("case", "series")
+        if p.name not in ("case", "series", "spec", "out")  # sweep's out: the API's checkpoints folder, the command line's --out
     }
     assert api == cli
     assert api == {o.name: o.default for o in table}
@@ -146,3 +147,21 @@ def test_the_resource_guards_advice_is_the_environment_variable(monkeypatch):
     with pytest.raises(TooLarge) as info:
         si.impact(beam, at="3 in", impactor=si.Sphere("steel", "0.5 in", velocity="100 in/s"), time_step="0.01 us", duration="4000 us")
     assert "SOFTIMPACT_IGNORE_LIMITS=1" in str(info.value) and "--ignore-limits" not in str(info.value), str(info.value)
+
+
+def test_load_and_run_take_the_display_system_over_the_cases_own():
+    """si.load and si.run show the case's units by default and units= when given (the numbers the same); a bad one is an InputError naming units."""
+    own = si.load("paper-calibration")
+    assert own.units == "in-lbf-s" and si.load("paper-calibration", units="SI").units == "SI"
+    res, shown = si.run(own), si.run(own, units="SI")
+    assert (res.units, shown.units) == ("in-lbf-s", "SI") and shown.peak_force == res.peak_force
+    for call in (lambda: si.load("paper-calibration", units="imperial"), lambda: si.run(own, units="imperial")):
+        with pytest.raises(InputError, match="^units: 'imperial'"):
+            call()
+
+
+def test_sweep_and_the_command_line_default_to_the_machines_cores():
+    """si.sweep's workers default is None (the machine's cores, as `softimpact sweep`'s), not a plain loop; 0 must be asked for."""
+    assert inspect.signature(si.sweep).parameters["workers"].default is None
+    (workers,) = [p for p in main.commands["sweep"].params if p.name == "workers"]
+    assert workers.default is None and "machine's cores" in workers.help and "machine's cores" in si.sweep.__doc__

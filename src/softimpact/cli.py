@@ -34,7 +34,7 @@ import warnings
 import click
 
 from . import __version__
-from .app.options import CALIBRATE, CONVERGE, IDENTIFY, PREDICT, SERIES
+from .app.options import CALIBRATE, CASE, CONVERGE, IDENTIFY, PREDICT, SERIES, SWEEP
 from .errors import EXIT_CHECK, EXIT_INPUT, EXIT_INTERNAL, CheckFailed, InputError, SoftimpactWarning, SolverFailed
 
 __all__ = ["main"]
@@ -387,9 +387,9 @@ def catalogue_cmd():
     click.echo(text().rstrip())
 
 
-@_command("bar", "Sphere on the instrumented bar (Figs 4-6).")
+@_command("bar", "Sphere on the instrumented bar (Figs 4-6).", options=CASE)
 @click.argument("case")
-def bar_cmd(case, out, figures):
+def bar_cmd(case, units, out, figures):
     """Longitudinal impact of a sphere on an instrumented bar (CASE: file or built-in name).
 
     Writes history.csv, summary.json, strain-along-bar.csv and, with figures,
@@ -397,14 +397,18 @@ def bar_cmd(case, out, figures):
     """
     from .app.bar import bar
 
-    _run(bar, out, case=case, figures=figures)
+    _run(bar, out, case=case, units=units, figures=figures)
 
 
 @_command(
-    "beam", "Transverse impact of a laminated beam (Figs 16-22).", history="Row N of the case's [[load.table]] (Tables II/III for the built-ins).", fields=True
+    "beam",
+    "Transverse impact of a laminated beam (Figs 16-22).",
+    options=CASE,
+    history="Row N of the case's [[load.table]] (Tables II/III for the built-ins).",
+    fields=True,
 )
 @click.argument("case")
-def beam_cmd(case, history, out, figures, fields):
+def beam_cmd(case, units, history, out, figures, fields):
     """Transverse impact of a laminated beam (CASE: file or built-in name).
 
     Writes history.csv, summary.json and, with figures, fig18-mesh.png,
@@ -413,7 +417,7 @@ def beam_cmd(case, history, out, figures, fields):
     """
     from .app.beam import beam
 
-    _run(beam, out, case=case, history=history, figures=figures, fields=fields)
+    _run(beam, out, case=case, history=history, units=units, figures=figures, fields=fields)
 
 
 @_command("converge", "Discretisation error of a case by systematic refinement.", options=CONVERGE)
@@ -435,11 +439,9 @@ def converge_cmd(case, out, **options):
     _run(converge, out, case=case, **options)
 
 
-@_command("sweep", "Grids and Monte Carlo of a case, local or on Dask.")
+@_command("sweep", "Grids and Monte Carlo of a case, local or on Dask.", options=SWEEP)
 @click.argument("spec")
-@click.option("--workers", type=int, default=None, help="Local Dask worker processes (default: the machine's cores; 0: a plain loop, no Dask).")
-@click.option("--scheduler", default=None, help="Address of a running Dask scheduler (tcp://host:8786) to run on instead.")
-def sweep_cmd(spec, workers, scheduler, out, figures):
+def sweep_cmd(spec, workers, scheduler, units, out, figures):
     """Runs of a case varied as the SPEC file says (grid, Monte Carlo, Latin hypercube).
 
     Writes runs.parquet (a row per run), summary.json (statistics, failures, rank
@@ -449,12 +451,12 @@ def sweep_cmd(spec, workers, scheduler, out, figures):
     """
     from .app.sweep import sweep
 
-    _run(sweep, out, spec=spec, out_dir=out, workers=workers, scheduler=scheduler, figures=figures)
+    _run(sweep, out, spec=spec, out_dir=out, workers=workers, scheduler=scheduler, units=units, figures=figures)
 
 
-@_command("plate", "Transverse impact of a laminated plate (FSDT).", history=HISTORY_HELP, fields=True)
+@_command("plate", "Transverse impact of a laminated plate (FSDT).", options=CASE, history=HISTORY_HELP, fields=True)
 @click.argument("case")
-def plate_cmd(case, history, out, figures, fields):
+def plate_cmd(case, units, history, out, figures, fields):
     """Transverse impact of a laminated plate, FSDT MITC9 (or MITC4) elements (CASE: file or built-in name).
 
     Writes history.csv, summary.json and, with figures, plate-mesh.png,
@@ -462,12 +464,12 @@ def plate_cmd(case, history, out, figures, fields):
     """
     from .app.plate import plate
 
-    _run(plate, out, case=case, history=history, figures=figures, fields=fields)
+    _run(plate, out, case=case, history=history, units=units, figures=figures, fields=fields)
 
 
 @_command("reduce", "Bar strain records -> force histories (Fig 7).", options=SERIES, accept_poor=True)
 @click.argument("series")
-def reduce_cmd(series, out, figures, accept_poor):
+def reduce_cmd(series, units, out, figures, accept_poor):
     """Bar strain records of a SERIES file → force histories and pulse parameters.
 
     Writes tests.csv, history-<test>.csv per test, summary.json and, with figures,
@@ -475,12 +477,12 @@ def reduce_cmd(series, out, figures, accept_poor):
     """
     from .app.series import reduce
 
-    _run(reduce, out, accept_poor, series_name=series, figures=figures)
+    _run(reduce, out, accept_poor, series_name=series, units=units, figures=figures)
 
 
 @_command("fit", "Reduce a series, then fit alpha1-alpha4 (Table I).", options=SERIES, accept_poor=True)
 @click.argument("series")
-def fit_cmd(series, out, figures, accept_poor):
+def fit_cmd(series, units, out, figures, accept_poor):
     """Reduce a SERIES, then fit the scaling constants α1–α4 of eqs (4)–(7).
 
     Writes the files of `reduce` (but summary.json), scaling.json and, with
@@ -488,7 +490,7 @@ def fit_cmd(series, out, figures, accept_poor):
     """
     from .app.series import fit
 
-    _run(fit, out, accept_poor, series_name=series, figures=figures)
+    _run(fit, out, accept_poor, series_name=series, units=units, figures=figures)
 
 
 @_command("predict", "Force history from a model, optionally driving a bar or beam.", options=PREDICT)
@@ -520,9 +522,9 @@ def calibrate_cmd(case, accept_poor, out, **options):
     _run(calibrate_command, out, accept_poor, case=case, **options)
 
 
-@_command("impact", "Coupled impact of a rigid impactor on a beam or plate through a contact law.", fields=True)
+@_command("impact", "Coupled impact of a rigid impactor on a beam or plate through a contact law.", options=CASE, fields=True)
 @click.argument("case")
-def impact_cmd(case, out, figures, fields):
+def impact_cmd(case, units, out, figures, fields):
     """Coupled impact of a rigid impactor on a beam or plate (CASE: file or built-in name), the
     contact force found each step from a contact law (hertz, hertz-unloading, hunt-crossley, identified).
 
@@ -532,12 +534,12 @@ def impact_cmd(case, out, figures, fields):
     """
     from .app.impact import impact
 
-    _run(impact, out, case=case, figures=figures, fields=fields)
+    _run(impact, out, case=case, units=units, figures=figures, fields=fields)
 
 
 @_command("identify", "A soft projectile's contact law from bar tests (law.json).", options=IDENTIFY, accept_poor=True)
 @click.argument("series")
-def identify_cmd(series, out, law, figures, accept_poor):
+def identify_cmd(series, out, law, units, figures, accept_poor):
     """Identify one contact law of a SERIES of bar tests (file or built-in name): reduce the
     records, reconstruct force against approach, fit, then check by coupled bar simulations.
 
@@ -546,7 +548,7 @@ def identify_cmd(series, out, law, figures, accept_poor):
     """
     from .app.identify import identify
 
-    _run(identify, out, accept_poor, series_name=series, law=law, figures=figures)
+    _run(identify, out, accept_poor, series_name=series, law=law, units=units, figures=figures)
 
 
 @_command("paper", "The whole paper, end to end, into report.html.")

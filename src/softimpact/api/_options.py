@@ -46,12 +46,14 @@ def _entry(o, indent: str) -> str:
 
 def takes(table, *leading: str):
     """Decorate an API function ``fn(*leading, **options)``: its signature becomes the ``leading``
-    positional parameters and the options of ``table`` (keyword-only, with their defaults), and the line
+    positional parameters, its own keyword-only ones (``sweep(spec, *, out, **options)``'s ``out``) and the
+    options of ``table`` (keyword-only, with their defaults), and the line
     ``{options}`` of its docstring the table's Parameters entries. The function itself is returned (its
     doctests stay its module's)."""
 
     def decorate(fn):
         params = [inspect.Parameter(n, inspect.Parameter.POSITIONAL_OR_KEYWORD) for n in leading]
+        params += [p for p in inspect.signature(fn).parameters.values() if p.kind is inspect.Parameter.KEYWORD_ONLY]  # its own (sweep's out)
         for o in table:
             default = inspect.Parameter.empty if o.required else o.default
             params.append(inspect.Parameter(o.name, inspect.Parameter.KEYWORD_ONLY, default=default))

@@ -8,7 +8,7 @@ from __future__ import annotations
 import warnings
 from pathlib import Path
 
-from ..app.options import CALIBRATE, CONVERGE, IDENTIFY, PREDICT, SERIES
+from ..app.options import CALIBRATE, CONVERGE, IDENTIFY, PREDICT, SERIES, SWEEP
 from ..errors import SoftimpactWarning
 from ._edge import _Heard, _one_line
 from ._options import given, python_terms, takes
@@ -234,8 +234,10 @@ def converge(case, **options) -> CommandResult:
     return _command("softimpact converge", lambda: command(case=str(case), **given_), CONVERGE)
 
 
-def sweep(spec, *, out, workers: int | None = 0, scheduler: str | None = None, figures: bool = True) -> CommandResult:
-    """Grids and Monte Carlo runs of a case as a sweep spec says, locally or on Dask.
+@takes(SWEEP, "spec")
+def sweep(spec, *, out, **options) -> CommandResult:
+    """Grids and Monte Carlo runs of a case as a sweep spec says, locally or on Dask (by default on the
+    machine's cores, as ``softimpact sweep``: a sweep is many independent runs; ``workers=0`` runs a plain loop).
 
     Parameters
     ----------
@@ -244,12 +246,7 @@ def sweep(spec, *, out, workers: int | None = 0, scheduler: str | None = None, f
     out : str or Path
         Folder of the checkpoints (``out/checkpoints``): the same call resumes where it stopped.
         The spec's quantities carry their units; the results are SI.
-    workers : int, optional
-        Local Dask worker processes; 0 (default here): a plain loop, no Dask; None: the machine's cores.
-    scheduler : str, optional
-        Address of a running Dask scheduler.
-    figures : bool
-        Draw the figures.
+    {options}
 
     Returns
     -------
@@ -282,7 +279,7 @@ def sweep(spec, *, out, workers: int | None = 0, scheduler: str | None = None, f
     ... key = "output.snapshots"
     ... value = ["60 us"]
     ... ''')
-    >>> res = si.sweep(folder / "spec.toml", out=folder / "out", figures=False)
+    >>> res = si.sweep(folder / "spec.toml", out=folder / "out", workers=0, figures=False)  # a plain loop: two runs need no Dask
     >>> import io
     >>> import pyarrow.parquet as pq
     >>> peaks = pq.read_table(io.BytesIO(res.outcome.files["runs.parquet"])).column("peak_force_N").to_pylist()
@@ -291,7 +288,8 @@ def sweep(spec, *, out, workers: int | None = 0, scheduler: str | None = None, f
     """
     from ..app.sweep import sweep as command
 
-    return _command("softimpact sweep", lambda: command(spec=str(spec), out_dir=str(out), workers=workers, scheduler=scheduler, figures=figures))
+    given_ = given(sweep, options)
+    return _command("softimpact sweep", lambda: command(spec=str(spec), out_dir=str(out), **given_), SWEEP)
 
 
 def read_record(path, *, channel: str | int | None = None) -> Record:

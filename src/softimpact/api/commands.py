@@ -238,7 +238,7 @@ class Case:
     units: str = "in-lbf-s"
 
 
-def load(case, *, history: int | None = None) -> Case:
+def load(case, *, history: int | None = None, units: str | None = None) -> Case:
     """Read a case file or a built-in case by name, of any kind, and check it.
 
     Parameters
@@ -247,11 +247,14 @@ def load(case, *, history: int | None = None) -> Case:
         A case file (TOML, quantities with their units) or a built-in name (``softimpact cases``).
     history : int, optional
         Beam and plate cases: row N (1-based) of the case's ``[[load.table]]``.
+    units : {'in-lbf-s', 'SI'}, optional
+        Display units of the result's figures and tables (default: the case's own ``units`` key, else in-lbf-s;
+        the command line's ``--units``); the numbers stay SI.
 
     Returns
     -------
     Case
-        The kind, the problem in SI and the files read.
+        The kind, the problem in SI, the files read and the display system.
 
     Raises
     ------
@@ -265,18 +268,28 @@ def load(case, *, history: int | None = None) -> Case:
     >>> case.kind, round(case.problem.impactor.velocity, 9)
     ('impact', 2.54)
     """
+    from ..app.options import display_system
     from ..cases import case_kind
     from ..input.toml import case_units
 
+    _check_units(units)
     with _Heard() as heard, python_terms():
         kind, _ = case_kind(str(case))
         problem, files = kind.load(str(case), history)
         kind.check(problem)
-        system = case_units(str(case))
+        system = display_system(units, case_units(str(case)))
     return Case(kind.name, problem, tuple(Path(f) for f in (files if isinstance(files, tuple) else (files,))), tuple(heard.texts), system)
 
 
-def run(problem, *, figures: bool = True):
+def _check_units(units) -> None:
+    """``units`` None or a display system; else an InputError naming it, before anything is read."""
+    from ..app.options import DISPLAY_SYSTEMS
+
+    if units is not None and units not in DISPLAY_SYSTEMS:
+        raise InputError(f"units: {units!r} is not one of {', '.join(DISPLAY_SYSTEMS)}")
+
+
+def run(problem, *, figures: bool = True, units: str | None = None):
     """Run a case (from :func:`load`) or a problem object as its command would.
 
     Parameters
@@ -286,6 +299,8 @@ def run(problem, *, figures: bool = True):
     figures : bool
         Beam and plate: keep the displacement history the deformed-shape figures and
         :meth:`write_fields` draw on (memory n_dofs × n_steps on a beam).
+    units : {'in-lbf-s', 'SI'}, optional
+        Display units of the result's figures and tables (default: the Case's, else in-lbf-s); the numbers stay SI.
 
     Returns
     -------
@@ -306,7 +321,10 @@ def run(problem, *, figures: bool = True):
     >>> 900 < res.peak_force < 1300  # N: paper Fig 5, about 250 lbf (1100 N)
     True
     """
+    _check_units(units)
     case = problem if isinstance(problem, Case) else Case(_kind_of(problem), problem)
+    if units is not None:
+        case = replace(case, units=units)
     with _Heard() as heard, python_terms():
         res = _run(case, figures)
     return replace(res, warnings=(*case.warnings, *heard.texts))

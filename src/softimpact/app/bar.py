@@ -13,6 +13,7 @@ from ..models.validity import warn
 from ..output.bar import bar_files
 from ..units import display
 from . import Outcome, Progress, no_progress
+from .options import display_system
 
 __all__ = ["bar"]
 
@@ -26,10 +27,10 @@ def gauge_lag(result, inferred) -> tuple[float, float] | None:
     return float(f[k] / result.peak_force), float(t[k] - result.time_of_peak)
 
 
-def bar(*, case: str, figures: bool = True, progress: Progress = no_progress) -> Outcome:
-    """Run a bar case (file or built-in name)."""
+def bar(*, case: str, units: str | None = None, figures: bool = True, progress: Progress = no_progress) -> Outcome:
+    """Run a bar case (file or built-in name); ``units``: the display system of the line and figures (None: the case's)."""
     problem, path = load_bar_case(case)
-    system = case_units(path)
+    system = display_system(units, case_units(path))
     t0 = time.perf_counter()
     run = execute(problem)
     result = run.result

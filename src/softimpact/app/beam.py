@@ -13,15 +13,18 @@ from ..output.beam import beam_files
 from ..output.fields import field_files
 from ..units import display
 from . import Outcome, Progress, no_progress
+from .options import display_system
 
 __all__ = ["beam"]
 
 
-def beam(*, case: str, history: int | None = None, figures: bool = True, fields: bool = False, progress: Progress = no_progress) -> Outcome:
+def beam(
+    *, case: str, history: int | None = None, units: str | None = None, figures: bool = True, fields: bool = False, progress: Progress = no_progress
+) -> Outcome:
     """Run a beam case (file or built-in name), optionally with row ``history`` of its [[load.table]];
-    ``fields``: also fields.xdmf/.h5, the displacement and strain fields (:mod:`softimpact.output.fields`)."""
+    ``fields``: also fields.xdmf/.h5, the displacement and strain fields (:mod:`softimpact.output.fields`); ``units``: the display system of the line and figures (None: the case's)."""
     problem, path = load_beam_case(case, history)
-    system = case_units(path)
+    system = display_system(units, case_units(path))
     t0 = time.perf_counter()
     steps = problem.solver.steps
     run = execute(problem, figures=figures, fields=fields, progress=lambda k: progress(k, steps, "stepping"))

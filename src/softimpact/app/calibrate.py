@@ -11,7 +11,6 @@ import math
 import time
 from pathlib import Path
 
-from .. import units
 from ..errors import InputError
 from ..input.beam_case import load_beam_case
 from ..input.series import CalibrationTest, is_calibration_series, load_calibration_series
@@ -19,8 +18,10 @@ from ..input.toml import case_units
 from ..models.empirical import PROJECTILES
 from ..output.calibration import calibration_files, series_calibration_files
 from ..studies.calibration import DEFAULT_BUDGET, calibrate_tests, calibration_gates, calibration_model, series_fits
+from ..units import display, parse
 from ..workflows.calibration import METHODS
 from . import Outcome, Progress, no_progress
+from .options import display_system
 
 __all__ = ["calibrate_command"]
 
@@ -36,12 +37,14 @@ def calibrate_command(
     fit_radius: bool = False,
     projectile: str = "rubber-1/2in",
     constants: str | None = None,
+    units: str | None = None,
     figures: bool = True,
     budget: float = DEFAULT_BUDGET,
     progress: Progress = no_progress,
 ) -> Outcome:
     """Calibrate a beam case against one measured file, or every test of a calibration series.
-    ``budget`` [s]: what refining the model (to bound its discretisation error) may cost."""
+    ``budget`` [s]: what refining the model (to bound its discretisation error) may cost; ``units``: the display system of the line and
+    figures (None: the beam case's)."""
     if not (isinstance(budget, (int, float)) and math.isfinite(budget) and budget >= 0):
         raise InputError(f"--budget: must be a non-negative number of seconds, got {budget!r}")
     if method not in METHODS:
@@ -54,7 +57,7 @@ def calibrate_command(
             raise InputError("--measured/--velocity: not used with a series file (its [[test]] entries give them)")
         series = load_calibration_series(case)
         problem, case_path = load_beam_case(series.case)
-        system = case_units(series.case)
+        system = display_system(units, case_units(series.case))
         radii = [t.contact_radius or problem.load.contact_radius for t in series.tests]
         models = calibration_model(problem, radii, fit_radius)
         items = calibrate_tests(models, series.tests, series.projectile, series.constants, method, fit_radius, budget=budget, progress=progress, units=system)
@@ -67,11 +70,11 @@ def calibrate_command(
         return Outcome(files, line, (series.path, case_path, *(t.measured for t in series.tests)), warnings, gates)
     if not measured or not velocity:
         raise InputError("--measured and --velocity are required with a beam case")
-    V = units.parse(velocity, "velocity", "--velocity")
-    r0 = units.parse(contact_radius, "length", "--contact-radius") if contact_radius else None
-    tc = units.parse(contact_time, "time", "--contact-time") if contact_time else None
+    V = parse(velocity, "velocity", "--velocity")
+    r0 = parse(contact_radius, "length", "--contact-radius") if contact_radius else None
+    tc = parse(contact_time, "time", "--contact-time") if contact_time else None
     problem, case_path = load_beam_case(case)
-    system = case_units(case)
+    system = display_system(units, case_units(case))
     test = CalibrationTest(Path(measured).stem, Path(measured), V, r0, tc)
     models = calibration_model(problem, [r0 or problem.load.contact_radius], fit_radius)
     items = calibrate_tests(models, [test], projectile, constants, method, fit_radius, budget=budget, progress=progress, units=system)
@@ -80,7 +83,7 @@ def calibrate_command(
     gates = calibration_gates(items)
     files = calibration_files(models, items, figures, single=True, gates=gates, units=system)
     c = items[0].calibration
-    fu, tu = units.display(system, "force"), units.display(system, "time")
+    fu, tu = display(system, "force"), display(system, "time")
     se = c.standard_errors.get("peak_force")
     line = (
         f"{c.method}: F0 {c.peak_force * fu.factor:.1f} {fu.label}{f' ± {se * fu.factor:.2g}' if se else ''}, "

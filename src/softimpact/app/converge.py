@@ -18,14 +18,18 @@ from ..input.toml import case_units
 from ..output.converge import converge_files, order_phrase
 from ..workflows.convergence import study_case
 from . import Outcome, Progress, no_progress
+from .options import display_system
 
 __all__ = ["converge", "MAX_LEVELS"]
 
 MAX_LEVELS = 5
 
 
-def converge(*, case: str, levels: int = 3, ratio: int = 2, history: int | None = None, figures: bool = True, progress: Progress = no_progress) -> Outcome:
-    """Run CASE at ``levels`` discretisations refined by ``ratio`` and write the Richardson table and figures."""
+def converge(
+    *, case: str, levels: int = 3, ratio: int = 2, history: int | None = None, units: str | None = None, figures: bool = True, progress: Progress = no_progress
+) -> Outcome:
+    """Run CASE at ``levels`` discretisations refined by ``ratio`` and write the Richardson table and figures, in display
+    ``units`` (None: the case's)."""
     if isinstance(levels, bool) or not isinstance(levels, int) or not 2 <= levels <= MAX_LEVELS:
         raise InputError(f"--levels: need 2 to {MAX_LEVELS} levels, got {levels!r}")
     if isinstance(ratio, bool) or not isinstance(ratio, int) or ratio < 2:
@@ -34,7 +38,7 @@ def converge(*, case: str, levels: int = 3, ratio: int = 2, history: int | None 
     problem, inputs = kind.load(case, history)
     t0 = time.perf_counter()
     result, sizes = study_case(kind, problem, levels, ratio, progress)
-    files = converge_files(result, sizes, problem, kind.name, figures, units=case_units(case))
+    files = converge_files(result, sizes, problem, kind.name, figures, units=display_system(units, case_units(case)))
     first = [o for o in result.outputs if o.kind == "history"]
     worst = max(first, key=lambda o: o.errors[0]) if first else max(result.outputs, key=lambda o: o.errors[0])
     unreliable = [o.name for o in result.outputs if not o.reliable]

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from ..fem.bar import Rod
@@ -10,8 +12,10 @@ from ..input.series import load_series
 from ..input.series_records import read_series_records
 from ..output.identify import identify_files
 from ..studies.series import failed_reductions, reduce_series
+from ..units import display
 from ..workflows.identification import identify_series, predict_pulses, unfixed_parameters
 from . import Outcome, Progress, no_progress
+from .options import display_system
 
 __all__ = ["identify"]
 
@@ -31,14 +35,15 @@ def _crushing_law_json(text: str, law) -> str:
     return json_text(out)
 
 
-def identify(*, series_name: str, law: str = "soft", figures: bool = True, points=(), progress: Progress = no_progress) -> Outcome:
+def identify(*, series_name: str, law: str = "soft", units: str | None = None, figures: bool = True, points=(), progress: Progress = no_progress) -> Outcome:
     """Identify one contact law from a series (file or built-in name): law.json (with predictive
     intervals of F0, t_F0, T, I at the tested impacts and at ``points``, (mass [kg], diameter [m],
     velocity [m/s]) each), closure table, predictions.csv and figures. The printed summary gives
     the pulses' intervals, not the parameters' (those the data do not fix are named). ``law``: the
     family, "soft" (the visco-elastic soft law) or "crushing" (an ice sphere's crushing strength law;
-    law.json's ``family`` says "crushing")."""
+    law.json's ``family`` says "crushing"); ``units``: the display system of the line and figures (None: the series')."""
     series = load_series(series_name)
+    series = replace(series, units=display_system(units, series.units))
     reduced = reduce_series(series, *read_series_records(series), progress=progress)
     warnings = failed_reductions(reduced)
     rod = Rod.of(series.bar)
@@ -58,6 +63,7 @@ def identify(*, series_name: str, law: str = "soft", figures: bool = True, point
     if unfixed:
         warnings = (*warnings, f"parameters the data do not fix (their ± means nothing alone; the predictions hold): {', '.join(unfixed)}")
     worst = int(np.argmax(err.max(axis=1)))
+    lu = display(series.units, "length")
     gates = (
         passed_if(
             "bounds",
@@ -66,7 +72,7 @@ def identify(*, series_name: str, law: str = "soft", figures: bool = True, point
         ),
     )
     line = (
-        f"{pars} (d_ref {law.d_ref * 1e3:.3g} mm)\n"
+        f"{pars} (d_ref {law.d_ref * lu.factor:.3g} {lu.label})\n"
         f"closure over {len(tests)} tests: max |error| F0 {err[:, 0].max():.1%}, T {err[:, 1].max():.1%}, I {err[:, 2].max():.1%}, "
         f"t_F0 {np.abs(cl.peak_time_errors).max():.1%} "
         f"(worst {cl.names[worst]}); law.json"

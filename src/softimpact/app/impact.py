@@ -15,6 +15,7 @@ from ..output.fields import field_files, kept_frames, select_kept
 from ..output.impact import impact_files
 from ..units import display
 from . import Outcome, Progress, no_progress
+from .options import display_system
 
 __all__ = ["impact"]
 
@@ -35,11 +36,11 @@ def _damage_words(summary: dict, force) -> str:
     return words + f"; verdict: {d['verdict']}"
 
 
-def impact(*, case: str, figures: bool = True, fields: bool = False, progress: Progress = no_progress) -> Outcome:
+def impact(*, case: str, units: str | None = None, figures: bool = True, fields: bool = False, progress: Progress = no_progress) -> Outcome:
     """Run an impact case (file or built-in name) on a beam or plate target; ``fields``: also
-    fields.xdmf/.h5, the target's displacement fields (:mod:`softimpact.output.fields`)."""
+    fields.xdmf/.h5, the target's displacement fields (:mod:`softimpact.output.fields`); ``units``: the display system of the line and figures (None: the case's)."""
     problem, inputs = load_impact_case(case)
-    system = case_units(inputs[0])
+    system = display_system(units, case_units(inputs[0]))
     KINDS["impact"].check(problem)  # the target's mesh and resources, the step against the contact's rise (exit 2)
     t0 = time.perf_counter()
     steps = problem.solver.steps

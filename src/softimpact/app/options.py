@@ -13,7 +13,21 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["Option", "FIGURES", "SERIES", "IDENTIFY", "PREDICT", "CALIBRATE", "CONVERGE", "DISPLAY_SYSTEMS", "defaults"]
+__all__ = [
+    "Option",
+    "FIGURES",
+    "UNITS",
+    "CASE",
+    "SERIES",
+    "IDENTIFY",
+    "PREDICT",
+    "CALIBRATE",
+    "CONVERGE",
+    "SWEEP",
+    "DISPLAY_SYSTEMS",
+    "defaults",
+    "display_system",
+]
 
 
 @dataclass(frozen=True)
@@ -65,7 +79,24 @@ DISPLAY_SYSTEMS = ("in-lbf-s", "SI")  # the display systems of :func:`softimpact
 
 FIGURES = Option("figures", "Draw the figures (the numbers are written either way).", True, type=bool)
 
-SERIES = (FIGURES,)  # reduce, fit and identify: a series (file or built-in name) and the figures
+# None: the case's (or series') own ``units`` key, else in-lbf-s (the paper's system); the files stay SI either way
+UNITS = Option(
+    "units",
+    "Display units of the printed lines, tables and figures: in-lbf-s or SI (default: the case's or series' own units key, "
+    "else in-lbf-s). The files (summary.json, CSV) stay SI.",
+    choices=DISPLAY_SYSTEMS,
+)
+
+
+def display_system(units: str | None, own: str | None = None) -> str:
+    """The display system a command shows: ``units`` when given (the :data:`UNITS` option), else the case's or
+    series' own ``own``, else in-lbf-s (the paper's system)."""
+    return units or own or DISPLAY_SYSTEMS[0]
+
+
+CASE = (UNITS, FIGURES)  # bar, beam, plate and impact: a case (file or built-in name), its display units and the figures
+
+SERIES = (UNITS, FIGURES)  # reduce and fit: a series (file or built-in name), its display units and the figures
 
 IDENTIFY = (
     Option(
@@ -75,6 +106,7 @@ IDENTIFY = (
         "soft",
         choices=("soft", "crushing"),
     ),
+    UNITS,
     FIGURES,
 )
 
@@ -101,7 +133,7 @@ PREDICT = (
     Option("target", "Target material (hertz model).", "Al 6061-T6"),
     Option("bar", "Drive the bar of this bar case (file or built-in name) with the predicted force."),
     Option("beam", "Drive this beam case (file or built-in name) with the predicted force."),
-    Option("units", "Display units of the line printed and the figure (the files stay SI).", "in-lbf-s", choices=DISPLAY_SYSTEMS),
+    UNITS,
     FIGURES,
 )
 
@@ -130,6 +162,7 @@ CALIBRATE = (
         20.0,
         type=float,
     ),
+    UNITS,
     FIGURES,
 )
 
@@ -137,5 +170,18 @@ CONVERGE = (
     Option("levels", "Number of discretisations: the case's own, then refined by the ratio each (2 to 5).", 3, type=int),
     Option("ratio", "Refinement ratio between levels (elements × ratio, time step / ratio).", 2, type=int),
     Option("history", "Beam cases: row N of the case's [[load.table]].", type=int),
+    UNITS,
+    FIGURES,
+)
+
+SWEEP = (
+    Option(
+        "workers",
+        "Local Dask worker processes (default: the machine's cores, since a sweep is many independent runs and "
+        "running them side by side is what it is for; 0: a plain loop in this process, no Dask).",
+        type=int,
+    ),
+    Option("scheduler", "Address of a running Dask scheduler (tcp://host:8786) to run on instead."),
+    UNITS,
     FIGURES,
 )

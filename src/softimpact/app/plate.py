@@ -13,15 +13,18 @@ from ..output.fields import field_files, kept_frames, select_kept
 from ..output.plate import plate_files, plate_static_files
 from ..units import display
 from . import Outcome, Progress, no_progress
+from .options import display_system
 
 __all__ = ["plate"]
 
 
-def plate(*, case: str, history: int | None = None, figures: bool = True, fields: bool = False, progress: Progress = no_progress) -> Outcome:
+def plate(
+    *, case: str, history: int | None = None, units: str | None = None, figures: bool = True, fields: bool = False, progress: Progress = no_progress
+) -> Outcome:
     """Run a plate case (file or built-in name), optionally with row ``history`` of its [[load.table]];
-    ``fields``: also fields.xdmf/.h5, the displacement fields (:mod:`softimpact.output.fields`)."""
+    ``fields``: also fields.xdmf/.h5, the displacement fields (:mod:`softimpact.output.fields`); ``units``: the display system of the line and figures (None: the case's)."""
     problem, path = load_plate_case(case, history)
-    system = case_units(path)
+    system = display_system(units, case_units(path))
     t0 = time.perf_counter()
     if problem.analysis == "static":
         run = execute(problem)

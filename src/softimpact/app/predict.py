@@ -14,7 +14,7 @@ from ..models.materials import lookup
 from ..output.predict import predict_files
 from ..units import display, parse
 from . import Outcome, Progress, no_progress
-from .options import PREDICT
+from .options import PREDICT, display_system
 
 __all__ = ["MODELS", "predict"]
 
@@ -35,16 +35,18 @@ def predict(
     target: str,
     bar: str | None,
     beam: str | None,
-    units: str,
+    units: str | None,
     figures: bool,
     progress: Progress = no_progress,
 ) -> Outcome:
     """Force history of a projectile at a velocity; quantities are strings with units, as typed. The
-    options, their defaults and help: :data:`softimpact.app.options.PREDICT` (every one given here)."""
+    options, their defaults and help: :data:`softimpact.app.options.PREDICT` (every one given here); ``units`` None: the
+    display system of the ``bar`` or ``beam`` case driven, else in-lbf-s."""
     if model not in MODELS:
         raise InputError(f"--model: {model!r} is not one of {', '.join(MODELS)}")
     if bar is not None and beam is not None:
         raise InputError("--bar and --beam: drive one structure at a time")
+    units = display_system(units, _driven_units(bar, beam))
     proj, m, d = _projectile(projectile, mass, diameter)
     V = parse(velocity, "velocity", "--velocity")
     if not V > 0:
@@ -176,6 +178,15 @@ def _range_notes(law, velocity: str, V: float, d: float, units: str) -> list[str
     if not math.isfinite(law.velocity_range[1]):
         notes.append(f"the constants {law.name} do not record the velocities and diameters they were fitted on: the range cannot be checked")
     return notes
+
+
+def _driven_units(bar: str | None, beam: str | None) -> str | None:
+    """The display system of the case ``bar`` or ``beam`` names (its ``units`` key), None when neither is given."""
+    if bar is None and beam is None:
+        return None
+    from ..input.toml import case_units
+
+    return case_units(bar if bar is not None else beam)
 
 
 def _driven(bar: str | None, beam: str | None, pulse):

@@ -13,6 +13,8 @@ reported and the others still reduce.
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from ..gates import quality
 from ..input.series import load_series
 from ..input.series_records import read_series_records
@@ -21,20 +23,23 @@ from ..output.series import reduction_files, scaling_data, scaling_files
 from ..studies.series import failed_reductions, fit_series, reduce_series, reduction_gates
 from ..workflows.scaling import fit_gates
 from . import Outcome, Progress, no_progress
+from .options import display_system
 
 __all__ = ["reduce", "fit"]
 
 
-def _reduce(name: str, progress: Progress):
-    """The series (file or built-in name) read and reduced, and the errors of the records that could not be reduced."""
+def _reduce(name: str, units: str | None, progress: Progress):
+    """The series (file or built-in name) read, shown in display ``units`` (None: the series' own), and reduced,
+    and the errors of the records that could not be reduced."""
     series = load_series(name)
+    series = replace(series, units=display_system(units, series.units))
     reduced = reduce_series(series, *read_series_records(series), progress=progress)
     return series, reduced, failed_reductions(reduced)
 
 
-def reduce(*, series_name: str, figures: bool = True, progress: Progress = no_progress) -> Outcome:
-    """Reduce the records of a series (file or built-in name)."""
-    series, reduced, warnings = _reduce(series_name, progress)
+def reduce(*, series_name: str, units: str | None = None, figures: bool = True, progress: Progress = no_progress) -> Outcome:
+    """Reduce the records of a series (file or built-in name); ``units``: the display system of the figures (None: the series')."""
+    series, reduced, warnings = _reduce(series_name, units, progress)
     warnings += [f"{r.test.name}: flagged ({r.rejected[0]})" for r in reduced if r.reduction is not None and r.rejected]
     files = reduction_files(series, reduced, figures)
     done = sum(r.reduction is not None for r in reduced)
@@ -55,9 +60,10 @@ def reduce(*, series_name: str, figures: bool = True, progress: Progress = no_pr
     return Outcome(files, f"{done} of {len(reduced)} records reduced; tests.csv", inputs, tuple(warnings), gates)
 
 
-def fit(*, series_name: str, figures: bool = True, progress: Progress = no_progress) -> Outcome:
-    """Reduce a series, then fit the scaling constants α1–α4 of eqs (4)–(7) to its unflagged (or accepted) tests."""
-    series, reduced, warnings = _reduce(series_name, progress)
+def fit(*, series_name: str, units: str | None = None, figures: bool = True, progress: Progress = no_progress) -> Outcome:
+    """Reduce a series, then fit the scaling constants α1–α4 of eqs (4)–(7) to its unflagged (or accepted) tests;
+    ``units``: the display system of the figures (None: the series')."""
+    series, reduced, warnings = _reduce(series_name, units, progress)
     fits = fit_series(reduced)
     warnings += [
         f"{r.test.name}: not fitted (flagged: {r.rejected[0]}; accept_flagged = true fits it)" for r in reduced if r.reduction is not None and not r.fitted

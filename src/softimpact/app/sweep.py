@@ -19,6 +19,7 @@ from ..errors import HeldWarnings, InputError
 from ..input.sweep_spec import load_sweep_spec
 from ..output.sweep import sweep_files
 from . import Outcome, Progress, no_progress
+from .options import display_system
 
 __all__ = ["sweep", "sweep_warnings", "threshold_lines"]
 
@@ -26,9 +27,17 @@ MAX_DISTINCT = 8  # distinct run warnings shown (e.g. a Monte Carlo's draws outs
 
 
 def sweep(
-    *, spec: str, out_dir: str, workers: int | None = None, scheduler: str | None = None, figures: bool = True, progress: Progress = no_progress
+    *,
+    spec: str,
+    out_dir: str,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    units: str | None = None,
+    figures: bool = True,
+    progress: Progress = no_progress,
 ) -> Outcome:
-    """``softimpact sweep SPEC --out DIR``: the spec and the scheduler's address are checked whole before anything is written."""
+    """``softimpact sweep SPEC --out DIR``: the spec and the scheduler's address are checked whole before anything is written;
+    ``workers`` None: the machine's cores; ``units``: the display system of the lines and figures (None: the case's)."""
     t0 = time.perf_counter()
     check_scheduler(scheduler)
     with HeldWarnings() as caught:  # the spec's and the probes' warnings: shown once each, below
@@ -40,7 +49,8 @@ def sweep(
         plan = plan_sweep(s)  # bad specs fail here, before the checkpoints folder exists
         rows, computed = execute(plan, Path(out_dir), workers, scheduler, progress)
     cols, summary, th = sweep_results(plan, rows, computed)
-    system = s.case_data.get("units") if s.case_data.get("units") in ("in-lbf-s", "SI") else "in-lbf-s"
+    own = s.case_data.get("units")
+    system = display_system(units, own if own in ("in-lbf-s", "SI") else None)
     files = sweep_files(cols, summary, th, figures, system)
     dt = time.perf_counter() - t0
     line = (
