@@ -12,14 +12,19 @@ snapshots)`` then ``.run()``:
 - ``"von-karman"``: :class:`softimpact.fem.vk_stepping.VonKarmanStepper`, a plate with von Kármán kinematics
   (``engine``: its :class:`softimpact.fem.plate_vk.VonKarmanNewmark`): one Newton over the plate and the
   contact a step; energies and snapshots.
+- ``"cohesive"``: :class:`softimpact.fem.cohesive_plate.CohesiveStepper`, sublaminates tied by cohesive
+  interfaces (``engine``: the stack's :class:`softimpact.fem.plate_vk.VonKarmanNewmark`): the von Kármán
+  stepper's monolithic step with the interfaces' damage committed after each step; the delaminated areas
+  and the interfaces' energies as extra output rows.
 """
 
 from __future__ import annotations
 
+from .cohesive_plate import CohesiveStepper
 from .direct import DirectStepper
 from .kernel_stepping import KernelStepper
 from .vk_stepping import VonKarmanStepper
 
 __all__ = ["STEPPERS"]
 
-STEPPERS = {"direct": DirectStepper, "kernels": KernelStepper, "von-karman": VonKarmanStepper}
+STEPPERS = {"direct": DirectStepper, "kernels": KernelStepper, "von-karman": VonKarmanStepper, "cohesive": CohesiveStepper}

@@ -44,7 +44,8 @@ __all__ = [
     "METHODS",
 ]
 
-METHODS = ("auto", "kernels", "direct", "von-karman")  # run_impact's ways to step a coupled impact (the last: a von Kármán plate's)
+# run_impact's ways to step a coupled impact (the last two: a von Kármán plate's, sublaminates tied by cohesive interfaces)
+METHODS = ("auto", "kernels", "direct", "von-karman", "cohesive")
 
 
 @dataclass(frozen=True)
