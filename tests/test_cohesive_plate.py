@@ -67,14 +67,14 @@ def test_penalty_error_falls_as_one_over_the_penalty():
 
 
 def _problem(law, n=4, velocity=None, duration=None, splits=SPLITS):
-    """The built-in cohesive impact case on an n × n MITC9 mesh (its law replaced; a shorter run)."""
+    """The built-in cohesive impact case's impactor and solver on the whole plate of plate-ss-8in-impact, n × n MITC9 (law replaced; a shorter run)."""
     from softimpact.input.impact_case import load_impact_case
     from softimpact.workflows._cohesive_plate_model import CohesivePlateProblem
 
     problem, _ = load_impact_case("plate-ss-8in-impact-cohesive")
-    t = problem.target
-    solver = replace(t.solver, duration=duration or t.solver.duration)
-    plain = replace(replace(t, splits=splits, law=law), plate=replace(t.plate, elements=(n, n)), solver=solver)
+    whole = load_impact_case("plate-ss-8in-impact")[0].target
+    solver = replace(problem.target.solver, duration=duration or problem.target.solver.duration)
+    plain = replace(whole, plate=replace(whole.plate, elements=(n, n)), solver=solver)
     target = CohesivePlateProblem.of(plain, splits, law)
     imp = problem.impactor if velocity is None else replace(problem.impactor, velocity=velocity)
     return replace(problem, target=target, impactor=imp)
@@ -175,19 +175,21 @@ def test_case_key_refuses_a_bad_interface(between, message):
 
 
 def test_command_writes_the_area_history_and_the_verdict(tmp_path):
-    """``softimpact impact`` on a small cohesive case writes history.csv's area columns and summary.json's delaminated area."""
+    """``softimpact impact`` on a small cohesive case writes history.csv's area columns, summary.json's delaminated area and the
+    area and damage-map figures."""
     from click.testing import CliRunner
 
     from softimpact.cli import main
     from softimpact.input.toml import builtin_cases
 
-    plate = builtin_cases()["plate-ss-8in"].read_text().replace("elements = [48, 48]", "elements = [4, 4]")
+    plate = builtin_cases()["plate-ss-8in-quarter"].read_text().replace("elements = [24, 24]", "elements = [3, 3]")
     (tmp_path / "plate.toml").write_text(plate)
     case = builtin_cases()["plate-ss-8in-impact-cohesive"].read_text()
-    case = case.replace('case = "plate-ss-8in"', 'case = "plate.toml"').replace('duration = "600 us"', 'duration = "60 us"')
+    case = case.replace('case = "plate-ss-8in-quarter"', 'case = "plate.toml"').replace('duration = "600 us"', 'duration = "60 us"')
     (tmp_path / "case.toml").write_text(case)
-    run = CliRunner().invoke(main, ["impact", str(tmp_path / "case.toml"), "--out", str(tmp_path / "out"), "--no-figures"])
+    run = CliRunner().invoke(main, ["impact", str(tmp_path / "case.toml"), "--out", str(tmp_path / "out")])
     assert run.exit_code == 0, run.output
+    assert (tmp_path / "out" / "delamination-area.png").stat().st_size > 0 and (tmp_path / "out" / "delamination-map.png").stat().st_size > 0
     header = (tmp_path / "out" / "history.csv").read_text().splitlines()[0].split(",")
     assert {"delaminated_area_m2", "process_zone_area_m2", "fracture_energy_dissipated_J", "delaminated_area_m2_plies_9_10"} <= set(header)
     summary = json.loads((tmp_path / "out" / "summary.json").read_text())

@@ -218,4 +218,8 @@ def impact_files(problem, result, figures: bool = True, prefix: str = "", model=
         files.update(impact_figures(problem, result, prefix))
         if problem.target.deflected_shapes and model is not None:
             files.update(plate_impact_figures(problem, model, result, prefix))
+            if "columns" in (result.groups or {}):  # cohesive interfaces: the delaminated area and the damage map
+                from .delamination_plots import delamination_figures
+
+                files.update(delamination_figures(problem, model, result, prefix))
     return files
