@@ -176,7 +176,7 @@ def test_case_key_refuses_a_bad_interface(between, message):
 
 def test_command_writes_the_area_history_and_the_verdict(tmp_path):
     """``softimpact impact`` on a small cohesive case writes history.csv's area columns, summary.json's delaminated area and the
-    area and damage-map figures."""
+    area and damage-map figures, and the struck sublaminate's fields."""
     from click.testing import CliRunner
 
     from softimpact.cli import main
@@ -187,9 +187,9 @@ def test_command_writes_the_area_history_and_the_verdict(tmp_path):
     case = builtin_cases()["plate-ss-8in-impact-cohesive"].read_text()
     case = case.replace('case = "plate-ss-8in-quarter"', 'case = "plate.toml"').replace('duration = "600 us"', 'duration = "60 us"')
     (tmp_path / "case.toml").write_text(case)
-    run = CliRunner().invoke(main, ["impact", str(tmp_path / "case.toml"), "--out", str(tmp_path / "out")])
+    run = CliRunner().invoke(main, ["impact", str(tmp_path / "case.toml"), "--out", str(tmp_path / "out"), "--fields"])
     assert run.exit_code == 0, run.output
-    assert (tmp_path / "out" / "delamination-area.png").stat().st_size > 0 and (tmp_path / "out" / "delamination-map.png").stat().st_size > 0
+    assert all((tmp_path / "out" / f).stat().st_size > 0 for f in ("delamination-area.png", "delamination-map.png", "fields.xdmf"))
     header = (tmp_path / "out" / "history.csv").read_text().splitlines()[0].split(",")
     assert {"delaminated_area_m2", "process_zone_area_m2", "fracture_energy_dissipated_J", "delaminated_area_m2_plies_9_10"} <= set(header)
     summary = json.loads((tmp_path / "out" / "summary.json").read_text())

@@ -316,8 +316,7 @@ class CohesiveStepper(VonKarmanStepper):
     last ``len(HISTORY_ROWS) + 2·interfaces`` output rows are placeholders, filled here with the summed rows of
     :data:`HISTORY_ROWS` then the delaminated and process-zone areas of each interface). The structure's strain
     energy is ½uᵀKu plus the interfaces' work (stored + dissipated: module docstring); ``share``: the part of
-    the whole plate the model is (¼ for a quarter), the areas are the whole plate's. Snapshots keep the top
-    sublaminate's DOFs."""
+    the whole plate the model is (¼ for a quarter), the areas are the whole plate's."""
 
     def __init__(self, structure, law, mass, velocity, time_step, steps, newmark=None, *, engine=None, stop_after=None, energy=True, snapshots=()):
         from .newmark import NewmarkParameters
@@ -362,10 +361,3 @@ class CohesiveStepper(VonKarmanStepper):
         cracked, zone = (a / self.share for a in model.areas())
         m = self.rows
         self.y[-m:, k1] = np.concatenate(([cracked.sum(), zone.sum(), stored / self.share, (self.wc - stored) / self.share], cracked, zone))
-
-    def history(self, last: int):
-        """The histories (:func:`softimpact.fem.direct.structure_history`), snapshots of the top sublaminate only."""
-        h = super().history(last)
-        if h.displacement is None:
-            return h
-        return replace(h, displacement=h.displacement[self.vk.top])

@@ -25,6 +25,18 @@ def interface_label(split: int) -> str:
     return f"plies_{split}_{split + 1}"
 
 
+class _TopView(_SupportedView):
+    """The top sublaminate's mesh seen over the stacked DOFs (``n``): :meth:`expand` maps a stacked vector (or
+    snapshots) to the top sublaminate's full vector, so deflected shapes and fields show the struck sublaminate."""
+
+    def __init__(self, stack, plate):
+        super().__init__(stack.layers[0], plate)
+        self.n, self._top = stack.n, stack.top
+
+    def expand(self, u: np.ndarray) -> np.ndarray:
+        return super().expand(np.asarray(u)[self._top])
+
+
 @dataclass(frozen=True)
 class CohesivePlateProblem(PlateProblem):
     """A plate problem whose laminate is split below the plies ``splits`` (1 = the top ply) into sublaminates
@@ -74,7 +86,8 @@ class CohesivePlateModel:
     the output rows (gauges on the top face read the top sublaminate, on the bottom face the bottom one; then the
     ``"damage"`` group's point strains the same way; then the ``"columns"`` group: the delaminated and process-zone
     areas and the interfaces' energies, :data:`~softimpact.fem.cohesive_plate.HISTORY_ROWS`, then the areas per
-    interface). ``fe``: the top sublaminate's mesh (snapshots and fields show it). No response engine or kernels."""
+    interface). ``fe``: the top sublaminate's mesh over the stacked DOFs (snapshots, deflected shapes and fields show
+    the struck sublaminate). No response engine or kernels."""
 
     coupled_stepper = "cohesive"
 
@@ -86,7 +99,8 @@ class CohesivePlateModel:
         plate = problem.plate.plate()
         self.stack = st = CohesivePlate(plate, problem.plate.stack, problem.splits, problem.law)
         top = st.layers[0]
-        self.fe = self._view = _SupportedView(top, plate)
+        self.fe = _TopView(st, plate)
+        self._view = _SupportedView(top, plate)  # the contact disc's nodes: the top sublaminate's own DOFs
         a, b = problem.plate.damping
         self.C = None if a == 0 and b == 0 else (a * st.M + b * st.K).tocsr()
         self.solver = problem.solver
