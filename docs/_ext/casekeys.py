@@ -189,7 +189,8 @@ def _variants() -> dict[str, list]:
         "impact": [(impact,), (pimpact,), (_set(impact, impactor__mass="1 g", gauges=[{"name": "g", "position": "1 in", "surface": "top", "length": "0.1 in"}]),)]
         + [(_set(impact, contact=c),) for c in contact_laws]
         + [(_set(impact, impactor__material=m["material"], contact=c),) for m, c in flow_laws]
-        + [(_set(impact, impactor=threat),)],
+        + [(_set(impact, impactor=threat),)]
+        + [(_data("plate-ss-8in-impact-cohesive"),)],
         "series": [
             "paper-rubber-series",
             _set(_data("paper-rubber-series"), bar__dispersion="pochhammer-chree", gauge__bridge="quarter", gauge__gauge_factor=2.1, gauge__excitation="5 V", gauge__gain=100, gauge__polarity=-1, gauge__poisson_ratio=0.3, gauge__gauge_resistance_ohm=350, gauge__lead_resistance_ohm=0.4, gauge__shunt_resistance_ohm=100e3, gauge__shunt_step="-0.3 V"),
@@ -266,6 +267,7 @@ RAW_VALUES = {
     "parameters": "a table of the identified law's parameters by name (`k_ref`, `p`, `kappa_ref`, …): numbers used in place of law.json's (a sweep draws them)",
     "values": "a list of levels (quantities or values)",
     "range": "`[low, high, n]`: n levels evenly spaced",
+    "between": "`[k, k + 1]`: two consecutive ply numbers (1 = the top ply), the interface between them tied by the cohesive law",
     "distribution": "`{ uniform = [lo, hi] }`, `{ normal = [mean, sd] }` or `{ lognormal = [median, sigma of ln] }`",
 }
 
@@ -297,6 +299,9 @@ _CONTEXT_DEFAULTS = {
     "contact.hugoniot_slope": "the projectile material's (gelatin: Wilbeck, 2)",
     "projectile.threat.airspeed": "none: the hail falls at its terminal velocity",
     "impactor.threat.airspeed": "none: the hail falls at its terminal velocity",
+    "damage.normal_strength": "the ply's transverse tensile strength Y_t",
+    "damage.shear_strength": "the ply's in-plane shear strength S12",
+    "damage.G_IIc": "the ply's G_IIc",
 }
 
 

@@ -44,6 +44,7 @@ DIMENSIONS = {
     "energy": "[length] ** 2 * [mass] / [time] ** 2",
     "moment": "[length] ** 2 * [mass] / [time] ** 2",
     "toughness": "[mass] / [time] ** 2",  # energy per area (fracture toughness G_c)
+    "interface_stiffness": "[mass] / [length] ** 2 / [time] ** 2",  # traction per opening (a cohesive law's penalty)
     "voltage": "[mass] * [length] ** 2 / [time] ** 3 / [current]",
     "frequency": "1 / [time]",
     "dimensionless": "dimensionless",
@@ -226,6 +227,7 @@ SI_UNITS = {
     "energy": "J",
     "moment": "N*m",  # a moment, or a bending stiffness per unit width (N·m²/m)
     "toughness": "J/m^2",
+    "interface_stiffness": "N/m^3",
     "voltage": "V",
     "frequency": "Hz",
     "dimensionless": "dimensionless",
@@ -243,6 +245,7 @@ _EXAMPLE = {
     "energy": "1 J",
     "moment": "10 lbf*in",
     "toughness": "0.5 kJ/m^2",
+    "interface_stiffness": "1e6 N/mm^3",
     "voltage": "5 V",
     "frequency": "1 kHz",
     "dimensionless": "0.3",

@@ -260,6 +260,11 @@ class ImpactKind:
                     "(a sweep of it steps every run; use linear kinematics for kernel runs)"
                 )
             method = "von-karman"
+        own = getattr(problem.target, "coupled_stepper", None)  # a target with its own stepper: cohesive interfaces (fem.cohesive_plate)
+        if own is not None:
+            if method == "kernels":
+                raise InputError("contact kernels need a linear target: a plate with cohesive interfaces runs stepped directly")
+            method = own
         damage = damage and problem.target.has_damage_outputs
         steps = problem.solver.steps
         shown = snapshot_steps(steps) if figures and problem.target.deflected_shapes else ()
@@ -278,12 +283,13 @@ class ImpactKind:
         from the damage strains), the damage indices (with ``damage``), the validity, summary.json's content."""
         from ..fem.contact import group_outputs
         from ..output.impact import impact_summary
-        from ..workflows.damage import coupled_damage, damage_refusal
+        from ..workflows.damage import coupled_damage, damage_refusal, delamination_growth
         from .run import Run, impact_validity
 
         target = problem.target
         result = group_outputs(result, model.contact_groups())
         dmg = coupled_damage(target, result, impactor_mass=problem.impactor.mass).summary() if damage else None
+        dmg = delamination_growth(dmg, result)  # cohesive interfaces: the delaminated area, in the verdict
         note = None if dmg is not None else damage_refusal(target, "target.case: ")
         validity = impact_validity(problem, result, dmg)
         summary = impact_summary(problem, result, validity, dmg, note, target.summary_extras(model, result))

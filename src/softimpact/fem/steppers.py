@@ -16,10 +16,15 @@ snapshots)`` then ``.run()``:
 - ``"von-karman-rom"``: :class:`softimpact.fem.vk_rom.ReducedVonKarmanStepper`, the same plate on its reduced
   nonlinear model (``engine``: its :class:`softimpact.fem.vk_rom.PlateVKROM`, built once; or the plate's
   VonKarmanNewmark, the reduced model then built for the run): a fraction of a second a run.
+- ``"cohesive"``: :class:`softimpact.fem.cohesive_plate.CohesiveStepper`, sublaminates tied by cohesive
+  interfaces (``engine``: the stack's :class:`softimpact.fem.plate_vk.VonKarmanNewmark`): the von Kármán
+  stepper's monolithic step with the interfaces' damage committed after each step; the delaminated areas
+  and the interfaces' energies as extra output rows.
 """
 
 from __future__ import annotations
 
+from .cohesive_plate import CohesiveStepper
 from .direct import DirectStepper
 from .kernel_stepping import KernelStepper
 from .vk_rom import ReducedVonKarmanStepper
@@ -27,4 +32,10 @@ from .vk_stepping import VonKarmanStepper
 
 __all__ = ["STEPPERS"]
 
-STEPPERS = {"direct": DirectStepper, "kernels": KernelStepper, "von-karman": VonKarmanStepper, "von-karman-rom": ReducedVonKarmanStepper}
+STEPPERS = {
+    "direct": DirectStepper,
+    "kernels": KernelStepper,
+    "von-karman": VonKarmanStepper,
+    "von-karman-rom": ReducedVonKarmanStepper,
+    "cohesive": CohesiveStepper,
+}

@@ -7,7 +7,8 @@ position is the impact point, its force history is ignored), ``[impactor]``
 ``[contact]`` (``law`` = hertz | hertz-unloading | hunt-crossley | identified |
 crushing (an ice impactor) | hydrodynamic (a gelatin impactor), with the law's own keys),
 ``[solver]`` and optional ``[[gauges]]`` (default: the target case's, beam or plate gauges
-as the target). See README.md,
+as the target); an optional ``[damage]`` with ``cohesive = [{ between = [k, k + 1] }, ...]`` splits a
+plate target's laminate into sublaminates tied by cohesive interfaces (:func:`read_cohesive`). See README.md,
 ``data/cases/paper-long-beam-impact.toml`` and ``data/cases/plate-ss-8in-impact.toml``.
 
 Contact keys: those of :mod:`softimpact.input.contact_law`, and for the Hertz
@@ -20,6 +21,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..errors import InputError
+from ..models.cohesive import BilinearCohesive
 from ..models.contact_laws import HertzLaw
 from ..models.materials import Material
 from ..workflows.beam_impact import BeamProblem
@@ -98,11 +100,70 @@ def impact_problem(data: dict, base: Path = Path(".")) -> tuple[ImpactProblem, t
     c.done()
     solver = read_solver(top.table("solver"))
     gauges = read_gauges(top) if "gauges" in top else target.gauges
+    cohesive = read_cohesive(top.table("damage", optional=True), target)
     top.done()
     with naming({"gauges": "gauges", "time_step": "solver.time_step", "position": f"target.case ({target_path}): load.position"}):
         resolved = target.for_impact(solver, gauges)  # the force comes from the contact
+    if cohesive is not None:
+        from ..workflows._cohesive_plate_model import CohesivePlateProblem
+
+        with naming({"cohesive": "damage.cohesive", "kinematics": f"target.case ({target_path}): plate.kinematics"}):
+            resolved = CohesivePlateProblem.of(resolved, *cohesive)
     files = (target_path,) if law_path is None else (target_path, law_path)
     return ImpactProblem(resolved, str(target_path), impactor, material, name, law, title), files
+
+
+def read_cohesive(d: Table | None, target) -> tuple[tuple[int, ...], BilinearCohesive] | None:
+    """``[damage]``: ``cohesive``, the interfaces ``[{ between = [k, k + 1] }, ...]`` (plies counted from the top,
+    1 = the top ply) tying a plate's sublaminates, and their bilinear law (:class:`~softimpact.models.cohesive.BilinearCohesive`):
+    ``penalty`` [N/m³] (required: the interface stiffness is a modelling choice), ``G_Ic`` (required: the
+    catalogue's plies have no mode-I toughness), ``bk_exponent`` (Benzeggagh–Kenane's η, required), and by default
+    the ply's ``G_IIc``, its transverse tensile strength Y_t as ``normal_strength`` and its in-plane shear strength
+    S12 as ``shear_strength``. None without a ``[damage]`` table."""
+    if d is None:
+        return None
+    rows = d.tables("cohesive")
+    if not rows:
+        raise InputError(f"{d.key('cohesive')}: name at least one interface ({{ between = [k, k + 1] }})")
+    if not isinstance(target, PlateProblem):
+        raise InputError(f"{d.key('cohesive')}: cohesive interfaces split a plate's laminate: the target is not a plate")
+    n = len(target.plate.stack.angles) if getattr(target.plate.stack, "angles", None) else 0
+    splits = []
+    for row in rows:
+        pair = row.raw("between")
+        if not (isinstance(pair, list) and len(pair) == 2 and all(isinstance(k, int) and not isinstance(k, bool) for k in pair) and pair[1] == pair[0] + 1):
+            raise InputError(f"{row.key('between')}: expected two consecutive ply numbers [k, k + 1] (1 = the top ply), got {pair!r}")
+        if not 1 <= pair[0] < n:
+            raise InputError(f"{row.key('between')}: plies {pair!r} are not both in the laminate's {n} plies (a layup is needed)")
+        if pair[0] in splits:
+            raise InputError(f"{row.key('between')}: the interface {pair!r} is named twice")
+        splits.append(pair[0])
+        row.done()
+    strength = target.plate.stack.ply.strength
+    ply = "the ply's" if strength is not None else None
+
+    def from_ply(key, kind, value):
+        got = d.quantity(key, kind, default=None)
+        if got is None and value is None:
+            raise InputError(f"{d.key(key)}: missing (required: the ply {target.plate.stack.ply.name} has no strengths to default to)")
+        return value if got is None else got
+
+    with naming(
+        {
+            k: d.key(v)
+            for k, v in (("K", "penalty"), ("N", "normal_strength"), ("S", "shear_strength"), ("GIc", "G_Ic"), ("GIIc", "G_IIc"), ("eta", "bk_exponent"))
+        }
+    ):
+        law = BilinearCohesive(
+            K=d.quantity("penalty", "interface_stiffness"),
+            N=from_ply("normal_strength", "stress", ply and strength.Yt),
+            S=from_ply("shear_strength", "stress", ply and strength.S12),
+            GIc=d.quantity("G_Ic", "toughness"),
+            GIIc=from_ply("G_IIc", "toughness", ply and strength.GIIc),
+            eta=d.number("bk_exponent"),
+        )
+    d.done()
+    return tuple(splits), law
 
 
 def load_impact_case(case: str) -> tuple[ImpactProblem, tuple[Path, ...]]:

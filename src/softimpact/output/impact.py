@@ -119,6 +119,8 @@ def impact_columns(result, target: bool = True, energies: bool = True) -> dict[s
         cols["target_displacement_m"] = result.target_displacement
     for name, eps in zip(result.strain_names, result.strain):
         cols[f"strain_{name}"] = eps
+    for name, values in zip(*(getattr(result, "groups", None) or {}).get("columns", ((), ()))):
+        cols[name] = values  # the target's own columns, by their names (cohesive interfaces: delaminated areas, energies)
     if energies:
         E = result.energies
         cols["impactor_kinetic_energy_J"] = E.impactor_kinetic
@@ -218,4 +220,8 @@ def impact_files(problem, result, figures: bool = True, prefix: str = "", model=
         files.update(impact_figures(problem, result, prefix, units))
         if problem.target.deflected_shapes and model is not None:
             files.update(plate_impact_figures(problem, model, result, prefix, units))
+            if "columns" in (result.groups or {}):  # cohesive interfaces: the delaminated area and the damage map
+                from .delamination_plots import delamination_figures
+
+                files.update(delamination_figures(problem, model, result, prefix))
     return files

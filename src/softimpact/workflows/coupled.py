@@ -44,7 +44,8 @@ __all__ = [
     "METHODS",
 ]
 
-METHODS = ("auto", "kernels", "direct", "von-karman", "von-karman-rom")  # run_impact's ways to step a coupled impact (the last two: a von Kármán plate's, full and reduced)
+# run_impact's ways to step a coupled impact (a von Kármán structure's, full and reduced; sublaminates tied by cohesive interfaces)
+METHODS = ("auto", "kernels", "direct", "von-karman", "von-karman-rom", "cohesive")
 
 
 @dataclass(frozen=True)

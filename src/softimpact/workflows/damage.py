@@ -70,6 +70,7 @@ __all__ = [
     "impact_damage",
     "face_points",
     "coupled_damage",
+    "delamination_growth",
 ]
 
 
@@ -574,3 +575,50 @@ def coupled_damage(target, result, points: tuple[str, ...] | None = None, *, imp
         target_mass=target_mass,
         time=result.time,
     )
+
+
+def delamination_growth(damage: dict | None, result) -> dict | None:
+    """summary.json's ``damage`` of an impact on sublaminates tied by cohesive interfaces
+    (:mod:`softimpact.fem.cohesive_plate`), from ``result``'s ``"columns"`` group: the delaminated area (damage 1;
+    its final value is its largest, the damage being irreversible) and the process zone's largest area (0 < d < 1),
+    summed over the interfaces and per interface, when each first appeared, the fracture energy dissipated and the
+    energy the interfaces store at the end; the verdict gains the delaminated area. ``damage`` (the indices' block,
+    or None) unchanged when the run had no cohesive interfaces."""
+    groups = getattr(result, "groups", None) or {}
+    if "columns" not in groups or "delaminated_area_m2" not in groups["columns"][0]:
+        return damage
+    cols = dict(zip(*groups["columns"]))
+    t = result.time
+    cracked, zone = cols["delaminated_area_m2"], cols["process_zone_area_m2"]
+
+    def first(a):
+        hit = np.flatnonzero(a > 0.0)
+        return float(t[hit[0]]) if hit.size else None
+
+    per = {}
+    for name, values in cols.items():
+        for q, key in (("delaminated_area_m2_", "delaminated_area_m2"), ("process_zone_area_m2_", "process_zone_area_max_m2")):
+            if name.startswith(q):
+                per.setdefault(name[len(q) :], {})[key] = float(values[-1] if key == "delaminated_area_m2" else np.max(values))
+    out = dict(damage or {})
+    out.update(
+        delaminated_area_m2=float(cracked[-1]),
+        process_zone_area_max_m2=float(np.max(zone)),
+        process_zone_area_final_m2=float(zone[-1]),
+        delamination_onset_time_s=first(cracked),
+        damage_onset_time_s=first(zone + cracked),
+        fracture_energy_dissipated_J=float(cols["fracture_energy_dissipated_J"][-1]),
+        cohesive_stored_energy_J=float(cols["cohesive_stored_energy_J"][-1]),
+        cohesive_interfaces=per,
+        delaminated_area_note="summed over the cohesive interfaces (per interface in cohesive_interfaces), of the whole plate; "
+        "delaminated: damage 1; process zone: 0 < damage < 1; nodal tributary areas",
+    )
+    mm2 = 1e6
+    if cracked[-1] > 0:
+        words = f"delaminated {cracked[-1] * mm2:.4g} mm² over {sum(v['delaminated_area_m2'] > 0 for v in per.values())} of {len(per)} cohesive interface(s)"
+    elif np.max(zone) > 0:
+        words = f"no delamination grew (cohesive damage began: process zone up to {np.max(zone) * mm2:.4g} mm²)"
+    else:
+        words = f"no cohesive damage at the {len(per)} interface(s)"
+    out["verdict"] = f"{damage['verdict']}; {words}" if damage and damage.get("verdict") else words
+    return out
