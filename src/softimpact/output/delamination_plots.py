@@ -12,17 +12,18 @@ from .files import figure_bytes
 __all__ = ["delamination_figures"]
 
 
-def delamination_figures(problem, model, result, prefix: str = "") -> dict[str, bytes]:
+def delamination_figures(problem, model, result, prefix: str = "", units: str = "in-lbf-s") -> dict[str, bytes]:
     """delamination-area.png (``result``'s ``"columns"`` group: delaminated, d = 1, and process-zone, 0 < d < 1, areas
     summed and per interface, of the whole plate) and delamination-map.png (``model.damage_map()``: the damage of
-    each interface at the end, nodes of ``model.fe``; a half or quarter model shows its part). Empty without the group."""
+    each interface at the end, nodes of ``model.fe``; a half or quarter model shows its part), in display ``units``.
+    Empty without the group."""
     from .plots import _figure
 
     groups = result.groups or {}
     if "columns" not in groups or "delaminated_area_m2" not in groups["columns"][0]:
         return {}
     cols = dict(zip(*groups["columns"]))
-    tu, lu = display(problem.units, "time"), display(problem.units, "length")
+    tu, lu = display(units, "time"), display(units, "length")
     a2 = lu.factor**2
     t = result.time * tu.factor
     fig, ax = _figure()

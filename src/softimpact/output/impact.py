@@ -223,5 +223,5 @@ def impact_files(problem, result, figures: bool = True, prefix: str = "", model=
             if "columns" in (result.groups or {}):  # cohesive interfaces: the delaminated area and the damage map
                 from .delamination_plots import delamination_figures
 
-                files.update(delamination_figures(problem, model, result, prefix))
+                files.update(delamination_figures(problem, model, result, prefix, units))
     return files

@@ -91,6 +91,11 @@ class CohesivePlateModel:
 
     coupled_stepper = "cohesive"
 
+    @property
+    def mesh(self):
+        """The top sublaminate's mesh over the stacked DOFs (``fe``: ``expand``, ``field_frames``)."""
+        return self.fe
+
     def __init__(self, problem: CohesivePlateProblem, damage: bool = False):
         from ..fem.cohesive_plate import HISTORY_ROWS, CohesiveNewmark, CohesivePlate
 
