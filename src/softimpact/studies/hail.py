@@ -29,6 +29,10 @@ regime it falls in (as :mod:`~softimpact.studies.thresholds`' rows: Olsson's F_d
 the discretisation error of V*: the two-mesh
 GCI (:func:`~softimpact.studies.thresholds.gci_two_meshes`: safety factor 3, formal order 2, ratio 2) between the
 map's mesh and one coarser by 2 in elements and step.
+
+Large deflection: the panels' ``kinematics`` may be "von-karman" (:func:`hail_map`): no kernels then, every run (the
+one at V* included) stepped by the nonlinear plate's own stepper, and with ``guesses`` (the linear map's rows) each
+threshold's secant steps start from the linear V*, so a nonlinear threshold costs a few runs.
 """
 
 from __future__ import annotations
