@@ -1,6 +1,7 @@
 """Hail threshold maps on Rhymer's panels (studies/hail.py): the panels built, the onset velocity checked on
 direct stepping, the FTE regression checked on a closed-form line."""
 
+import dataclasses
 import math
 
 import numpy as np
@@ -112,14 +113,18 @@ def test_the_report_section_states_the_fit_and_whether_it_meets_the_trend(monkey
     import softimpact.app.paper.hail as section
 
     rows = _fake_rows(fte_of)
+    vk = tuple(dataclasses.replace(r, velocity=0.8 * r.velocity, kinematics="von-karman") for r in rows if r.index == "olsson")
     monkeypatch.setattr(section, "_rows", lambda: rows)
+    monkeypatch.setattr(section, "_vk_rows", lambda: vk)
     files = {}
     s = section.hail_section(False, files)
     text = " ".join(s.paragraphs)
     assert f"This {verdict} the published trend" in text
-    assert f"R² = {fte_fit(rows).r2:.2f}" in s.summary[0]
+    assert f"R² = {fte_fit(rows).r2:.2f}" in s.summary[0] and f"on von Karman panels R² = {fte_fit(vk).r2:.2f}" in s.summary[0]
     assert files["hail/hail-map.csv"].count("\n") == len(rows) + 1
-    assert not s.figures and len(s.tables[0][2]) == 6
+    assert files["hail/hail-map-von-karman.csv"].count("\n") == len(vk) + 1
+    assert not s.figures and len(s.tables[0][2]) == 6 and len(s.tables[1][2]) == 3
+    assert "0.80-0.80 times the linear V*" in text  # the von Karman V* against the linear row's, as given
 
 
 @pytest.mark.slow  # a second map (about 3 s): a consistency check of the law's two paths
@@ -134,3 +139,25 @@ def test_an_identified_crushing_law_maps_as_the_same_strength_does(one_point):
     )
     expected = next(r for r in one_point if r.index == "olsson").velocity
     assert rows[0].velocity == pytest.approx(expected, rel=2e-3)
+
+
+VK_MESHES = ((3, 6e-6), (6, 3e-6))  # the report's von Karman meshes (app/paper/hail.py)
+
+
+@pytest.mark.slow  # about 6 s of CPU: a nonlinear root search and two nonlinear runs
+def test_the_von_karman_onset_is_stepped_by_the_nonlinear_plate(one_point):
+    """On the von Karman 4.66-mm panel, started from the linear V*, the onset brackets F_d in the nonlinear plate's own direct runs (0.97·V*, 1.03·V*)."""
+    from softimpact.studies.hail import hail_structures
+
+    kw = dict(thicknesses=(4.66e-3,), diameters=(50.8e-3,), layups=(RHYMER_LAYUPS[2],), meshes=VK_MESHES, duration=1e-3, indices=("olsson",))
+    (row,) = hail_map(CatalogueIce(), panel_target, kinematics="von-karman", guesses=one_point, **kw)
+    assert row.kinematics == "von-karman" and math.isfinite(row.velocity) and math.isfinite(row.gci)
+    assert not any("linear plate theory" in f for f in row.validity["flags"])
+    fine, _ = hail_structures(panel_target, row.thickness, RHYMER_LAYUPS[2], CatalogueIce(), VK_MESHES, 1e-3, row.diameter, "von-karman")
+    assert fine.stepping == "von-karman"
+
+    def peak(v):
+        _, result = run_impact(fine.problem_at(CatalogueIce(), row.diameter, v), fine.model, energy=False, method="von-karman")
+        return result.peak_force
+
+    assert peak(0.97 * row.velocity) < row.threshold_force < peak(1.03 * row.velocity)

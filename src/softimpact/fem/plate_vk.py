@@ -422,12 +422,25 @@ class VonKarmanNewmark:
     1e-9 and 1e-6 on the tests' impulsive load) and, with ``"modified"``, takes two solves a step
     to w/h > 1 on one factor.
 
-    Contact (the coupled stepper contract): :meth:`step` takes an optional ``extra(u) ->
-    (force, stiffness)``, a load depending on u (the contact force, a sparse stiffness or
-    None) that joins the residual and the Jacobian: one monolithic Newton over structure and
-    contact, so the contact's stiffening and the membrane's converge together and a step
-    costs one set of iterations (a nested contact Newton inside each structure iteration would
-    multiply the solves).
+    Loads depending on u: :meth:`step` takes an optional ``extra(u) -> (force, stiffness)``, a
+    load (a sparse stiffness or None) that joins the residual and the Jacobian: one monolithic
+    Newton over the structure and that load.
+
+    Contact (the coupled stepper contract): ``contact``, an object with ``load(u) -> (F, b)``, the
+    contact force F [N] on the structure at u and the nodal shape b (n,) of a unit contact force
+    there (F·b the nodal loads), and ``solve(u, z) -> F'``, the contact force when the structure
+    is at u + F'·z (its scalar contact equation, bracketed). Each iteration condenses the contact
+    onto the structure's own linearisation: with J the structure's Jacobian (no contact term),
+    d = J⁻¹(r − F·b) the correction without contact force and z = J⁻¹·b its response to a unit
+    one (one more back-substitution), the new iterate is u + d + F'·z with F' = ``solve(u + d, z)``.
+    Why not the contact's tangent in J: a crushing or flowing law's force goes through the approach
+    RATE α̇ = γ/(β·dt)·α + q, so within one step F(w) rises with slopes of 10¹⁰ N/m over nanometres
+    and is clipped to zero where the rate turns negative (the end of a crush); Newton on the
+    monolithic residual then jumps between the clipped branch (no force, no tangent) and the
+    loaded one and never converges, consistent tangent or not. Condensed, the nonsmooth part is
+    the scalar equation the contact Newton brackets (:func:`softimpact.fem.impact.newton_contact`),
+    J stays the structure's (so ``"modified"`` keeps its factor across contact), and the step
+    converges as the structure's own Newton does.
     """
 
     MODIFIED_RATE = 0.25  # a kept factor must cut the residual at least 4× per iteration
@@ -476,8 +489,8 @@ class VonKarmanNewmark:
         a1 = self.a0 * (u1 - u) - self.a2 * v - self.a3 * a
         return u1, v + self.dt * ((1 - self.params.gamma) * a + self.params.gamma * a1), a1
 
-    def step(self, u, v, a, f1, extra=None):
-        """(u1, v1, a1, iterations) of one step to the load f1 (module and class docstrings)."""
+    def step(self, u, v, a, f1, extra=None, contact=None):
+        """(u1, v1, a1, iterations) of one step to the load f1, with ``extra`` and ``contact`` (class docstring)."""
         g, dt = self.params.gamma, self.dt
         M, C, model = self.model.M, self.C, self.model
         u1 = u + dt * v + dt * dt * (0.5 - self.params.beta) * a  # zero new acceleration: the Newmark predictor
@@ -494,6 +507,9 @@ class VonKarmanNewmark:
             if extra is not None:
                 fe, ek = extra(u1)
                 r = r + fe
+            if contact is not None:
+                fc, shape = contact.load(u1)
+                r = r + fc * shape
             norm = np.linalg.norm(r)
             if it == 1:
                 # the forces in balance: load, inertia (at the step's start), the predictor's out-of-balance force
@@ -504,6 +520,11 @@ class VonKarmanNewmark:
                 self._jacobian(u1, ek)
             last = norm
             du = self._lu.solve(r)
+            if contact is not None:
+                # the contact condensed on the linearised structure (class docstring): u + d + F'·z
+                z = self._lu.solve(shape)
+                free = u1 + du - fc * z
+                du = free + contact.solve(free, z) * z - u1
             u1 = u1 + du
             if it > 1 and np.linalg.norm(du) <= self.rtol * np.linalg.norm(u1 - u):
                 # a correction at round-off of the step's increment (Bathe's displacement criterion): no further force evaluation

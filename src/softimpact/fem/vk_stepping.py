@@ -5,15 +5,20 @@ beam of :mod:`softimpact.fem.plane_tl`: any model :class:`~softimpact.fem.plate_
 longer w̃ + h_s(r)·F with a free response w̃ and a compliance h_s fixed for the run, the affine model the
 shared loop's contact Newton solves against. Each step therefore solves the coupled step first, monolithically,
 in :meth:`VonKarmanStepper.free_approach`: the plate's Newmark–Newton step (:meth:`VonKarmanNewmark.step`)
-with the contact as its ``extra(u)`` load, where for the plate's state u the impactor's Newmark step and the
+with the contact on the plate, where for the plate's state u the impactor's Newmark step and the
 law give the force,
 
     α = x̃ − β dt² F / m − c·u,   F = P(α, κα + q),   nodal loads F·s(a(α)) on the contact patch,
 
-(the scalar equation solved by the loop's own :func:`~softimpact.fem.impact.newton_contact` against a zero
-patch compliance), and its stiffness −dF/dw (a rank-one term on the patch's nodes) joins the Jacobian: one
-Newton over the membrane, bending and contact together. The converged step (u*, F*, r*) then fixes the affine
-model the loop sees: the bracket's top α̃ = x̃ − w̃ with w̃ = c·u* − h_s(r*)·F*, and any positive compliance
+(the scalar equation solved by the loop's own :func:`~softimpact.fem.impact.newton_contact`). The contact is
+condensed onto each iteration's linearised structure (:meth:`VonKarmanNewmark.step`'s ``contact``): with the
+structure's correction d without contact force and its response z to a unit one, the contact Newton solves
+the same equation against the compliance c·z (:class:`_StepContact`), bracketed, and the iterate takes its force.
+A law whose force goes through the approach rate (the crushing law, the hydrodynamic law: α̇ = γ/(β·dt)·α + q,
+slopes of 10¹⁰ N/m, a force clipped to zero where the rate turns negative at the end of a crush) thus converges
+where a contact tangent in the plate's Jacobian made the iteration cycle between no force and full force.
+
+The converged step (u*, F*, r*) then fixes the affine model the loop sees: the bracket's top α̃ = x̃ − w̃ with w̃ = c·u* − h_s(r*)·F*, and any positive compliance
 h_s (here the linear structure's effective one, c·K_eff⁻¹·B, solved once) makes the loop's contact Newton land on
 α* = x̃ − β dt² F*/m − c·u* again (R(α*) = 0 exactly), to its tolerance. :meth:`apply` takes u* (the loop's
 force differs from F* by the contact Newton's tolerance only) and records the structure's energies (kinetic,
@@ -45,16 +50,48 @@ from .stepping import CoupledStepper, check_time_step
 __all__ = ["VonKarmanStepper"]
 
 
-class _Rigid:
-    """A zero patch compliance: the contact Newton of the impactor against a plate held at its state u."""
+class _Compliance:
+    """A patch compliance fixed for one structure iteration, h [m/N] at every radius (zero: the impactor against
+    the structure held still): the contact Newton of the impactor against the linearised structure."""
 
     value = None
 
-    def __init__(self, half_spacing: float):
-        self.half_spacing = half_spacing
+    def __init__(self, h: float, half_spacing: float):
+        self.h, self.half_spacing = h, half_spacing
 
     def __call__(self, r: float) -> tuple[float, float]:
-        return 0.0, 0.0
+        return self.h, 0.0
+
+
+class _StepContact:
+    """The contact of one coupled step as :meth:`VonKarmanNewmark.step` takes it (its ``contact``: ``load``, ``solve``),
+    the impactor's predictor ``x_pred`` and the rate's offset ``q`` fixed for the step to ``index``."""
+
+    def __init__(self, stepper: VonKarmanStepper, x_pred: float, q: float, index: int):
+        self.st, self.x_pred, self.q, self.index = stepper, x_pred, q, index
+        self.law = stepper._branch(index - 1)
+        self.guess = x_pred
+
+    def load(self, u: np.ndarray) -> tuple[float, np.ndarray]:
+        """(F, b): the contact force at u and the nodal shape of a unit force over its disc (the nearest node where apart)."""
+        st = self.st
+        a, f, r = st._contact(u, self.x_pred, self.q, self.index)
+        if f > 0.0:
+            self.guess = a
+        shape = np.zeros(st._n)
+        shape[st.dofs] = st.sign * st.patch.shares(r)[0]
+        return f, shape
+
+    def solve(self, u: np.ndarray, z: np.ndarray) -> float:
+        """F' of α = x̃ − β·dt²·F'/m − c·(u + F'·z), F' = P(α, κα + q): the loop's contact Newton against the compliance c·z."""
+        st = self.st
+        top = self.x_pred - float(st.c @ u)
+        if top <= 0.0:
+            return 0.0
+        comp = _Compliance(max(float(st.c @ z), 0.0), st.compliance.half_spacing)
+        guess = min(self.guess, top)
+        _, f, _, _ = newton_contact(self.law, comp, st.hm, st.kappa, self.q, top, guess, self.index, st.dt, caps=st.caps)
+        return f
 
 
 class VonKarmanStepper(CoupledStepper):
@@ -92,7 +129,7 @@ class VonKarmanStepper(CoupledStepper):
         # The loop's affine model needs a positive compliance only (module docstring): the linear structure's, by one solve
         z = spd_factor(scipy.sparse.csc_matrix(engine._keff)).solve(self.c)
         self.compliance = PatchCompliance(self.patch, self.sign * z[self.dofs])
-        self._rigid = _Rigid(self.compliance.half_spacing)
+        self._rigid = _Compliance(0.0, self.compliance.half_spacing)
         self.O = np.asarray(structure.outputs, float)
         # a plane beam's output rows are gauge strains: read as their chords' stretch (fem.plane_tl), the plate's as rows
         self.Oz = self.vk.transverse_rows(self.O) if hasattr(self.vk, "transverse_rows") else None
@@ -140,43 +177,22 @@ class VonKarmanStepper(CoupledStepper):
         return self._law_branch
 
     def _contact(self, u: np.ndarray, x_pred: float, q: float, index: int):
-        """(α, F, r, dF/dw) of the impactor against the structure held at ``u`` (zero force where apart)."""
-        w = float(self.c @ u)
-        top = x_pred - w
+        """(α, F, r) of the impactor against the structure held at ``u`` (zero force and radius where apart)."""
+        top = x_pred - float(self.c @ u)
         if top <= 0.0:
-            return top, 0.0, 0.0, 0.0
-        law = self._branch(index - 1)
-        a, f, r, _ = newton_contact(law, self._rigid, self.hm, self.kappa, q, top, top, index, self.dt, caps=self.caps)
-        rate = self.kappa * a + q
-        slope = law.stiffness(a, rate) + self.kappa * law.damping(a, rate) if f > 0.0 else 0.0
-        return a, f, r, -slope / (1.0 + self.hm * slope)
+            return top, 0.0, 0.0
+        a, f, r, _ = newton_contact(self._branch(index - 1), self._rigid, self.hm, self.kappa, q, top, top, index, self.dt, caps=self.caps)
+        return a, f, r
 
     def free_approach(self, k: int) -> float:
         """The coupled step to k + 1 (module docstring); w̃ = c·u* − h_s(r*)·F*."""
         x_pred = self.x[k] + self.dt * self.xv[k] + self.c2 * (-self.F[k] / self.mass)
         q = self.r1 * self.ald[k] + self.r2 * self._ala - self.kappa * self.al[k]
-        dofs, sign, c = self.dofs, self.sign, self.c
-
-        def extra(u):
-            _, f, r, dfdw = self._contact(u, x_pred, q, k + 1)
-            force = np.zeros(self._n)
-            if f == 0.0:
-                return force, None
-            b = sign * self.patch.shares(r)[0]
-            force[dofs] = f * b
-            # −∂(F b)/∂u = −(dF/dw) b cᵀ, kept symmetric as (−dF/dw)(c·b)/(b·b) b bᵀ on the patch's nodes (it shapes the steps only)
-            cb = float(c[dofs] @ b)
-            scale = -dfdw * max(cb, 0.0) / float(b @ b)
-            stiffness = scipy.sparse.coo_matrix(
-                (scale * np.outer(b, b).ravel(), (np.repeat(dofs, dofs.size), np.tile(dofs, dofs.size))), shape=(self._n, self._n)
-            )
-            return force, stiffness.tocsr()
-
-        u1, v1, a1, its = self.nm.step(self.u, self.v, self.acc, self._zero, extra)
+        u1, v1, a1, its = self.nm.step(self.u, self.v, self.acc, self._zero, contact=_StepContact(self, x_pred, q, k + 1))
         self.structure_iterations += its
-        _, f, r, _ = self._contact(u1, x_pred, q, k + 1)
+        _, f, r = self._contact(u1, x_pred, q, k + 1)
         self._step = (u1, v1, a1, f, r)
-        return float(c @ u1) - (self.compliance(r)[0] * f if f > 0.0 else 0.0)
+        return float(self.c @ u1) - (self.compliance(r)[0] * f if f > 0.0 else 0.0)
 
     def apply(self, k: int, f: float, r: float) -> None:
         """The coupled step's state at k + 1 (the loop's f, r agree with its F*, r* to the contact Newton's tolerance)."""

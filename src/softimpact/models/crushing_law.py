@@ -75,6 +75,8 @@ def sphere_crush_depth(x: float) -> float:
             lo = u
         step = r / max(_phi(u), 1e-300)
         nxt = u - step
+        if abs(step) <= DEPTH_TOL * max(u, 1e-300):
+            return nxt  # converged: a step at round-off may land on the bracket's end (no bisection then)
         if not lo < nxt < hi:
             nxt = 0.5 * (lo + hi)
         if abs(nxt - u) <= DEPTH_TOL * max(u, 1e-300) or hi - lo <= DEPTH_TOL:

@@ -29,6 +29,10 @@ regime it falls in (as :mod:`~softimpact.studies.thresholds`' rows: Olsson's F_d
 the discretisation error of V*: the two-mesh
 GCI (:func:`~softimpact.studies.thresholds.gci_two_meshes`: safety factor 3, formal order 2, ratio 2) between the
 map's mesh and one coarser by 2 in elements and step.
+
+Large deflection: the panels' ``kinematics`` may be "von-karman" (:func:`hail_map`): no kernels then, every run (the
+one at V* included) stepped by the nonlinear plate's own stepper, and with ``guesses`` (the linear map's rows) each
+threshold's secant steps start from the linear V*, so a nonlinear threshold costs a few runs.
 """
 
 from __future__ import annotations
@@ -63,6 +67,7 @@ RHYMER_DIAMETERS = (38.1e-3, 50.8e-3, 61.0e-3)  # m: the same tests' ice spheres
 RHYMER_LAYUPS = ("[45/0/-45/90]s", "[45/0/-45/90]2s", "[45/0/-45/90]3s")  # a choice: quasi-isotropic, 8, 16, 24 plies
 STAND_IN_PLY = "IM7/8552"  # for T800/3900-2, not in the catalogue
 HAIL_INDICES = (ONSET, "delamination")  # Olsson's onset, Davies–Zhang beside it
+GUESS_POWER = 2.0  # the power of the index in V assumed by the first secant step from a guessed V* (the secant's own slope after it)
 
 
 @dataclass(frozen=True)
@@ -85,15 +90,16 @@ class CatalogueIce:
         return CrushingLaw(mass, diameter, self.strength or projectile_material("ice").strength)
 
 
-def hail_structures(panel_target, thickness: float, layup: str, law, meshes, duration: float, widest: float):
+def hail_structures(panel_target, thickness: float, layup: str, law, meshes, duration: float, widest: float, kinematics: str = "linear"):
     """(map mesh, coarse mesh) :class:`~softimpact.studies.thresholds.ThresholdStructure` of one panel:
-    ``panel_target(thickness, layup, elements, duration)`` the resolved plate target (a
+    ``panel_target(thickness, layup, elements, duration, kinematics=...)`` the resolved plate target (a
     :class:`~softimpact.models.protocols.Target`; the report builds it from a case file,
     :func:`softimpact.app.paper.hail.panel_target`), ``meshes`` ((elements a side, time step [s]) coarse,
-    fine); spheres up to ``widest`` [m] of ice."""
+    fine); spheres up to ``widest`` [m] of ice; ``kinematics`` the panels' ("linear" or "von-karman")."""
     out = []
     for n, dt in meshes:
-        out.append(structure(f"{thickness * 1e3:.2f} mm", panel_target(thickness, layup, n, duration), widest, _density(law), dt, duration, law))
+        target = panel_target(thickness, layup, n, duration, kinematics=kinematics)
+        out.append(structure(f"{thickness * 1e3:.2f} mm", target, widest, _density(law), dt, duration, law))
     return out[1], out[0]
 
 
@@ -131,6 +137,7 @@ class HailRow:
     validity: dict
     mass_ratio: float = math.nan  # the sphere's mass over the panel's
     regime: str = ""  # its response regime (:func:`~softimpact.models.delamination.response_regime`, stand-in bounds)
+    kinematics: str = "linear"  # the panel's: "linear" or "von-karman"
 
     @property
     def fte(self) -> float:
@@ -181,35 +188,47 @@ def hail_map(
     hi: float = 300.0,
     indices=HAIL_INDICES,
     rtol: float = 1e-3,
+    kinematics: str = "linear",
+    guesses=(),
 ):
     """The hail map (module docstring): one :class:`HailRow` per thickness, index and diameter, ice of ``law``
     (:class:`CatalogueIce` or an identified crushing law,
     :class:`~softimpact.workflows.identification.CrushingIdentifiedLaw`) on the panels of ``panel_target``
     (:func:`hail_structures`) between ``lo`` and ``hi`` m/s. ``meshes``: ((elements, step)
-    coarse, fine), default ((4, 4 µs), (8, 2 µs))."""
+    coarse, fine), default ((4, 4 µs), (8, 2 µs)).
+
+    ``kinematics``: the panels' ("linear", or "von-karman": large deflection; no kernels then, every run, the one at V*
+    included, stepped by the panel's own stepper, :attr:`~softimpact.studies.thresholds.ThresholdStructure.stepping`).
+    ``guesses``: rows of another map of the same panels (the linear map's): the V* of the row with the same thickness,
+    diameter and index starts the threshold's secant steps (:func:`~softimpact.studies.thresholds.threshold_velocity`,
+    first-step power :data:`GUESS_POWER`), in place of the scan from ``lo``."""
     from ..fem.contact import group_outputs
     from ..workflows.coupled import run_impact
 
     meshes = meshes or ((4, 4e-6), (8, 2e-6))
+    start = {(r.thickness, r.diameter, r.index): r.velocity for r in guesses if math.isfinite(r.velocity)}
     rows = []
     for h, layup in zip(thicknesses, layups):
-        fine, coarse = hail_structures(panel_target, h, layup, law, meshes, duration, max(diameters))
+        fine, coarse = hail_structures(panel_target, h, layup, law, meshes, duration, max(diameters), kinematics)
         runs: dict = {}
         for index in indices:
             for d in diameters:
-                v = threshold_velocity(fine, law, d, index, lo, hi, rtol=rtol, runs=runs)
-                vc = threshold_velocity(coarse, law, d, index, lo, hi, rtol=rtol, guess=v, beta=2.0, runs=runs) if math.isfinite(v) else math.nan
+                guess = start.get((h, d, index))
+                v = threshold_velocity(fine, law, d, index, lo, hi, rtol=rtol, guess=guess, beta=GUESS_POWER if guess else None, runs=runs)
+                vc = threshold_velocity(coarse, law, d, index, lo, hi, rtol=rtol, guess=v, beta=GUESS_POWER, runs=runs) if math.isfinite(v) else math.nan
                 mass = _density(law) * math.pi / 6.0 * d**3
                 peak, validity = math.nan, {"flags": []}
                 if math.isfinite(v):
                     problem = fine.problem_at(law, d, v)
-                    _, result = run_impact(problem, fine.model, energy=False, method="kernels", kernels=fine.kernels)
+                    method = "kernels" if fine.kernels is not None else fine.stepping
+                    _, result = run_impact(problem, fine.model, energy=False, method=method, kernels=fine.kernels)
                     result = group_outputs(result, fine.model.contact_groups())
                     peak = max(c.peak_force for c in result.contacts)
                     validity = run_validity(problem, result).summary()
                 ratio = mass / fine.problem.target.mass
                 regime = response_regime(mass, fine.problem.target.mass, wave_below=REGIME_BOUNDS[0], quasi_static_above=REGIME_BOUNDS[1])
-                rows.append(HailRow(h, d, mass, index, v, vc, gci_two_meshes(v, vc), peak, _threshold_force(fine, index), validity, ratio, regime))
+                row = HailRow(h, d, mass, index, v, vc, gci_two_meshes(v, vc), peak, _threshold_force(fine, index), validity, ratio, regime, fine.kinematics)
+                rows.append(row)
     return rows
 
 
