@@ -257,8 +257,9 @@ class CohesiveNewmark(VonKarmanNewmark):
         1e-4  # a step damped or stalled on a kink is accepted below this relative residual (its work error, residual × step, is in the energy balance tested)
     )
 
-    def step(self, u, v, a, f1, extra=None):
-        """(u1, v1, a1, iterations) of one step to the load f1 (:meth:`VonKarmanNewmark.step`, with the line search)."""
+    def step(self, u, v, a, f1, extra=None, contact=None):
+        """(u1, v1, a1, iterations) of one step to the load f1 (:meth:`VonKarmanNewmark.step`, with the line search along
+        its correction: with ``contact``, the contact condensed on the linearised structure, as the parent's)."""
         g, dt = self.params.gamma, self.dt
         M, C, model = self.model.M, self.C, self.model
         u1 = u + dt * v + dt * dt * (0.5 - self.params.beta) * a
@@ -270,13 +271,16 @@ class CohesiveNewmark(VonKarmanNewmark):
 
         def residual(x):
             r = rhs - self._keff @ x - model._nonlinear_force(x)
-            ek = None
+            ek, load = None, (0.0, None)
             if extra is not None:
                 fe, ek = extra(x)
                 r = r + fe
-            return r, ek
+            if contact is not None:
+                load = contact.load(x)
+                r = r + load[0] * load[1]
+            return r, ek, load
 
-        r, ek = residual(u1)
+        r, ek, load = residual(u1)
         norm = np.linalg.norm(r)
         scale = max(norm, np.linalg.norm(f1), np.linalg.norm(ma), 1e-300)
         last = np.inf
@@ -286,10 +290,15 @@ class CohesiveNewmark(VonKarmanNewmark):
             if self._lu is None or self.tangent_kind == "newton" or norm > self.MODIFIED_RATE * last:
                 self._jacobian(u1, ek)
             du = self._lu.solve(r)
+            if contact is not None:  # the parent's condensed correction: u + d + F'·z
+                fc, shape = load
+                z = self._lu.solve(shape)
+                free = u1 + du - fc * z
+                du = free + contact.solve(free, z) * z - u1
             step = 1.0
             for _ in range(self.HALVINGS + 1):
                 trial = u1 + step * du
-                r_new, ek_new = residual(trial)
+                r_new, ek_new, load_new = residual(trial)
                 n_new = np.linalg.norm(r_new)
                 if n_new < norm or n_new <= self.rtol * scale:
                     break
@@ -300,7 +309,7 @@ class CohesiveNewmark(VonKarmanNewmark):
                 self._lu = None
                 continue
             last, norm = norm, n_new
-            u1, r, ek = trial, r_new, ek_new
+            u1, r, ek, load = trial, r_new, ek_new, load_new
             if step < 1.0:
                 if norm <= self.STALL_RTOL * scale:  # damped on a kink, and already small: accept
                     return self._finish(u1, u, v, a) + (it,)
