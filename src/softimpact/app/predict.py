@@ -64,26 +64,12 @@ def predict(
         law = scaling_law(constants, group, proj)
         models["empirical"] = law
         notes.extend(_range_notes(law, velocity, V, d, units))
-    if model == "hertz":  # Hertz's own envelope (models.validity): approach and contact radius against the ball
-        from ..models.validity import contact_validity
-
-        hertz = models["hertz"].law(d)
-        alpha_max = hertz.rigid_impact(m, V)[0]
-        notes.extend(contact_validity("hertz", alpha_max, hertz.radius(alpha_max), d).flags)
-    if model in ("crushing", "hydrodynamic"):  # the law's own envelope (ice: strain rate; gelatin: shock release)
-        from ..models.contact_laws import CONTACT_LAWS, law_validity
-
-        notes.extend(law_validity(CONTACT_LAWS[model].of(sphere, d, m, V), V).flags)
+    notes.extend(_envelope_notes(model, models, sphere, m, d, V))
     chosen = models[model]
     pulse = chosen.pulse(m, d, V, tail=tail) if model == "empirical" else chosen.pulse(m, d, V)
     params = chosen.parameters(m, d, V)
     inputs, driven, gauge_peak = _driven(bar, beam, pulse)
-    curves = []
-    if figures:
-        for name, mod in models.items():
-            pl = mod.pulse(m, d, V, tail=tail) if name == "empirical" else mod.pulse(m, d, V)
-            tt = np.linspace(0, 1.5 * max(pl.duration, pulse.duration), 1501)
-            curves.append((f"{name}{' (chosen)' if name == model else ''}", tt, pl(tt)))
+    curves = _curves(models, model, m, d, V, tail, pulse) if figures else []
     files = predict_files(
         model=model,
         projectile={"name": proj.name if proj else "", "mass_kg": m, "diameter_m": d, "velocity_m_s": V},
@@ -103,6 +89,33 @@ def predict(
         f"T {params.duration * tu.factor:.4g} {tu.label}, I {params.impulse * iu.factor:.4g} {iu.label}"
     )
     return Outcome(files, line, tuple(inputs), tuple(notes))
+
+
+def _envelope_notes(model: str, models: dict, sphere, m: float, d: float, V: float) -> list[str]:
+    """The chosen model's own envelope flags: Hertz's approach and contact radius against the ball
+    (:func:`~softimpact.models.validity.contact_validity`), a crushing or hydrodynamic law's (ice: strain rate; gelatin:
+    shock release, :func:`~softimpact.models.contact_laws.law_validity`); none for the others."""
+    if model == "hertz":
+        from ..models.validity import contact_validity
+
+        hertz = models["hertz"].law(d)
+        alpha_max = hertz.rigid_impact(m, V)[0]
+        return list(contact_validity("hertz", alpha_max, hertz.radius(alpha_max), d).flags)
+    if model in ("crushing", "hydrodynamic"):
+        from ..models.contact_laws import CONTACT_LAWS, law_validity
+
+        return list(law_validity(CONTACT_LAWS[model].of(sphere, d, m, V), V).flags)
+    return []
+
+
+def _curves(models: dict, model: str, m: float, d: float, V: float, tail: bool, pulse) -> list[tuple]:
+    """(label, time [s], force [N]) of every model's pulse for the comparison figure, over 1.5 × the longest."""
+    curves = []
+    for name, mod in models.items():
+        pl = mod.pulse(m, d, V, tail=tail) if name == "empirical" else mod.pulse(m, d, V)
+        tt = np.linspace(0, 1.5 * max(pl.duration, pulse.duration), 1501)
+        curves.append((f"{name}{' (chosen)' if name == model else ''}", tt, pl(tt)))
+    return curves
 
 
 @dataclass(frozen=True)

@@ -98,6 +98,7 @@ __all__ = [
     "law_draws",
     "gci_two_meshes",
     "run_validity",
+    "stepped_run",
 ]
 
 INDICES = ("tsai_wu", "delamination")  # the damage indices thresholded by default
@@ -244,6 +245,15 @@ def _run(s: ThresholdStructure, law, diameter: float, velocity: float, method: s
     method = _method(s, method)
     _, result = run_impact(problem, s.model, energy=False, method=method, kernels=s.kernels if method == "kernels" else None)
     return problem, group_outputs(result, s.model.contact_groups())
+
+
+def stepped_run(problem: ImpactProblem):
+    """One coupled run of ``problem`` stepped directly (no kernels) by its target's kinematics' stepper ("direct" on a
+    linear target), with its ``"damage"`` output group: the result (a :class:`~softimpact.workflows.coupled.CoupledResult`)."""
+    model = problem.model(damage=True)
+    method = "direct" if problem.target.kinematics == "linear" else problem.target.kinematics
+    _, result = run_impact(problem, model, energy=False, method=method)
+    return group_outputs(result, model.contact_groups())
 
 
 def run_validity(problem: ImpactProblem, result, identified=None) -> Validity:
@@ -416,16 +426,7 @@ def threshold_map(
                 p05, p95, med, law_lo, law_hi = _carried_band(ref, nominal, widen)
             else:
                 vs = np.array([threshold_velocity(s, lw, d, index, lo, hi, guess=nominal, beta=beta, runs=runs) for lw in drawn] or [nominal], float)
-                ok = vs[np.isfinite(vs)]
-                count, reached = len(vs), int(ok.size)
-                if ok.size and math.isfinite(beta) and beta > 0:
-                    combined = (ok[:, None] * factors[None, :] ** (1.0 / beta)).ravel()
-                    lo_b, hi_b = np.percentile(combined, [5, 95])
-                    p05, p95 = float(lo_b - widen), float(hi_b + widen)
-                    med = float(np.median(ok))
-                    law_lo, law_hi = (float(x) for x in np.percentile(ok, [5, 95]))
-                else:
-                    p05 = p95 = med = law_lo = law_hi = math.nan
+                count, reached, (p05, p95, med, law_lo, law_hi) = len(vs), int(np.isfinite(vs).sum()), _drawn_band(vs, beta, factors, widen)
             ratio = mass / s.problem.target.mass
             regime = response_regime(mass, s.problem.target.mass, wave_below=REGIME_BOUNDS[0], quasi_static_above=REGIME_BOUNDS[1])
             rows.append(
@@ -455,6 +456,19 @@ def threshold_map(
                 )
             )
     return rows
+
+
+def _drawn_band(vs: np.ndarray, beta: float, factors: np.ndarray, widen: float) -> tuple[float, ...]:
+    """(p05, p95, median, law p05, law p95) of the thresholds ``vs`` of the law's draws (NaN: above the range) combined
+    with the strength factors (V*·s^(1/β), module docstring (b)), the 90 % band widened by ``widen`` on both sides;
+    all NaN when no draw reached its threshold or β is not a positive number."""
+    ok = vs[np.isfinite(vs)]
+    if not (ok.size and math.isfinite(beta) and beta > 0):
+        return (math.nan,) * 5
+    combined = (ok[:, None] * factors[None, :] ** (1.0 / beta)).ravel()
+    lo_b, hi_b = np.percentile(combined, [5, 95])
+    law_lo, law_hi = np.percentile(ok, [5, 95])
+    return float(lo_b - widen), float(hi_b + widen), float(np.median(ok)), float(law_lo), float(law_hi)
 
 
 def _cached_run(s: ThresholdStructure, law, diameter: float, velocity: float, runs: dict):

@@ -179,6 +179,23 @@ def _figure_fte(rows, vk_rows=()):
 def hail_section(figures: bool, files: dict, prefix: str = "hail/") -> Section:
     """The report section: the hail map's table, hail-map.csv and (with figures) hail-fte.png."""
     rows, vk_rows = _rows(), _vk_rows()
+    figs = _hail_files(rows, vk_rows, figures, files, prefix)
+    fits = {i: fte_fit(rows, i) for i in HAIL_INDICES}
+    onset = [r for r in rows if r.index == ONSET]
+    paragraphs = _hail_paragraphs(rows, onset, fits)
+    paragraphs.append(_vk_paragraph(onset, vk_rows, fits[ONSET]))
+    vo = fte_fit(vk_rows, ONSET)
+    summary = [
+        f"Hail on Rhymer's panels: FTE against h/D linear fit R² = {fits[ONSET].r2:.2f} (published trend: linear; required ≥ {REQUIRED_R2}); "
+        f"on von Karman panels R² = {vo.r2:.2f}"
+    ]
+    return Section(
+        "Hail on Rhymer's panels: delamination onset and failure threshold energy", paragraphs, list(_hail_tables(rows, vk_rows, onset)), figs, summary
+    )
+
+
+def _hail_files(rows, vk_rows, figures: bool, files: dict, prefix: str) -> list:
+    """hail-map.csv, hail-map-von-karman.csv and (with figures) hail-fte.png into ``files``: the figures' (name, caption)."""
     text_keys = ("index", "regime", "validity_flags")
     for name, these in (("hail-map.csv", rows), ("hail-map-von-karman.csv", vk_rows)):
         dicts = [r.as_dict() for r in these]
@@ -194,8 +211,11 @@ def hail_section(figures: bool, files: dict, prefix: str = "hail/") -> Section:
                 "onset velocity against the diameter, per panel.",
             )
         )
-    fits = {i: fte_fit(rows, i) for i in HAIL_INDICES}
-    onset = [r for r in rows if r.index == ONSET]
+    return figs
+
+
+def _hail_tables(rows, vk_rows, onset) -> tuple[tuple, tuple]:
+    """The linear map's table (both indices) and the von Kármán onset's (each V* against the linear panel's)."""
 
     def cell(r):
         if not math.isfinite(r.velocity):
@@ -238,6 +258,11 @@ def hail_section(figures: bool, files: dict, prefix: str = "hail/") -> Section:
             for h in RHYMER_THICKNESSES
         ],
     )
+    return table, vk_table
+
+
+def _hail_paragraphs(rows, onset, fits) -> list[str]:
+    """The section's paragraphs on the panels and the ice, the onset, the critical force and FTE against h/D."""
     spread = []
     for h in RHYMER_THICKNESSES:
         f = [r.peak_force for r in onset if r.thickness == h and math.isfinite(r.velocity)]
@@ -281,13 +306,7 @@ def hail_section(figures: bool, files: dict, prefix: str = "hail/") -> Section:
         + "; the published FTE values themselves were not retrieved, so no model-against-published deviation can be given "
         "(docs/validation-hail.md lists what is missing).",
     ]
-    paragraphs.append(_vk_paragraph(onset, vk_rows, o))
-    vo = fte_fit(vk_rows, ONSET)
-    summary = [
-        f"Hail on Rhymer's panels: FTE against h/D linear fit R² = {o.r2:.2f} (published trend: linear; required ≥ {REQUIRED_R2}); "
-        f"on von Karman panels R² = {vo.r2:.2f}"
-    ]
-    return Section("Hail on Rhymer's panels: delamination onset and failure threshold energy", paragraphs, [table, vk_table], figs, summary)
+    return paragraphs
 
 
 def _vk_paragraph(onset, vk_rows, o) -> str:
