@@ -143,6 +143,7 @@ def test_predict_driving_a_bar_shows_the_bar_cases_units(tmp_path):
     assert " lbf at " in _invoke([*args, "--units", "in-lbf-s"], tmp_path / "asked")
 
 
+@pytest.mark.slow  # seconds: the slow tier (make test-slow)
 def test_reduce_draws_in_the_units_asked_and_writes_the_same_numbers(tmp_path, monkeypatch):
     """reduce --units SI draws each force history in SI (the series says in-lbf-s) and writes the same tests.csv and histories."""
     from test_cli_series import _mini_series

@@ -174,6 +174,7 @@ def test_case_key_refuses_a_bad_interface(between, message):
     assert "damage.cohesive[0].between" in str(err.value)
 
 
+@pytest.mark.slow  # seconds: the slow tier (make test-slow)
 def test_command_writes_the_area_history_and_the_verdict(tmp_path):
     """``softimpact impact`` on a small cohesive case writes history.csv's area columns, summary.json's delaminated area and the
     area and damage-map figures, and the struck sublaminate's fields."""

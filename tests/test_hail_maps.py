@@ -54,6 +54,7 @@ def _direct_peak(row: HailRow, velocity: float) -> float:
     return max(c.peak_force for c in group_outputs(result, fine.model.contact_groups()).contacts)
 
 
+@pytest.mark.slow  # seconds: the slow tier (make test-slow)
 def test_the_onset_velocity_brackets_the_threshold_force_on_direct_stepping(one_point):
     """Stepped directly, the peak force is below Olsson's F_d at 0.97·V* and above it at 1.03·V*."""
     row = next(r for r in one_point if r.index == "olsson")

@@ -52,12 +52,14 @@ def _truth_at(law) -> np.ndarray:
     return np.array([TRUE.coefficient * (law.reference_rate / TRUE.reference_rate) ** TRUE.exponent, TRUE.exponent])
 
 
+@pytest.mark.slow  # seconds: the slow tier (make test-slow)
 def test_the_intervals_contain_the_true_strength_law(noisy):
     """From noisy synthetic records the identified σ_ref and m_c lie within their stated 95 % intervals of the truth."""
     law, _ = noisy
     assert np.all(np.abs(law.values - _truth_at(law)) <= law.half_widths)
 
 
+@pytest.mark.slow  # seconds: the slow tier (make test-slow)
 def test_the_intervals_are_informative(noisy):
     """The intervals are narrow enough to mean something: σ_ref within ±3 %, m_c within ±0.03 (on 0.2)."""
     law, _ = noisy

@@ -68,6 +68,7 @@ def test_the_papers_points_are_open_and_drawn_above_ours(figure):
     assert paper.get_markersize() > ours.get_markersize() and paper.get_zorder() > ours.get_zorder()
 
 
+@pytest.mark.slow  # seconds: the slow tier (make test-slow)
 def test_small_png_looks_the_same_and_is_smaller():
     """A figure's PNG as a palette decodes to within half a level (of 255) of matplotlib's on average, and is at least half as large."""
     from PIL import Image
