@@ -240,7 +240,11 @@ def test_every_public_name_documents_parameters_with_units(name, obj):
 
 
 API_MODULES = ["softimpact.api", "softimpact.api.structures", "softimpact.api.results", "softimpact.api.commands", "softimpact.api.chain"]
-SLOW_EXAMPLES = {"softimpact.api.chain.identify"}  # identifies a law on the 13 tests of the built-in series (minutes)
+SLOW_EXAMPLES = {
+    "softimpact.api.chain.identify",  # identifies a law on the 13 tests of the built-in series (minutes)
+    "softimpact.api.chain.fit",  # fits the built-in series (seconds)
+    "softimpact.api.chain.calibrate",  # calibrates a Table II history (seconds)
+}
 
 
 def _examples():

@@ -78,6 +78,7 @@ def test_all_records_bad_exits_2_and_writes_nothing(tmp_path):
     assert not out.exists() or not any(out.iterdir())
 
 
+@pytest.mark.slow  # seconds: the slow tier (make test-slow)
 def test_fit_recovers_table_one_from_the_builtin_series(tmp_path):
     """The built-in synthetic series was made from Table I: fit returns α1, α2, α4 within 3 %, α3 within 10 %."""
     out = tmp_path / "fit"
@@ -96,6 +97,7 @@ def test_fit_recovers_table_one_from_the_builtin_series(tmp_path):
 FAMILIES = ("knee", "ramp-under", "linear", "power-law", "free-ramp", "early-ramp")  # the reduction's tail families (issues 22, 32)
 
 
+@pytest.mark.slow  # seconds: the slow tier (make test-slow)
 def test_fit_writes_the_tail_shape_term(tmp_path):
     """fit's scaling.json carries, per group, a separate tail_shape term (five families ranked by AIC, those within
     ΔAIC < 4 listed) whose widened α2, α3 intervals contain Table I's values that made the built-in series

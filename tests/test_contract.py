@@ -19,7 +19,10 @@ from _support.contract import COMMANDS, compare, fingerprint, run
 RECORDED = json.loads((Path(__file__).parent / "data" / "contract.json").read_text(encoding="utf-8"))
 
 
-@pytest.mark.parametrize("name, args", COMMANDS, ids=[c[0] for c in COMMANDS])
+SLOW_COMMANDS = {"fit", "reduce"}  # the built-in series reduced and fitted (seconds): the slow tier
+
+
+@pytest.mark.parametrize("name, args", [pytest.param(n, a, id=n, marks=[pytest.mark.slow] if n in SLOW_COMMANDS else []) for n, a in COMMANDS])
 def test_outputs_as_before(tmp_path, name, args):
     """The command writes the same files, columns, keys, text and numbers (within tolerance) as recorded."""
     run(args, tmp_path / name)

@@ -212,6 +212,7 @@ def test_one_test_fit_warns_that_it_has_no_intervals(tmp_path):
     assert scaling["groups"]["0.5 in"]["alpha1"]["value"] == pytest.approx(alpha1, rel=1e-9)
 
 
+@pytest.mark.slow  # seconds: the slow tier (make test-slow)
 def test_builtin_series_passes_its_gates(tmp_path):
     """The built-in series (made from Table I, 1 % noise) passes every gate: status passed, exit 0."""
     out = tmp_path / "out"
@@ -437,6 +438,7 @@ def test_reduction_gates_flag_a_misfit_and_a_degenerate_pulse():
     assert not gates["pulse-skew[flat]"].passed and "degenerate" in gates["pulse-skew[flat]"].reason
 
 
+@pytest.mark.slow  # seconds: the slow tier (make test-slow)
 def test_reduce_writes_its_gates_into_the_summary(tmp_path):
     """reduce on the built-in series: summary.json carries quality.status passed and one fit and one skew gate per test."""
     out = tmp_path / "out"

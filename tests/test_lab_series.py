@@ -354,6 +354,7 @@ def _scaled(v):
     return noisy(gauge_strain(lambda t: pulse(t, peak=v, rise=25e-6 * (2000 / v) ** 0.2, fall=60e-6 * (2000 / v) ** 0.2)), seed=int(v))
 
 
+@pytest.mark.slow  # seconds: the slow tier (make test-slow)
 def test_double_hit_and_clipping_are_flagged_and_left_out_of_the_fit(tmp_path):
     """A double hit and a clipped record are flagged in tests.csv with the reason; fit leaves them out with a warning."""
     tests = []

@@ -191,6 +191,7 @@ def test_converge_refused_at_its_default_levels_names_the_levels_that_fit(tmp_pa
     assert not (tmp_path / "o").exists()
 
 
+@pytest.mark.slow  # seconds: the slow tier (make test-slow)
 def test_calibrates_result_line_says_how_the_fit_ended_in_plain_words(tmp_path):
     """calibrate's result line says "converged after N model runs" in our words, never scipy's termination text."""
     from importlib import resources

@@ -197,6 +197,7 @@ def test_an_empirical_history_far_outside_its_velocities_on_a_beam_is_warned(tmp
             assert "load.history.velocity" in w[0] and "outside" in w[0]
 
 
+@pytest.mark.slow  # seconds: the slow tier (make test-slow)
 def test_predict_with_a_users_scaling_json_far_outside_its_range_warns(tmp_path):
     """`fit` records the velocities and diameters of its tests in scaling.json; `predict` with that file at
     20 000 in/s, or for a 2-in ball, warns as the built-in constants do; an old file without them warns that
