@@ -249,7 +249,7 @@ def _beams_text(maps: list[dict], vu) -> str:
         "them little. Checked at the 1/2-in ball's delamination threshold on the map's mesh, the beam's total Lagrangian form "
         '([beam] kinematics = "von-karman") against the linear run at the same velocity: '
         + "; ".join(
-            f"{n}, {v * vu.factor:.0f} {vu.label}: peak force {100 * (fn / fl - 1):+.2f} %, w/h {wl:.2f} linear, {wn:.2f} nonlinear"
+            f"{n}, {v * vu.factor:.0f} {vu.label}: peak force {100 * (fn / fl - 1):+.4f} %, w/h {wl:.2f} linear, {wn:.2f} nonlinear"
             for n, v, fl, fn, wl, wn in _beam_kinematics_check()
         )
         + ". The beams' maps are therefore not recomputed nonlinear (a total Lagrangian run costs several linear ones and the "
