@@ -51,6 +51,7 @@ import numpy as np
 import scipy.sparse
 
 from .plane import PlaneModel
+from .scatter import ElementScatter
 
 __all__ = ["PlaneTL"]
 
@@ -212,27 +213,16 @@ class PlaneTL:
         Ke[:, 4:, 4:] += Ks
         return Ke
 
-    def _tangent_pattern(self):
-        """(csr indices, indptr, inverse, keep, nnz) of the element tangents' scatter, computed once."""
+    def _scatter_tangents(self) -> ElementScatter:
+        """The element tangents' scatter (:class:`~softimpact.fem.scatter.ElementScatter`), built once."""
         if self._pattern is None:
             ne = self._gdofs.shape[0]
-            dofs = self._index[self._gdofs.reshape(ne, -1)]
-            nd = dofs.shape[1]
-            rows = np.broadcast_to(dofs[:, :, None], (ne, nd, nd)).ravel()
-            cols = np.broadcast_to(dofs[:, None, :], (ne, nd, nd)).ravel()
-            keep = (rows >= 0) & (cols >= 0)
-            key = rows[keep].astype(np.int64) * self.n + cols[keep]
-            unique, inverse = np.unique(key, return_inverse=True)
-            r, c = unique // self.n, unique % self.n
-            indptr = np.concatenate(([0], np.cumsum(np.bincount(r, minlength=self.n))))
-            self._pattern = (c.astype(np.int32), indptr, inverse, keep, unique.size)
+            self._pattern = ElementScatter(self._index[self._gdofs.reshape(ne, -1)], self.n)
         return self._pattern
 
     def tangent_nonlinear(self, d: np.ndarray) -> scipy.sparse.csr_matrix:
         """K_T(d) − K (zero at d = 0)."""
-        indices, indptr, inverse, keep, nnz = self._tangent_pattern()
-        data = np.bincount(inverse, weights=self._element_tangents(d).ravel()[keep], minlength=nnz)
-        return scipy.sparse.csr_matrix((data, indices, indptr), shape=(self.n, self.n))
+        return self._scatter_tangents().assemble(self._element_tangents(d))
 
     def tangent(self, d: np.ndarray) -> scipy.sparse.csr_matrix:
         """K_T(d) = ∂f_int/∂d (module docstring)."""
@@ -259,9 +249,6 @@ class PlaneTL:
 
     def linear_stiffness(self) -> scipy.sparse.csr_matrix:
         """b ∫ B_Lᵀ D B_L dA by this module's quadrature (equal to ``K`` to round-off: a check of the element data)."""
-        indices, indptr, inverse, keep, nnz = self._tangent_pattern()
         ne, nq = self._wq.shape
         BL = self._linear_operator().reshape(ne, nq, 3, 8)
-        Ke = np.einsum("eq,eqip,eij,eqjr->epr", self._wq, BL, self._D, BL)
-        data = np.bincount(inverse, weights=Ke.ravel()[keep], minlength=nnz)
-        return scipy.sparse.csr_matrix((data, indices, indptr), shape=(self.n, self.n))
+        return self._scatter_tangents().assemble(np.einsum("eq,eqip,eij,eqjr->epr", self._wq, BL, self._D, BL))

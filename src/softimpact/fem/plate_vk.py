@@ -66,6 +66,7 @@ import scipy.sparse
 from ..errors import InputError
 from .newmark import NewmarkParameters, spd_factor
 from .plate import EDGES, PHI_X, PHI_Y, Plate, PlateFE, U, V, W, _gauss01, _lagrange
+from .scatter import ElementScatter
 
 __all__ = ["DynamicResult", "IN_PLANE", "KINEMATICS", "PlateVK", "StaticResult", "VonKarmanNewmark", "solve_static"]
 
@@ -265,27 +266,16 @@ class PlateVK:
         Ke[:, 2, :, 2, :] += Kww
         return Ke.reshape(ne, nc * npe, nc * npe)
 
-    def _tangent_pattern(self):
-        """(csr indices, indptr, inverse, keep) of the element tangents' scatter, computed once."""
+    def _scatter_tangents(self) -> ElementScatter:
+        """The element tangents' scatter (:class:`~softimpact.fem.scatter.ElementScatter`), built once."""
         if self._pattern is None:
             ne = self._gdofs.shape[0]
-            dofs = self._index[self._gdofs.reshape(ne, -1)]
-            nd = dofs.shape[1]
-            rows = np.broadcast_to(dofs[:, :, None], (ne, nd, nd)).ravel()
-            cols = np.broadcast_to(dofs[:, None, :], (ne, nd, nd)).ravel()
-            keep = (rows >= 0) & (cols >= 0)
-            key = rows[keep].astype(np.int64) * self.n + cols[keep]
-            unique, inverse = np.unique(key, return_inverse=True)
-            r, c = unique // self.n, unique % self.n
-            indptr = np.concatenate(([0], np.cumsum(np.bincount(r, minlength=self.n))))
-            self._pattern = (c.astype(np.int32), indptr, inverse, keep, unique.size)
+            self._pattern = ElementScatter(self._index[self._gdofs.reshape(ne, -1)], self.n)
         return self._pattern
 
     def tangent_nonlinear(self, d: np.ndarray) -> scipy.sparse.csr_matrix:
         """K_T(d) − K: the von Kármán part of the tangent (zero at d = 0)."""
-        indices, indptr, inverse, keep, nnz = self._tangent_pattern()
-        data = np.bincount(inverse, weights=self._element_tangents(d).ravel()[keep], minlength=nnz)
-        return scipy.sparse.csr_matrix((data, indices, indptr), shape=(self.n, self.n))
+        return self._scatter_tangents().assemble(self._element_tangents(d))
 
     def tangent(self, d: np.ndarray) -> scipy.sparse.csr_matrix:
         """K_T(d) = ∂f_int/∂d (module docstring)."""
