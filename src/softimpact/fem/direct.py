@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import InputError
 from .impact import ContactPatch, ContactStructure, ImpactHistory, PatchCompliance
 from .newmark import NewmarkParameters, NewmarkStepper
 from .stepping import CoupledStepper, check_time_step
@@ -59,21 +58,12 @@ class DirectStepper(CoupledStepper):
         self.G = st.solve(B).reshape(n, self.dofs.size)  # (n, p): displacement per unit force on each patch node, solved once
         self.compliance = PatchCompliance(self.patch, self.c @ self.G)
         self.O = np.asarray(structure.outputs, float)
-        N = self.steps
-        keep = np.unique(np.asarray(snapshots, int))
-        if keep.size and (keep.min() < 0 or keep.max() > N):
-            raise InputError(f"snapshots: step indices must lie in 0 … {N}, got {snapshots!r}")
-        self.keep, self.slot, self.saved = keep, {int(k): i for i, k in enumerate(keep)}, np.zeros((n, keep.size))
+        self._keep_snapshots(snapshots, n)
 
     def _begin(self) -> None:
         super()._begin()
-        n, N = self.st.n, self.steps
-        self.w = np.zeros(N + 1)
-        self.y = np.zeros((self.O.shape[0], N + 1))
-        self.ek, self.es = np.full(N + 1, np.nan), np.full(N + 1, np.nan)
-        if self.energy:
-            self.ek[0] = self.es[0] = 0.0
-        self.work, self.mism = np.zeros(N + 1), np.zeros(N + 1)
+        n = self.st.n
+        self._structure_records(self.O.shape[0])
         self.u, self.v, self.acc = np.zeros(n), np.zeros(n), np.zeros(n)
         self.s_prev = np.zeros(self.dofs.size)  # shares × F at the previous step (nodal forces / sign)
         self.u_free = None

@@ -118,6 +118,25 @@ class CoupledStepper:
         """The impactor slower than the struck point at step k (ẋ < ẇ = ẋ − α̇)."""
         return self.ald[k] < 0.0
 
+    def _keep_snapshots(self, snapshots, n: int) -> None:
+        """The steps at which an implementation keeps the structure's displacement (its ``n`` DOFs): ``keep`` (sorted,
+        unique), ``slot`` (step → column) and ``saved`` (n, len(keep)); a step outside 0 … steps refused."""
+        keep = np.unique(np.asarray(snapshots, int))
+        if keep.size and (keep.min() < 0 or keep.max() > self.steps):
+            raise InputError(f"snapshots: step indices must lie in 0 … {self.steps}, got {snapshots!r}")
+        self.keep, self.slot, self.saved = keep, {int(k): i for i, k in enumerate(keep)}, np.zeros((n, keep.size))
+
+    def _structure_records(self, rows: int) -> None:
+        """A stepping structure's histories at rest: the approach row's displacement ``w``, the ``rows`` outputs ``y``,
+        its kinetic and strain energies ``ek``, ``es`` (NaN unless ``self.energy``, zero at rest), the contact's work
+        ``work`` and the surface mismatch ``mism``."""
+        N = self.steps
+        self.w, self.y = np.zeros(N + 1), np.zeros((rows, N + 1))
+        self.ek, self.es = np.full(N + 1, np.nan), np.full(N + 1, np.nan)
+        if self.energy:
+            self.ek[0] = self.es[0] = 0.0
+        self.work, self.mism = np.zeros(N + 1), np.zeros(N + 1)
+
     # -- the loop, once ---------------------------------------------------------------------------------
 
     def _begin(self) -> None:

@@ -281,22 +281,13 @@ class ReducedVonKarmanStepper(CoupledStepper):
         self.compliance = PatchCompliance(self.patch, self.sign * (rom.basis[self.dofs] @ zr + rom.residual[self.dofs]))
         self.O_lin, self.O_pair, zo = rom.outputs(structure.outputs)
         self.O_res = self.sign * zo[self.dofs]  # (p, k): outputs per unit load on each disc node, the part the basis misses
-        keep = np.unique(np.asarray(snapshots, int))
-        if keep.size and (keep.min() < 0 or keep.max() > self.steps):
-            raise InputError(f"snapshots: step indices must lie in 0 … {self.steps}, got {snapshots!r}")
-        self.keep, self.slot = keep, {int(k): i for i, k in enumerate(keep)}
-        self.saved = np.zeros((rom.n, keep.size))
+        self._keep_snapshots(snapshots, rom.n)
         self.structure_iterations = 0
 
     def _begin(self) -> None:
         super()._begin()
-        r, N = self.rom.r, self.steps
-        self.w = np.zeros(N + 1)
-        self.y = np.zeros((self.O_lin.shape[0], N + 1))
-        self.ek, self.es = np.full(N + 1, np.nan), np.full(N + 1, np.nan)
-        if self.energy:
-            self.ek[0] = self.es[0] = 0.0
-        self.work, self.mism = np.zeros(N + 1), np.zeros(N + 1)
+        r = self.rom.r
+        self._structure_records(self.O_lin.shape[0])
         self.q, self.qv, self.qa = np.zeros(r), np.zeros(r), np.zeros(r)
         self.g_prev, self.rho_prev = np.zeros(r), 0.0
         self._ala = 0.0

@@ -133,23 +133,14 @@ class VonKarmanStepper(CoupledStepper):
         self.O = np.asarray(structure.outputs, float)
         # a plane beam's output rows are gauge strains: read as their chords' stretch (fem.plane_tl), the plate's as rows
         self.Oz = self.vk.transverse_rows(self.O) if hasattr(self.vk, "transverse_rows") else None
-        keep = np.unique(np.asarray(snapshots, int))
-        if keep.size and (keep.min() < 0 or keep.max() > self.steps):
-            raise InputError(f"snapshots: step indices must lie in 0 … {self.steps}, got {snapshots!r}")
-        self.keep, self.slot = keep, {int(k): i for i, k in enumerate(keep)}
-        self.saved = np.zeros((self.vk.n, keep.size))
+        self._keep_snapshots(snapshots, self.vk.n)
         self.structure_iterations = 0  # the structure's Newton iterations, summed over the run
         self._n = n
 
     def _begin(self) -> None:
         super()._begin()
-        n, N = self._n, self.steps
-        self.w = np.zeros(N + 1)
-        self.y = np.zeros((self.O.shape[0], N + 1))
-        self.ek, self.es = np.full(N + 1, np.nan), np.full(N + 1, np.nan)
-        if self.energy:
-            self.ek[0] = self.es[0] = 0.0
-        self.work, self.mism = np.zeros(N + 1), np.zeros(N + 1)
+        n = self._n
+        self._structure_records(self.O.shape[0])
         self.u, self.v, self.acc = np.zeros(n), np.zeros(n), np.zeros(n)
         self.s_prev = np.zeros(self.dofs.size)
         self._ala = 0.0  # α̈ at the step's start (the loop's local, kept by approach_acceleration)
