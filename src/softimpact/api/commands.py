@@ -187,7 +187,8 @@ def _impact(structure, at, impactor, law, time_step, duration, gauges, target_mo
         from ..workflows.plate_impact import PlateLoad, PlateProblem
 
         with _naming():
-            target = PlateProblem(spec, PlateLoad(_point(at, "at"), radius, None, grow=True), solver, _plate_gauges(gauges), title=title)
+            load = PlateLoad(_point(at, "at"), radius, None, grow=True)
+            target = PlateProblem(spec, load, solver, _plate_gauges(gauges), title=title, kinematics=structure.kinematics, in_plane=structure.in_plane)
     from ..cases import KINDS
     from ..workflows.coupled import ImpactProblem
 

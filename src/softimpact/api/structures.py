@@ -89,6 +89,10 @@ class Beam:
         ``"strain"`` (default) or ``"stress"`` across the width.
     lumped : bool
         Lumped instead of consistent mass matrix.
+    kinematics : str
+        ``"linear"`` (small deflection, the paper's model; default) or ``"von-karman"`` (large deflection:
+        the plane model's total Lagrangian form, :mod:`softimpact.fem.plane_tl`), as ``[beam] kinematics``
+        of a case file.
 
     Attributes
     ----------
@@ -123,6 +127,7 @@ class Beam:
         model: str = "smeared",
         plane: str = "strain",
         lumped: bool = False,
+        kinematics: str = "linear",
     ):
         from ..fem.plane import SUPPORTS
         from ..workflows.beam_impact import BeamSpec
@@ -148,6 +153,7 @@ class Beam:
             h,
             plane,
             bool(lumped),
+            kinematics=kinematics,
         )
         spec.plane_beam()  # checks sizes now, naming the argument
         object.__setattr__(self, "spec", spec)
@@ -172,11 +178,19 @@ class Plate:
         each ``"clamped"``, ``"simply-supported"`` (default), ``"free"`` or ``"symmetry"``.
     element : str
         ``"mitc9"`` (default) or ``"mitc4"``.
+    kinematics : str
+        ``"linear"`` (small deflection; default) or ``"von-karman"`` (large deflection: membrane
+        stretching coupled to bending, :mod:`softimpact.fem.plate_vk`), as ``[plate] kinematics`` of a case file.
+    in_plane : str
+        Under von Kármán kinematics, the supported edges' restraint in their plane: ``"immovable"``
+        (default: a panel fastened to a stiff frame) or ``"movable"`` (the edges draw in).
 
     Attributes
     ----------
     spec : softimpact.workflows.plate_impact.PlateSpec
         The plate in SI.
+    kinematics, in_plane : str
+        As given.
 
     Raises
     ------
@@ -192,8 +206,22 @@ class Plate:
     """
 
     spec: object
+    kinematics: str = "linear"
+    in_plane: str = "immovable"
 
-    def __init__(self, *, length, width, laminate: Laminate, elements=(48, 48), support="simply-supported", element: str = "mitc9"):
+    def __init__(
+        self,
+        *,
+        length,
+        width,
+        laminate: Laminate,
+        elements=(48, 48),
+        support="simply-supported",
+        element: str = "mitc9",
+        kinematics: str = "linear",
+        in_plane: str = "immovable",
+    ):
+        from ..fem.plate_vk import IN_PLANE, KINEMATICS
         from ..input.plate_case import PLATE_SUPPORTS
         from ..workflows.plate_impact import PlateSpec
 
@@ -209,10 +237,16 @@ class Plate:
                 raise InputError(f"support: {s!r} is not one of {', '.join(PLATE_SUPPORTS)}")
         if not isinstance(laminate, Laminate):
             raise InputError(f"laminate: expected a si.Laminate, got {type(laminate).__name__}")
+        if kinematics not in KINEMATICS:
+            raise InputError(f"kinematics: {kinematics!r} is not one of {', '.join(KINEMATICS)}")
+        if in_plane not in IN_PLANE:
+            raise InputError(f"in_plane: {in_plane!r} is not one of {', '.join(IN_PLANE)}")
         spec = PlateSpec(
             _si(length, "length", "length"), _si(width, "length", "width"), _elements(elements, 2, "elements"), laminate.stack, supports, element=element
         )
         object.__setattr__(self, "spec", spec)
+        object.__setattr__(self, "kinematics", kinematics)
+        object.__setattr__(self, "in_plane", in_plane)
 
 
 @dataclass(frozen=True, init=False)

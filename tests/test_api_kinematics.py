@@ -1,0 +1,92 @@
+"""Large deflection reaches the Python API: ``si.Plate(kinematics=, in_plane=)`` and ``si.Beam(kinematics=)`` run the
+same von Kármán models as a case file's ``[plate]``/``[beam] kinematics`` keys."""
+
+import warnings
+
+import pytest
+
+import softimpact as si
+from softimpact.errors import InputError
+
+PLATE = """title = "API twin, large deflection"
+units = "SI"
+[plate]
+length = "8 in"
+width = "8 in"
+elements = [6, 6]
+support = {{ x0 = "simply-supported", x1 = "simply-supported", y0 = "simply-supported", y1 = "simply-supported" }}
+kinematics = "von-karman"
+in_plane = "{in_plane}"
+[plate.laminate]
+ply = "T300/934"
+layup = "[90/0]5s"
+[load]
+position = ["4 in", "4 in"]
+contact_radius = "0.5 in"
+history = {{ shape = "skewed", peak_force = "100 lbf", time_of_peak = "20 us", duration = "250 us" }}
+[solver]
+time_step = "2 us"
+duration = "300 us"
+"""
+
+IMPACT = """title = "API twin, large deflection"
+units = "SI"
+[target]
+case = "plate.toml"
+[impactor]
+material = "steel"
+diameter = "1 in"
+velocity = "20 m/s"
+[contact]
+law = "hertz"
+[solver]
+time_step = "2 us"
+duration = "300 us"
+"""
+
+
+def _api(kinematics, in_plane="immovable"):
+    plate = si.Plate(length="8 in", width="8 in", laminate=si.Laminate("T300/934", "[90/0]5s"), elements=(6, 6), kinematics=kinematics, in_plane=in_plane)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # w/h and the plies' allowables are past their limits at 20 m/s: the point here
+        return si.impact(plate, at=("4 in", "4 in"), impactor=si.Sphere("steel", "1 in", velocity="20 m/s"), time_step="2 us", duration="300 us", units="SI")
+
+
+def test_api_plate_kinematics_equal_the_case_file(tmp_path):
+    """A von Kármán plate with movable edges built in Python gives the peak force, time of peak and impulse of the same plate read from case files."""
+    in_plane = "movable"  # not the default, so both keys must reach the model
+    (tmp_path / "plate.toml").write_text(PLATE.format(in_plane=in_plane))
+    (tmp_path / "impact.toml").write_text(IMPACT)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        file = si.run(si.load(tmp_path / "impact.toml"), figures=False)
+    ours = _api("von-karman", in_plane)
+    assert ours.summary()["target"]["kinematics"] == "von-karman"
+    for name in ("peak_force", "time_of_peak", "impulse"):
+        assert getattr(ours, name) == pytest.approx(getattr(file, name), rel=1e-12)
+
+
+def test_membrane_stiffening_raises_the_api_plates_peak_force():
+    """At 20 m/s the 1-in ball drives the 5-mm plate past w/h = 1: membrane stretching stiffens it, so the von Kármán peak force exceeds the linear one."""
+    linear, vk = _api("linear"), _api("von-karman")
+    assert linear.summary()["target"]["kinematics"] == "linear"
+    assert vk.peak_force > 1.05 * linear.peak_force
+
+
+@pytest.mark.parametrize("kwargs", [{"kinematics": "nonlinear"}, {"in_plane": "free"}])
+def test_unknown_kinematics_name_the_argument(kwargs):
+    """An unknown kinematics or in-plane restraint is an InputError naming the argument and the choices."""
+    with pytest.raises(InputError, match=next(iter(kwargs))):
+        si.Plate(length="8 in", width="8 in", laminate=si.Laminate("T300/934", "[90/0]5s"), elements=(6, 6), **kwargs)
+    if "kinematics" in kwargs:
+        with pytest.raises(InputError, match="kinematics"):
+            si.Beam(length="6 in", width="1 in", laminate=si.Laminate("T300/934", "[90/0]5s"), **kwargs)
+
+
+def test_api_beam_kinematics_reach_the_run():
+    """``si.Beam(kinematics="von-karman")`` runs the total Lagrangian beam: its run says so."""
+    beam = si.Beam(length="6 in", width="1 in", laminate=si.Laminate("T300/934", "[90/0]5s"), elements=(60, 2), kinematics="von-karman")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        res = si.impact(beam, at="3 in", impactor=si.Sphere("steel", "0.5 in", velocity="100 in/s"), time_step="1 us", duration="100 us", units="SI")
+    assert res.summary()["target"]["kinematics"] == "von-karman"
