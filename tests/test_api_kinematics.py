@@ -52,6 +52,7 @@ def _api(kinematics, in_plane="immovable"):
         return si.impact(plate, at=("4 in", "4 in"), impactor=si.Sphere("steel", "1 in", velocity="20 m/s"), time_step="2 us", duration="300 us", units="SI")
 
 
+@pytest.mark.slow
 def test_api_plate_kinematics_equal_the_case_file(tmp_path):
     """A von Kármán plate with movable edges built in Python gives the peak force, time of peak and impulse of the same plate read from case files."""
     in_plane = "movable"  # not the default, so both keys must reach the model
@@ -90,3 +91,29 @@ def test_api_beam_kinematics_reach_the_run():
         warnings.simplefilter("ignore")
         res = si.impact(beam, at="3 in", impactor=si.Sphere("steel", "0.5 in", velocity="100 in/s"), time_step="1 us", duration="100 us", units="SI")
     assert res.summary()["target"]["kinematics"] == "von-karman"
+
+
+@pytest.mark.slow
+def test_press_equals_the_static_case_and_levys_point():
+    """``si.press`` on the built-in static case's plate gives its summary's deflection (to 1e-12), and at Levy's load P = 278.5 the simply supported immovable plate's w_c/h = 1.83 (NACA TN 846, ν = 0.316; tests/test_plate_levy.py) within 2 % plus its ±0.01 reading."""
+    from softimpact.models.laminate import Ply
+
+    case = si.run(si.load("plate-ss-pressure-vk"), figures=False)
+    ply = case.problem.plate.stack.ply
+    plate = si.Plate(length="10 in", width="10 in", laminate=si.Laminate(ply, "[0]"), elements=(6, 6), kinematics="von-karman")
+    ours = si.press(plate, pressure="20 psi", load_steps=10)
+    assert ours.max_deflection == pytest.approx(case.summary()["max_deflection_m"], rel=1e-12)
+    E, G, nu, h = 10e6 * 6894.757, 10e6 * 6894.757 / (2 * 1.316), 0.316, 0.00254  # Pa, m: the case's plate with Levy's nu
+    levy = Ply("isotropic, Levy's nu", E, E, E, G, G, G, nu, nu, nu, 2700.0, h)
+    plate = si.Plate(length="10 in", width="10 in", laminate=si.Laminate(levy, "[0]"), elements=(6, 6), kinematics="von-karman")
+    res = si.press(plate, pressure=f"{278.5 * E * (h / 0.254) ** 4} Pa", load_steps=10)  # P = q a⁴/(E h⁴) = 278.5
+    assert res.converged
+    assert abs(res.max_deflection / h - 1.83) <= 0.02 * 1.83 + 0.01
+
+
+def test_press_refuses_bad_input():
+    """A pressure without its unit, a non-positive one or a bad load step count is an InputError naming the argument."""
+    plate = si.Plate(length="8 in", width="8 in", laminate=si.Laminate("T300/934", "[90/0]5s"), elements=(4, 4), kinematics="von-karman")
+    for kwargs, name in (({"pressure": "2"}, "pressure"), ({"pressure": "-2 psi"}, "pressure"), ({"pressure": "2 psi", "load_steps": 0}, "load_steps")):
+        with pytest.raises(InputError, match=name):
+            si.press(plate, **kwargs)

@@ -15,8 +15,8 @@ GETTING_STARTED = ROOT / "docs" / "getting-started.md"
 
 
 def test_every_task_has_an_example():
-    """The seven tasks of the gallery are there (bar test, reduce and fit, beam, own plate, calibration, sweep, hail and bird)."""
-    assert len(EXAMPLES) == 7
+    """The eight tasks of the gallery are there (bar test, reduce and fit, beam, own plate, calibration, sweep, hail and bird, large deflection)."""
+    assert len(EXAMPLES) == 8
 
 
 @pytest.mark.parametrize("path", EXAMPLES, ids=lambda p: p.stem)

@@ -14,7 +14,8 @@ quantities, converted to SI once::
     res.peak_force, res.strain["g1"]; res.plot(); res.write("out/")
 
 Structures and impactors: :class:`Beam`, :class:`Plate`, :class:`Laminate`, :class:`Sphere`.
-Runs: :func:`impact`, :func:`load` and :func:`run` (any case file or built-in name).
+Runs: :func:`impact`, :func:`press` (a static uniform pressure on a plate), :func:`load` and :func:`run` (any case
+file or built-in name).
 The chain of the paper: :func:`reduce`, :func:`fit`, :func:`predict`, :func:`identify`,
 :func:`calibrate`, :func:`converge`, :func:`sweep`; lab records: :func:`read_record`; the named
 materials, plies, projectiles, contact laws and cases: :func:`catalogue`.
@@ -47,6 +48,7 @@ _LAZY = {
     "Laminate": "api",
     "Sphere": "api",
     "impact": "api",
+    "press": "api",
     "load": "api",
     "run": "api",
     "reduce": "api",
@@ -62,6 +64,7 @@ _LAZY = {
     "ImpactResult": "api",
     "BeamResult": "api",
     "PlateResult": "api",
+    "StaticPlateResult": "api",
     "BarResult": "api",
     "CommandResult": "api",
     "Record": "api",

@@ -40,8 +40,8 @@ imported explicitly.
 """
 
 from .chain import calibrate, catalogue, converge, fit, identify, predict, read_record, reduce, sweep
-from .commands import Case, impact, load, run
-from .results import BarResult, BeamResult, CommandResult, ImpactResult, PlateResult, Record
+from .commands import Case, impact, load, press, run
+from .results import BarResult, BeamResult, CommandResult, ImpactResult, PlateResult, Record, StaticPlateResult
 from .structures import Bar, Beam, Laminate, Plate, Sphere
 
 __all__ = [
@@ -51,12 +51,14 @@ __all__ = [
     "Bar",
     "Sphere",
     "impact",
+    "press",
     "load",
     "run",
     "Case",
     "ImpactResult",
     "BeamResult",
     "PlateResult",
+    "StaticPlateResult",
     "BarResult",
     "CommandResult",
     "Record",

@@ -9,10 +9,10 @@ from pathlib import Path
 from ..errors import InputError
 from ._edge import _Heard, _naming, _point, _si
 from ._options import python_terms
-from .results import BarResult, BeamResult, ImpactResult, PlateResult
+from .results import BarResult, BeamResult, ImpactResult, PlateResult, StaticPlateResult
 from .structures import Bar, Beam, Plate, Sphere
 
-__all__ = ["Case", "impact", "load", "run"]
+__all__ = ["Case", "impact", "load", "press", "run"]
 
 
 # --- runs ---------------------------------------------------------------------------------------------
@@ -197,6 +197,71 @@ def _impact(structure, at, impactor, law, time_step, duration, gauges, target_mo
     return _run(Case("impact", problem, () if law_file is None else (law_file,), units=units))
 
 
+def press(plate: Plate, *, pressure, load_steps: int = 10, units: str = "in-lbf-s", title: str = "") -> StaticPlateResult:
+    """A uniform pressure on the plate's top face, solved statically in ``load_steps`` equal increments
+    (full Newton on the von Kármán plate; one linear solve with ``kinematics="linear"``): the case file's
+    ``[load] pressure`` with ``[solver] analysis = "static"``.
+
+    Parameters
+    ----------
+    plate : Plate
+        The plate, with its ``kinematics`` and ``in_plane`` restraint.
+    pressure : str or pint.Quantity
+        The uniform pressure [stress], pushing down, e.g. ``"2 psi"``.
+    load_steps : int
+        Equal load increments (Newton from the previous step's solution); default 10.
+    units : str
+        Display units of the written summary, ``"in-lbf-s"`` (default) or ``"SI"``; numbers stay SI.
+    title : str
+        A title for the outputs.
+
+    Returns
+    -------
+    StaticPlateResult
+        Frozen; ``max_deflection`` [m], ``converged``, ``summary()`` (``max_deflection_m``,
+        ``max_deflection_over_thickness``, Newton's iterations per step), ``.plot()``, ``.write(dir)``.
+
+    Raises
+    ------
+    softimpact.errors.InputError
+        A missing unit, a non-positive pressure or load step count, a problem too large for the machine.
+
+    Examples
+    --------
+    >>> import softimpact as si
+    >>> lam = si.Laminate("T300/934", "[90/0]5s")
+    >>> plate = si.Plate(length="8 in", width="8 in", laminate=lam, elements=(4, 4), kinematics="von-karman")
+    >>> res = si.press(plate, pressure="20 psi", load_steps=4)
+    >>> res.converged and res.summary()["kinematics"]
+    'von-karman'
+    """
+    from ..workflows.plate_impact import PlateProblem
+
+    if not isinstance(plate, Plate):
+        raise InputError(f"plate: expected a si.Plate, got {type(plate).__name__}")
+    _check_units(units)
+    if isinstance(load_steps, bool) or not isinstance(load_steps, int) or load_steps < 1:
+        raise InputError(f"load_steps: expected a positive integer, got {load_steps!r}")
+    with _Heard() as heard, python_terms():
+        with _naming():
+            problem = PlateProblem(
+                plate.spec,
+                None,
+                None,
+                title=title,
+                kinematics=plate.kinematics,
+                in_plane=plate.in_plane,
+                analysis="static",
+                pressure=_si(pressure, "stress", "pressure"),
+                load_steps=load_steps,
+            )
+        from ..cases import KINDS
+
+        KINDS["plate"].check(problem)
+        res = _run(Case("plate", problem, units=units))
+    return replace(res, warnings=tuple(heard.texts))
+
+
 def _bar_impact(bar: Bar, at, sphere: Sphere, law, solver, gauges, units: str, title: str) -> BarResult:
     from ..models.specimens import Gauge, Impactor
     from ..workflows.bar_impact import BarImpactProblem
@@ -343,6 +408,8 @@ def _run(case: Case, figures: bool = True):
     kind = kind_for(run.problem).name  # an impact case on a bar target reads as a bar problem, and runs as one
     if kind == "bar":
         return BarResult(run.problem, run.result, run.plain, run.inferred, case.files, units=case.units)
+    if kind == "plate" and run.problem.analysis == "static":
+        return StaticPlateResult(run.problem, run.result, run.model, case.files, run_summary=run.summary, units=case.units)
     result_type = {"impact": ImpactResult, "beam": BeamResult, "plate": PlateResult}[kind]
     return result_type(run.problem, run.result, run.model, case.files, run_summary=run.summary, units=case.units)
 

@@ -15,7 +15,7 @@ from pathlib import Path
 from ..errors import InputError
 from ._edge import _one_line, _write
 
-__all__ = ["ImpactResult", "BeamResult", "PlateResult", "BarResult", "CommandResult", "Record"]
+__all__ = ["ImpactResult", "BeamResult", "PlateResult", "StaticPlateResult", "BarResult", "CommandResult", "Record"]
 
 
 # --- results ----------------------------------------------------------------------------------------
@@ -368,6 +368,66 @@ class PlateResult(_Prescribed):
             return write_fields(path, self.model, kept_frames(self.result, steps))
         run = execute(self.problem, fields=True, frames=frames, model=self.model, energy=False)  # as ``--fields`` runs it
         return write_fields(path, self.model, kept_frames(run.result, run.kept))
+
+
+@dataclass(frozen=True)
+class StaticPlateResult(_Written):
+    """A plate under a uniform pressure, solved statically (:func:`press`; :func:`run` of a plate case with
+    ``[solver] analysis = "static"``; ``softimpact plate`` on it).
+
+    Parameters
+    ----------
+    problem : softimpact.workflows.plate_impact.PlateProblem
+        Every input in SI (``pressure`` [Pa], ``load_steps``, ``kinematics``, ``in_plane``).
+    result : softimpact.workflows.plate_impact.PlateStaticResult
+        Per load step the pressure [Pa], the largest deflection [m], Newton's iterations and residuals.
+    model : PlateVK, optional
+        The assembled plate that ran.
+    case_files : tuple of Path
+        The case files read (never overwritten by ``write``).
+    warnings : tuple of str
+        The run's :class:`~softimpact.errors.SoftimpactWarning` s, one line each.
+    """
+
+    problem: object
+    result: object
+    model: object = field(repr=False, compare=False, default=None)
+    case_files: tuple = field(repr=False, default=())
+    warnings: tuple = field(repr=False, compare=False, default=())
+    run_summary: dict = field(repr=False, compare=False, default=None)  # summary.json's content (cases.run.Run.summary)
+    units: str = field(repr=False, default="in-lbf-s")  # the display system of the written summary: the numbers stay SI
+    command = "softimpact plate"
+
+    def __post_init__(self):
+        _read_only(self.result)
+
+    max_deflection = property(
+        lambda self: float(self.result.max_deflection[-1]), doc="Largest transverse deflection of the mid-surface [m] at the full pressure."
+    )
+    converged = property(lambda self: bool(self.result.converged), doc="Whether Newton converged at every load step.")
+
+    def inputs(self):
+        return tuple(self.case_files)
+
+    def files(self, figures: bool = True):
+        """summary.json of ``softimpact plate`` on a static case (no history, no figures)."""
+        from ..output.plate import plate_static_files
+
+        return plate_static_files(self.run_summary, self.units)
+
+    def to_frame(self):
+        """Pressure and largest deflection per load step, indexed by the step; units in ``df.attrs["units"]``."""
+        cols = {"pressure_Pa": self.result.pressure, "max_deflection_m": self.result.max_deflection, "newton_iterations": self.result.iterations}
+        return _frame(cols, {"pressure_Pa": "Pa", "max_deflection_m": "m", "newton_iterations": "1"})
+
+    def plot(self, ax=None):
+        """The largest deflection against the pressure, per load step [kPa, mm]; returns the matplotlib Axes."""
+        ax = _axes(ax)
+        ax.plot(self.result.pressure / 1e3, self.result.max_deflection * 1e3, "o-", label=self.result.kinematics)
+        ax.set_xlabel("pressure [kPa]")
+        ax.set_ylabel("largest deflection [mm]")
+        ax.legend()
+        return ax
 
 
 @dataclass(frozen=True)
