@@ -198,3 +198,21 @@ def test_sweep_of_a_nonlinear_beam_steps_each_run(tmp_path):
         r = beam_problem(data, tmp_path).model().direct(energy=False, displacement=False)
         eps = r.strain[0]
         assert t["strain_g1.peak"][k] == pytest.approx(eps[np.argmax(np.abs(eps))], rel=1e-9)
+
+
+def test_field_files_of_the_nonlinear_beam_carry_green_lagrange_strain():
+    """The nonlinear beam's field frames read zero strain under a rigid rotation of 0.2 rad (Green–Lagrange), where the linear beam's read cos θ − 1 along x."""
+    base = locate("paper-long-beam").parent
+    problem = beam_problem(tomllib.loads(_beam_text(elements="[40, 2]")), base)
+    linear = beam_problem(tomllib.loads(_beam_text("linear", elements="[40, 2]")), base)
+    theta = 0.2
+    for prob, expected in ((problem, 0.0), (linear, np.cos(theta) - 1)):
+        model = prob.model()
+        pm = model.plane
+        x, z = pm.node_x, pm.node_z
+        full = np.zeros(pm.basis.N)
+        full[pm.basis.nodal_dofs[0]] = x * (np.cos(theta) - 1) - z * np.sin(theta)
+        full[pm.basis.nodal_dofs[1]] = x * np.sin(theta) + z * (np.cos(theta) - 1)
+        _, _, _, cells = model.mesh.field_frames(full[:, None])
+        assert cells["strain_xx"] == pytest.approx(np.full_like(cells["strain_xx"], expected), abs=1e-12)
+        assert np.abs(cells["shear_strain_xz"]).max() < (1e-12 if expected == 0.0 else 1.0)

@@ -184,26 +184,30 @@ class PlaneModel:
         full[self.free] = u
         return full
 
-    def field_frames(self, full: np.ndarray):
+    def field_frames(self, full: np.ndarray, measure: str = "linear"):
         """The fields of full DOF vectors ``full`` (N, n_frames) for a field file (:mod:`softimpact.output.fields`):
         points (n_nodes, 3) [m] in the x–z plane (file y = the thickness coordinate z), cells (n_cells, 4), point
         data ``displacement`` (n_frames, n_nodes, 3) = (u_x, u_z, 0) and cell data at the element centres
-        (:func:`centre_strain`), each (n_frames, n_cells)."""
+        (:func:`centre_strain` in the strain ``measure``), each (n_frames, n_cells)."""
         mesh = self.basis.mesh
         points = np.column_stack((mesh.p[0], mesh.p[1], np.zeros(mesh.p.shape[1])))
         cells = np.asarray(mesh.t.T, int)
         nd = self.basis.nodal_dofs
         ux, uz = full[nd[0]], full[nd[1]]
         disp = np.stack((ux.T, uz.T, np.zeros_like(ux.T)), axis=-1)
-        strain = centre_strain(points[:, :2], cells, ux, uz)
+        strain = centre_strain(points[:, :2], cells, ux, uz, measure)
         return points, cells, {"displacement": disp}, {k: v.T for k, v in strain.items()}
 
 
-def centre_strain(points: np.ndarray, cells: np.ndarray, ux: np.ndarray, uz: np.ndarray) -> dict[str, np.ndarray]:
+def centre_strain(points: np.ndarray, cells: np.ndarray, ux: np.ndarray, uz: np.ndarray, measure: str = "linear") -> dict[str, np.ndarray]:
     """Strain at the centre of each axis-aligned bilinear quad: ε_xx = ∂u_x/∂x, ε_zz = ∂u_z/∂z,
-    γ_xz = ∂u_x/∂z + ∂u_z/∂x. At the centre ∂N_i/∂x = s_i/(2·h_x), s_i = ±1 on the right/left
-    nodes (and so for z). ``points`` (n_nodes, 2) [m], ``cells`` (n_cells, 4) node indices,
+    γ_xz = ∂u_x/∂z + ∂u_z/∂x (``measure`` "linear"), or the Green–Lagrange strain of the total Lagrangian beam
+    (``"green-lagrange"``: E_xx = u_x,x + ½(u_x,x² + u_z,x²), E_zz = u_z,z + ½(u_x,z² + u_z,z²), 2E_xz = u_x,z + u_z,x +
+    u_x,x·u_x,z + u_z,x·u_z,z; zero under a rigid rotation). At the centre ∂N_i/∂x = s_i/(2·h_x), s_i = ±1 on the
+    right/left nodes (and so for z). ``points`` (n_nodes, 2) [m], ``cells`` (n_cells, 4) node indices,
     ``ux``, ``uz`` (n_nodes, n_frames) [m]; returns arrays (n_cells, n_frames)."""
+    if measure not in ("linear", "green-lagrange"):
+        raise InputError(f"strain measure must be 'linear' or 'green-lagrange', got {measure!r}", "measure")
     x, z = points[cells, 0], points[cells, 1]  # (n_cells, 4)
     sx = np.sign(x - x.mean(axis=1, keepdims=True))
     sz = np.sign(z - z.mean(axis=1, keepdims=True))
@@ -213,4 +217,11 @@ def centre_strain(points: np.ndarray, cells: np.ndarray, ux: np.ndarray, uz: np.
     def d(u, s, h):  # (n_cells, n_frames)
         return np.einsum("ck,ckf->cf", s, u[cells]) / (2.0 * h)[:, None]
 
-    return {"strain_xx": d(ux, sx, hx), "strain_zz": d(uz, sz, hz), "shear_strain_xz": d(ux, sz, hz) + d(uz, sx, hx)}
+    uxx, uxz, uzx, uzz = d(ux, sx, hx), d(ux, sz, hz), d(uz, sx, hx), d(uz, sz, hz)
+    if measure == "linear":
+        return {"strain_xx": uxx, "strain_zz": uzz, "shear_strain_xz": uxz + uzx}
+    return {
+        "strain_xx": uxx + 0.5 * (uxx**2 + uzx**2),
+        "strain_zz": uzz + 0.5 * (uxz**2 + uzz**2),
+        "shear_strain_xz": uxz + uzx + uxx * uxz + uzx * uzz,
+    }

@@ -10,7 +10,7 @@ from ..errors import InputError
 from ..fem.energies import Energies
 from .beam_impact import BeamModel, BeamResult
 
-__all__ = ["BeamTLModel"]
+__all__ = ["BeamTLModel", "GreenLagrangeMesh"]
 
 
 class BeamTLModel(BeamModel):
@@ -45,6 +45,11 @@ class BeamTLModel(BeamModel):
         self._C = None if C is None else C.tocsr()
         solver = self.problem.solver
         return VonKarmanNewmark(self.tl, solver.time_step, self._C, solver.newmark, tangent="modified")
+
+    @property
+    def mesh(self):
+        """The plane mesh whose field frames carry the model's own strain, Green–Lagrange (:class:`GreenLagrangeMesh`)."""
+        return GreenLagrangeMesh(self.plane)
 
     @property
     def M(self):
@@ -105,3 +110,18 @@ class BeamTLModel(BeamModel):
         energies = Energies(sampled, kinetic, strain, work[sampled]) if energy else None
         strain_h, bending, defl = self._split(y)
         return BeamResult(self.problem, self.solver.times(), F, strain_h, bending, defl, saved, energies)
+
+
+class GreenLagrangeMesh:
+    """The plane mesh of a total Lagrangian beam for field files: its ``expand`` and its ``field_frames`` with the
+    element-centre strains in the Green–Lagrange measure (:func:`softimpact.fem.plane.centre_strain`), the strain the
+    model's stresses come from (the linear one reads about −θ²/2 under a rigid rotation θ)."""
+
+    def __init__(self, plane):
+        self.plane = plane
+
+    def expand(self, u):
+        return self.plane.expand(u)
+
+    def field_frames(self, full):
+        return self.plane.field_frames(full, measure="green-lagrange")
