@@ -9,13 +9,20 @@ three sublaminates tied at the two 0/90 interfaces nearest the mid-plane), stepp
 - the linear direct run of the same quarter plate (one FSDT plate of the whole laminate), same impactor and steps;
 - the linear direct run of the whole 48 × 48 plate (plate-ss-8in), same impactor and steps.
 
-Usage: python benchmarks/bench_cohesive_impact.py [steps] [velocity_m_s]
+With ``--whole`` the cohesive run is on the whole 48 × 48 plate (plate-ss-8in stacked three deep, the same
+interfaces and interface law, written to a temporary case file from the built-in one) and is compared with the
+linear direct run of the same whole plate.
+
+Usage: python benchmarks/bench_cohesive_impact.py [steps] [velocity_m_s] [--whole]
 """
 
 import platform
 import sys
+import tempfile
 import time
 from dataclasses import replace
+from importlib.resources import files
+from pathlib import Path
 
 from softimpact.fem.newmark import SolverSpec
 from softimpact.input.impact_case import load_impact_case
@@ -23,8 +30,17 @@ from softimpact.workflows.coupled import run_impact
 from softimpact.workflows.plate_impact import PlateProblem
 
 
-def main(steps: int = 200, velocity: float | None = None):
-    p, _ = load_impact_case("plate-ss-8in-impact-cohesive")
+def whole_plate_case(folder: Path) -> Path:
+    """The built-in cohesive case with its target the whole plate-ss-8in, written into ``folder``."""
+    text = (files("softimpact") / "data" / "cases" / "plate-ss-8in-impact-cohesive.toml").read_text()
+    path = folder / "cohesive-whole.toml"
+    path.write_text(text.replace('case = "plate-ss-8in-quarter"', 'case = "plate-ss-8in"'))
+    return path
+
+
+def main(steps: int = 200, velocity: float | None = None, whole: bool = False):
+    with tempfile.TemporaryDirectory() as folder:
+        p, _ = load_impact_case(whole_plate_case(Path(folder)) if whole else "plate-ss-8in-impact-cohesive")
     t = p.target
     solver = SolverSpec(1e-6, steps * 1e-6, t.solver.newmark)
     imp = p.impactor if velocity is None else replace(p.impactor, velocity=velocity)
@@ -52,7 +68,8 @@ def main(steps: int = 200, velocity: float | None = None):
     t_full = time.perf_counter() - t0
 
     print(f"python {platform.python_version()}, {platform.machine()}; {steps} steps of 1 us, ball at {imp.velocity:g} m/s")
-    print(f"cohesive quarter (3 sublaminates)  {model.size:7d} DOF  build {build:7.2f} s  run {t_coh:8.2f} s  ({t_coh / steps * 1e3:7.1f} ms/step)")
+    label = "whole 48 x 48" if whole else "quarter"
+    print(f"cohesive {label} (3 sublaminates)  {model.size:7d} DOF  build {build:7.2f} s  run {t_coh:8.2f} s  ({t_coh / steps * 1e3:7.1f} ms/step)")
     print(f"   solves {res.solves}, factorisations {model.stepper.factorisations}, peak force {res.peak_force:.1f} N")
     print(f"   delaminated area {area * 1e6:.4g} mm2, process zone up to {zone * 1e6:.4g} mm2 (whole plate)")
     print(f"linear quarter, direct             {m_lin.size:7d} DOF  run {t_lin:8.2f} s  ({t_lin / steps * 1e3:7.1f} ms/step)  peak {r_lin.peak_force:.1f} N")
@@ -63,4 +80,5 @@ def main(steps: int = 200, velocity: float | None = None):
 
 
 if __name__ == "__main__":
-    main(int(sys.argv[1]) if len(sys.argv) > 1 else 200, float(sys.argv[2]) if len(sys.argv) > 2 else None)
+    args = [a for a in sys.argv[1:] if a != "--whole"]
+    main(int(args[0]) if args else 200, float(args[1]) if len(args) > 1 else None, "--whole" in sys.argv[1:])
