@@ -74,23 +74,61 @@ def test_membrane_stiffening_raises_the_api_plates_peak_force():
     assert vk.peak_force > 1.05 * linear.peak_force
 
 
-@pytest.mark.parametrize("kwargs", [{"kinematics": "nonlinear"}, {"in_plane": "free"}])
-def test_unknown_kinematics_name_the_argument(kwargs):
-    """An unknown kinematics or in-plane restraint is an InputError naming the argument and the choices."""
+@pytest.mark.parametrize("kwargs", [{"kinematics": "nonlinear"}, {"in_plane": "free"}, {"support": "free"}])
+def test_bad_plate_options_name_the_argument(kwargs):
+    """An unknown kinematics or in-plane restraint, or edges that leave the plate a mechanism, are InputErrors naming the argument."""
     with pytest.raises(InputError, match=next(iter(kwargs))):
         si.Plate(length="8 in", width="8 in", laminate=si.Laminate("T300/934", "[90/0]5s"), elements=(6, 6), **kwargs)
-    if "kinematics" in kwargs:
-        with pytest.raises(InputError, match="kinematics"):
-            si.Beam(length="6 in", width="1 in", laminate=si.Laminate("T300/934", "[90/0]5s"), **kwargs)
 
 
-def test_api_beam_kinematics_reach_the_run():
-    """``si.Beam(kinematics="von-karman")`` runs the total Lagrangian beam: its run says so."""
+def test_unknown_beam_kinematics_names_the_argument():
+    """An unknown beam kinematics is an InputError naming the argument."""
+    with pytest.raises(InputError, match="kinematics"):
+        si.Beam(length="6 in", width="1 in", laminate=si.Laminate("T300/934", "[90/0]5s"), kinematics="nonlinear")
+
+
+BEAM = """title = "API twin, large deflection"
+units = "SI"
+[beam]
+length = "6 in"
+width = "1 in"
+elements = [60, 2]
+support = "clamped-free"
+kinematics = "von-karman"
+[beam.laminate]
+ply = "T300/934"
+layup = "[90/0]5s"
+model = "smeared"
+[load]
+position = "3 in"
+contact_radius = "0.25 in"
+history = { shape = "skewed", peak_force = "44 lbf", time_of_peak = "30 us", duration = "355 us" }
+[solver]
+time_step = "1 us"
+duration = "100 us"
+"""
+
+
+def test_api_beam_kinematics_equal_the_case_file(tmp_path):
+    """``si.Beam(kinematics="von-karman")`` gives the peak force and impulse of the same beam read from case files, and its run says its kinematics."""
     beam = si.Beam(length="6 in", width="1 in", laminate=si.Laminate("T300/934", "[90/0]5s"), elements=(60, 2), kinematics="von-karman")
+    assert beam.kinematics == "von-karman"
+    sphere = si.Sphere("steel", "0.5 in", velocity="100 in/s")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        res = si.impact(beam, at="3 in", impactor=si.Sphere("steel", "0.5 in", velocity="100 in/s"), time_step="1 us", duration="100 us", units="SI")
-    assert res.summary()["target"]["kinematics"] == "von-karman"
+        ours = si.impact(beam, at="3 in", impactor=sphere, time_step="1 us", duration="100 us", units="SI")
+        (tmp_path / "beam.toml").write_text(BEAM)
+        (tmp_path / "impact.toml").write_text(
+            IMPACT.replace("plate.toml", "beam.toml")
+            .replace('"1 in"', '"0.5 in"')
+            .replace('"20 m/s"', '"100 in/s"')
+            .replace('"2 us"', '"1 us"')
+            .replace('"300 us"', '"100 us"')
+        )
+        file = si.run(si.load(tmp_path / "impact.toml"), figures=False)
+    assert ours.summary()["target"]["kinematics"] == "von-karman"
+    for name in ("peak_force", "time_of_peak", "impulse"):
+        assert getattr(ours, name) == pytest.approx(getattr(file, name), rel=1e-12)
 
 
 @pytest.mark.slow
@@ -111,9 +149,42 @@ def test_press_equals_the_static_case_and_levys_point():
     assert abs(res.max_deflection / h - 1.83) <= 0.02 * 1.83 + 0.01
 
 
-def test_press_refuses_bad_input():
-    """A pressure without its unit, a non-positive one or a bad load step count is an InputError naming the argument."""
+@pytest.mark.parametrize(
+    "kwargs,name",
+    [
+        ({"pressure": "2"}, "pressure"),
+        ({"pressure": "2 in"}, "pressure"),
+        ({"pressure": "-2 psi"}, "pressure"),
+        ({"pressure": "2 psi", "load_steps": 0}, "load_steps"),
+        ({"pressure": "2 psi", "load_steps": True}, "load_steps"),
+        ({"pressure": "2 psi", "load_steps": 2.5}, "load_steps"),
+    ],
+)
+def test_press_refuses_bad_input(kwargs, name):
+    """A pressure without its unit, of another dimension or not positive, or a bad load step count, is an InputError naming the argument."""
     plate = si.Plate(length="8 in", width="8 in", laminate=si.Laminate("T300/934", "[90/0]5s"), elements=(4, 4), kinematics="von-karman")
-    for kwargs, name in (({"pressure": "2"}, "pressure"), ({"pressure": "-2 psi"}, "pressure"), ({"pressure": "2 psi", "load_steps": 0}, "load_steps")):
-        with pytest.raises(InputError, match=name):
-            si.press(plate, **kwargs)
+    with pytest.raises(InputError, match=name):
+        si.press(plate, **kwargs)
+
+
+def test_press_refuses_a_beam():
+    """``si.press`` takes a plate only: a beam is an InputError naming the argument."""
+    beam = si.Beam(length="6 in", width="1 in", laminate=si.Laminate("T300/934", "[90/0]5s"), elements=(20, 2))
+    with pytest.raises(InputError, match="plate"):
+        si.press(beam, pressure="2 psi")
+
+
+def test_static_result_frame_plot_and_files(tmp_path):
+    """The static result's frame has one row per load step ending at the full pressure and the largest deflection; write() puts its summary.json in the folder."""
+    import numpy as np
+
+    plate = si.Plate(length="8 in", width="8 in", laminate=si.Laminate("T300/934", "[90/0]5s"), elements=(4, 4), kinematics="von-karman")
+    res = si.press(plate, pressure="20 psi", load_steps=4, units="SI")
+    df = res.to_frame()
+    assert list(df.index) == [1, 2, 3, 4] and df.attrs["units"]["pressure_Pa"] == "Pa"
+    assert df["pressure_Pa"].iloc[-1] == pytest.approx(20 * 6894.757293168, rel=1e-9)
+    assert df["max_deflection_m"].iloc[-1] == res.max_deflection
+    assert np.all(np.diff(df["max_deflection_m"]) > 0)
+    assert res.plot() is not None
+    written = res.write(tmp_path / "out", figures=False)
+    assert {p.name for p in written} == {"summary.json"}

@@ -215,4 +215,16 @@ def test_field_files_of_the_nonlinear_beam_carry_green_lagrange_strain():
         full[pm.basis.nodal_dofs[1]] = x * np.sin(theta) + z * (np.cos(theta) - 1)
         _, _, _, cells = model.mesh.field_frames(full[:, None])
         assert cells["strain_xx"] == pytest.approx(np.full_like(cells["strain_xx"], expected), abs=1e-12)
-        assert np.abs(cells["shear_strain_xz"]).max() < (1e-12 if expected == 0.0 else 1.0)
+        assert np.abs(cells["shear_strain_xz"]).max() < 1e-12  # γ = −sin θ + sin θ in both measures
+
+
+def test_green_lagrange_field_strain_of_a_simple_shear():
+    """Under the simple shear u_x = γ·z the nonlinear beam's field frames read E_xx = 0, E_zz = γ²/2 and 2E_xz = γ (FᵀF − I: not FFᵀ − I, which gives E_xx = γ²/2)."""
+    model = beam_problem(tomllib.loads(_beam_text(elements="[40, 2]")), locate("paper-long-beam").parent).model()
+    pm, gamma = model.plane, 0.3
+    full = np.zeros(pm.basis.N)
+    full[pm.basis.nodal_dofs[0]] = gamma * pm.node_z
+    _, _, _, cells = model.mesh.field_frames(full[:, None])
+    assert np.abs(cells["strain_xx"]).max() < 1e-12
+    assert cells["strain_zz"] == pytest.approx(np.full_like(cells["strain_zz"], gamma**2 / 2), rel=1e-12)
+    assert cells["shear_strain_xz"] == pytest.approx(np.full_like(cells["shear_strain_xz"], gamma), rel=1e-12)

@@ -68,8 +68,8 @@ class _Written:
         return _write(out, self.files(figures), self.inputs(), manifest, force)
 
 
-def _frame(columns: dict, units_of: dict):
-    """A DataFrame of ``columns`` (``time_s`` first) indexed by time, with ``df.attrs["units"]``.
+def _frame(columns: dict, units_of: dict, index: str = "time_s"):
+    """A DataFrame of ``columns`` indexed by the column ``index`` (time, ``time_s``, by default), with ``df.attrs["units"]``.
 
     pandas, not xarray: every history has one dimension (time), which a DataFrame index holds
     exactly, and pandas is what users of lab data know (the ``table`` extra)."""
@@ -78,9 +78,9 @@ def _frame(columns: dict, units_of: dict):
     except ImportError:  # pragma: no cover - depends on the environment
         raise ImportError("to_frame needs pandas: pip install 'softimpact[table]'") from None
     cols = dict(columns)
-    time = cols.pop("time_s")
-    df = pd.DataFrame(cols, index=pd.Index(time, name="time_s"))
-    df.attrs["units"] = {"time_s": "s", **{k: units_of.get(k, "") for k in cols}}
+    key = cols.pop(index)
+    df = pd.DataFrame(cols, index=pd.Index(key, name=index))
+    df.attrs["units"] = {index: units_of.get(index, "s" if index == "time_s" else "1"), **{k: units_of.get(k, "") for k in cols}}
     return df
 
 
@@ -416,9 +416,17 @@ class StaticPlateResult(_Written):
         return plate_static_files(self.run_summary, self.units)
 
     def to_frame(self):
-        """Pressure and largest deflection per load step, indexed by the step; units in ``df.attrs["units"]``."""
-        cols = {"pressure_Pa": self.result.pressure, "max_deflection_m": self.result.max_deflection, "newton_iterations": self.result.iterations}
-        return _frame(cols, {"pressure_Pa": "Pa", "max_deflection_m": "m", "newton_iterations": "1"})
+        """Pressure, largest deflection and Newton iterations per load step, indexed by the step (1, 2, …); units in ``df.attrs["units"]``."""
+        import numpy as np
+
+        r = self.result
+        cols = {
+            "load_step": np.arange(1, r.pressure.size + 1),
+            "pressure_Pa": r.pressure,
+            "max_deflection_m": r.max_deflection,
+            "newton_iterations": r.iterations,
+        }
+        return _frame(cols, {"load_step": "1", "pressure_Pa": "Pa", "max_deflection_m": "m", "newton_iterations": "1"}, index="load_step")
 
     def plot(self, ax=None):
         """The largest deflection against the pressure, per load step [kPa, mm]; returns the matplotlib Axes."""

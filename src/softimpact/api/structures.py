@@ -158,6 +158,11 @@ class Beam:
         spec.plane_beam()  # checks sizes now, naming the argument
         object.__setattr__(self, "spec", spec)
 
+    @property
+    def kinematics(self) -> str:
+        """``"linear"`` or ``"von-karman"``, as given."""
+        return self.spec.kinematics
+
 
 @dataclass(frozen=True, init=False)
 class Plate:
@@ -222,7 +227,7 @@ class Plate:
         in_plane: str = "immovable",
     ):
         from ..fem.plate_vk import IN_PLANE, KINEMATICS
-        from ..input.plate_case import PLATE_SUPPORTS
+        from ..input.plate_case import PLATE_SUPPORTS, check_supports
         from ..workflows.plate_impact import PlateSpec
 
         edges = ("x0", "x1", "y0", "y1")
@@ -235,6 +240,7 @@ class Plate:
         for s in supports:
             if s not in PLATE_SUPPORTS:
                 raise InputError(f"support: {s!r} is not one of {', '.join(PLATE_SUPPORTS)}")
+        check_supports(supports)
         if not isinstance(laminate, Laminate):
             raise InputError(f"laminate: expected a si.Laminate, got {type(laminate).__name__}")
         if kinematics not in KINEMATICS:

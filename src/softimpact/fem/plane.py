@@ -207,7 +207,7 @@ def centre_strain(points: np.ndarray, cells: np.ndarray, ux: np.ndarray, uz: np.
     right/left nodes (and so for z). ``points`` (n_nodes, 2) [m], ``cells`` (n_cells, 4) node indices,
     ``ux``, ``uz`` (n_nodes, n_frames) [m]; returns arrays (n_cells, n_frames)."""
     if measure not in ("linear", "green-lagrange"):
-        raise InputError(f"strain measure must be 'linear' or 'green-lagrange', got {measure!r}", "measure")
+        raise ValueError(f"strain measure must be 'linear' or 'green-lagrange', got {measure!r}")
     x, z = points[cells, 0], points[cells, 1]  # (n_cells, 4)
     sx = np.sign(x - x.mean(axis=1, keepdims=True))
     sz = np.sign(z - z.mean(axis=1, keepdims=True))

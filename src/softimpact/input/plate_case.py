@@ -26,7 +26,7 @@ from ..workflows.plate_impact import ANALYSES, PlateGauge, PlateLoad, PlateProbl
 from .beam_case import read_load_history, read_ply
 from .toml import Table, load_case_toml, locate, naming, read_solver, read_units
 
-__all__ = ["PLATE_SUPPORTS", "PLATE_MODELS", "plate_problem", "read_plate_gauges", "load_plate_case"]
+__all__ = ["PLATE_SUPPORTS", "PLATE_MODELS", "check_supports", "plate_problem", "read_plate_gauges", "load_plate_case"]
 
 PLATE_SUPPORTS = ("clamped", "simply-supported", "free", "symmetry")  # symmetry: a mirror plane (quarter models)
 PLATE_MODELS = ("fsdt", "solid")
@@ -56,11 +56,15 @@ def _supports(tbl: Table) -> tuple[str, str, str, str]:
     s = Table(value, tbl.key("support"))
     out = tuple(s.string(e, choices=PLATE_SUPPORTS) for e in EDGES)
     s.done()
-    clamped = out.count("clamped")
-    hinged = out.count("simply-supported")
-    if clamped == 0 and hinged < 2:
-        raise InputError(f"{tbl.key('support')}: {dict(zip(EDGES, out))} leaves the plate a mechanism (it needs a clamped edge or two simply supported edges)")
+    check_supports(out, tbl.key("support"))
     return out
+
+
+def check_supports(supports, key: str = "support") -> None:
+    """Refuse edges (x0, x1, y0, y1) that leave the plate a mechanism: it needs a clamped edge or two simply
+    supported ones (the rule of case files and of ``si.Plate``)."""
+    if supports.count("clamped") == 0 and supports.count("simply-supported") < 2:
+        raise InputError(f"{key}: {dict(zip(EDGES, supports))} leaves the plate a mechanism (it needs a clamped edge or two simply supported edges)")
 
 
 def read_plate_gauges(top: Table) -> tuple[PlateGauge, ...]:

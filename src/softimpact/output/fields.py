@@ -16,7 +16,8 @@ Meshes (SI, metres), one layout for every model:
   face); point data ``displacement`` (u_x, u_z, 0) [m]; cell data at each element's
   centre ``strain_xx``, ``strain_zz``, ``shear_strain_xz`` (engineering γ) — exact for the
   bilinear field at the centre and cheap (no quadrature); on a beam with ``kinematics =
-  "von-karman"`` the same names hold the Green–Lagrange strain (the model's own measure);
+  "von-karman"`` the same names hold the Green–Lagrange strain (the model's own measure; history.csv's gauges
+  read their chords' stretch, which differs from it at second order in the rotation);
 - plate (:class:`softimpact.workflows.plate_impact.PlateModel`): the mid-surface, the node
   grid split into quads (an MITC9 element shows as its four sub-quads), z = 0; point
   data ``displacement`` (u, v, w) [m] (w up +) and ``rotation`` (φ_x, φ_y) [rad].
