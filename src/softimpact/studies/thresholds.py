@@ -72,7 +72,10 @@ Reduced stepping: :func:`structure`'s ``nonlinear_stepping`` says how a von Kár
 model, built ONCE per structure for its impact point, whose approach row is the same for every ball, and reused by every
 run of the map: a fraction of a second a run after a build of a few seconds). Its stated error: the reduced run's peak
 force +1.8 % from the full run's on the 48 × 48 plate at w/h 0.7 (BENCHMARKS.md); an index that follows the peak force
-as V^β then moves its threshold by about −1.8 %/β (β ≈ 1.3–1.6 for the delamination index). The reduced model holds
+ε high, as V^β, then has its threshold (1 + ε)^(−1/β) times the full one's, about −ε/β. Measured
+(``benchmarks/bench_vk_rom_map.py``): on that plate the steel ball's delamination threshold is 0.9 % below the full
+map's (ε +0.94 % at V*, β 1.05), the row 65 times cheaper in CPU; on the tests' 10 × 10 quarter plate under a rubber
+ball, 4·10⁻⁶ (ε −8·10⁻⁶, β 1.9; tests/test_rom_maps.py). The reduced model holds
 only for a laminate without bending–extension coupling and a memoryless contact law (the identified law's Maxwell arm
 is not): anything else is refused when the structure is built, with an InputError naming the option. On a linear target
 the option has no effect (kernel runs). Each row says how its runs were stepped (``stepping``).
