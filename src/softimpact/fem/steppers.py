@@ -14,7 +14,8 @@ snapshots)`` then ``.run()``:
   :class:`softimpact.fem.plate_vk.VonKarmanNewmark`): one Newton over the structure and the contact a step;
   energies and snapshots.
 - ``"von-karman-rom"``: :class:`softimpact.fem.vk_rom.ReducedVonKarmanStepper`, the same plate on its reduced
-  nonlinear model (``engine``: its :class:`softimpact.fem.vk_rom.PlateVKROM`, built once; or the plate's
+  nonlinear model (``engine``: its :class:`softimpact.fem.vk_rom.PlateVKROM`, built once by
+  :func:`softimpact.fem.vk_rom.reduced_plate`, as a threshold map's structure does; or the plate's
   VonKarmanNewmark, the reduced model then built for the run): a fraction of a second a run.
 - ``"cohesive"``: :class:`softimpact.fem.cohesive_plate.CohesiveStepper`, sublaminates tied by cohesive
   interfaces (``engine``: the stack's :class:`softimpact.fem.plate_vk.VonKarmanNewmark`): the von Kármán

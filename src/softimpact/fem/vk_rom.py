@@ -55,7 +55,7 @@ from .plate import PHI_X, PHI_Y, U, V, W
 from .plate_vk import PlateVK, VonKarmanNewmark
 from .stepping import CoupledStepper, check_time_step
 
-__all__ = ["PlateVKROM", "ReducedVonKarmanStepper"]
+__all__ = ["PlateVKROM", "ReducedVonKarmanStepper", "reduced_plate"]
 
 # Defaults from benchmarks/bench_vk_rom.py on the 48 × 48 MITC9 plate at 1500 in/s (w/h 0.7; BENCHMARKS.md): 80 and 24
 # put the peak force 1.8 % and the contact time 0.1 % from the full run's at 0.44 s CPU a run; 60 and 16 cost less
@@ -222,6 +222,17 @@ class PlateVKROM:
         return lin, O[:, self.mset] @ self.psi, z - self.basis @ (lin.T / self.lam[:, None])
 
 
+def reduced_plate(engine, approach_row: np.ndarray, vectors: int = VECTORS, nonlinear: int = NONLINEAR) -> PlateVKROM:
+    """The reduced plate of a von Kármán plate's stepper ``engine`` (its :class:`~softimpact.fem.plate_vk.VonKarmanNewmark`,
+    a model's ``stepper``) struck along ``approach_row`` (n,), the stepper's damping projected: what
+    :class:`ReducedVonKarmanStepper` builds for one run, built here once for every run of that plate and impact point (the
+    approach row is the point's, whatever the ball). An InputError for any other stepper (a linear structure's, a
+    large-deflection beam's) or a laminate with bending-extension coupling."""
+    if not (isinstance(engine, VonKarmanNewmark) and isinstance(engine.model, PlateVK)):
+        raise InputError("the reduced von Karman model needs a plate with von Karman kinematics (its VonKarmanNewmark stepper)")
+    return PlateVKROM(engine.model, approach_row, vectors, nonlinear, C=engine.C)
+
+
 class ReducedVonKarmanStepper(CoupledStepper):
     """:class:`CoupledStepper` of a von Kármán plate on its reduced model ``engine`` (a :class:`PlateVKROM`, built once
     and reused by every run of the plate and impact point; or the full plate's
@@ -251,7 +262,7 @@ class ReducedVonKarmanStepper(CoupledStepper):
         super().__init__(law, mass, velocity, time_step, steps, stop_after)
         if isinstance(engine, VonKarmanNewmark):  # the full plate's stepper (run_impact's engine): its reduced plate, built here
             check_time_step(engine.dt, self.dt)
-            engine = PlateVKROM(engine.model, structure.approach_row, C=engine.C)
+            engine = reduced_plate(engine, structure.approach_row)
         if not isinstance(engine, PlateVKROM):
             raise InputError("the reduced von Karman stepper needs the plate's PlateVKROM (or its VonKarmanNewmark) as its engine")
         if self.memory:

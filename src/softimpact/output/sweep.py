@@ -86,7 +86,7 @@ def threshold_csv(th: list[dict]) -> str:
     """Threshold rows (:func:`softimpact.workflows.sweep_stats.thresholds`, or a threshold map's rows,
     :meth:`softimpact.studies.thresholds.MapRow.as_dict`) as CSV text: a map row's ``validity_flags`` (a list of names)
     joined by ", " (as runs.parquet's), ``inside_validity`` true/false (empty: not checked, no threshold)."""
-    text = ("levels", "index", "structure", "regime", "kinematics", "band_from", "validity_flags", "inside_validity")
+    text = ("levels", "index", "structure", "regime", "kinematics", "stepping", "band_from", "validity_flags", "inside_validity")
 
     def cell(t, k):
         v = t.get(k, np.nan)

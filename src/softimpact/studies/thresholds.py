@@ -66,6 +66,19 @@ threshold then costs its root-finding (secant steps from the linear threshold: t
 validity and the coarse mesh's root-finding: on the report's quarter plate (16 MITC4 elements a side, 2 µs, 200 steps)
 a von Kármán run costs about 12 linear direct runs (0.84 s against 0.07 s of CPU), and a nonlinear threshold with its
 coarse mesh's (8 a side, 4 µs) about 4 s of CPU (measured on a shared 2-core machine, 8 thresholds in 32 s).
+
+Reduced stepping: :func:`structure`'s ``nonlinear_stepping`` says how a von Kármán PLATE's runs are stepped, "von-karman"
+(the full plate, the default and the reference) or "von-karman-rom" (:mod:`softimpact.fem.vk_rom`: the plate's reduced
+model, built ONCE per structure for its impact point, whose approach row is the same for every ball, and reused by every
+run of the map: a fraction of a second a run after a build of a few seconds). Its stated error: the reduced run's peak
+force +1.8 % from the full run's on the 48 × 48 plate at w/h 0.7 (BENCHMARKS.md); an index that follows the peak force
+ε high, as V^β, then has its threshold (1 + ε)^(−1/β) times the full one's, about −ε/β. Measured
+(``benchmarks/bench_vk_rom_map.py``): on that plate the steel ball's delamination threshold is 0.9 % below the full
+map's (ε +0.94 % at V*, β 1.05), the row 65 times cheaper in CPU; on the tests' 10 × 10 quarter plate under a rubber
+ball, 4·10⁻⁶ (ε −8·10⁻⁶, β 1.9; tests/test_rom_maps.py). The reduced model holds
+only for a laminate without bending–extension coupling and a memoryless contact law (the identified law's Maxwell arm
+is not): anything else is refused when the structure is built, with an InputError naming the option. On a linear target
+the option has no effect (kernel runs). Each row says how its runs were stepped (``stepping``).
 """
 
 from __future__ import annotations
@@ -88,6 +101,7 @@ from ..workflows.damage import coupled_damage, delamination_force, olsson_force
 
 __all__ = [
     "INDICES",
+    "NONLINEAR_STEPPINGS",
     "ONSET",
     "ThresholdStructure",
     "MapRow",
@@ -103,6 +117,7 @@ __all__ = [
 
 INDICES = ("tsai_wu", "delamination")  # the damage indices thresholded by default
 ONSET = "olsson"  # the onset map's index: peak force over Olsson's F_d
+NONLINEAR_STEPPINGS = ("von-karman", "von-karman-rom")  # a von Kármán target's runs: the full plate (the reference) or its reduced model
 
 
 @dataclass(frozen=True)
@@ -115,7 +130,9 @@ class MapRow:
     draws and how many reached 1 within the velocity range (NaN thresholds otherwise); ``mass_ratio`` and ``regime``
     the response regime; ``ratios`` and ``flags`` the validity of the law's mean run at ``nominal`` (module docstring;
     empty when no threshold), ``kinematics`` the target's, ``band_from`` where the band comes from ("own draws" or
-    "linear map": then ``beta`` is the linear row's too), ``runs`` the runs the nominal root-finding took."""
+    "linear map": then ``beta`` is the linear row's too), ``runs`` the runs the nominal root-finding took, ``stepping``
+    how they were stepped ("kernels", "direct", "von-karman" or "von-karman-rom": the method of
+    :func:`~softimpact.workflows.coupled.run_impact`)."""
 
     structure: str
     index: str
@@ -139,6 +156,7 @@ class MapRow:
     kinematics: str = "linear"  # the target's: "linear" (kernel runs) or "von-karman" (stepped directly)
     band_from: str = "own draws"  # where the band comes from: "own draws", or "linear map" (relative widths carried over)
     runs: int = 0  # the coupled runs the nominal threshold took (its root-finding)
+    stepping: str = ""  # how the map's runs were stepped: "kernels", "direct", "von-karman" or "von-karman-rom"
 
     @property
     def inside(self) -> bool | None:
@@ -166,6 +184,7 @@ class MapRow:
             "impactor_over_target_mass": self.mass_ratio,
             "regime": self.regime,
             "kinematics": self.kinematics,
+            "stepping": self.stepping,
             "band_from": self.band_from,
             "nominal_threshold_runs": self.runs,
             **{k: float(v) for k, v in self.ratios.items()},
@@ -178,13 +197,17 @@ class MapRow:
 class ThresholdStructure:
     """A structure ready for threshold runs: its impact problem, its model (with the target's
     ``"damage"`` output group) and its contact kernels (built once, for the widest diameter; None on a nonlinear
-    target, whose runs are stepped directly). Not frozen: the kernels keep a cache of the smaller impactors' contact discs."""
+    target, whose runs are stepped directly); on a von Kármán plate with ``nonlinear_stepping`` "von-karman-rom", ``rom``
+    its reduced model (:class:`~softimpact.fem.vk_rom.PlateVKROM`, built once, every run's engine; None otherwise).
+    Not frozen: the kernels keep a cache of the smaller impactors' contact discs."""
 
     name: str
     problem: ImpactProblem
     model: object
     kernels: object
     density: float  # kg/m³ of the impactor
+    nonlinear_stepping: str = "von-karman"  # a nonlinear target's runs (:data:`NONLINEAR_STEPPINGS`); unused on a linear one
+    rom: object = None  # the reduced plate of "von-karman-rom" stepping
 
     @property
     def kinematics(self) -> str:
@@ -194,8 +217,11 @@ class ThresholdStructure:
     @property
     def stepping(self) -> str:
         """How a direct run of this structure is stepped (:func:`~softimpact.workflows.coupled.run_impact`'s ``method``):
-        "direct" on a linear target, its kinematics' own stepper ("von-karman") otherwise."""
-        return "direct" if self.kinematics == "linear" else self.kinematics
+        "direct" on a linear target, its kinematics' own stepper ("von-karman") otherwise, or its reduced model
+        ("von-karman-rom") when it has one."""
+        if self.kinematics == "linear":
+            return "direct"
+        return "von-karman-rom" if self.rom is not None else self.kinematics
 
     def problem_at(self, law, diameter: float, velocity: float) -> ImpactProblem:
         """The problem for a ball of ``diameter`` [m] at ``velocity`` [m/s] under the identified ``law`` (an IdentifiedLaw)."""
@@ -204,12 +230,19 @@ class ThresholdStructure:
         return dataclasses.replace(self.problem, impactor=imp, law=law.law(mass, diameter, velocity))
 
 
-def structure(name: str, target, widest: float, density: float, time_step: float, duration: float, law) -> ThresholdStructure:
+def structure(
+    name: str, target, widest: float, density: float, time_step: float, duration: float, law, *, nonlinear_stepping: str = "von-karman"
+) -> ThresholdStructure:
     """A :class:`ThresholdStructure` from a resolved target ``target`` (a :class:`~softimpact.models.protocols.Target`:
     its load position and contact radius used, its force history dropped, :meth:`~softimpact.models.protocols.Target.for_impact`;
     its kinematics kept: a "von-karman" target gets no kernels and steps every run),
     for balls up to ``widest`` [m] of ``density`` [kg/m³], stepped at ``time_step`` [s] for ``duration`` [s];
-    ``law``: the identified law (its mean; any law serves for the build, the kernels hold none)."""
+    ``law``: the identified law (its mean; any law serves for the build, the kernels hold none).
+    ``nonlinear_stepping`` (:data:`NONLINEAR_STEPPINGS`): how a von Kármán target's runs are stepped, "von-karman" (the
+    full plate) or "von-karman-rom" (its reduced model, built here once: a plate whose laminate has no bending–extension
+    coupling, under a memoryless law; an InputError naming the option otherwise); no effect on a linear target."""
+    if nonlinear_stepping not in NONLINEAR_STEPPINGS:
+        raise InputError(f"nonlinear_stepping must be one of {', '.join(NONLINEAR_STEPPINGS)}, got {nonlinear_stepping!r}")
     resolved = target.for_impact(SolverSpec(time_step, duration), ())
     rubber = Material("ball", 5.0e6, 0.49, density, "threshold-map impactor (the law carries the contact)")
     mass = density * math.pi / 6.0 * widest**3
@@ -219,7 +252,26 @@ def structure(name: str, target, widest: float, density: float, time_step: float
     model = problem.model(damage=True)
     linear = resolved.kinematics == "linear"
     kernels = impact_kernels(problem, model) if linear else None  # a nonlinear target steps every run (module docstring)
-    return ThresholdStructure(name, problem, model, kernels, density)
+    rom = None if linear else _reduced_model(name, problem, model, nonlinear_stepping)
+    return ThresholdStructure(name, problem, model, kernels, density, nonlinear_stepping, rom)
+
+
+def _reduced_model(name: str, problem: ImpactProblem, model, nonlinear_stepping: str):
+    """The reduced plate of a nonlinear target (:func:`~softimpact.fem.vk_rom.reduced_plate`, at its impact point) when
+    ``nonlinear_stepping`` asks for it, else None; an InputError naming the option where it cannot apply."""
+    from ..fem.vk_rom import reduced_plate
+    from ..models.protocols import HistoryLaw
+
+    if nonlinear_stepping == "von-karman":
+        return None
+    where = f"{name}: nonlinear_stepping = 'von-karman-rom'"
+    if isinstance(problem.law, HistoryLaw):
+        raise InputError(f"{where} needs a memoryless contact law ({type(problem.law).__name__} has memory): use nonlinear_stepping = 'von-karman'")
+    reach = model.contact_reach(problem.position, problem.impactor.diameter)
+    try:
+        return reduced_plate(model.stepper, model.contact_structure(problem.position, reach).approach_row)
+    except InputError as exc:
+        raise InputError(f"{where}: {exc}; use nonlinear_stepping = 'von-karman'") from None
 
 
 def damage_index(problem: ImpactProblem, result, index: str, scale: float = 1.0) -> float:
@@ -243,7 +295,8 @@ def _method(s: ThresholdStructure, method: str) -> str:
 def _run(s: ThresholdStructure, law, diameter: float, velocity: float, method: str = "kernels"):
     problem = s.problem_at(law, diameter, velocity)
     method = _method(s, method)
-    _, result = run_impact(problem, s.model, energy=False, method=method, kernels=s.kernels if method == "kernels" else None)
+    engine = s.rom if method == "von-karman-rom" else None  # the reduced plate, built once for every run of the structure
+    _, result = run_impact(problem, s.model, energy=False, method=method, kernels=s.kernels if method == "kernels" else None, engine=engine)
     return problem, group_outputs(result, s.model.contact_groups())
 
 
@@ -453,6 +506,7 @@ def threshold_map(
                     s.kinematics,
                     "own draws" if ref is None else "linear map",
                     len(evaluated),
+                    _method(s, "kernels"),
                 )
             )
     return rows

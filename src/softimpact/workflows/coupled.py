@@ -130,6 +130,7 @@ def run_impact(
     *,
     method: str = "auto",
     kernels=None,
+    engine=None,
 ) -> tuple[StructureModel, CoupledResult]:
     """The coupled run of an impact problem on a beam or plate; ``model``: a BeamModel or PlateModel
     of the same structure and step to reuse; ``energy``: keep the energy histories; ``stop_after``:
@@ -141,7 +142,9 @@ def run_impact(
     against the structure's impulse responses (``kernels`` from :func:`impact_kernels`, built here if
     None; equal to direct stepping to round-off, the structure's energies NaN); "auto": the kernels
     when they are given and neither energies nor snapshots are asked for, else direct stepping (a
-    single run costs less stepped directly than building kernels).
+    single run costs less stepped directly than building kernels). ``engine``: a stepping engine built once for
+    ``method`` and reused (the plate's :class:`~softimpact.fem.vk_rom.PlateVKROM` for "von-karman-rom",
+    :func:`softimpact.fem.vk_rom.reduced_plate`); None: the model's stepper (the reduced plate then built for this run).
 
     Loadable nodes reach one impactor diameter from the impact point: a Hertz radius
     sqrt(R·α) and a flattened sphere's sqrt(d·α) stay within it while α < d (on a plate,
@@ -173,7 +176,7 @@ def run_impact(
         solver.time_step,
         solver.steps,
         solver.newmark,
-        engine=kernels if use_kernels else model.stepper,
+        engine=kernels if use_kernels else model.stepper if engine is None else engine,
         stop_after=stop_after,
         energy=energy,
         snapshots=snapshots,
