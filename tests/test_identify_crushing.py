@@ -116,12 +116,10 @@ def test_law_json_of_a_crushing_law_names_its_family_and_reference_rate(noisy):
     """law.json of a crushing identification says family "crushing", its reference rate and the coefficient at 1 s⁻¹."""
     import json
 
-    from softimpact.app.identify import _crushing_law_json
-    from softimpact.formats._json import json_text
-    from softimpact.formats.law_json import law_summary
+    from softimpact.formats.law_json import law_json
 
     law, _ = noisy
-    out = json.loads(_crushing_law_json(json_text(law_summary(law, [f"t{i}" for i in range(len(law.rms_per_test))])), law))
+    out = json.loads(law_json(law, [f"t{i}" for i in range(len(law.rms_per_test))]))
     assert out["family"] == "crushing" and set(out["parameters"]) == {"strength_ref", "rate_exponent"}
     assert out["reference_rate_1_s"] == pytest.approx(law.reference_rate)
     assert out["coefficient_at_1_per_s_Pa"] == pytest.approx(law.values[0] * law.reference_rate ** (-law.values[1]))
