@@ -22,7 +22,8 @@ The crushing law's file has the same layout with ``family`` ``"crushing"``, ``pa
 (σ_ref [Pa], the strength at the reference rate) and ``rate_exponent`` (m_c, in [0, 1)), ``reference_rate_1_s``
 (ε̇_ref, the geometric mean of the tests' V/d), ``coefficient_at_1_per_s_Pa`` (σ_ref·ε̇_ref^(−m_c), the catalogue's
 form σ_c = A·(ε̇/1 s⁻¹)^m: written for the reader, checked against the parameters when read), and
-``identified_on`` with ``strain_rate_1_s`` too (the tests' V/d: the strength law's measured range).
+``identified_on`` with ``strain_rate_1_s`` too (the tests' V/d: the strength law's measured range), and
+``fit.contact_start_shift_s``, each test's fitted first contact after its reduced record's.
 ``d_ref_m`` (the largest tested diameter) means nothing to the law (it has no size scaling) and may be absent.
 """
 
@@ -79,6 +80,8 @@ def law_summary(law: IdentifiedLaw | CrushingIdentifiedLaw, test_names, closure=
     if crushing:
         out["reference_rate_1_s"] = float(law.reference_rate)
         out["coefficient_at_1_per_s_Pa"] = law.coefficient_at_1_per_s
+        if law.start_shifts is not None:  # each test's fitted first contact after its record's (not read back: the tests', not the law's)
+            out["fit"]["contact_start_shift_s"] = dict(zip(test_names, map(float, law.start_shifts)))
     if law.identified_on is not None:
         out["identified_on"] = dict(law.identified_on)
     if projectile is not None:
