@@ -69,9 +69,11 @@ def test_the_intervals_are_informative(noisy):
 
 
 def test_noise_free_records_give_the_parameters_exactly():
-    """Without noise the reconstructed approach is the simulation's own, so the fit returns the truth to 1e-6."""
+    """Without noise the reconstructed approach is the simulation's own, so the fit returns the truth to 1e-6 and each
+    record's first contact (its time zero) to 1 ns."""
     law, _ = identify_crushing(_records(0.0, every=5), ROD)
     np.testing.assert_allclose(law.values, _truth_at(law), rtol=1e-6)
+    assert np.all(np.abs(law.start_shifts) < 1e-9)
 
 
 def test_the_identified_law_is_the_catalogue_form(noisy):

@@ -26,7 +26,7 @@ a crush's force rises linearly from contact (A(s) ≈ π·d·s); on the built-in
 truth known) that origin came 4.5–10 µs early, i.e. up to 1 mm of approach at 105 m/s, and without the shifts the
 strength came out 12 % low and the exponent 0.10 for 0.15 (16 and 3 of their half-widths); with them, within their
 half-widths (tests/test_identify_crushing.py). On force records that start at contact the shifts come out within
-±1.4 µs of 0 (the test's records with 2 % noise) and exactly 0 without noise. The samples in the fit are chosen once,
+±1.4 µs of 0 (the test's records with 2 % noise) and 0 to round-off without noise. The samples in the fit are chosen once,
 on the record's own origin.
 
 95 % intervals: with :data:`JACKKNIFE_MIN_TESTS` tests or more, the delete-one-test jackknife's covariance
