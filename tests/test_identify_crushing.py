@@ -69,9 +69,11 @@ def test_the_intervals_are_informative(noisy):
 
 
 def test_noise_free_records_give_the_parameters_exactly():
-    """Without noise the reconstructed approach is the simulation's own, so the fit returns the truth to 1e-6."""
+    """Without noise the reconstructed approach is the simulation's own, so the fit returns the truth to 1e-6 and each
+    record's first contact (its time zero) to 1 ns."""
     law, _ = identify_crushing(_records(0.0, every=5), ROD)
     np.testing.assert_allclose(law.values, _truth_at(law), rtol=1e-6)
+    assert np.all(np.abs(law.start_shifts) < 1e-9)
 
 
 def test_the_identified_law_is_the_catalogue_form(noisy):
@@ -116,12 +118,49 @@ def test_law_json_of_a_crushing_law_names_its_family_and_reference_rate(noisy):
     """law.json of a crushing identification says family "crushing", its reference rate and the coefficient at 1 s⁻¹."""
     import json
 
-    from softimpact.app.identify import _crushing_law_json
-    from softimpact.formats._json import json_text
-    from softimpact.formats.law_json import law_summary
+    from softimpact.formats.law_json import law_json
 
     law, _ = noisy
-    out = json.loads(_crushing_law_json(json_text(law_summary(law, [f"t{i}" for i in range(len(law.rms_per_test))])), law))
+    out = json.loads(law_json(law, [f"t{i}" for i in range(len(law.rms_per_test))]))
     assert out["family"] == "crushing" and set(out["parameters"]) == {"strength_ref", "rate_exponent"}
     assert out["reference_rate_1_s"] == pytest.approx(law.reference_rate)
     assert out["coefficient_at_1_per_s_Pa"] == pytest.approx(law.values[0] * law.reference_rate ** (-law.values[1]))
+
+
+# The built-in hail-ice-series (tools/make_ice_series.py): synthetic records of the catalogue's ice crushing by Jones
+# 1997's freshwater strength, σ_c = 8.9 MPa·(ε̇/1 s⁻¹)^0.15 (J. Phys. Chem. B 101:6099, as models/projectiles.py cites it).
+JONES_1997 = (8.9e6, 0.15)
+
+
+def test_the_builtin_ice_series_holds_the_published_tests_sizes_and_velocities():
+    """hail-ice-series is a built-in series of 12 synthetic records: 31.8, 38.1, 50.8 mm at 13, 30, 60, 105 m/s, ice's mass m = 916.7·π·d³/6."""
+    from softimpact.input.series import load_series
+    from softimpact.input.toml import builtin_cases
+
+    assert "hail-ice-series" in builtin_cases()
+    s = load_series("hail-ice-series")
+    assert "SYNTHETIC" in s.title
+    assert sorted({round(t.diameter * 1e3, 1) for t in s.tests}) == [31.8, 38.1, 50.8]
+    assert sorted({t.velocity for t in s.tests}) == [13.0, 30.0, 60.0, 105.0] and len(s.tests) == 12
+    for t in s.tests:
+        assert t.mass == pytest.approx(916.7 * math.pi / 6 * t.diameter**3, rel=1e-5)
+
+
+@pytest.mark.slow  # ~20 s: reduces 12 records and identifies with the jackknife and the closure runs
+def test_identify_on_the_builtin_ice_series_recovers_jones_1997(tmp_path):
+    """`softimpact identify hail-ice-series --law crushing` writes a crushing law.json whose σ_ref and m_c contain the records' truth
+    (Jones 1997) within their 95 % intervals, and fits each record to its noise (rms under 2 % of F0 for 1 % gauge noise)."""
+    from click.testing import CliRunner
+
+    from softimpact.cli import main
+    from softimpact.formats.law_json import read_law
+
+    out = tmp_path / "id"
+    r = CliRunner().invoke(main, ["identify", "hail-ice-series", "--law", "crushing", "--out", str(out), "--no-figures"])
+    assert r.exit_code == 0, r.output
+    law = read_law(out / "law.json")
+    assert law.family == "crushing"
+    truth = np.array([JONES_1997[0] * law.reference_rate ** JONES_1997[1], JONES_1997[1]])
+    assert np.all(np.abs(law.values - truth) <= law.half_widths)
+    assert law.coefficient_at_1_per_s == pytest.approx(JONES_1997[0], rel=0.01)
+    assert np.all(law.rms_per_test < 0.02)

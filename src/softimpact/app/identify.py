@@ -20,21 +20,6 @@ from .options import display_system
 __all__ = ["identify"]
 
 
-def _crushing_law_json(text: str, law) -> str:
-    """law.json of a crushing law: the family, its form, its reference rate and its coefficient at 1 s⁻¹
-    beside what the soft law's layout holds (parameters, fit, closure, predictions)."""
-    import json
-
-    from ..formats._json import json_text
-
-    out = json.loads(text)
-    out["family"] = law.family
-    out["form"] = "F = A(s)*(sigma_ref*(sdot/d/rate_ref)^rate_exponent + rho*sdot^2), A = pi*s*(d - s) (models/crushing_law.py)"
-    out["reference_rate_1_s"] = law.reference_rate
-    out["coefficient_at_1_per_s_Pa"] = law.coefficient_at_1_per_s
-    return json_text(out)
-
-
 def identify(*, series_name: str, law: str = "soft", units: str | None = None, figures: bool = True, points=(), progress: Progress = no_progress) -> Outcome:
     """Identify one contact law from a series (file or built-in name): law.json (with predictive
     intervals of F0, t_F0, T, I at the tested impacts and at ``points``, (mass [kg], diameter [m],
@@ -50,9 +35,7 @@ def identify(*, series_name: str, law: str = "soft", units: str | None = None, f
     family = law
     tests, law, approaches, cl = identify_series(rod, reduced, True, progress, family=family)
     predictions = predict_pulses(law, tests, rod, cl, points)
-    files = identify_files(series, tests, law, approaches, cl, figures, predictions=predictions)
-    if family == "crushing":
-        files["law.json"] = _crushing_law_json(files["law.json"], law)
+    files = identify_files(series, tests, law, approaches, cl, figures, predictions=predictions)  # law.json of either family (formats/law_json.py)
     err = np.abs(cl.errors)
     rel = np.array([p.half_widths / np.abs(p.values) for p in predictions if p.tested])
     unfixed = unfixed_parameters(law)

@@ -3,9 +3,11 @@
 ``law`` = ``hertz`` | ``hertz-unloading`` (``critical_indentation``, default
 0.08 mm, Yang & Sun's graphite/epoxy value) | ``hunt-crossley`` (``restitution``
 required, ``form`` lankarani-nikravesh | hunt-crossley) | ``identified``
-(``law_file``: a law.json of ``softimpact identify``, relative to the case file; optional
-``parameters``, a table of the law's parameters by name replacing the file's values: a sweep's
-draws from the law's covariance, :class:`softimpact.input.sweep_spec.LawDraw`) | ``crushing`` (an
+(``law_file``: a law.json of ``softimpact identify``, relative to the case file, of either family: a soft
+projectile's law, or with ``--law crushing`` an ice sphere's crushing law, run as its
+:class:`~softimpact.models.crushing_law.CrushingLaw`; optional ``parameters``, a table of the law's parameters by
+name replacing the file's values: a sweep's draws from the law's covariance,
+:class:`softimpact.input.sweep_spec.LawDraw`) | ``crushing`` (an
 ice sphere, :class:`~softimpact.models.crushing_law.CrushingLaw`; optional ``strength_coefficient`` A and
 ``strength_exponent`` m of σ_c = A·(ε̇/1 s⁻¹)^m in place of the material's, Jones 1997 for the catalogue's
 ice) | ``hydrodynamic`` (a gelatin sphere, :class:`~softimpact.models.hydrodynamic_law.HydrodynamicLaw`;
@@ -21,7 +23,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from ..errors import InputError
-from ..formats.law_json import read_law
+from ..formats.law_json import CRUSHING_FAMILY, CRUSHING_RANGES, crushing_range_error, read_law
 from ..models.contact_laws import CONTACT_LAWS, MATERIAL_LAWS, HertzLaw, HuntCrossleyLaw, YangSunLaw
 from ..models.materials import Material
 from ..models.projectiles import LinearHugoniot, PowerLawStrength, projectile_material
@@ -98,7 +100,8 @@ def _flow_law(c: Table, name: str, material: Material | None, mass: float, diame
 
 def _with_parameters(law, c: Table, given):
     """``law`` with the values of table ``contact.parameters`` (by name) in place of the file's, checked
-    as the file's are (k_ref > 0, p > 0, c_ref >= 0, kappa_ref >= 0, theta_ref > 0)."""
+    as the file's are (a soft law: k_ref > 0, p > 0, c_ref >= 0, kappa_ref >= 0, theta_ref > 0; a crushing law:
+    strength_ref > 0, 0 <= rate_exponent < 1)."""
     import dataclasses
     import math
 
@@ -113,6 +116,11 @@ def _with_parameters(law, c: Table, given):
         if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
             raise InputError(f"{c.key('parameters')}.{name}: expected a finite number, got {v!r}")
         values[law.names.index(name)] = float(v)
+    if getattr(law, "family", None) == CRUSHING_FAMILY:
+        problem = crushing_range_error(values)
+        if problem:
+            raise InputError(f"{c.key('parameters')}: out of range ({CRUSHING_RANGES}): {problem}")
+        return dataclasses.replace(law, values=values)
     k, p, cr, ka, th = (values[law.names.index(n)] for n in ("k_ref", "p", "c_ref", "kappa_ref", "theta_ref"))
     if not (k > 0 and p > 0 and cr >= 0 and ka >= 0 and (ka == 0 or th > 0)):
         raise InputError(f"{c.key('parameters')}: out of range (k_ref > 0, p > 0, c_ref >= 0, kappa_ref >= 0 with theta_ref > 0), got {given!r}")
