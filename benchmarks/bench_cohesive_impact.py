@@ -72,11 +72,13 @@ def main(steps: int = 200, velocity: float | None = None, whole: bool = False):
     print(f"cohesive {label} (3 sublaminates)  {model.size:7d} DOF  build {build:7.2f} s  run {t_coh:8.2f} s  ({t_coh / steps * 1e3:7.1f} ms/step)")
     print(f"   solves {res.solves}, factorisations {model.stepper.factorisations}, peak force {res.peak_force:.1f} N")
     print(f"   delaminated area {area * 1e6:.4g} mm2, process zone up to {zone * 1e6:.4g} mm2 (whole plate)")
-    print(f"linear quarter, direct             {m_lin.size:7d} DOF  run {t_lin:8.2f} s  ({t_lin / steps * 1e3:7.1f} ms/step)  peak {r_lin.peak_force:.1f} N")
+    print(
+        f"linear {label}, direct{' ' * (21 - len(label))}{m_lin.size:7d} DOF  run {t_lin:8.2f} s  ({t_lin / steps * 1e3:7.1f} ms/step)  peak {r_lin.peak_force:.1f} N"
+    )
     print(
         f"linear whole 48 x 48, direct       {m_full.size:7d} DOF  run {t_full:8.2f} s  ({t_full / steps * 1e3:7.1f} ms/step)  peak {r_full.peak_force:.1f} N"
     )
-    print(f"cohesive / linear quarter: {(build + t_coh) / t_lin:.1f}x; cohesive / linear whole 48 x 48: {(build + t_coh) / t_full:.1f}x")
+    print(f"cohesive / linear {label}: {(build + t_coh) / t_lin:.1f}x; cohesive / linear whole 48 x 48: {(build + t_coh) / t_full:.1f}x")
 
 
 if __name__ == "__main__":
