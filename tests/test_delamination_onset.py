@@ -12,7 +12,7 @@ form (``softimpact.models.delamination``: the formula as given to the project, O
 
 Measured (a quarter of a simply supported 200 × 200 mm plate, h = 4 mm, E = 70 GPa, ν = 0.3, MITC9, the
 sublaminates' own in-plane fields kept): F_c/F_d = 1.07–1.12 for a/h from 3 to 13 on a 24 × 24 mesh and 1.03–1.11 on
-16 × 16, nearly independent of a as Olsson's threshold is (and of the plate: 400 × 400 mm gives 1.10–1.12 for a/h 6 to 27); 0.86–0.90 at a/h ≈ 1, where the disc spans one or two
+16 × 16, nearly independent of a as Olsson's threshold is (and of the plate: 400 × 400 mm gives 1.10–1.13 for a/h 6 to 29); 0.86–0.90 at a/h ≈ 1, where the disc spans one or two
 elements. Davies & Zhang's constant-moment idealisation (the disc's two halves bending freely, D/4 in all) would give
 3·P²/(32·π²·D), F_c = √3·F_d: the stacked plate releases 2.4 times that at these sizes, and the exact two-region
 Kirchhoff plate (the same idealisation without the constant moment) far more at small a — the halves of an embedded
