@@ -74,8 +74,8 @@ def test_the_reduced_maps_threshold_is_the_full_maps_shifted_by_its_force_error(
     assert r.kinematics == f.kinematics == "von-karman"
     assert math.isfinite(r.nominal) and f.beta > 0
     assert abs(r.nominal / f.nominal - 1) <= ROM_FORCE_ERROR / f.beta
-    _, a = T._run(rom, LAW0, 0.5 * INCH, r.nominal)
-    _, b = T._run(full, LAW0, 0.5 * INCH, r.nominal)
+    _, a = T.structure_run(rom, LAW0, 0.5 * INCH, r.nominal)
+    _, b = T.structure_run(full, LAW0, 0.5 * INCH, r.nominal)
     eps = a.peak_force / b.peak_force - 1
     assert f.nominal / r.nominal == pytest.approx((1 + eps) ** (1 / f.beta), rel=RTOL)
 

@@ -46,7 +46,7 @@ def test_the_delamination_threshold_scales_with_the_strength_as_its_power_law_sa
     i1, i2 = (T.index_at(s, law, 0.5 * INCH, v * f, "delamination") for f in (0.98, 1.02))
     beta = math.log(i2 / i1) / math.log(1.02 / 0.98)
     v_strong = v * 1.1 ** (1 / beta)
-    problem, result = T._run(s, law, 0.5 * INCH, v_strong)
+    problem, result = T.structure_run(s, law, 0.5 * INCH, v_strong)
     assert T.damage_index(problem, result, "delamination", scale=1.1) == pytest.approx(1.0, rel=5e-3)
 
 
@@ -66,7 +66,7 @@ def test_the_band_contains_the_median_and_the_threshold_falls_with_the_diameter(
 def test_both_indices_are_homogeneous_of_degree_minus_one_in_a_common_strength_factor(beam):
     """The scatter's scaling rule checked on the criteria themselves: every strength × 1.1 and G_IIc × 1.21 (P_c ∝ √G_IIc) divides Tsai–Wu's 1/R and F/P_c by 1.1."""
     s, law = beam
-    problem, result = T._run(s, law, 0.5 * INCH, 3000 * INCH)
+    problem, result = T.structure_run(s, law, 0.5 * INCH, 3000 * INCH)
     target = problem.target
     stack = target.beam.stack
     st = stack.ply.strength

@@ -155,7 +155,7 @@ def test_a_law_with_memory_on_the_von_karman_plate_recovers_the_linear_run_at_sm
     for kinematics in ("linear", "von-karman"):
         data = _plate(4, kinematics, "240 us")
         s = T.structure("plate", plate_problem(data, locate(PAPER_PLATE).parent), 0.5 * INCH, RHO, 4e-6, 240e-6, law)
-        problem, result = T._run(s, law, 0.5 * INCH, velocity, "direct")
+        problem, result = T.structure_run(s, law, 0.5 * INCH, velocity, "direct")
         runs[kinematics] = result
         assert T.run_validity(problem, result).values["deflection_over_thickness"] < 1e-4
     lin, vk = runs["linear"], runs["von-karman"]

@@ -45,7 +45,7 @@ import numpy as np
 from ..models.crushing_law import CrushingLaw
 from ..models.delamination import REGIME_BOUNDS, response_regime
 from ..models.projectiles import projectile_material
-from .thresholds import ONSET, gci_two_meshes, structure, threshold_velocity
+from .thresholds import ONSET, gci_two_meshes, structure, structure_run, threshold_velocity
 
 __all__ = [
     "RHYMER_THICKNESSES",
@@ -90,16 +90,20 @@ class CatalogueIce:
         return CrushingLaw(mass, diameter, self.strength or projectile_material("ice").strength)
 
 
-def hail_structures(panel_target, thickness: float, layup: str, law, meshes, duration: float, widest: float, kinematics: str = "linear"):
+def hail_structures(
+    panel_target, thickness: float, layup: str, law, meshes, duration: float, widest: float, kinematics: str = "linear", nonlinear_stepping: str = "von-karman"
+):
     """(map mesh, coarse mesh) :class:`~softimpact.studies.thresholds.ThresholdStructure` of one panel:
     ``panel_target(thickness, layup, elements, duration, kinematics=...)`` the resolved plate target (a
     :class:`~softimpact.models.protocols.Target`; the report builds it from a case file,
     :func:`softimpact.app.paper.hail.panel_target`), ``meshes`` ((elements a side, time step [s]) coarse,
-    fine); spheres up to ``widest`` [m] of ice; ``kinematics`` the panels' ("linear" or "von-karman")."""
+    fine); spheres up to ``widest`` [m] of ice; ``kinematics`` the panels' ("linear" or "von-karman"), and
+    ``nonlinear_stepping`` how a von Kármán panel's runs are stepped (:func:`~softimpact.studies.thresholds.structure`:
+    the full plate, or its reduced model, built once per mesh)."""
     out = []
     for n, dt in meshes:
         target = panel_target(thickness, layup, n, duration, kinematics=kinematics)
-        out.append(structure(f"{thickness * 1e3:.2f} mm", target, widest, _density(law), dt, duration, law))
+        out.append(structure(f"{thickness * 1e3:.2f} mm", target, widest, _density(law), dt, duration, law, nonlinear_stepping=nonlinear_stepping))
     return out[1], out[0]
 
 
@@ -190,6 +194,7 @@ def hail_map(
     rtol: float = 1e-3,
     kinematics: str = "linear",
     guesses=(),
+    nonlinear_stepping: str = "von-karman",
 ):
     """The hail map (module docstring): one :class:`HailRow` per thickness, index and diameter, ice of ``law``
     (:class:`CatalogueIce` or an identified crushing law,
@@ -201,15 +206,14 @@ def hail_map(
     included, stepped by the panel's own stepper, :attr:`~softimpact.studies.thresholds.ThresholdStructure.stepping`).
     ``guesses``: rows of another map of the same panels (the linear map's): the V* of the row with the same thickness,
     diameter and index starts the threshold's secant steps (:func:`~softimpact.studies.thresholds.threshold_velocity`,
-    first-step power :data:`GUESS_POWER`), in place of the scan from ``lo``."""
-    from ..fem.contact import group_outputs
-    from ..workflows.coupled import run_impact
-
+    first-step power :data:`GUESS_POWER`), in place of the scan from ``lo``. ``nonlinear_stepping``: a von Kármán
+    panel's runs on the full plate ("von-karman") or on its reduced model ("von-karman-rom": the crushing law is
+    memoryless and the quasi-isotropic panels have no bending–extension coupling)."""
     meshes = meshes or ((4, 4e-6), (8, 2e-6))
     start = {(r.thickness, r.diameter, r.index): r.velocity for r in guesses if math.isfinite(r.velocity)}
     rows = []
     for h, layup in zip(thicknesses, layups):
-        fine, coarse = hail_structures(panel_target, h, layup, law, meshes, duration, max(diameters), kinematics)
+        fine, coarse = hail_structures(panel_target, h, layup, law, meshes, duration, max(diameters), kinematics, nonlinear_stepping)
         runs: dict = {}
         for index in indices:
             for d in diameters:
@@ -219,10 +223,7 @@ def hail_map(
                 mass = _density(law) * math.pi / 6.0 * d**3
                 peak, validity = math.nan, {"flags": []}
                 if math.isfinite(v):
-                    problem = fine.problem_at(law, d, v)
-                    method = "kernels" if fine.kernels is not None else fine.stepping
-                    _, result = run_impact(problem, fine.model, energy=False, method=method, kernels=fine.kernels)
-                    result = group_outputs(result, fine.model.contact_groups())
+                    problem, result = structure_run(fine, law, d, v)
                     peak = max(c.peak_force for c in result.contacts)
                     validity = run_validity(problem, result).summary()
                 ratio = mass / fine.problem.target.mass

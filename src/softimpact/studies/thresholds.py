@@ -113,6 +113,7 @@ __all__ = [
     "gci_two_meshes",
     "run_validity",
     "stepped_run",
+    "structure_run",
 ]
 
 INDICES = ("tsai_wu", "delamination")  # the damage indices thresholded by default
@@ -292,7 +293,10 @@ def _method(s: ThresholdStructure, method: str) -> str:
     return "kernels" if method == "kernels" and s.kernels is not None else s.stepping
 
 
-def _run(s: ThresholdStructure, law, diameter: float, velocity: float, method: str = "kernels"):
+def structure_run(s: ThresholdStructure, law, diameter: float, velocity: float, method: str = "kernels"):
+    """(problem, result) of one coupled run of structure ``s``: ball of ``diameter`` [m] at ``velocity`` [m/s] under
+    ``law``, on its kernels ("kernels" on a linear structure) or stepped as the structure says (:attr:`ThresholdStructure.stepping`,
+    its reduced plate reused), the result's output groups split (``"damage"`` among them)."""
     problem = s.problem_at(law, diameter, velocity)
     method = _method(s, method)
     engine = s.rom if method == "von-karman-rom" else None  # the reduced plate, built once for every run of the structure
@@ -329,10 +333,10 @@ def index_at(s: ThresholdStructure, law, diameter: float, velocity: float, index
     ``runs``: coupled runs already made, filled here ((structure, law, diameter, velocity, method) → run, the
     objects by identity: for one caller that keeps them alive), so a run every index reads is made once."""
     if runs is None:
-        return damage_index(*_run(s, law, diameter, velocity, method), index)
+        return damage_index(*structure_run(s, law, diameter, velocity, method), index)
     key = (id(s), id(law), diameter, velocity, _method(s, method))
     if key not in runs:
-        runs[key] = _run(s, law, diameter, velocity, method)
+        runs[key] = structure_run(s, law, diameter, velocity, method)
     return damage_index(*runs[key], index)
 
 
