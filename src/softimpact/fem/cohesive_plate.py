@@ -52,7 +52,7 @@ from dataclasses import replace
 import numpy as np
 import scipy.sparse
 
-from ..errors import InputError
+from ..errors import InputError, SolverFailed
 from ..models.cohesive import BilinearCohesive
 from ..models.laminate import Stack
 from ..models.plate_laminate import plate_section
@@ -316,7 +316,10 @@ class CohesiveNewmark(VonKarmanNewmark):
                 last = np.inf  # refactor at the new point: the tangent there has the faces' new states
             if it > 1 and step == 1.0 and np.linalg.norm(du) <= self.rtol * np.linalg.norm(u1 - u):
                 return self._finish(u1, u, v, a) + (it,)
-        raise RuntimeError(f"Newmark–Newton did not converge in {self.max_iterations} iterations (residual {norm:.3g} of scale {scale:.3g})")
+        raise SolverFailed(
+            f"the cohesive plate's Newmark–Newton step did not converge in {self.max_iterations} iterations (residual {norm:.3g} of scale {scale:.3g}): "
+            "damaged faces flipping between open and closed; a finer mesh or a smaller time step"
+        )
 
 
 class CohesiveStepper(VonKarmanStepper):

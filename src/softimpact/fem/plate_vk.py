@@ -63,7 +63,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 import scipy.sparse
 
-from ..errors import InputError
+from ..errors import InputError, SolverFailed
 from .newmark import NewmarkParameters, spd_factor
 from .plate import EDGES, PHI_X, PHI_Y, Plate, PlateFE, U, V, W, _gauss01, _lagrange
 from .scatter import ElementScatter
@@ -519,7 +519,9 @@ class VonKarmanNewmark:
             if it > 1 and np.linalg.norm(du) <= self.rtol * np.linalg.norm(u1 - u):
                 # a correction at round-off of the step's increment (Bathe's displacement criterion): no further force evaluation
                 return self._finish(u1, u, v, a) + (it,)
-        raise RuntimeError(f"Newmark–Newton did not converge in {self.max_iterations} iterations (residual {norm:.3g})")
+        raise SolverFailed(
+            f"the von Karman Newmark–Newton step did not converge in {self.max_iterations} iterations (residual {norm:.3g} N): try a smaller time step"
+        )
 
     def run(self, load, steps: int, rows: np.ndarray | None = None, u0=None, v0=None, energies: bool = True, extra=None) -> DynamicResult:
         """March ``steps`` steps; ``load(t)`` -> force vector (or None for free vibration);

@@ -47,7 +47,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.linalg import lu_factor, lu_solve
 
-from ..errors import InputError
+from ..errors import InputError, SolverFailed
 from .direct import structure_history
 from .impact import ContactStructure, ImpactHistory, PatchCompliance, newton_contact
 from .newmark import NewmarkParameters, spd_factor
@@ -338,7 +338,7 @@ class ReducedVonKarmanStepper(CoupledStepper):
             gm = self.params.gamma
             p = p - C @ (v + dt * (1 - gm) * a - dt * gm * (self.a0 * q + self.a2 * v + self.a3 * a))
         scale = max(np.linalg.norm(p), 1e-300)
-        lu = None
+        lu, last = None, np.inf
         for it in range(1, self.max_iterations + 1):
             _, f, r, dfdw, h = self._contact(q1, x_pred, qq, k + 1)
             res = p - self._keff @ q1 - rom.nonlinear_force(q1)
@@ -347,15 +347,23 @@ class ReducedVonKarmanStepper(CoupledStepper):
                 br = self.sign * (self.patch.shares(r)[0] @ self.Bs)
                 res += f * br
                 u = -dfdw * br
+            norm = np.linalg.norm(res)
             if it == 1:
-                scale = max(scale, np.linalg.norm(res))
-            elif np.linalg.norm(res) <= self.rtol * scale:
+                scale = max(scale, norm)
+            elif norm <= self.rtol * scale:
                 break
-            if lu is None:  # the von Kármán terms' Jacobian at the step's first iterate, factored and kept for the step (a step moves it little)
+            # The von Kármán terms' Jacobian at the step's first iterate, factored and kept while the residual falls
+            # fast (a step moves it little); refreshed at the current iterate when it does not (large deflection).
+            if lu is None or norm > 0.5 * last:
                 lu = lu_factor(self._keff + rom.nonlinear_tangent(q1), check_finite=False)
+            last = norm
             q1 = q1 + self._solve(lu, res, u)
         else:
-            raise RuntimeError(f"reduced Newmark–Newton did not converge in {self.max_iterations} iterations (step {k + 1})")
+            raise SolverFailed(
+                f"the reduced von Karman plate's Newton iteration did not converge at t = {(k + 1) * dt:.6g} s (step {k + 1}) in "
+                f"{self.max_iterations} iterations (residual {norm / scale:.3g} of its scale): step the full plate (nonlinear_stepping "
+                f"'von-karman') or a smaller time step"
+            )
         self.structure_iterations += it - 1  # (f, r, h: the contact at the converged q1, from its last evaluation)
         a1 = self.a0 * (q1 - q) - self.a2 * v - self.a3 * a
         v1 = v + dt * ((1 - self.params.gamma) * a + self.params.gamma * a1)
