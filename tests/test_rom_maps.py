@@ -154,3 +154,22 @@ def test_an_unknown_nonlinear_stepping_is_refused():
     """A stepping that is neither the full nor the reduced plate's is an InputError listing the two."""
     with pytest.raises(InputError, match="nonlinear_stepping must be one of von-karman, von-karman-rom"):
         _structure(_plate(4), 4e-6, "von-karman-reduced")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("velocity", [16.0, 22.0])
+def test_the_reduced_plate_follows_an_ice_crush_to_its_end(velocity):
+    """A 38.1-mm ice sphere crushing on the report's thinnest hail panel (1.59 mm, von Kármán, 8 × 8 at 2 µs, w/h 2-3) runs
+    to its end on the reduced plate (its Newton once stalled where the crush stops), with the full plate's peak force within 2 %."""
+    from softimpact.app.paper import hail as H
+    from softimpact.studies.hail import RHYMER_DIAMETERS, RHYMER_LAYUPS, RHYMER_THICKNESSES, CatalogueIce, hail_structures
+
+    law = CatalogueIce()
+    peaks = []
+    for stepping in ("von-karman-rom", "von-karman"):
+        fine, _ = hail_structures(
+            H.panel_target, RHYMER_THICKNESSES[0], RHYMER_LAYUPS[0], law, H.HAIL_MESHES, H.HAIL_DURATION, max(RHYMER_DIAMETERS), "von-karman", stepping
+        )
+        _, result = T.structure_run(fine, law, RHYMER_DIAMETERS[0], velocity)
+        peaks.append(max(c.peak_force for c in result.contacts))
+    assert peaks[0] == pytest.approx(peaks[1], rel=0.02)

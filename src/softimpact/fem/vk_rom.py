@@ -37,8 +37,9 @@ energy as ½∫ε0ᵀ A ε0. The reduction:
    strains); zero for the point force the first Ritz vector carries, small for a grown disc.
 
 :class:`ReducedVonKarmanStepper` steps the impactor and the reduced plate as :class:`~softimpact.fem.vk_stepping.VonKarmanStepper`
-does the full one: one monolithic Newton a step over the modal coordinates and the contact (dense r × r), the
-:class:`~softimpact.fem.stepping.CoupledStepper` loop around it. Restricted to laminates without B coupling and
+does the full one: one Newton a step over the modal coordinates (dense r × r) with the contact condensed on each
+iteration's linearised plate and solved by the contact Newton's bracket, the :class:`~softimpact.fem.stepping.CoupledStepper`
+loop around it. Restricted to laminates without B coupling and
 to memoryless contact laws.
 """
 
@@ -233,6 +234,20 @@ def reduced_plate(engine, approach_row: np.ndarray, vectors: int = VECTORS, nonl
     return PlateVKROM(engine.model, approach_row, vectors, nonlinear, C=engine.C)
 
 
+class _CondensedCompliance:
+    """h(r) = c·z + h_res(r): the reduced plate's compliance to a unit force over the iteration's disc (fixed for the
+    iteration) plus the disc's residual flexibility (:class:`~softimpact.fem.impact.PatchCompliance`)."""
+
+    value = None
+
+    def __init__(self, modal: float, residual: PatchCompliance):
+        self.modal, self.residual, self.half_spacing = modal, residual, residual.half_spacing
+
+    def __call__(self, r: float) -> tuple[float, float]:
+        h, dh = self.residual(r)
+        return self.modal + h, dh
+
+
 class ReducedVonKarmanStepper(CoupledStepper):
     """:class:`CoupledStepper` of a von Kármán plate on its reduced model ``engine`` (a :class:`PlateVKROM`, built once
     and reused by every run of the plate and impact point; or the full plate's
@@ -305,26 +320,25 @@ class ReducedVonKarmanStepper(CoupledStepper):
         self.structure_iterations = 0
 
     def _contact(self, q: np.ndarray, x_pred: float, qq: float, index: int):
-        """(α, F, r, dF/dw, h) of the impactor against the reduced plate held at ``q`` (zero force where apart)."""
+        """(α, F, r, h) of the impactor against the reduced plate held at ``q`` (zero force where apart), h the disc's
+        residual compliance at r."""
         top = x_pred - float(self.cr @ q)
         if top <= 0.0:
-            return top, 0.0, 0.0, 0.0, 0.0
+            return top, 0.0, 0.0, 0.0
         a, f, r, _ = newton_contact(self.law, self.extra_h, self.hm, self.kappa, qq, top, top, index, self.dt, caps=self.caps)
         if f <= 0.0:
-            return a, 0.0, 0.0, 0.0, 0.0
-        rate = self.kappa * a + qq
-        slope = self.law.stiffness(a, rate) + self.kappa * self.law.damping(a, rate)
-        h = self.extra_h(r)[0]
-        return a, f, r, -slope / (1.0 + (self.hm + h) * slope), h
+            return a, 0.0, 0.0, 0.0
+        return a, f, r, self.extra_h(r)[0]
 
-    def _solve(self, lu, res: np.ndarray, u: np.ndarray | None) -> np.ndarray:
-        """(K_eff + Jn + u cᵀ)⁻¹ res from ``lu``, the LU factor of K_eff + Jn (the step's), and the contact's rank
-        one u cᵀ by Sherman–Morrison."""
-        x = lu_solve(lu, res, check_finite=False)
-        if u is None:
-            return x
-        y = lu_solve(lu, u, check_finite=False)
-        return x - y * (float(self.cr @ x) / (1.0 + float(self.cr @ y)))
+    def _condensed_force(self, free: np.ndarray, z: np.ndarray, x_pred: float, qq: float, guess: float, index: int) -> float:
+        """F' of α = x̃ − β·dt²·F'/m − c·(free + F'·z) − h_res(r)·F', F' = P(α, κα + q): the contact Newton against the
+        reduced plate's compliance c·z over this iteration's disc plus the residual flexibility the basis misses."""
+        top = x_pred - float(self.cr @ free)
+        if top <= 0.0:
+            return 0.0
+        comp = _CondensedCompliance(max(float(self.cr @ z), 0.0), self.extra_h)
+        _, f, _, _ = newton_contact(self.law, comp, self.hm, self.kappa, qq, top, min(guess, top), index, self.dt, caps=self.caps)
+        return f
 
     def free_approach(self, k: int) -> float:
         """The coupled step to k + 1 (one Newton over q and the contact); w̃ = c·q* + h(r*)F* − h_s(r*)F*."""
@@ -338,15 +352,14 @@ class ReducedVonKarmanStepper(CoupledStepper):
             gm = self.params.gamma
             p = p - C @ (v + dt * (1 - gm) * a - dt * gm * (self.a0 * q + self.a2 * v + self.a3 * a))
         scale = max(np.linalg.norm(p), 1e-300)
-        lu, last = None, np.inf
+        lu, last, guess = None, np.inf, x_pred
         for it in range(1, self.max_iterations + 1):
-            _, f, r, dfdw, h = self._contact(q1, x_pred, qq, k + 1)
+            a_c, f, r, h = self._contact(q1, x_pred, qq, k + 1)
             res = p - self._keff @ q1 - rom.nonlinear_force(q1)
-            u = None
+            br = self.sign * (self.patch.shares(r)[0] @ self.Bs)  # a unit force over the disc (the nearest node where apart)
             if f > 0.0:
-                br = self.sign * (self.patch.shares(r)[0] @ self.Bs)
                 res += f * br
-                u = -dfdw * br
+                guess = a_c
             norm = np.linalg.norm(res)
             if it == 1:
                 scale = max(scale, norm)
@@ -357,7 +370,12 @@ class ReducedVonKarmanStepper(CoupledStepper):
             if lu is None or norm > 0.5 * last:
                 lu = lu_factor(self._keff + rom.nonlinear_tangent(q1), check_finite=False)
             last = norm
-            q1 = q1 + self._solve(lu, res, u)
+            # The contact condensed on the linearised plate, as the full plate's step does: q = free + F'·z, F' the root of
+            # the contact law against the compliance c·z plus the disc's residual one (the contact Newton's bracket: a
+            # crush that stops, whose force falls steeply to zero, does not make the iterations cycle).
+            z = lu_solve(lu, br, check_finite=False)
+            free = q1 + lu_solve(lu, res, check_finite=False) - f * z
+            q1 = free + self._condensed_force(free, z, x_pred, qq, guess, k + 1) * z
         else:
             raise SolverFailed(
                 f"the reduced von Karman plate's Newton iteration did not converge at t = {(k + 1) * dt:.6g} s (step {k + 1}) in "
