@@ -55,7 +55,7 @@ def main() -> None:
         t_full, c_full = time.perf_counter() - t0, time.process_time() - c0
         st = m.contact_structure(vk.position, m.contact_reach(vk.position, vk.impactor.diameter))
         thick = m.vk.plate.section.thickness
-        print(f"{args.velocity:g} in/s, {m.vk.n} DOF full, max w/h {abs(full.deflection).max() / thick:.2f}")
+        print(f"{args.velocity:g} in/s, {m.vk.n} DOF full, max w/h {abs(full.target_displacement).max() / thick:.2f}")
         print(f"linear      peak {r_lin.peak_force:9.2f} N  contact {r_lin.contact_duration * 1e6:8.2f} us")
         print(f"full VK     peak {full.peak_force:9.2f} N  contact {full.contact_duration * 1e6:8.2f} us  run {t_full:8.2f} s wall, {c_full:8.2f} s CPU")
         print(
