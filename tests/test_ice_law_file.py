@@ -165,3 +165,26 @@ def test_an_unknown_family_names_both_known_ones(tmp_path):
     path = _write(tmp_path, edit=_set("rubber", "family"))
     with pytest.raises(InputError, match="soft-projectile.*crushing"):
         read_law(path)
+
+
+@pytest.mark.parametrize("rate,flagged", [(100.0, True), (1000.0, False), (5000.0, True)])
+def test_the_identified_strength_is_valid_over_the_tests_strain_rates_only(rate, flagged):
+    """An identified crushing law's strength is measured over its tests' V/d (255-3302 1/s here), not down to the fit's 0.1 1/s floor: a crush at 100 or 5000 1/s is flagged as an extrapolation, at 1000 1/s not."""
+    from softimpact.models.validity import ice_strength_validity
+
+    strength = _law().strength
+    assert strength.rate_range == pytest.approx(tuple(RANGES["strain_rate_1_s"]), rel=1e-12)
+    diameter = 0.0381
+    v = ice_strength_validity(diameter, rate * diameter, strength)  # a crush at V/d = rate
+    assert bool(v.flags) is flagged
+
+
+def test_the_identified_strength_keeps_the_fits_ramp_below_the_tests():
+    """Below the tests' rates the identified strength is its power law down to the fit's floor (0.1 1/s), then a ramp to zero: the same force the fit used."""
+    from softimpact.workflows._identification_crushing import RATE_FLOOR
+
+    strength = _law().strength
+    for rate in (1.0, 50.0):
+        assert strength(rate)[0] == pytest.approx(SIGMA_REF * (rate / RATE_REF) ** EXPONENT, rel=1e-12)
+    floor = SIGMA_REF * (RATE_FLOOR / RATE_REF) ** EXPONENT
+    assert strength(0.5 * RATE_FLOOR)[0] == pytest.approx(0.5 * floor, rel=1e-12)

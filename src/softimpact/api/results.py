@@ -390,7 +390,7 @@ class StaticPlateResult(_Written):
     """
 
     problem: object
-    result: object
+    result: object = field(repr=False)  # its final displacement is the whole plate's: not for a repr
     model: object = field(repr=False, compare=False, default=None)
     case_files: tuple = field(repr=False, default=())
     warnings: tuple = field(repr=False, compare=False, default=())
@@ -429,11 +429,24 @@ class StaticPlateResult(_Written):
         return _frame(cols, {"load_step": "1", "pressure_Pa": "Pa", "max_deflection_m": "m", "newton_iterations": "1"}, index="load_step")
 
     def plot(self, ax=None):
-        """The largest deflection against the pressure, per load step [kPa, mm]; returns the matplotlib Axes."""
+        """The largest deflection against the pressure, from the unloaded plate through each load step, in the display
+        units (in-lbf-s: psi and in; SI: kPa and mm); returns the matplotlib Axes."""
+        import numpy as np
+
+        from ..units import display
+
+        if self.units == "SI":
+            (pf, pl), (wf, wl) = (1e-3, "kPa"), (1e3, "mm")
+        else:
+            p, w = display(self.units, "stress"), display(self.units, "length")
+            (pf, pl), (wf, wl) = (p.factor, p.label), (w.factor, w.label)
         ax = _axes(ax)
-        ax.plot(self.result.pressure / 1e3, self.result.max_deflection * 1e3, "o-", label=self.result.kinematics)
-        ax.set_xlabel("pressure [kPa]")
-        ax.set_ylabel("largest deflection [mm]")
+        q = np.concatenate(([0.0], self.result.pressure))
+        w = np.concatenate(([0.0], self.result.max_deflection))
+        ax.plot(q * pf, w * wf, "o-", label=self.result.kinematics)
+        ax.set_xlabel(f"pressure [{pl}]")
+        ax.set_ylabel(f"largest deflection [{wl}]")
+        ax.set_title(self.problem.title or "uniform pressure, static")
         ax.legend()
         return ax
 

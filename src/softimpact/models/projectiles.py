@@ -47,13 +47,16 @@ class PowerLawStrength:
     Below ε̇_lo the strength is brought linearly to zero, σ_c = σ_c(ε̇_lo)·ε̇/ε̇_lo (a regularisation, not a
     measurement: a rigid-plastic crush stops with a force jump, which a Newton iteration on F(α, α̇) cannot
     bracket; the ramp acts only below the measured range, where the crush has all but stopped). σ_c = 0 for ε̇ ≤ 0.
+    ``ramp_below``: the ε̇_lo of that ramp where it is not the measured range's lower end (an identified law's: its
+    fit used the catalogue law's floor, while its tests' rates, its validity range, start far above it).
     """
 
     coefficient: float  # A [Pa]
     exponent: float  # m [-]
-    rate_range: tuple[float, float]  # the measured range of ε̇ [1/s]
+    rate_range: tuple[float, float]  # the measured range of ε̇ [1/s]: the validity envelope's
     reference_rate: float = 1.0  # ε̇_ref [1/s]
     source: str = ""
+    ramp_below: float | None = None  # ε̇ [1/s] below which σ_c ramps to 0 (None: rate_range's lower end)
 
     def __post_init__(self):
         lo, hi = self.rate_range
@@ -63,10 +66,12 @@ class PowerLawStrength:
             raise InputError(f"strength exponent must lie in [0, 1), got {self.exponent!r}")
         if not (0.0 < lo < hi):
             raise InputError(f"strength rate range must be 0 < lo < hi, got {self.rate_range!r}")
+        if self.ramp_below is not None and not (0.0 < self.ramp_below <= hi and math.isfinite(self.ramp_below)):
+            raise InputError(f"strength ramp_below must lie in (0, {hi!r}], got {self.ramp_below!r}")
 
     def __call__(self, rate: float) -> tuple[float, float]:
         """(σ_c [Pa], dσ_c/dε̇ [Pa·s]) at the strain rate ``rate`` [1/s]."""
-        lo = self.rate_range[0]
+        lo = self.rate_range[0] if self.ramp_below is None else self.ramp_below
         if rate <= 0.0:
             return 0.0, 0.0
         if rate < lo:

@@ -71,6 +71,7 @@ FLAG_LABELS = {
     "extrapolated_density": "density off the fitted projectiles'",
     "strains_past_allowables": "strains past the ply allowables",
     "gauge_strain_past_allowables": "a gauge strain past the ply allowables",
+    "contact_past_run_end": "first contact not ended at the run's end",
 }
 
 
@@ -256,7 +257,23 @@ def coupled_validity(problem, result, max_strain_index: float | None = None) -> 
     v += problem.target.validity(float(np.max(np.abs(result.target_displacement))))
     if max_strain_index is not None:
         v += allowable_flags("the target's plies", max_strain_index)
-    return v
+    return v + run_end_validity(result)
+
+
+def run_end_validity(result) -> Validity:
+    """A flag when the first contact of a coupled run (``contact_duration`` NaN: not separated) had not ended at the run's
+    end (``time[-1]``): its peak force, impulse and the target's peaks then cover the run only and may come later."""
+    if math.isfinite(result.contact_duration):
+        return Validity({})
+    end = float(result.time[-1])
+    return Validity(
+        {},
+        (
+            f"the first contact had not ended at the end of the run ({end * 1e6:.4g} us): its peak force, impulse and the target's "
+            "peaks cover the run only and may come later; lengthen solver.duration",
+        ),
+        ("contact_past_run_end",),
+    )
 
 
 def identified_range_validity(ranges: dict | None, velocity: float, diameter: float, mass: float | None, what: str) -> Validity:
@@ -274,4 +291,4 @@ def identified_range_validity(ranges: dict | None, velocity: float, diameter: fl
     return range_flags(f"the impactor for {what}", checks)
 
 
-__all__ += ["coupled_validity", "identified_range_validity"]
+__all__ += ["coupled_validity", "run_end_validity", "identified_range_validity"]

@@ -93,11 +93,17 @@ class CrushingIdentifiedLaw:
 
     @property
     def strength(self) -> PowerLawStrength:
-        """σ_c(ε̇) = σ_ref·(ε̇/ε̇_ref)^m_c, measured over RATE_FLOOR … the largest tested V/d."""
-        hi = max(self.identified_on["strain_rate_1_s"][1] if self.identified_on else self.reference_rate, 2.0 * RATE_FLOOR)
+        """σ_c(ε̇) = σ_ref·(ε̇/ε̇_ref)^m_c, measured over the tests' strain rates V/d (the validity range: a run below or
+        above them is an extrapolation), ramped to zero below RATE_FLOOR as in the fit."""
+        if self.identified_on and "strain_rate_1_s" in self.identified_on:
+            lo, hi = (float(x) for x in self.identified_on["strain_rate_1_s"])
+        else:  # no record of the tests' rates: the fit's floor up to the reference rate
+            lo, hi = RATE_FLOOR, self.reference_rate
+        hi = max(hi, 2.0 * RATE_FLOOR)
+        lo = min(max(lo, RATE_FLOOR), 0.5 * hi)
         sigma, m = (float(v) for v in self.values)
         return PowerLawStrength(
-            sigma, min(max(m, 0.0), CRUSHING_UPPER[1]), (RATE_FLOOR, hi), self.reference_rate, "identified from bar tests (softimpact identify)"
+            sigma, min(max(m, 0.0), CRUSHING_UPPER[1]), (lo, hi), self.reference_rate, "identified from bar tests (softimpact identify)", ramp_below=RATE_FLOOR
         )
 
     def law(self, mass: float, diameter: float, velocity: float) -> CrushingLaw:
