@@ -188,3 +188,11 @@ def test_the_identified_strength_keeps_the_fits_ramp_below_the_tests():
         assert strength(rate)[0] == pytest.approx(SIGMA_REF * (rate / RATE_REF) ** EXPONENT, rel=1e-12)
     floor = SIGMA_REF * (RATE_FLOOR / RATE_REF) ** EXPONENT
     assert strength(0.5 * RATE_FLOOR)[0] == pytest.approx(0.5 * floor, rel=1e-12)
+
+
+def test_a_missing_law_file_says_where_it_was_looked_for(tmp_path, monkeypatch):
+    """A relative law file that is not there is an InputError naming the key and the folder it was looked for in."""
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(InputError, match="contact.law_file: cannot read nosuch.json") as err:
+        read_law("nosuch.json")
+    assert str(tmp_path.resolve() / "nosuch.json") in str(err.value)

@@ -149,7 +149,7 @@ def test_the_builtin_ice_series_holds_the_published_tests_sizes_and_velocities()
 @pytest.mark.slow  # ~20 s: reduces 12 records and identifies with the jackknife and the closure runs
 def test_identify_on_the_builtin_ice_series_recovers_jones_1997(tmp_path):
     """`softimpact identify hail-ice-series --law crushing` writes a crushing law.json whose σ_ref and m_c contain the records' truth
-    (Jones 1997) within their 95 % intervals, and fits each record to its noise (rms under 2 % of F0 for 1 % gauge noise)."""
+    (Jones 1997) within their 95 % intervals, fits each record to its noise (rms under 2 % of F0 for 1 % gauge noise), and prints the strength."""
     from click.testing import CliRunner
 
     from softimpact.cli import main
@@ -164,3 +164,4 @@ def test_identify_on_the_builtin_ice_series_recovers_jones_1997(tmp_path):
     assert np.all(np.abs(law.values - truth) <= law.half_widths)
     assert law.coefficient_at_1_per_s == pytest.approx(JONES_1997[0], rel=0.01)
     assert np.all(law.rms_per_test < 0.02)
+    assert f"crushing strength {law.values[0] / 1e6:.4g} MPa" in r.output  # the line says the law, not the soft law's d_ref

@@ -54,8 +54,13 @@ def identify(*, series_name: str, law: str = "soft", units: str | None = None, f
             f"the fit ended on the bound of {', '.join(law.at_bounds)}: the estimate is the edge of the search, not a minimum",
         ),
     )
+    if family == "crushing":  # the law itself in the line: two numbers, the strength at the reference rate and the exponent
+        (sigma, m), (hs, hm) = law.values, law.half_widths
+        what = f"crushing strength {sigma / 1e6:.4g} MPa ±{hs / sigma:.1%} at {law.reference_rate:.4g} 1/s, rate exponent {m:.4g} ±{hm:.2g}"
+    else:
+        what = f"d_ref {law.d_ref * lu.factor:.3g} {lu.label}"
     line = (
-        f"{pars} (d_ref {law.d_ref * lu.factor:.3g} {lu.label})\n"
+        f"{pars} ({what})\n"
         f"closure over {len(tests)} tests: max |error| F0 {err[:, 0].max():.1%}, T {err[:, 1].max():.1%}, I {err[:, 2].max():.1%}, "
         f"t_F0 {np.abs(cl.peak_time_errors).max():.1%} "
         f"(worst {cl.names[worst]}); law.json"

@@ -115,7 +115,8 @@ def read_law(path, argument: str = "contact.law_file") -> IdentifiedLaw | Crushi
     try:
         data = json.loads(Path(path).read_text(encoding="utf-8"))
     except OSError as exc:
-        raise InputError(f"{argument}: cannot read {path} ({exc.strerror})") from None
+        where = "" if Path(path).is_absolute() else f", looked for at {Path(path).resolve()}"
+        raise InputError(f"{argument}: cannot read {path} ({exc.strerror}{where})") from None
     except (ValueError, UnicodeDecodeError):
         raise InputError(f"{argument}: {path} is not JSON (expected a law.json from `softimpact identify`)") from None
     names = PARAMETERS

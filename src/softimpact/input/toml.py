@@ -109,7 +109,11 @@ class Table:
     def done(self) -> None:
         unknown = sorted(set(self.data) - self._used)
         if unknown:
-            raise InputError(f"{self.key(unknown[0])}: unknown key (value {self.data[unknown[0]]!r})")
+            name = unknown[0]
+            # an optional key asked for and not given that looks like it (its default was taken: a misspelling)
+            near = difflib.get_close_matches(name, [k for k in self._used if k not in self.data], n=1, cutoff=0.75)
+            hint = f"; is it a misspelling of {near[0]!r}?" if near else ""
+            raise InputError(f"{self.key(name)}: unknown key (value {self.data[name]!r}){hint}")
 
 
 def builtin_cases() -> dict[str, Path]:
