@@ -8,6 +8,8 @@ import pytest
 import softimpact as si
 from softimpact.errors import InputError
 
+from _support import small_cases
+
 PLATE = """title = "API twin, large deflection"
 units = "SI"
 [plate]
@@ -32,16 +34,16 @@ duration = "300 us"
 IMPACT = """title = "API twin, large deflection"
 units = "SI"
 [target]
-case = "plate.toml"
+case = "{target}"
 [impactor]
 material = "steel"
-diameter = "1 in"
-velocity = "20 m/s"
+diameter = "{diameter}"
+velocity = "{velocity}"
 [contact]
 law = "hertz"
 [solver]
-time_step = "2 us"
-duration = "300 us"
+time_step = "{time_step}"
+duration = "{duration}"
 """
 
 
@@ -57,7 +59,7 @@ def test_api_plate_kinematics_equal_the_case_file(tmp_path):
     """A von Kármán plate with movable edges built in Python gives the peak force, time of peak and impulse of the same plate read from case files."""
     in_plane = "movable"  # not the default, so both keys must reach the model
     (tmp_path / "plate.toml").write_text(PLATE.format(in_plane=in_plane))
-    (tmp_path / "impact.toml").write_text(IMPACT)
+    (tmp_path / "impact.toml").write_text(IMPACT.format(target="plate.toml", diameter="1 in", velocity="20 m/s", time_step="2 us", duration="300 us"))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         file = si.run(si.load(tmp_path / "impact.toml"), figures=False)
@@ -87,44 +89,19 @@ def test_unknown_beam_kinematics_names_the_argument():
         si.Beam(length="6 in", width="1 in", laminate=si.Laminate("T300/934", "[90/0]5s"), kinematics="nonlinear")
 
 
-BEAM = """title = "API twin, large deflection"
-units = "SI"
-[beam]
-length = "6 in"
-width = "1 in"
-elements = [60, 2]
-support = "clamped-free"
-kinematics = "von-karman"
-[beam.laminate]
-ply = "T300/934"
-layup = "[90/0]5s"
-model = "smeared"
-[load]
-position = "3 in"
-contact_radius = "0.25 in"
-history = { shape = "skewed", peak_force = "44 lbf", time_of_peak = "30 us", duration = "355 us" }
-[solver]
-time_step = "1 us"
-duration = "100 us"
-"""
+BEAM = small_cases.BEAM.replace("[beam]\n", '[beam]\nkinematics = "von-karman"\n')  # 40 × 4, clamped-free, smeared
 
 
 def test_api_beam_kinematics_equal_the_case_file(tmp_path):
     """``si.Beam(kinematics="von-karman")`` gives the peak force and impulse of the same beam read from case files, and its run says its kinematics."""
-    beam = si.Beam(length="6 in", width="1 in", laminate=si.Laminate("T300/934", "[90/0]5s"), elements=(60, 2), kinematics="von-karman")
+    beam = si.Beam(length="6 in", width="1 in", laminate=si.Laminate("T300/934", "[90/0]5s"), elements=(40, 4), kinematics="von-karman")
     assert beam.kinematics == "von-karman"
     sphere = si.Sphere("steel", "0.5 in", velocity="100 in/s")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         ours = si.impact(beam, at="3 in", impactor=sphere, time_step="1 us", duration="100 us", units="SI")
         (tmp_path / "beam.toml").write_text(BEAM)
-        (tmp_path / "impact.toml").write_text(
-            IMPACT.replace("plate.toml", "beam.toml")
-            .replace('"1 in"', '"0.5 in"')
-            .replace('"20 m/s"', '"100 in/s"')
-            .replace('"2 us"', '"1 us"')
-            .replace('"300 us"', '"100 us"')
-        )
+        (tmp_path / "impact.toml").write_text(IMPACT.format(target="beam.toml", diameter="0.5 in", velocity="100 in/s", time_step="1 us", duration="100 us"))
         file = si.run(si.load(tmp_path / "impact.toml"), figures=False)
     assert ours.summary()["target"]["kinematics"] == "von-karman"
     for name in ("peak_force", "time_of_peak", "impulse"):
