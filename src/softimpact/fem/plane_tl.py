@@ -51,14 +51,14 @@ import numpy as np
 import scipy.sparse
 
 from .plane import PlaneModel
-from .scatter import ElementScatter
+from .scatter import ElementTangents
 
 __all__ = ["PlaneTL"]
 
 GAUSS_2 = 0.5 + np.array([-0.5, 0.5]) / np.sqrt(3.0)  # 2-point Gauss on [0, 1] (weights ½): Q4's full integration
 
 
-class PlaneTL:
+class PlaneTL(ElementTangents):
     """The plane beam's total Lagrangian model over the free DOFs of ``plane`` (a
     :class:`~softimpact.fem.plane.PlaneModel`, its supports): ``K`` (linear), ``M``, ``n``, the internal force
     :meth:`internal_force`, the tangent :meth:`tangent` and the strain energy :meth:`strain_energy` (module
@@ -69,7 +69,7 @@ class PlaneTL:
         self.K, self.M, self.n, self.free = plane.K, plane.M, plane.n, plane.free
         self._index = plane._index
         self._elements()
-        self._pattern = self._BL = None
+        self._BL = None
 
     def _elements(self) -> None:
         pm, beam = self.plane, self.plane.beam
@@ -212,21 +212,6 @@ class PlaneTL:
         Ke[:, :4, :4] += Ks
         Ke[:, 4:, 4:] += Ks
         return Ke
-
-    def _scatter_tangents(self) -> ElementScatter:
-        """The element tangents' scatter (:class:`~softimpact.fem.scatter.ElementScatter`), built once."""
-        if self._pattern is None:
-            ne = self._gdofs.shape[0]
-            self._pattern = ElementScatter(self._index[self._gdofs.reshape(ne, -1)], self.n)
-        return self._pattern
-
-    def tangent_nonlinear(self, d: np.ndarray) -> scipy.sparse.csr_matrix:
-        """K_T(d) − K (zero at d = 0)."""
-        return self._scatter_tangents().assemble(self._element_tangents(d))
-
-    def tangent(self, d: np.ndarray) -> scipy.sparse.csr_matrix:
-        """K_T(d) = ∂f_int/∂d (module docstring)."""
-        return (self.K + self.tangent_nonlinear(d)).tocsr()
 
     # ---- gauges -----------------------------------------------------------------------
     def transverse_rows(self, O: np.ndarray) -> np.ndarray:

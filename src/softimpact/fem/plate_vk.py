@@ -66,7 +66,7 @@ import scipy.sparse
 from ..errors import InputError, SolverFailed
 from .newmark import NewmarkParameters, spd_factor
 from .plate import EDGES, PHI_X, PHI_Y, Plate, PlateFE, U, V, W, _gauss01, _lagrange
-from .scatter import ElementScatter
+from .scatter import ElementTangents
 
 __all__ = ["DynamicResult", "IN_PLANE", "KINEMATICS", "PlateVK", "StaticResult", "VonKarmanNewmark", "solve_static"]
 
@@ -75,7 +75,7 @@ IN_PLANE = ("immovable", "movable")
 UNCOUPLED = 1e-12  # membrane–bending entries of K and M below this fraction of the largest diagonal entry are round-off of B = 0
 
 
-class PlateVK:
+class PlateVK(ElementTangents):
     """The plate's von Kármán model over its free DOFs: ``K`` (linear), ``M``, the internal
     force :meth:`internal_force`, the tangent :meth:`tangent` and the strain energy
     :meth:`strain_energy`; rows :meth:`deflection` and loads :meth:`load_vector` as
@@ -97,7 +97,6 @@ class PlateVK:
         self._elements()
         if not self.coupled:
             self.K, self.M = self._uncoupled(self.K), self._uncoupled(self.M)
-        self._pattern = None
 
     def _uncoupled(self, A: scipy.sparse.csr_matrix) -> scipy.sparse.csr_matrix:
         """``A`` without its membrane–bending entries when they are round-off (all below ``UNCOUPLED`` of its largest
@@ -265,21 +264,6 @@ class PlateVK:
         Kww += np.einsum("eq,eqp,eqr->epr", Nq[..., 2], Dx, Dy) + np.einsum("eq,eqp,eqr->epr", Nq[..., 2], Dy, Dx)
         Ke[:, 2, :, 2, :] += Kww
         return Ke.reshape(ne, nc * npe, nc * npe)
-
-    def _scatter_tangents(self) -> ElementScatter:
-        """The element tangents' scatter (:class:`~softimpact.fem.scatter.ElementScatter`), built once."""
-        if self._pattern is None:
-            ne = self._gdofs.shape[0]
-            self._pattern = ElementScatter(self._index[self._gdofs.reshape(ne, -1)], self.n)
-        return self._pattern
-
-    def tangent_nonlinear(self, d: np.ndarray) -> scipy.sparse.csr_matrix:
-        """K_T(d) − K: the von Kármán part of the tangent (zero at d = 0)."""
-        return self._scatter_tangents().assemble(self._element_tangents(d))
-
-    def tangent(self, d: np.ndarray) -> scipy.sparse.csr_matrix:
-        """K_T(d) = ∂f_int/∂d (module docstring)."""
-        return (self.K + self.tangent_nonlinear(d)).tocsr()
 
     # ---- rows and loads -------------------------------------------------------------
     def deflection(self, x: float, y: float) -> np.ndarray:

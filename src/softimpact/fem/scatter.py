@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse
 
-__all__ = ["ElementScatter"]
+__all__ = ["ElementScatter", "ElementTangents"]
 
 
 class ElementScatter:
@@ -33,3 +33,27 @@ class ElementScatter:
         """Σ_e of the element matrices ``Ke`` (ne, nd, nd) as an (n, n) CSR matrix."""
         data = np.bincount(self.inverse, weights=np.asarray(Ke).ravel()[self.keep], minlength=self.nnz)
         return scipy.sparse.csr_matrix((data, self.indices, self.indptr), shape=(self.n, self.n))
+
+
+class ElementTangents:
+    """The tangent K_T(d) = K + Σ_e K_e(d) of a nonlinear structure whose element tangents stay on one mesh: a base of
+    :class:`~softimpact.fem.plate_vk.PlateVK` and :class:`~softimpact.fem.plane_tl.PlaneTL`. The structure gives ``K``
+    (its linear stiffness over the n reduced DOFs), ``n``, ``_gdofs`` (ne, ..., the element DOFs), ``_index`` (a DOF's
+    position among the reduced ones, −1 where supported) and ``_element_tangents(d)`` (ne, nd, nd), the nonlinear part."""
+
+    _pattern: ElementScatter | None = None  # the element tangents' scatter, built on first use
+
+    def _scatter_tangents(self) -> ElementScatter:
+        """The element tangents' scatter (:class:`ElementScatter`), built once."""
+        if self._pattern is None:
+            ne = self._gdofs.shape[0]
+            self._pattern = ElementScatter(self._index[self._gdofs.reshape(ne, -1)], self.n)
+        return self._pattern
+
+    def tangent_nonlinear(self, d: np.ndarray) -> scipy.sparse.csr_matrix:
+        """K_T(d) − K: the nonlinear part of the tangent (zero at d = 0)."""
+        return self._scatter_tangents().assemble(self._element_tangents(d))
+
+    def tangent(self, d: np.ndarray) -> scipy.sparse.csr_matrix:
+        """K_T(d) = ∂f_int/∂d."""
+        return (self.K + self.tangent_nonlinear(d)).tocsr()
