@@ -59,7 +59,7 @@ for kinematics, res in runs.items():
 # %%
 # What changes (8 × 8 MITC9, 2 µs steps: a sketch; refine both before a decision; both first contacts end within the
 # 1.2 ms run, the linear one at 0.59 ms, the von Kármán one at 0.94 ms; the linear skin then springs back into the
-# ice left in front of it, a second contact still on when the run ends). The linear skin deflects about 7.5
+# ice left in front of it, a second contact still on when the run ends, which the run flags). The linear skin deflects about 7.5
 # thicknesses, fifteen times past the 0.5 where linear theory holds, and the run flags it. The stretched skin
 # deflects about 3 thicknesses, pushes back about 60 % harder, and strains less: its maximum-strain index falls from
 # about 2.0 to 1.4. Both are past the plies' allowables (both runs flag that: the skin has failed either way, and the

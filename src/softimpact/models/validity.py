@@ -71,7 +71,7 @@ FLAG_LABELS = {
     "extrapolated_density": "density off the fitted projectiles'",
     "strains_past_allowables": "strains past the ply allowables",
     "gauge_strain_past_allowables": "a gauge strain past the ply allowables",
-    "contact_past_run_end": "first contact not ended at the run's end",
+    "contact_past_run_end": "a contact not ended at the run's end",
 }
 
 
@@ -261,19 +261,19 @@ def coupled_validity(problem, result, max_strain_index: float | None = None) -> 
 
 
 def run_end_validity(result) -> Validity:
-    """A flag when the first contact of a coupled run (``contact_duration`` NaN: not separated) had not ended at the run's
-    end (``time[-1]``): its peak force, impulse and the target's peaks then cover the run only and may come later."""
-    if math.isfinite(result.contact_duration):
-        return Validity({})
+    """A flag when a contact of a coupled run had not ended at the run's end (``time[-1]``): the first (``contact_duration``
+    NaN), whose peak force, impulse and the target's peaks then cover the run only, or a later one (the last of
+    ``contacts`` without an end), whose force still acts on the target: the total impulse and the target's peaks cover
+    the run only."""
     end = float(result.time[-1])
-    return Validity(
-        {},
-        (
-            f"the first contact had not ended at the end of the run ({end * 1e6:.4g} us): its peak force, impulse and the target's "
-            "peaks cover the run only and may come later; lengthen solver.duration",
-        ),
-        ("contact_past_run_end",),
-    )
+    if not math.isfinite(result.contact_duration):
+        what = "the first contact had not ended at the end of the run ({:.4g} us): its peak force, impulse and the target's peaks"
+    elif result.contacts and not math.isfinite(result.contacts[-1].end):
+        k, start = len(result.contacts), result.contacts[-1].start * 1e6
+        what = f"contact {k} (from {start:.4g} us) had not ended at the end of the run ({{:.4g}} us): the total impulse and the target's peaks"
+    else:
+        return Validity({})
+    return Validity({}, (what.format(end * 1e6) + " cover the run only and may come later; lengthen solver.duration",), ("contact_past_run_end",))
 
 
 def identified_range_validity(ranges: dict | None, velocity: float, diameter: float, mass: float | None, what: str) -> Validity:
