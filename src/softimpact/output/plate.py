@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .files import csv_text, energy_balance, figure_bytes, json_text, strain_peaks, with_units
@@ -109,14 +111,21 @@ def plate_files(model, result, figures: bool = True, summary: dict | None = None
 def plate_static_validity(result):
     """The envelope of a static plate run: with linear kinematics, the largest deflection against the
     thickness (:func:`softimpact.models.validity.deflection_validity`); von Kármán kinematics is the model
-    past it (its ratio is reported, not flagged)."""
-    from ..models.validity import Validity, deflection_validity
+    past it (its ratio is reported, not flagged). With ply strengths, the mid-surface strains against the ply
+    allowables (``membrane_strain_index``, a lower bound of the faces' index: flagged past 1)."""
+    from ..models.validity import Validity, allowable_flags, deflection_validity
 
     h = result.problem.plate.stack.thickness
     w = float(result.max_deflection[-1])
     if result.kinematics == "linear":
-        return deflection_validity("linear plate theory (FSDT)", w, h)
-    return Validity({"deflection_over_thickness": w / h}, ())
+        v = deflection_validity("linear plate theory (FSDT)", w, h)
+    else:
+        v = Validity({"deflection_over_thickness": w / h}, ())
+    index = result.membrane_strain_index
+    if math.isfinite(index):
+        a = allowable_flags("the plate's plies, from the mid-surface strains alone (a lower bound of the faces')", index)
+        v += Validity({"membrane_strain_index": index}, a.flags, a.names)
+    return v
 
 
 def plate_static_summary(model, result) -> dict:

@@ -407,6 +407,22 @@ class PlateStaticResult:
     message: str
     u: np.ndarray
     kinematics: str
+    membrane_strain_index: float = math.nan  # the maximum-strain index of the mid-surface strains (nan: no ply strengths)
+
+
+def membrane_strain_index(stack, strain: np.ndarray) -> float:
+    """The largest maximum-strain index over every ply angle of ``stack`` (a layup whose ply has strengths) under the
+    mid-surface strains ``strain`` (..., 3) [(ε_x0, ε_y0, γ_xy0)]; nan for a laminate without them. With no
+    curvature this is a lower bound of the faces' index: ε(z) = ε0 + z·κ, and a convex index at the faces' mean
+    strain is at most the larger of its values at the faces."""
+    from ..models.failure import failure_indices, ply_stresses
+
+    if not isinstance(stack, Stack) or stack.ply.strength is None:
+        return math.nan
+    e0 = np.asarray(strain, float).reshape(-1, 3).T
+    angles = sorted(set(stack.angles))
+    eps, sig = ply_stresses(stack.ply, angles, e0, np.zeros_like(e0), np.zeros(len(angles)))
+    return float(failure_indices(stack.ply, stack.ply.strength, eps, sig)["max_strain"].max())
 
 
 def solve_plate_static(problem: PlateProblem, model=None):
@@ -424,7 +440,8 @@ def solve_plate_static(problem: PlateProblem, model=None):
     rows = model.fe.basis.nodal_dofs[W]
     w = np.array([np.abs(model.expand(u)[rows]).max() for u in res.u])
     pressure = problem.pressure * res.load_factors
-    return model, PlateStaticResult(problem, pressure, w, res.iterations, res.residuals, res.converged, res.message, res.u[-1], problem.kinematics)
+    index = membrane_strain_index(problem.plate.stack, model.membrane_strain(res.u[-1], problem.kinematics != "linear"))
+    return model, PlateStaticResult(problem, pressure, w, res.iterations, res.residuals, res.converged, res.message, res.u[-1], problem.kinematics, index)
 
 
 def check_problem(problem: PlateProblem) -> None:
