@@ -7,8 +7,7 @@ import warnings
 import pytest
 
 import softimpact as si
-from softimpact.models.laminate import Stack
-from softimpact.models.laminate import PLIES
+from softimpact.models.laminate import PLIES, Stack
 from softimpact.models.validity import ValidityWarning
 from softimpact.workflows.plate_impact import membrane_strain_index
 
@@ -35,4 +34,3 @@ def test_a_plate_pressed_past_its_allowables_is_flagged(pressure, failed):
     assert (v["membrane_strain_index"] > 1.0) is failed
     assert any("lower bound" in f and "ply allowables" in f for f in v["flags"]) is failed
     assert math.isfinite(v["deflection_over_thickness"])
-
