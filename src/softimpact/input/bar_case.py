@@ -18,7 +18,7 @@ from ..fem.bar import Rod
 from ..models.contact_laws import HertzLaw
 from ..models.specimens import BarSpec, EndCap, Gauge, Impactor
 from ..workflows.bar_impact import BarImpactProblem, check_problem
-from .contact_law import CONTACT_LAWS, read_contact_law
+from .contact_law import CONTACT_LAWS, note_law_keys, read_contact_law
 from .projectile import read_sphere
 from .toml import Table, load_case_toml, locate, naming, read_material, read_solver, read_units
 
@@ -75,6 +75,7 @@ def bar_problem(data: dict, base: Path = Path(".")) -> BarImpactProblem:
     law = "hertz"
     if contact_tbl is not None:
         name = contact_tbl.string("law", law, choices=CONTACT_LAWS)
+        note_law_keys(contact_tbl)
         if name != "hertz":
             flat = bar.material if bar.end_cap is None else bar.end_cap.material
 

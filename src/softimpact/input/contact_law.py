@@ -29,10 +29,18 @@ from ..models.materials import Material
 from ..models.projectiles import LinearHugoniot, PowerLawStrength, projectile_material
 from .toml import Table
 
-__all__ = ["CONTACT_LAWS", "CRITICAL_INDENTATION", "HUNT_CROSSLEY_FORMS", "read_contact_law", "warn_outside"]
+__all__ = ["CONTACT_LAWS", "CRITICAL_INDENTATION", "HUNT_CROSSLEY_FORMS", "LAW_KEYS", "note_law_keys", "read_contact_law", "warn_outside"]
 
 CRITICAL_INDENTATION = 0.08e-3  # m: Yang & Sun (1982), graphite/epoxy struck by a 12.7 mm steel ball
 HUNT_CROSSLEY_FORMS = ("lankarani-nikravesh", "hunt-crossley")
+# the keys each law reads besides ``law``: given with another law, the error names the law that reads them
+LAW_KEYS = {
+    "hertz-unloading": ("critical_indentation",),
+    "hunt-crossley": ("restitution", "form"),
+    "identified": ("law_file", "parameters"),
+    "crushing": ("strength_coefficient", "strength_exponent"),
+    "hydrodynamic": ("sound_speed", "hugoniot_slope"),
+}
 
 
 def read_contact_law(
@@ -49,6 +57,7 @@ def read_contact_law(
     """The law ``name`` of table ``c`` for an impactor (mass [kg], diameter [m], velocity [m/s], ``material``
     the projectile's, read from the key ``where``); ``hertz()`` gives the pair's Hertz law. Returns (law, the
     law file read or None)."""
+    note_law_keys(c)
     if name in MATERIAL_LAWS:
         return _flow_law(c, name, material, mass, diameter, velocity, where), None
     if name == "identified":
@@ -68,6 +77,11 @@ def read_contact_law(
         raise InputError(f"{c.key('restitution')}: must be in (0, 1], got {restitution!r}")
     form = c.string("form", HUNT_CROSSLEY_FORMS[0], choices=HUNT_CROSSLEY_FORMS)
     return HuntCrossleyLaw(h.K, h.R, restitution, velocity, h.exponent, form), None
+
+
+def note_law_keys(c: Table) -> None:
+    """Tell table ``c`` which law reads each of :data:`LAW_KEYS`: one given beside another law is then refused naming it."""
+    c.read_with({k: f'{c.key("law")} = "{law}"' for law, keys in LAW_KEYS.items() for k in keys})
 
 
 def _flow_law(c: Table, name: str, material: Material | None, mass: float, diameter: float, velocity: float, where: str):

@@ -45,10 +45,15 @@ class Table:
     def __init__(self, data: dict, path: str = ""):
         if not isinstance(data, dict):
             raise InputError(f"{path or 'case'}: expected a table, got {data!r}")
-        self.data, self.path, self._used = data, path, set()
+        self.data, self.path, self._used, self._read_with = data, path, set(), {}
 
     def key(self, name: str) -> str:
         return f"{self.path}.{name}" if self.path else name
+
+    def read_with(self, keys: dict[str, str]) -> None:
+        """Keys this table reads only with another choice (key → that choice, e.g. ``law = "identified"``): given
+        beside a choice that does not read them, :meth:`done` names the choice that does."""
+        self._read_with.update(keys)
 
     def __contains__(self, name: str) -> bool:
         return name in self.data
@@ -113,6 +118,8 @@ class Table:
             # an optional key asked for and not given that looks like it (its default was taken: a misspelling)
             near = difflib.get_close_matches(name, [k for k in self._used if k not in self.data], n=1, cutoff=0.75)
             hint = f"; is it a misspelling of {near[0]!r}?" if near else ""
+            if name in self._read_with:
+                raise InputError(f"{self.key(name)}: not read here (value {self.data[name]!r}); it is read only with {self._read_with[name]}")
             raise InputError(f"{self.key(name)}: unknown key (value {self.data[name]!r}){hint}")
 
 
