@@ -41,9 +41,14 @@ GIIC = 800.0  # J/m²: any value (F_c and F_d both scale with its square root)
 HALF, N = 0.1, 16  # the quarter's side [m] and elements along it
 
 
-def onset_ratios(half: float = HALF, n: int = N, discs: int = 8):
+def onset_ratios(half: float = HALF, n: int = N, discs: int = 8, load=None):
     """(a_eff/h, F_c/F_d) for ``discs`` discs grown element by element from the load point, on a quarter of side
-    ``half`` [m] with ``n`` × ``n`` elements (benchmarks/onset_olsson.py runs it on finer and larger plates)."""
+    ``half`` [m] with ``n`` × ``n`` elements (benchmarks/onset_olsson.py runs it on finer and larger plates).
+
+    ``load``: a function of the :class:`CohesivePlate` giving the quarter's nodal load vector (over its stacked DOFs)
+    of a unit total force on the whole plate; by default the central point load on the top sublaminate,
+    ``cp.deflection(0, 0) / 4`` (tests/test_onset_distributed.py passes a pressure). The compliance is the
+    work-conjugate one of that fixed distribution, C = 4·fᵀu/P (the four quarters' work ½·P²·C)."""
     g = E / (2 * (1 + NU))
     ply = Ply("isotropic", E, E, E, g, g, g, NU, NU, NU, 2700.0, T_PLY)
     stack = Stack(ply, (0.0,) * N_PLY)
@@ -52,9 +57,8 @@ def onset_ratios(half: float = HALF, n: int = N, discs: int = 8):
     cp = CohesivePlate(plate, stack, (N_PLY // 2,), law, in_plane="movable")
     x, y = cp.layers[0].fe.node_xy()
     r = np.hypot(x, y)
-    row = cp.deflection(0.0, 0.0)
     P = 1.0
-    f = row * P / 4  # the quarter's share of the central load
+    f = (cp.deflection(0.0, 0.0) / 4 if load is None else load(cp)) * P  # the quarter's share of the load
     areas, compliances = [], []
     for a in (np.arange(discs) + 1.25) * half / n:  # radii between node rings, one element apart
         cp.damage[:] = 0.0
@@ -68,7 +72,7 @@ def onset_ratios(half: float = HALF, n: int = N, discs: int = 8):
         else:
             raise AssertionError(f"the faces' contact set did not settle at a = {a:.4g} m")
         areas.append(4 * cp.area[r < a].sum())
-        compliances.append(row @ u / P)
+        compliances.append(4 * (f @ u) / P**2)
     A, C = np.array(areas), np.array(compliances)
     dC_dA = np.diff(C) / np.diff(A)
     F_c = np.sqrt(2 * GIIC / dC_dA)
