@@ -97,3 +97,16 @@ def test_a_wider_disc_raises_the_onset_force(onsets):
     """At every delamination size the onset force grows with the loaded disc's radius (the qualitative claim of Olsson et al., ECCM 14)."""
     point, mid, wide = (onsets[rh][1] for rh in (0.0, 1.0, 5.0))
     assert np.all(mid > point) and np.all(wide > mid)
+
+
+@pytest.mark.slow
+def test_the_reports_excess_coefficient_is_the_stacked_plates(onsets):
+    """The report's DISTRIBUTED_EXCESS (F_c/F_c,point − 1 = c·(r/a)², its critical-force paragraph) is the stacked plate's c
+    for a ≥ 2r, r = h and 5h, within 15 %."""
+    from softimpact.app.paper.hail import DISTRIBUTED_EXCESS
+
+    a_over_h, point = onsets[0.0]
+    for rh in (1.0, 5.0):
+        far = a_over_h >= 2 * rh
+        c = (onsets[rh][1][far] / point[far] - 1) * (a_over_h[far] / rh) ** 2
+        np.testing.assert_allclose(c, DISTRIBUTED_EXCESS, rtol=0.15)
