@@ -86,13 +86,13 @@ def linear_row(tmp_path_factory):
     (row,) = T.threshold_map(s, law, [0.75 * INCH], 200 * INCH, 20000 * INCH, draws=0, strength_quantiles=3, indices=("tsai_wu",))
     folder = tmp_path_factory.mktemp("row")
     _write_case(folder, data)
-    return row, folder
+    return row, folder, (s, law)
 
 
 def test_a_rows_validity_columns_equal_the_impact_commands_summary_at_its_threshold(linear_row):
     """Every validity ratio of a map row (kernel runs) equals summary.json's of `softimpact impact` run at the row's V* (direct stepping),
     to 1e-9, and the row raises as many flags as the command (its validity's and its warnings on the law's range)."""
-    row, folder = linear_row
+    row, folder, _ = linear_row
     case = _impact_case(folder, row.diameter, row.nominal, "2 us", "400 us")
     out = folder / "out"
     result = CliRunner().invoke(main, ["impact", str(case), "--out", str(out), "--no-figures"])
@@ -109,12 +109,23 @@ def test_a_rows_validity_columns_equal_the_impact_commands_summary_at_its_thresh
 
 def test_a_row_past_the_linear_deflection_limit_says_so(linear_row):
     """The 3/4-in ball's Tsai–Wu threshold on the linear quarter plate deflects it past w/h = 0.5: the row is flagged and outside."""
-    row, _ = linear_row
+    row, _, _ = linear_row
     d = row.as_dict()
     assert d["deflection_over_thickness"] > 0.5
     assert "deflection_past_linear" in d["validity_flags"]
     assert d["inside_validity"] is False
     assert d["kinematics"] == "linear" and d["band_from"] == "own draws"
+
+
+def test_a_threshold_below_the_searched_range_is_flagged_not_reported_as_found(linear_row):
+    """Searched from 1.2 times its threshold, the row's index is past 1 at the range's floor: V* is the floor and the row
+    says so (threshold_at_range_floor), where it used to look found."""
+    row, _, (s, law) = linear_row
+    lo = 1.2 * row.nominal
+    (floored,) = T.threshold_map(s, law, [row.diameter], lo, 20000 * INCH, draws=0, strength_quantiles=3, indices=("tsai_wu",))
+    assert floored.nominal == lo
+    assert "threshold_at_range_floor" in floored.flags and "threshold_at_range_floor" not in row.flags
+    assert floored.as_dict()["inside_validity"] is False
 
 
 @pytest.mark.slow

@@ -72,6 +72,7 @@ FLAG_LABELS = {
     "strains_past_allowables": "strains past the ply allowables",
     "gauge_strain_past_allowables": "a gauge strain past the ply allowables",
     "contact_past_run_end": "a contact not ended at the run's end",
+    "threshold_at_range_floor": "threshold at or below the lowest velocity searched",
 }
 
 
@@ -276,6 +277,20 @@ def run_end_validity(result) -> Validity:
     return Validity({}, (what.format(end * 1e6) + " cover the run only and may come later; lengthen solver.duration",), ("contact_past_run_end",))
 
 
+def range_floor_validity(threshold: float, lo: float) -> Validity:
+    """A flag when a threshold velocity is the lowest velocity its search tried (``lo`` [m/s]): the index already reached 1
+    there, so the threshold is at or below ``lo``, not found (a map's V* and FTE are then upper bounds)."""
+    if not (math.isfinite(threshold) and threshold <= lo):
+        return Validity({})
+    return Validity(
+        {},
+        (
+            f"the threshold is at or below the lowest velocity searched ({lo:.4g} m/s): the index reaches 1 there already; V* and the energy are upper bounds: lower the range",
+        ),
+        ("threshold_at_range_floor",),
+    )
+
+
 def identified_range_validity(ranges: dict | None, velocity: float, diameter: float, mass: float | None, what: str) -> Validity:
     """An identified law used on an impactor (velocity [m/s], diameter [m], mass [kg] or None) against the tests it was
     identified on (``ranges``: its law.json's ``identified_on``, with ``velocity_m_s``, ``diameter_m`` and optionally
@@ -291,4 +306,4 @@ def identified_range_validity(ranges: dict | None, velocity: float, diameter: fl
     return range_flags(f"the impactor for {what}", checks)
 
 
-__all__ += ["coupled_validity", "run_end_validity", "identified_range_validity"]
+__all__ += ["coupled_validity", "run_end_validity", "range_floor_validity", "identified_range_validity"]

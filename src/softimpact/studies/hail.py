@@ -45,6 +45,7 @@ import numpy as np
 from ..models.crushing_law import CrushingLaw
 from ..models.delamination import REGIME_BOUNDS, response_regime
 from ..models.projectiles import projectile_material
+from ..models.validity import range_floor_validity
 from .thresholds import ONSET, gci_two_meshes, structure, structure_run, threshold_velocity
 
 __all__ = [
@@ -226,7 +227,7 @@ def hail_map(
                 if math.isfinite(v):
                     problem, result = structure_run(fine, law, d, v)
                     peak = max(c.peak_force for c in result.contacts)
-                    validity = run_validity(problem, result).summary()
+                    validity = (run_validity(problem, result) + range_floor_validity(v, lo)).summary()
                 ratio = mass / fine.problem.target.mass
                 regime = response_regime(mass, fine.problem.target.mass, wave_below=REGIME_BOUNDS[0], quasi_static_above=REGIME_BOUNDS[1])
                 row = HailRow(h, d, mass, index, v, vc, gci_two_meshes(v, vc), peak, _threshold_force(fine, index), validity, ratio, regime, fine.kinematics)

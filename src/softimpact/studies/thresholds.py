@@ -95,7 +95,7 @@ from ..fem.newmark import SolverSpec
 from ..models.delamination import REGIME_BOUNDS, response_regime
 from ..models.materials import Material
 from ..models.specimens import Impactor
-from ..models.validity import Validity, coupled_validity, identified_range_validity
+from ..models.validity import Validity, coupled_validity, identified_range_validity, range_floor_validity
 from ..workflows.coupled import ImpactProblem, impact_kernels, run_impact
 from ..workflows.damage import coupled_damage, delamination_force, olsson_force
 
@@ -473,7 +473,7 @@ def threshold_map(
                 if ref is None:  # (a carried band carries its β too: two runs fewer a threshold)
                     i1, i2 = (index_at(s, law, d, nominal * f, index, runs=runs) for f in (0.98, 1.02))
                     beta = math.log(i2 / i1) / math.log(1.02 / 0.98)
-                validity = run_validity(*_cached_run(s, law, d, nominal, runs), law)
+                validity = run_validity(*_cached_run(s, law, d, nominal, runs), law) + range_floor_validity(nominal, lo)
                 ratios, flags = dict(validity.values), tuple(validity.names)
             coarse_v = threshold_velocity(coarse, law, d, index, lo, hi, guess=nominal, beta=beta, runs=runs) if coarse is not None else math.nan
             gci = gci_two_meshes(nominal, coarse_v)

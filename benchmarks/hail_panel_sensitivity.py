@@ -1,0 +1,63 @@
+"""How the hail map's FTE trend in h/D depends on the panel's size and supports (which were not retrieved).
+
+The report's hail map (``softimpact.app.paper.hail``) runs Rhymer's three thicknesses on a 300-mm simply supported
+panel, a choice. This script runs the same map (the catalogue's ice, Olsson's onset, the report's meshes and
+velocity range) on other panels, changing only the side and the supports of the base case, and prints per panel the
+R² of FTE's linear fit in h/D, the FTE of each row and its deflection over thickness at V*. Usage:
+
+    python benchmarks/hail_panel_sensitivity.py                    # the linear panels of the table in docs/validation-hail.md
+    python benchmarks/hail_panel_sensitivity.py 150 clamped vk     # one panel, von Karman (the full plate), from its linear map
+
+About 20-40 s of CPU a linear panel.
+"""
+
+import math
+import sys
+import warnings
+
+from softimpact.app.paper import hail as H
+from softimpact.input.plate_case import plate_problem
+from softimpact.input.toml import locate
+from softimpact.studies.hail import ONSET, CatalogueIce, fte_fit, hail_map
+
+PANELS = ((300, "simply-supported"), (300, "clamped"), (200, "clamped"), (150, "simply-supported"), (150, "clamped"))
+
+
+def target_of(side_mm: float, support: str):
+    """The report's ``panel_target`` with the panel's side [mm] and its four edges' support changed."""
+
+    def panel_target(thickness, layup, elements, duration, kinematics="linear"):
+        data = H.hail_plate_case(thickness, layup, elements, duration, kinematics)
+        data["plate"]["length"] = data["plate"]["width"] = f"{side_mm} mm"
+        data["plate"]["support"] = {e: support for e in ("x0", "x1", "y0", "y1")}
+        data["load"]["position"] = [f"{side_mm / 2} mm", f"{side_mm / 2} mm"]
+        return plate_problem(data, locate(H.BASE_CASE).parent)
+
+    return panel_target
+
+
+def run(side: float, support: str, kinematics: str = "linear") -> None:
+    common = dict(duration=H.HAIL_DURATION, lo=H.HAIL_RANGE[0], hi=H.HAIL_RANGE[1], indices=(ONSET,))
+    rows = hail_map(CatalogueIce(), target_of(side, support), meshes=H.HAIL_MESHES, **common)
+    if kinematics == "vk":  # the report's von Karman meshes, the full plate stepped (its secant steps from the linear V*)
+        rows = hail_map(CatalogueIce(), target_of(side, support), meshes=H.VK_MESHES, kinematics="von-karman", guesses=rows, **common)
+    fit = fte_fit(rows)
+    print(f"{side:g} mm, {support}, {'von Karman' if kinematics == 'vk' else 'linear'}: R2 = {fit.r2:.3f}, FTE = {fit.slope:.1f}*h/D + {fit.intercept:.2f} J")
+    for r in rows:
+        w_h = r.validity.get("deflection_over_thickness", math.nan)
+        print(
+            f"   h {r.thickness * 1e3:.2f} mm, D {r.diameter * 1e3:.1f} mm: V* {r.velocity:6.2f} m/s, FTE {r.fte:6.2f} J, w/h {w_h:.2f}, GCI {r.gci / r.velocity:.1%}"
+        )
+
+
+def main() -> None:
+    warnings.simplefilter("ignore")  # the validity warnings: each row's flags are in its validity
+    if len(sys.argv) > 1:
+        run(float(sys.argv[1]), sys.argv[2], sys.argv[3] if len(sys.argv) > 3 else "linear")
+        return
+    for side, support in PANELS:
+        run(side, support)
+
+
+if __name__ == "__main__":
+    main()
