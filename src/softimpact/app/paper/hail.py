@@ -300,7 +300,9 @@ def _hail_paragraphs(rows, onset, fits) -> list[str]:
         + (
             "Where the model disagrees: at each thickness its FTE GROWS with the diameter (the crushing force grows with the crushed "
             "area, so a larger sphere reaches the force at a lower velocity but with more mass), so at one thickness FTE falls as h/D "
-            "rises, and the points do not gather on one line of h/D. "
+            "rises, and the points do not gather on one line of h/D. The panel decides this: on smaller, clamped panels the same map's FTE "
+            "falls with D and gathers on one line of h/D (docs/validation-hail.md, benchmarks/hail_panel_sensitivity.py), and the panels' "
+            "size and supports were not retrieved. "
             if growing
             else ""
         )
