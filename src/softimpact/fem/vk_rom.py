@@ -352,7 +352,7 @@ class ReducedVonKarmanStepper(CoupledStepper):
             gm = self.params.gamma
             p = p - C @ (v + dt * (1 - gm) * a - dt * gm * (self.a0 * q + self.a2 * v + self.a3 * a))
         scale = max(np.linalg.norm(p), 1e-300)
-        lu, last, guess = None, np.inf, x_pred
+        lu, last, guess, best = None, np.inf, x_pred, None
         for it in range(1, self.max_iterations + 1):
             a_c, f, r, h = self._contact(q1, x_pred, qq, k + 1)
             res = p - self._keff @ q1 - rom.nonlinear_force(q1)
@@ -365,6 +365,12 @@ class ReducedVonKarmanStepper(CoupledStepper):
                 scale = max(scale, norm)
             elif norm <= self.rtol * scale:
                 break
+            if best is not None and norm > best[1] and it < self.max_iterations:
+                # The residual rose past the best iterate's: a step across a kink of the contact law (its strength's ramp,
+                # a crush that stops) can make full steps cycle between two iterates. Backtrack: half the step from the best.
+                q1 = 0.5 * (best[0] + q1)
+                continue
+            best = (q1, norm)
             # The von Kármán terms' Jacobian at the step's first iterate, factored and kept while the residual falls
             # fast (a step moves it little); refreshed at the current iterate when it does not (large deflection).
             if lu is None or norm > 0.5 * last:
