@@ -71,7 +71,7 @@ FLAG_LABELS = {
     "extrapolated_density": "density off the fitted projectiles'",
     "strains_past_allowables": "strains past the ply allowables",
     "gauge_strain_past_allowables": "a gauge strain past the ply allowables",
-    "contact_past_run_end": "a contact not ended at the run's end",
+    "contact_past_run_end": "a contact not ended, or one to come, at the run's end",
     "threshold_at_range_floor": "threshold at or below the lowest velocity searched",
 }
 
@@ -258,23 +258,43 @@ def coupled_validity(problem, result, max_strain_index: float | None = None) -> 
     v += problem.target.validity(float(np.max(np.abs(result.target_displacement))))
     if max_strain_index is not None:
         v += allowable_flags("the target's plies", max_strain_index)
-    return v + run_end_validity(result)
+    return v + run_end_validity(result, problem.law, d)
 
 
-def run_end_validity(result) -> Validity:
-    """A flag when a contact of a coupled run had not ended at the run's end (``time[-1]``): the first (``contact_duration``
-    NaN), whose peak force, impulse and the target's peaks then cover the run only, or a later one (the last of
-    ``contacts`` without an end), whose force still acts on the target: the total impulse and the target's peaks cover
-    the run only."""
+def run_end_validity(result, law=None, diameter: float | None = None) -> Validity:
+    """A flag when a coupled run ends before its contacts do (``time[-1]``): the first contact not ended
+    (``contact_duration`` NaN: its peak force, impulse and the target's peaks cover the run only), a later one not ended
+    (the last of ``contacts`` without an end: the total impulse and the target's peaks cover the run only), or, every
+    contact ended, the impactor still moving toward the target (``final_velocity`` > 0) where ``law`` can still press
+    (its force a little past the final approach is not zero: not a sphere already crushed or flowed through, of
+    ``diameter`` [m]): another contact may come."""
     end = float(result.time[-1])
     if not math.isfinite(result.contact_duration):
         what = "the first contact had not ended at the end of the run ({:.4g} us): its peak force, impulse and the target's peaks"
     elif result.contacts and not math.isfinite(result.contacts[-1].end):
         k, start = len(result.contacts), result.contacts[-1].start * 1e6
         what = f"contact {k} (from {start:.4g} us) had not ended at the end of the run ({{:.4g}} us): the total impulse and the target's peaks"
+    elif result.final_velocity > 0.0 and _can_press(law, float(result.approach[-1]), diameter, float(result.impactor.velocity)):
+        v, k = float(result.final_velocity), len(result.contacts)
+        what = (
+            f"the impactor still moves toward the target at the end of the run ({{:.4g}} us, {v:.3g} m/s after {k} contact"
+            f"{'s' if k != 1 else ''}): another contact may come; the total impulse and the target's peaks"
+        )
     else:
         return Validity({})
-    return Validity({}, (what.format(end * 1e6) + " cover the run only and may come later; lengthen solver.duration",), ("contact_past_run_end",))
+    return Validity({}, (what.format(end * 1e6) + " cover the run only and may come later; lengthen the run",), ("contact_past_run_end",))
+
+
+def _can_press(law, approach: float, diameter: float | None, velocity: float) -> bool:
+    """Whether ``law`` gives a force a little past ``approach`` [m] (a hundredth of ``diameter`` further, closing at
+    ``velocity`` [m/s]); True where that cannot be asked (no law, or no memoryless force)."""
+    force = getattr(law, "force", None)
+    if force is None or diameter is None:
+        return True
+    try:
+        return force(max(approach, 0.0) + 0.01 * diameter, abs(velocity)) > 0.0
+    except TypeError:  # a law whose force takes a state (memory): assume it can
+        return True
 
 
 def range_floor_validity(threshold: float, lo: float) -> Validity:
