@@ -34,3 +34,12 @@ def test_a_plate_pressed_past_its_allowables_is_flagged(pressure, failed):
     assert (v["membrane_strain_index"] > 1.0) is failed
     assert any("lower bound" in f and "ply allowables" in f for f in v["flags"]) is failed
     assert math.isfinite(v["deflection_over_thickness"])
+
+
+def test_a_linear_plate_reports_no_membrane_index():
+    """On a linear symmetric plate the mid-surface strains are zero whatever the load: no index is reported (its w/h flag speaks)."""
+    plate = si.Plate(length="8 in", width="8 in", laminate=si.Laminate("T300/934", "[90/0]2s"), elements=(4, 4), kinematics="linear", support="clamped")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        v = si.press(plate, pressure="200 psi").summary()["validity"]
+    assert "membrane_strain_index" not in v and v["deflection_over_thickness"] > 0.5

@@ -208,11 +208,11 @@ class PlateVK(ElementTangents):
         dens = np.einsum("eqi,eqi->eq", eN, m + 0.5 * eN @ self._A.T)
         return 0.5 * float(d @ (self.K @ d)) + float(np.sum(dens * self._wq))
 
-    def membrane_strain(self, d: np.ndarray, nonlinear: bool = True) -> np.ndarray:
+    def membrane_strain(self, d: np.ndarray) -> np.ndarray:
         """The mid-surface strains (ε_x0, ε_y0, γ_xy0) at the quadrature points, shape (ne, nq, 3): ε_L + ε_N, the
-        von Kármán strain (module docstring), or ε_L alone (``nonlinear`` False: linear kinematics)."""
+        von Kármán strain (module docstring)."""
         eL, eN, _, _, _ = self._fields(d)
-        return eL + eN if nonlinear else eL
+        return eL + eN
 
     def membrane_forces(self, d: np.ndarray) -> np.ndarray:
         """N = A ε0 + B κ at the quadrature points, shape (ne, nq, 3) [N/m]."""

@@ -150,7 +150,7 @@ def allowable_flags(where: str, max_strain_index: float) -> Validity:
     if math.isfinite(max_strain_index) and max_strain_index > 1.0:
         flags = (
             f"{where}: strains reach {max_strain_index:.3g} times the ply allowables (maximum-strain index): the ply has failed "
-            "and the linear elastic answer past that is not the structure's",
+            "and the elastic answer past that is not the structure's",
         )
     return Validity({"max_strain_index": max_strain_index}, flags, ("strains_past_allowables",) * len(flags))
 
@@ -305,7 +305,7 @@ def range_floor_validity(threshold: float, lo: float) -> Validity:
     return Validity(
         {},
         (
-            f"the threshold is at or below the lowest velocity searched ({lo:.4g} m/s): the index reaches 1 there already; V* and the energy are upper bounds: lower the range",
+            f"the threshold is at or below the lowest velocity searched ({lo:.4g} m/s): the index reaches 1 there already; V* and the energy are upper bounds: lower the search's lowest velocity (lo)",
         ),
         ("threshold_at_range_floor",),
     )

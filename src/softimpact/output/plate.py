@@ -111,8 +111,8 @@ def plate_files(model, result, figures: bool = True, summary: dict | None = None
 def plate_static_validity(result):
     """The envelope of a static plate run: with linear kinematics, the largest deflection against the
     thickness (:func:`softimpact.models.validity.deflection_validity`); von Kármán kinematics is the model
-    past it (its ratio is reported, not flagged). With ply strengths, the mid-surface strains against the ply
-    allowables (``membrane_strain_index``, a lower bound of the faces' index: flagged past 1)."""
+    past it (its ratio is reported, not flagged). With von Kármán kinematics and ply strengths, the mid-surface strains
+    against the ply allowables (``membrane_strain_index``, a lower bound of the faces' index: flagged past 1)."""
     from ..models.validity import Validity, allowable_flags, deflection_validity
 
     h = result.problem.plate.stack.thickness

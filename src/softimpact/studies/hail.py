@@ -46,7 +46,7 @@ from ..models.crushing_law import CrushingLaw
 from ..models.delamination import REGIME_BOUNDS, response_regime
 from ..models.projectiles import projectile_material
 from ..models.validity import range_floor_validity
-from .thresholds import ONSET, gci_two_meshes, structure, structure_run, threshold_velocity
+from .thresholds import ONSET, check_range, gci_two_meshes, structure, structure_run, threshold_velocity
 
 __all__ = [
     "RHYMER_THICKNESSES",
@@ -143,6 +143,7 @@ class HailRow:
     mass_ratio: float = math.nan  # the sphere's mass over the panel's
     regime: str = ""  # its response regime (:func:`~softimpact.models.delamination.response_regime`, stand-in bounds)
     kinematics: str = "linear"  # the panel's: "linear" or "von-karman"
+    floored: bool = False  # the onset is the search's lowest velocity: at or below it, not found (flagged; not fitted)
 
     @property
     def fte(self) -> float:
@@ -211,6 +212,7 @@ def hail_map(
     panel's runs on the full plate ("von-karman") or on its reduced model ("von-karman-rom": the crushing law is
     memoryless and the quasi-isotropic panels have no bending–extension coupling; on the thinnest panel, 8 × 8 at
     2 µs, w/h 2-3, its peak force is the full plate's within 0.7 %, ``tests/test_rom_maps.py``)."""
+    check_range(lo, hi)
     meshes = meshes or ((4, 4e-6), (8, 2e-6))
     start = {(r.thickness, r.diameter, r.index): r.velocity for r in guesses if math.isfinite(r.velocity)}
     rows = []
@@ -222,6 +224,7 @@ def hail_map(
                 guess = start.get((h, d, index))
                 v = threshold_velocity(fine, law, d, index, lo, hi, rtol=rtol, guess=guess, beta=GUESS_POWER if guess else None, runs=runs)
                 vc = threshold_velocity(coarse, law, d, index, lo, hi, rtol=rtol, guess=v, beta=GUESS_POWER, runs=runs) if math.isfinite(v) else math.nan
+                vc = math.nan if vc <= lo else vc  # a coarse onset at the floor is not found: no GCI from it
                 mass = _density(law) * math.pi / 6.0 * d**3
                 peak, validity = math.nan, {"flags": []}
                 if math.isfinite(v):
@@ -230,7 +233,9 @@ def hail_map(
                     validity = (run_validity(problem, result) + range_floor_validity(v, lo)).summary()
                 ratio = mass / fine.problem.target.mass
                 regime = response_regime(mass, fine.problem.target.mass, wave_below=REGIME_BOUNDS[0], quasi_static_above=REGIME_BOUNDS[1])
-                row = HailRow(h, d, mass, index, v, vc, gci_two_meshes(v, vc), peak, _threshold_force(fine, index), validity, ratio, regime, fine.kinematics)
+                row = HailRow(
+                    h, d, mass, index, v, vc, gci_two_meshes(v, vc), peak, _threshold_force(fine, index), validity, ratio, regime, fine.kinematics, v <= lo
+                )
                 rows.append(row)
     return rows
 
@@ -246,8 +251,9 @@ class FteFit:
 
 
 def fte_fit(rows, index: str = ONSET) -> FteFit:
-    """The linear fit of FTE against h/D over the rows of ``index`` that reached their threshold."""
-    pts = [(r.h_over_d, r.fte) for r in rows if r.index == index and math.isfinite(r.velocity)]
+    """The linear fit of FTE against h/D over the rows of ``index`` that reached their threshold inside the range searched
+    (a row at its floor holds an upper bound only)."""
+    pts = [(r.h_over_d, r.fte) for r in rows if r.index == index and math.isfinite(r.velocity) and not r.floored]
     if len(pts) < 3:
         return FteFit(math.nan, math.nan, math.nan, len(pts))
     x, y = np.array(pts).T

@@ -399,6 +399,12 @@ def threshold_velocity(
     return math.nan
 
 
+def check_range(lo: float, hi: float) -> None:
+    """Refuse a velocity range a threshold cannot be searched in: 0 < lo < hi [m/s], both finite."""
+    if not (math.isfinite(lo) and math.isfinite(hi) and 0.0 < lo < hi):
+        raise InputError(f"threshold velocity range: need 0 < lo < hi (finite), got lo = {lo!r} m/s, hi = {hi!r} m/s", "lo")
+
+
 def law_draws(law, draws: int, seed: int = 1) -> list:
     """``draws`` copies of the identified ``law`` with its spread parameters drawn (Latin hypercube,
     ``seed``) from its covariance, or its 95 % half-widths /1.96 when it has none; draws outside the
@@ -456,6 +462,7 @@ def threshold_map(
     (module docstring; each index and diameter must have its row there); their thresholds also start the root-finding."""
     from scipy.stats import norm
 
+    check_range(lo, hi)
     drawn = law_draws(law, draws, seed) if band_from is None else []
     q = norm.ppf((np.arange(strength_quantiles) + 0.5) / strength_quantiles)
     factors = np.maximum(1.0 + strength_cov * q, 0.05)
@@ -476,6 +483,7 @@ def threshold_map(
                 validity = run_validity(*_cached_run(s, law, d, nominal, runs), law) + range_floor_validity(nominal, lo)
                 ratios, flags = dict(validity.values), tuple(validity.names)
             coarse_v = threshold_velocity(coarse, law, d, index, lo, hi, guess=nominal, beta=beta, runs=runs) if coarse is not None else math.nan
+            coarse_v = math.nan if coarse_v <= lo else coarse_v  # a coarse threshold at the floor is not found: no GCI from it
             gci = gci_two_meshes(nominal, coarse_v)
             widen = gci if math.isfinite(gci) else 0.0
             if ref is not None:

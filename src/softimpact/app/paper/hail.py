@@ -300,9 +300,10 @@ def _hail_paragraphs(rows, onset, fits) -> list[str]:
         + (
             "Where the model disagrees: at each thickness its FTE GROWS with the diameter (the crushing force grows with the crushed "
             "area, so a larger sphere reaches the force at a lower velocity but with more mass), so at one thickness FTE falls as h/D "
-            "rises, and the points do not gather on one line of h/D. The panel decides this: on smaller, clamped panels the same map's FTE "
-            "falls with D and gathers on one line of h/D (docs/validation-hail.md, benchmarks/hail_panel_sensitivity.py), and the panels' "
-            "size and supports were not retrieved. "
+            "rises, and the points do not gather on one line of h/D. The panel's stiffness moves this: on smaller panels the same map's FTE "
+            "falls with D on the thicker panels and the points come closer to one line of h/D, reaching the published trend's R² only on the "
+            "stiffest panel tried (docs/validation-hail.md, benchmarks/hail_panel_sensitivity.py); the panels' size and supports were not "
+            "retrieved. "
             if growing
             else ""
         )
@@ -320,7 +321,9 @@ def _distributed_sentence(onset) -> str:
     parts, worst = [], 0.0
     for h in RHYMER_THICKNESSES:
         radii = [
-            r.validity.get("contact_radius_over_projectile_radius", math.nan) * r.diameter / 2 for r in onset if r.thickness == h and math.isfinite(r.velocity)
+            r.validity.get("contact_radius_over_projectile_radius", math.nan) * r.diameter / 2
+            for r in onset
+            if r.thickness == h and math.isfinite(r.velocity) and not r.floored
         ]
         radii = [x for x in radii if math.isfinite(x)]
         if len(radii) < 2:
@@ -331,12 +334,13 @@ def _distributed_sentence(onset) -> str:
     if not parts:
         return ""
     return (
-        "The crushed ice loads a disc, not a point: the largest crushed radius of the onset runs is "
+        "The crushed ice loads a disc, not a point: the largest crushed radius over each onset run is "
         f"{', '.join(parts)} over the three diameters (the crushed area at a force is the force over the crush pressure, which "
-        "depends on the rate, not on D). Under the stacked plate's onset for a load spread over a disc of radius r (docs/delamination.md: "
+        "depends on D only through the crush's rate). Under the stacked plate's onset for a load spread over a disc of radius r (docs/delamination.md: "
         f"F_c exceeds the point load's by {DISTRIBUTED_EXCESS:g}·(r/a)² for delaminations a past the disc), a delamination twice the "
         f"largest radius would see the critical force change with D by at most {worst:.1%}: independent of D within this model, for "
-        "flaws larger than the crushed disc, and not by construction (smaller flaws need 1.5-2.5 times the force)."
+        "flaws larger than the crushed disc, and not by construction (flaws no larger than the disc need 1.4-2.5 times the point load's force). "
+        "The coefficient is the 200-mm isotropic stacked plate's, carried to these quasi-isotropic panels."
     )
 
 
