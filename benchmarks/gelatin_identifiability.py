@@ -5,7 +5,7 @@ depth s_c = d·V²/(4·U_s²) (a few hundredths to a few tenths of a per cent of
 rest of the pulse is the steady flow ρ·ṡ²·A, which has no free parameter. This script integrates the law on a
 rigid target (``rigid_target_pulse``) for a 50.8-mm sphere at 50 and 105 m/s and a 150-mm one at 150 m/s, changes
 c0 and k by 10 % each, and prints the change of the force history (its peak, and its L2 norm relative to the
-pulse's), raw and after a 5-µs moving average (a bar record's bandwidth). A bar record's noise is about 1 % of
+pulse's), raw and after a 5-µs moving average (a bar record's bandwidth). The synthetic series' noise is about 1 % of
 its peak. Usage: ``python benchmarks/gelatin_identifiability.py``.
 """
 
