@@ -27,7 +27,10 @@ def test_example_speaks_the_notebook_api(path):
     assert "CliRunner" not in text and "softimpact.cli" not in text
 
 
-@pytest.mark.parametrize("path", EXAMPLES, ids=lambda p: p.stem)
+SLOW_EXAMPLES = {"05_calibrate_force_history"}  # 16 s of one core: run in the slow tier (the quick one keeps 3 minutes)
+
+
+@pytest.mark.parametrize("path", [pytest.param(p, marks=pytest.mark.slow) if p.stem in SLOW_EXAMPLES else p for p in EXAMPLES], ids=lambda p: p.stem)
 def test_example_runs_and_asserts_its_number(path, monkeypatch, tmp_path):
     """The example runs to its end: its assert against a closed form, the paper or a peer passed."""
     matplotlib.use("Agg")
