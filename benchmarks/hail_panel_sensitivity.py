@@ -12,13 +12,12 @@ R² of FTE's linear fit in h/D, the FTE of each row and its deflection over thic
 About 20-40 s of CPU a linear panel.
 """
 
+import functools
 import math
 import sys
 import warnings
 
 from softimpact.app.paper import hail as H
-from softimpact.input.plate_case import plate_problem
-from softimpact.input.toml import locate
 from softimpact.models.projectiles import PowerLawStrength, projectile_material
 from softimpact.studies.hail import ONSET, CatalogueIce, fte_fit, hail_map
 
@@ -30,15 +29,7 @@ PANELS = ((300, "simply-supported"), (300, "clamped"), (200, "clamped"), (150, "
 
 def target_of(side_mm: float, support: str):
     """The report's ``panel_target`` with the panel's side [mm] and its four edges' support changed."""
-
-    def panel_target(thickness, layup, elements, duration, kinematics="linear"):
-        data = H.hail_plate_case(thickness, layup, elements, duration, kinematics)
-        data["plate"]["length"] = data["plate"]["width"] = f"{side_mm} mm"
-        data["plate"]["support"] = {e: support for e in ("x0", "x1", "y0", "y1")}
-        data["load"]["position"] = [f"{side_mm / 2} mm", f"{side_mm / 2} mm"]
-        return plate_problem(data, locate(H.BASE_CASE).parent)
-
-    return panel_target
+    return functools.partial(H.panel_target, side=side_mm * 1e-3, support=support)
 
 
 def run(side: float, support: str, kinematics: str = "linear", strength: str = "catalogue") -> None:

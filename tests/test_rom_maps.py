@@ -180,18 +180,12 @@ def test_the_reduced_plate_steps_across_the_crushing_strengths_kink():
     """A 50.8-mm ice sphere at 9 m/s on a 150-mm clamped 3.11-mm panel (von Kármán, 8 × 8 at 2 µs): where the crush slows onto its
     strength's ramp the reduced plate's full Newton steps cycled between two iterates (SolverFailed at 0.788 ms); it now backtracks
     and runs to the end, with the full plate's peak force within 2 %."""
+    import functools
+
     from softimpact.app.paper import hail as H
-    from softimpact.input.plate_case import plate_problem
-    from softimpact.input.toml import locate
     from softimpact.studies.hail import RHYMER_DIAMETERS, RHYMER_LAYUPS, CatalogueIce, hail_structures
 
-    def panel(thickness, layup, elements, duration, kinematics="linear"):
-        data = H.hail_plate_case(thickness, layup, elements, duration, kinematics)
-        data["plate"]["length"] = data["plate"]["width"] = "150 mm"
-        data["plate"]["support"] = dict.fromkeys(("x0", "x1", "y0", "y1"), "clamped")
-        data["load"]["position"] = ["75 mm", "75 mm"]
-        return plate_problem(data, locate(H.BASE_CASE).parent)
-
+    panel = functools.partial(H.panel_target, side=0.150, support="clamped")
     law = CatalogueIce()
     peaks = []
     for stepping in ("von-karman-rom", "von-karman"):

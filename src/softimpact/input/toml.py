@@ -115,11 +115,11 @@ class Table:
         unknown = sorted(set(self.data) - self._used)
         if unknown:
             name = unknown[0]
+            if name in self._read_with:
+                raise InputError(f"{self.key(name)}: not read here (value {self.data[name]!r}); it is read only with {self._read_with[name]}")
             # an optional key asked for and not given that looks like it (its default was taken: a misspelling)
             near = difflib.get_close_matches(name, [k for k in self._used if k not in self.data], n=1, cutoff=0.75)
             hint = f"; is it a misspelling of {near[0]!r}?" if near else ""
-            if name in self._read_with:
-                raise InputError(f"{self.key(name)}: not read here (value {self.data[name]!r}); it is read only with {self._read_with[name]}")
             raise InputError(f"{self.key(name)}: unknown key (value {self.data[name]!r}){hint}")
 
 

@@ -144,15 +144,15 @@ def range_flags(what: str, checks) -> Validity:
     return Validity(values, tuple(flags), tuple(names))
 
 
-def allowable_flags(where: str, max_strain_index: float) -> Validity:
-    """A maximum-strain index (strain over the ply's allowable; 1 = first-ply failure) at ``where``."""
+def allowable_flags(where: str, max_strain_index: float, key: str = "max_strain_index") -> Validity:
+    """A maximum-strain index (strain over the ply's allowable; 1 = first-ply failure) at ``where``, reported as ``key``."""
     flags = ()
     if math.isfinite(max_strain_index) and max_strain_index > 1.0:
         flags = (
             f"{where}: strains reach {max_strain_index:.3g} times the ply allowables (maximum-strain index): the ply has failed "
             "and the elastic answer past that is not the structure's",
         )
-    return Validity({"max_strain_index": max_strain_index}, flags, ("strains_past_allowables",) * len(flags))
+    return Validity({key: max_strain_index}, flags, ("strains_past_allowables",) * len(flags))
 
 
 def surface_strain_bound(ply) -> float:

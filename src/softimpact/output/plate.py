@@ -121,10 +121,10 @@ def plate_static_validity(result):
         v = deflection_validity("linear plate theory (FSDT)", w, h)
     else:
         v = Validity({"deflection_over_thickness": w / h}, ())
-    index = result.membrane_strain_index
-    if math.isfinite(index):
-        a = allowable_flags("the plate's plies, from the mid-surface strains alone (a lower bound of the faces')", index)
-        v += Validity({"membrane_strain_index": index}, a.flags, a.names)
+    if math.isfinite(result.membrane_strain_index):
+        v += allowable_flags(
+            "the plate's plies, from the mid-surface strains alone (a lower bound of the faces')", result.membrane_strain_index, "membrane_strain_index"
+        )
     return v
 
 

@@ -68,9 +68,13 @@ def _ply_table(thickness: float) -> dict:
     }
 
 
-def hail_plate_case(thickness: float, layup: str, elements: int, duration: float, kinematics: str = "linear") -> dict:
+def hail_plate_case(
+    thickness: float, layup: str, elements: int, duration: float, kinematics: str = "linear", side: float | None = None, support: str | None = None
+) -> dict:
     """The panel as a plate case (parsed TOML): :data:`BASE_CASE` with the stand-in ply of ``thickness``/plies,
-    ``layup``, ``elements`` a side, ``duration`` [s], ``kinematics`` ("linear" or "von-karman"); no gauges."""
+    ``layup``, ``elements`` a side, ``duration`` [s], ``kinematics`` ("linear" or "von-karman"); no gauges. ``side`` [m]
+    and ``support`` (of all four edges) replace the base case's square and supports, struck at the centre (None: the
+    base case's; benchmarks/hail_panel_sensitivity.py varies them)."""
     from ...input.toml import load_toml, locate
     from ...models.laminate import parse_layup
 
@@ -82,17 +86,24 @@ def hail_plate_case(thickness: float, layup: str, elements: int, duration: float
     data["solver"]["duration"] = f"{duration / 1e-6!r} us"
     if kinematics != "linear":
         data["plate"]["kinematics"] = kinematics
+    if side is not None:
+        data["plate"]["length"] = data["plate"]["width"] = f"{side!r} m"
+        data["load"]["position"] = [f"{side / 2!r} m"] * 2
+    if support is not None:
+        data["plate"]["support"] = dict.fromkeys(("x0", "x1", "y0", "y1"), support)
     data.pop("gauges", None)
     return data
 
 
-def panel_target(thickness: float, layup: str, elements: int, duration: float, kinematics: str = "linear"):
+def panel_target(
+    thickness: float, layup: str, elements: int, duration: float, kinematics: str = "linear", side: float | None = None, support: str | None = None
+):
     """The resolved plate target of :func:`hail_plate_case` (what :func:`softimpact.studies.hail.hail_map` builds its
     threshold structures on)."""
     from ...input.plate_case import plate_problem
     from ...input.toml import locate
 
-    return plate_problem(hail_plate_case(thickness, layup, elements, duration, kinematics), locate(BASE_CASE).parent)
+    return plate_problem(hail_plate_case(thickness, layup, elements, duration, kinematics, side, support), locate(BASE_CASE).parent)
 
 
 @functools.lru_cache(maxsize=1)
