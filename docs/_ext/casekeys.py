@@ -185,7 +185,10 @@ def _variants() -> dict[str, list]:
             (_set(beam, beam__laminate=None, beam__material={"material": "steel", "thickness": "1 mm"}),),
             (_set(beam, beam__laminate=None, beam__material={**{k: v for k, v in _INLINE_MATERIAL.items() if k != "source"}, "thickness": "1 mm"}),),
         ],
-        "plate": [(plate,), (_set(plate, plate__element="mitc4", plate__model="fsdt", load__grow=False, gauges=[{"name": "g", "position": ["1 in", "1 in"], "surface": "top", "direction": 45, "length": "0.1 in"}]),), (_data("plate-ss-pressure-vk"),)],
+        "plate": [(plate,), (_set(plate, plate__element="mitc4", plate__model="fsdt", load__grow=False, gauges=[{"name": "g", "position": ["1 in", "1 in"], "surface": "top", "direction": 45, "length": "0.1 in"}]),), (_data("plate-ss-pressure-vk"),)]
+        + [(_set(plate, plate__laminate=None, plate__material="Al 2024-T3", plate__thickness="2 mm", plate__plasticity=False),)]
+        + [(_set(plate, plate__laminate=None, plate__material={"youngs_modulus": "70 GPa", "poisson_ratio": 0.33, "density": "2700 kg/m^3", "yield_stress": "300 MPa", **h}, plate__thickness="2 mm"),)
+           for h in ({"hardening_modulus": "500 MPa"}, {"ultimate_strength": "400 MPa", "elongation": 0.1})],
         "impact": [(impact,), (pimpact,), (_set(impact, impactor__mass="1 g", gauges=[{"name": "g", "position": "1 in", "surface": "top", "length": "0.1 in"}]),)]
         + [(_set(impact, contact=c),) for c in contact_laws]
         + [(_set(impact, impactor__material=m["material"], contact=c),) for m, c in flow_laws]
@@ -247,6 +250,10 @@ def _cell(text: str) -> str:
 # of the key's path; tests/test_docs.py fails when a raw key has no line here.
 RAW_VALUES = {
     "material": "a catalogue name (text) or an inline table (`youngs_modulus`, `poisson_ratio`, `density`, optional `name`, `source`)",
+    "plate.material": "a catalogue metal (`Al 2024-T3`, `Al 7075-T6`, `Al 6061-T6`, `steel S355`, `Ti-6Al-4V`) or an inline table "
+    "(`youngs_modulus`, `poisson_ratio`, `density`, `yield_stress` and `hardening_modulus` or `ultimate_strength` with `elongation`); "
+    "with `thickness`, in place of `[plate.laminate]`",
+    "plasticity": "true or false: a metal plate's section elastic-plastic (J2 through the thickness; the default) or elastic (checked against yield)",
     "ply": "a catalogue ply name (text) or an inline table (`E1`…`G23`, `nu12`…`nu23`, `density`, `thickness`)",
     "snapshots": "a list of times (quantities) within the run",
     "beam.elements": "`[along the length, through the thickness]`, two integers ≥ 1",

@@ -33,7 +33,7 @@ def _beam_gauges(gauges: dict | None):
 
 
 def _plate_gauges(gauges: dict | None):
-    from ..workflows.plate_impact import PlateGauge
+    from ..workflows.plate import PlateGauge
 
     out = []
     for name, g in (gauges or {}).items():
@@ -184,7 +184,7 @@ def _impact(structure, at, impactor, law, time_step, duration, gauges, target_mo
         with _naming():
             target = BeamProblem(spec, BeamLoad(_si(at, "length", "at"), radius, None), solver, _beam_gauges(gauges), title)
     else:
-        from ..workflows.plate_impact import PlateLoad, PlateProblem
+        from ..workflows.plate import PlateLoad, PlateProblem
 
         with _naming():
             load = PlateLoad(_point(at, "at"), radius, None, grow=True)
@@ -235,7 +235,7 @@ def press(plate: Plate, *, pressure, load_steps: int = 10, units: str = "in-lbf-
     >>> res.converged and res.summary()["kinematics"]
     'von-karman'
     """
-    from ..workflows.plate_impact import PlateProblem
+    from ..workflows.plate import PlateProblem
 
     if not isinstance(plate, Plate):
         raise InputError(f"plate: expected a si.Plate, got {type(plate).__name__}")

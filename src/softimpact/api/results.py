@@ -324,9 +324,9 @@ class PlateResult(_Prescribed):
 
     Parameters
     ----------
-    problem : softimpact.workflows.plate_impact.PlateProblem
+    problem : softimpact.workflows.plate.PlateProblem
         Every input in SI.
-    result : softimpact.workflows.plate_impact.PlateResult
+    result : softimpact.workflows.plate.PlateResult
         time [s], force [N], strain (n_gauges, n_steps + 1), deflection [m] (impact point first).
     model : StructureModel, optional
         The assembled model that ran (reused by ``write_fields``).
@@ -377,9 +377,9 @@ class StaticPlateResult(_Written):
 
     Parameters
     ----------
-    problem : softimpact.workflows.plate_impact.PlateProblem
+    problem : softimpact.workflows.plate.PlateProblem
         Every input in SI (``pressure`` [Pa], ``load_steps``, ``kinematics``, ``in_plane``).
-    result : softimpact.workflows.plate_impact.PlateStaticResult
+    result : softimpact.workflows.plate.PlateStaticResult
         Per load step the pressure [Pa], the largest deflection [m], Newton's iterations and residuals.
     model : PlateVK, optional
         The assembled plate that ran.

@@ -192,7 +192,7 @@ class Plate:
 
     Attributes
     ----------
-    spec : softimpact.workflows.plate_impact.PlateSpec
+    spec : softimpact.workflows.plate.PlateSpec
         The plate in SI.
     kinematics, in_plane : str
         As given.
@@ -228,7 +228,7 @@ class Plate:
     ):
         from ..fem.plate_vk import IN_PLANE, KINEMATICS
         from ..input.plate_case import PLATE_SUPPORTS, check_supports
-        from ..workflows.plate_impact import PlateSpec
+        from ..workflows.plate import PlateSpec
 
         edges = ("x0", "x1", "y0", "y1")
         if isinstance(support, str):

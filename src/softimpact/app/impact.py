@@ -27,6 +27,8 @@ def _damage_words(summary: dict, force) -> str:
     d = summary.get("damage")
     if not d:
         return ""
+    if "max_strain" not in d:  # a metal plate's: its dent, or its stresses against yield
+        return f"; damage: {d['verdict']}"
     worst = max(("max_strain", "tsai_wu", "hashin", "interlaminar_index"), key=lambda k: d[k])
     words = f"; damage: {worst.replace('_', ' ')} {d[worst]:.2f}, F_max/P_c (Davies-Zhang) {d['delamination']:.2f}"
     if "regime" in d:

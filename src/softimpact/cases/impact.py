@@ -69,7 +69,7 @@ class SharedModel:
             return
         try:
             problem = ImpactKind().problem(self.data, self.base)
-            if _other_kind(problem) is None and problem.target.kinematics == "linear":  # kernels: a linear target's only
+            if _other_kind(problem) is None and problem.target.coupled_stepper is None:  # kernels: a linear target's only
                 # the kernels' outputs: the model's, with the damage group when the runs want it
                 self.kernels(problem, self.data)
         except InputError:  # the runs meet it again and record it, one by one
@@ -106,6 +106,15 @@ class SharedModel:
             wide = dataclasses.replace(problem, impactor=dataclasses.replace(problem.impactor, diameter=widest))
             self._kernels[key] = (widest, impact_kernels(wide, self.get(problem)))
         return self._kernels[key][1]
+
+
+def _nonlinearity(target) -> str:
+    """What makes a target nonlinear, in words (naming its case key)."""
+    if target.kinematics == "von-karman":
+        return f'{target.laminate_key.split(".")[0]}.kinematics = "von-karman"'
+    if target.coupled_stepper == "cohesive":
+        return "cohesive interfaces"
+    return "an elastic-plastic metal section"
 
 
 def bar_target(data: dict, base: Path):
@@ -253,17 +262,13 @@ class ImpactKind:
         from ..output.impact import snapshot_steps
         from ..workflows.coupled import run_impact
 
-        if problem.target.kinematics == "von-karman":  # a nonlinear plate's or beam's own stepper (fem.vk_stepping)
-            if method == "kernels":
-                raise InputError(
-                    f'contact kernels need a linear target: the target\'s {problem.target.laminate_key.split(".")[0]}.kinematics = "von-karman" runs stepped directly '
-                    "(a sweep of it steps every run; use linear kinematics for kernel runs)"
-                )
-            method = "von-karman"
-        own = getattr(problem.target, "coupled_stepper", None)  # a target with its own stepper: cohesive interfaces (fem.cohesive_plate)
+        own = problem.target.coupled_stepper  # a nonlinear target's stepper (the one engine's: fem.vk_stepping), None for a linear one
         if own is not None:
             if method == "kernels":
-                raise InputError("contact kernels need a linear target: a plate with cohesive interfaces runs stepped directly")
+                raise InputError(
+                    f"contact kernels need a linear target: this {problem.target.laminate_key.split('.')[0]} is nonlinear ({_nonlinearity(problem.target)}) "
+                    "and runs stepped directly (a sweep of it steps every run; use a linear elastic target for kernel runs)"
+                )
             method = own
         damage = damage and problem.target.has_damage_outputs
         steps = problem.solver.steps
@@ -282,14 +287,18 @@ class ImpactKind:
         """The :class:`~softimpact.cases.run.Run` of a coupled ``result``: its output groups split (the gauges
         from the damage strains), the damage indices (with ``damage``), the validity, summary.json's content."""
         from ..fem.contact import group_outputs
+        from ..models.metals import Metal
         from ..output.impact import impact_summary
-        from ..workflows.damage import coupled_damage, damage_refusal, delamination_growth
+        from ..workflows.damage import coupled_damage, damage_refusal, delamination_growth, metal_damage
         from .run import Run, impact_validity
 
         target = problem.target
         result = group_outputs(result, model.contact_groups())
-        dmg = coupled_damage(target, result, impactor_mass=problem.impactor.mass).summary() if damage else None
-        dmg = delamination_growth(dmg, result)  # cohesive interfaces: the delaminated area, in the verdict
+        if isinstance(target.material, Metal) and target.stack is None:  # a metal plate: its dent, or its stresses against yield
+            dmg = metal_damage(target, result, model.rest() if target.plastic else None) if (damage or target.plastic) else None
+        else:
+            dmg = coupled_damage(target, result, impactor_mass=problem.impactor.mass).summary() if damage else None
+            dmg = delamination_growth(dmg, result)  # cohesive interfaces: the delaminated area, in the verdict
         note = None if dmg is not None else damage_refusal(target, "target.case: ")
         validity = impact_validity(problem, result, dmg)
         summary = impact_summary(problem, result, validity, dmg, note, target.summary_extras(model, result))
@@ -317,7 +326,7 @@ class ImpactKind:
         damage = _wants_damage(outputs)
         shared = isinstance(prepared, SharedModel)
         model = prepared.get(problem) if shared else None
-        if shared and prepared.use_kernels and problem.target.kinematics == "linear":  # a von Kármán target steps every run
+        if shared and prepared.use_kernels and problem.target.coupled_stepper is None:  # a nonlinear target steps every run
             run = self.execute(problem, damage=damage, model=model, energy=False, method="kernels", kernels=prepared.kernels(problem, data))
         else:
             run = self.execute(problem, damage=damage, model=model, method="direct")

@@ -30,7 +30,7 @@ class PlateKind:
 
     For the damage indices the model carries its ``"damage"`` output group: point strains (length 0) in x, y
     and 45° on both faces under the impact point and at each gauge's centre
-    (:meth:`~softimpact.workflows.plate_impact.PlateProblem.damage_gauges`), six engine outputs per point; the indices are those of
+    (:meth:`~softimpact.workflows.plate.PlateProblem.damage_gauges`), six engine outputs per point; the indices are those of
     :func:`softimpact.workflows.damage.plate_damage` at each point, and their maximum over the points.
     """
 
@@ -52,7 +52,7 @@ class PlateKind:
         return plate_problem(data, base)
 
     def problem_class(self):
-        from ..workflows.plate_impact import PlateProblem
+        from ..workflows.plate import PlateProblem
 
         return PlateProblem
 
@@ -105,11 +105,11 @@ class PlateKind:
         return Run(result, model, plate_summary(model, result) if summary else {}, validity, problem, shown, kept)
 
     def _static(self, problem, model=None):
-        """A static plate run (:func:`softimpact.workflows.plate_impact.solve_plate_static`): its summary and envelope;
+        """A static plate run (:func:`softimpact.workflows.plate.solve_plate_static`): its summary and envelope;
         a Newton that did not converge is a warning of the run (summary.json says where)."""
         from ..models.validity import Validity
         from ..output.plate import plate_static_summary, plate_static_validity
-        from ..workflows.plate_impact import solve_plate_static
+        from ..workflows.plate import solve_plate_static
         from .run import Run
 
         model, result = solve_plate_static(problem, model)
@@ -147,7 +147,7 @@ class PlateKind:
         return without(data, LOAD_KEYS)
 
     def prepare(self, data, base, runs, outputs=(), cases=()):
-        from ..workflows.plate_impact import PlateModel
+        from ..workflows.plate import PlateModel
 
         problem = self.problem(data, base)
         self._linear_dynamic_only(problem, "a sweep")
@@ -189,7 +189,7 @@ class PlateKind:
 
     def _damage(self, problem, strains: dict, force: np.ndarray) -> dict:
         from ..workflows.damage import plate_damage, strain_tensor
-        from ..workflows.plate_impact import DAMAGE_DIRECTIONS
+        from ..workflows.plate import DAMAGE_DIRECTIONS
 
         stack = problem.plate.stack
         points = [p for p in problem.damage_points() if f"{p}.top.x" in strains]

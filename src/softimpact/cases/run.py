@@ -108,6 +108,11 @@ def impact_validity(problem, result, damage: dict | None = None) -> Validity:
     contact radius against the impactor's size, the law's own envelope, the target's deflection against its thickness (its theory,
     :meth:`~softimpact.models.protocols.Target.validity`), and with ``damage`` (summary.json's) the strains
     against the ply allowables."""
-    from ..models.validity import coupled_validity
+    from ..models.validity import coupled_validity, tearing_flags, yield_flags
 
-    return coupled_validity(problem, result, None if damage is None else damage["max_strain"])
+    v = coupled_validity(problem, result, None if damage is None else damage.get("max_strain"))
+    if damage is not None and "max_von_mises_over_yield" in damage:  # an elastic metal target
+        v += yield_flags("the target (elastic metal)", damage["max_von_mises_over_yield"])
+    if damage is not None and "max_equivalent_plastic_strain" in damage:  # an elastic-plastic metal target
+        v += tearing_flags("the target (elastic-plastic metal)", damage["max_equivalent_plastic_strain"], problem.target.material.elongation)
+    return v

@@ -21,24 +21,24 @@ tangent
 
     f_c = Gᵀ (a ⊙ t(δ)),    K_c = Gᵀ diag(a_p ∂t/∂δ|_p) G.
 
-The stack is one structure for the Newmark–Newton stepper :class:`softimpact.fem.plate_vk.VonKarmanNewmark`
-(the generic implicit Newmark with Newton per step for M a + C v + f_int(u) = f: its ``model`` needs ``K``,
-``M``, ``n``, ``_nonlinear_force`` and ``tangent``; here K the sublaminates' block-diagonal stiffness (DOFs numbered node by node) and the
-"nonlinear" force the interfaces'), with the damage held at its committed value within a step and updated
-after it (:meth:`CohesivePlate.commit`: the law's max(committed, d(δ)), so damage never heals). The damage thus
+The stack is one :class:`~softimpact.fem.nonlinear.NonlinearModel` for the one nonlinear engine
+(:class:`softimpact.fem.nonlinear.NonlinearNewmark`: here K the sublaminates' block-diagonal stiffness (DOFs numbered
+node by node) and the "nonlinear" force the interfaces'), with the damage held at its committed value within a
+step and updated after it (:meth:`CohesivePlate.commit`: the law's max(committed, d(δ)), so damage never heals). The damage thus
 lags one step (an error of order dt in when a point softens); in exchange a step is piecewise linear (the
 interfaces' stiffness changes only where a damaged face closes) and its Newton iterations converge, where the
 implicit update (the law's damage inside the iterations, with its softening tangent) made the iterations of
-a coarse mesh cycle between loading and unloading points and fail. Energies: with average acceleration (β = ¼, γ = ½) kinetic + ½uᵀKu + W_c equals
-the external work to the Newton tolerance, W_c = Σ ½(f_c,k + f_c,k+1)·Δd the interfaces' work, which splits
-into the energy they store (:meth:`CohesivePlate.stored_energy`) and the fracture energy they dissipated
-(W_c minus that).
+a coarse mesh cycle between loading and unloading points and fail.
 
-:class:`CohesiveStepper` is the :class:`~softimpact.fem.stepping.CoupledStepper` of an impactor on the top
-sublaminate: the von Kármán plate's monolithic step (:class:`~softimpact.fem.vk_stepping.VonKarmanStepper`)
-with the damage committed after each step, the interfaces' work in the structure's strain energy (so the
-coupled balance closes with the dissipated energy in it) and the delaminated (d = 1) and process-zone
-(0 < d < 1) areas and the interface energies recorded as extra output rows.
+Energies, each from the state: the interfaces store φ(δ, d) (:meth:`CohesivePlate.stored_energy`); within a step
+(damage fixed) their force is the gradient of that potential, and the commit that raises the damage from d_n to
+d_{n+1} at the converged opening δ releases φ(δ, d_n) − φ(δ, d_{n+1}) = ½K(<δ_n>² + |δ_s|²)(d_{n+1} − d_n) per
+unit area: the fracture energy dissipated (:meth:`CohesivePlate.dissipated_energy`), summed over the commits. With
+average acceleration (β = ¼, γ = ½) kinetic + ½uᵀKu + stored + dissipated then equals the external work up to
+the trapezoidal rule's error on the interfaces' kinks (a check that can fail: tests/test_cohesive_plate.py).
+The coupled stepper (:class:`~softimpact.fem.vk_stepping.VonKarmanStepper`, as for every nonlinear plate) records
+the delaminated (d = 1) and process-zone (0 < d < 1) areas and the interface energies (:meth:`CohesivePlate.history`)
+as extra output rows.
 
 Validity: linear sublaminates (small deflection, no contact between delaminated faces other than the
 penalty in closure, which the law keeps undamaged), rate-independent interfaces; the process zone must span
@@ -52,18 +52,18 @@ from dataclasses import replace
 import numpy as np
 import scipy.sparse
 
-from ..errors import InputError, SolverFailed
+from ..errors import InputError
 from ..models.cohesive import BilinearCohesive
 from ..models.laminate import Stack
 from ..models.plate_laminate import plate_section
+from .nonlinear import NonlinearModel
 from .plate import PHI_X, PHI_Y, Plate, U, V, W
-from .plate_vk import PlateVK, VonKarmanNewmark
-from .vk_stepping import VonKarmanStepper
+from .plate_vk import PlateVK
 
-__all__ = ["CohesivePlate", "CohesiveNewmark", "CohesiveStepper", "nodal_areas", "HISTORY_ROWS"]
+__all__ = ["CohesivePlate", "nodal_areas", "HISTORY_ROWS"]
 
 HISTORY_ROWS = ("delaminated_area_m2", "process_zone_area_m2", "cohesive_stored_energy_J", "fracture_energy_dissipated_J")
-"""The extra output rows a :class:`CohesiveStepper` records, summed over the interfaces (then the areas per interface)."""
+"""The scalars a :class:`CohesivePlate` records every step (:meth:`CohesivePlate.history`), summed over the interfaces (then the areas per interface)."""
 
 
 def nodal_areas(fe) -> np.ndarray:
@@ -85,7 +85,7 @@ def nodal_areas(fe) -> np.ndarray:
     return area
 
 
-class CohesivePlate:
+class CohesivePlate(NonlinearModel):
     """The plate of ``plate`` (its mesh, supports, element; its section is replaced) with the laminate ``stack``
     split below the plies ``splits`` (1 = the top ply: 3 splits between plies 3 and 4) into sublaminates tied by
     ``law`` (module docstring). Sublaminates top first, each over its
@@ -128,7 +128,8 @@ class CohesivePlate:
         self.top = self.position[: sizes[0]]  # the top sublaminate's free DOFs, in its own order
         self.interfaces = len(splits)
         self._a = np.tile(self.area, self.interfaces)  # per interface point (interface-major)
-        self.damage = law.initial_damage((self.interfaces, self.nodes))
+        self.history_names = HISTORY_ROWS + tuple(f"{q}_{j}" for q in HISTORY_ROWS[:2] for j in range(self.interfaces))
+        self.reset()
 
     # ---- the interfaces' kinematics -------------------------------------------------------
     def _global(self, layer: int, component: int) -> np.ndarray:
@@ -188,14 +189,14 @@ class CohesivePlate:
         T[:, 1, 1] = T[:, 2, 2] = (1 - d) * K
         return t, T
 
-    def _nonlinear_force(self, u: np.ndarray) -> np.ndarray:
+    def nonlinear_force(self, u: np.ndarray) -> np.ndarray:
         """f_c(u) = Gᵀ(a ⊙ t(δ)) [N] at the committed damage."""
         t = self._response(u)[0]
         return self.G.T @ (self._a[:, None] * t).ravel()
 
     def internal_force(self, u: np.ndarray) -> np.ndarray:
         """K u + f_c(u) [N]."""
-        return self.K @ u + self._nonlinear_force(u)
+        return self.K @ u + self.nonlinear_force(u)
 
     def tangent(self, u: np.ndarray) -> scipy.sparse.csr_matrix:
         """K + Gᵀ diag(a ∂t/∂δ) G at the committed damage (positive semi-definite interfaces: no softening within a step)."""
@@ -215,13 +216,32 @@ class CohesivePlate:
         """½uᵀKu + the interfaces' stored energy [J] (the recoverable part: what the dissipated energy is not)."""
         return 0.5 * float(u @ (self.K @ u)) + self.stored_energy(u)
 
-    def commit(self, u: np.ndarray) -> None:
-        """Store the damage of the converged state ``u`` (irreversible: it never decreases)."""
-        self.damage = self.law.traction(self.opening(u), self.damage.ravel()).damage.reshape(self.interfaces, self.nodes)
+    LAGGED_STATE = True  # the damage is held within a step and raised after it (module docstring)
+
+    def commit(self, u: np.ndarray, dt: float | None = None) -> None:
+        """Store the damage of the converged state ``u`` (irreversible: it never decreases) and count the fracture
+        energy its rise releases at that opening (module docstring)."""
+        delta = self.opening(u)
+        before = self.damage.ravel()
+        after = self.law.traction(delta, before).damage
+        released = self.law.stored_energy(delta, before) - self.law.stored_energy(delta, after)
+        self._dissipated += float(self._a @ released)
+        self.damage = after.reshape(self.interfaces, self.nodes)
 
     def reset(self) -> None:
         """Undamaged interfaces (a new run on the same model)."""
         self.damage = self.law.initial_damage((self.interfaces, self.nodes))
+        self._dissipated = 0.0
+
+    def dissipated_energy(self) -> float:
+        """The fracture energy the interfaces dissipated so far [J] (module docstring)."""
+        return self._dissipated
+
+    def history(self, u: np.ndarray) -> np.ndarray:
+        """:attr:`history_names` at ``u``: the delaminated and process-zone areas [m²], the interfaces' stored and
+        dissipated energies [J], then the two areas per interface."""
+        cracked, zone = self.areas()
+        return np.concatenate(([cracked.sum(), zone.sum(), self.stored_energy(u), self._dissipated], cracked, zone))
 
     def areas(self) -> tuple[np.ndarray, np.ndarray]:
         """(delaminated d = 1, process zone 0 < d < 1) area [m²] per interface, of this (possibly partial) model."""
@@ -243,133 +263,3 @@ class CohesivePlate:
     def deflection(self, x: float, y: float) -> np.ndarray:
         """Row r with r·d = w(x, y) [m] of the top sublaminate (the struck one)."""
         return self.layer_row(0, self.layers[0].deflection(x, y))
-
-
-class CohesiveNewmark(VonKarmanNewmark):
-    """:class:`~softimpact.fem.plate_vk.VonKarmanNewmark` with a backtracking line search on the residual's norm: with the
-    damage fixed, a step minimises a convex energy whose Hessian jumps where a damaged face opens or closes (stiffness
-    (1 − d)·K against K), and plain Newton can cycle between the two; a correction that does not reduce the residual is
-    halved (at most ``HALVINGS`` times) and the tangent refactored at the new point; a step that needed damping is
-    accepted once its residual is below ``STALL_RTOL`` of the step's force scale (else ``rtol``, as the parent's)."""
-
-    HALVINGS = 8
-    STALL_RTOL = (
-        1e-4  # a step damped or stalled on a kink is accepted below this relative residual (its work error, residual × step, is in the energy balance tested)
-    )
-
-    def step(self, u, v, a, f1, extra=None, contact=None):
-        """(u1, v1, a1, iterations) of one step to the load f1 (:meth:`VonKarmanNewmark.step`, with the line search along
-        its correction: with ``contact``, the contact condensed on the linearised structure, as the parent's)."""
-        g, dt = self.params.gamma, self.dt
-        M, C, model = self.model.M, self.C, self.model
-        u1 = u + dt * v + dt * dt * (0.5 - self.params.beta) * a
-        ma = M @ a
-        p = M @ (self.a0 * u + self.a2 * v) + self.a3 * ma
-        if C is not None:
-            p = p - C @ (v + dt * (1 - g) * a - dt * g * (self.a0 * u + self.a2 * v + self.a3 * a))
-        rhs = f1 + p
-
-        def residual(x):
-            r = rhs - self._keff @ x - model._nonlinear_force(x)
-            ek, load = None, (0.0, None)
-            if extra is not None:
-                fe, ek = extra(x)
-                r = r + fe
-            if contact is not None:
-                load = contact.load(x)
-                r = r + load[0] * load[1]
-            return r, ek, load
-
-        r, ek, load = residual(u1)
-        norm = np.linalg.norm(r)
-        scale = max(norm, np.linalg.norm(f1), np.linalg.norm(ma), 1e-300)
-        last = np.inf
-        for it in range(1, self.max_iterations + 1):
-            if it > 1 and norm <= self.rtol * scale:
-                return self._finish(u1, u, v, a) + (it - 1,)
-            if self._lu is None or self.tangent_kind == "newton" or norm > self.MODIFIED_RATE * last:
-                self._jacobian(u1, ek)
-            du = self._lu.solve(r)
-            if contact is not None:  # the parent's condensed correction: u + d + F'·z
-                fc, shape = load
-                z = self._lu.solve(shape)
-                free = u1 + du - fc * z
-                du = free + contact.solve(free, z) * z - u1
-            step = 1.0
-            for _ in range(self.HALVINGS + 1):
-                trial = u1 + step * du
-                r_new, ek_new, load_new = residual(trial)
-                n_new = np.linalg.norm(r_new)
-                if n_new < norm or n_new <= self.rtol * scale:
-                    break
-                step *= 0.5
-            else:  # no decrease along the correction: stalled on a kink; done if the residual is already small
-                if norm <= self.STALL_RTOL * scale:
-                    return self._finish(u1, u, v, a) + (it,)
-                self._lu = None
-                continue
-            last, norm = norm, n_new
-            u1, r, ek, load = trial, r_new, ek_new, load_new
-            if step < 1.0:
-                if norm <= self.STALL_RTOL * scale:  # damped on a kink, and already small: accept
-                    return self._finish(u1, u, v, a) + (it,)
-                last = np.inf  # refactor at the new point: the tangent there has the faces' new states
-            if it > 1 and step == 1.0 and np.linalg.norm(du) <= self.rtol * np.linalg.norm(u1 - u):
-                return self._finish(u1, u, v, a) + (it,)
-        raise SolverFailed(
-            f"the cohesive plate's Newmark–Newton step did not converge in {self.max_iterations} iterations (residual {norm:.3g} of scale {scale:.3g}): "
-            "damaged faces flipping between open and closed; a finer mesh or a smaller time step"
-        )
-
-
-class CohesiveStepper(VonKarmanStepper):
-    """:class:`~softimpact.fem.stepping.CoupledStepper` of a rigid impactor on the top sublaminate of a
-    :class:`CohesivePlate` (``engine``: its :class:`~softimpact.fem.plate_vk.VonKarmanNewmark`; the structure's
-    last ``len(HISTORY_ROWS) + 2·interfaces`` output rows are placeholders, filled here with the summed rows of
-    :data:`HISTORY_ROWS` then the delaminated and process-zone areas of each interface). The structure's strain
-    energy is ½uᵀKu plus the interfaces' work (stored + dissipated: module docstring); ``share``: the part of
-    the whole plate the model is (¼ for a quarter), the areas are the whole plate's."""
-
-    def __init__(self, structure, law, mass, velocity, time_step, steps, newmark=None, *, engine=None, stop_after=None, energy=True, snapshots=()):
-        from .newmark import NewmarkParameters
-
-        super().__init__(
-            structure,
-            law,
-            mass,
-            velocity,
-            time_step,
-            steps,
-            NewmarkParameters() if newmark is None else newmark,
-            engine=engine,
-            stop_after=stop_after,
-            energy=energy,
-            snapshots=snapshots,
-        )
-        if not isinstance(self.vk, CohesivePlate):
-            raise InputError("the cohesive stepper steps a CohesivePlate: its engine's model is not one")
-        self.rows = len(HISTORY_ROWS) + 2 * self.vk.interfaces
-        self.share = float(structure.patch.patch.share)
-
-    def _begin(self) -> None:
-        super()._begin()
-        self.vk.reset()
-        self.fc = np.zeros(self._n)  # the interfaces' force at the step's start
-        self.wc = 0.0  # their work so far
-
-    def apply(self, k: int, f: float, r: float) -> None:
-        """The step's state (:meth:`VonKarmanStepper.apply`), then the damage committed, the interfaces' work and
-        the area and energy rows."""
-        u0 = self.u
-        super().apply(k, f, r)
-        model, u1, k1 = self.vk, self.u, k + 1
-        fc1 = model._nonlinear_force(u1)  # at the damage the step ran with: the force of the step's equilibrium (Newmark's balance)
-        self.wc += 0.5 * float((self.fc + fc1) @ (u1 - u0))
-        self.fc = fc1
-        model.commit(u1)
-        stored = model.stored_energy(u1)
-        if self.energy:
-            self.es[k1] = 0.5 * float(u1 @ (model.K @ u1)) + self.wc
-        cracked, zone = (a / self.share for a in model.areas())
-        m = self.rows
-        self.y[-m:, k1] = np.concatenate(([cracked.sum(), zone.sum(), stored / self.share, (self.wc - stored) / self.share], cracked, zone))

@@ -20,7 +20,8 @@ __all__ = ["Energies"]
 class Energies:
     """Energy histories [J] of a run, each of shape (n_samples,), sampled at the steps ``step``.
 
-    ``kinetic`` ½vᵀMv, ``strain`` ½uᵀKu, ``work`` of the loads on the structure. A coupled run
+    ``kinetic`` ½vᵀMv, ``strain`` ½uᵀKu (a nonlinear structure's: its recoverable energy plus what it dissipated,
+    plastic work and fracture energy), ``work`` of the loads on the structure. A coupled run
     also has ``impactor_kinetic``, ``contact_work`` (∫F dα), ``contact_energy`` (its recoverable
     part) and ``surface_mismatch``; they are None for a prescribed-force run.
     """

@@ -41,8 +41,8 @@ tests/test_beam_tl.py is that von Kármán Euler–Bernoulli beam.
 
 Solvers: those of :mod:`softimpact.fem.plate_vk`, which take any model with this interface
 (``K``, ``M``, ``n``, :meth:`internal_force`, :meth:`nonlinear_force`, :meth:`tangent`,
-:meth:`strain_energy`): :func:`~softimpact.fem.plate_vk.solve_static` (load steps, Newton) and
-:class:`~softimpact.fem.plate_vk.VonKarmanNewmark` (implicit Newmark–Newton with the contact hook).
+:meth:`strain_energy`): :func:`~softimpact.fem.nonlinear.solve_static` (load steps, Newton) and
+:class:`~softimpact.fem.nonlinear.NonlinearNewmark` (implicit Newmark–Newton with the contact hook).
 """
 
 from __future__ import annotations
@@ -50,6 +50,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse
 
+from .nonlinear import NonlinearModel
 from .plane import PlaneModel
 from .scatter import ElementTangents
 
@@ -58,7 +59,7 @@ __all__ = ["PlaneTL"]
 GAUSS_2 = 0.5 + np.array([-0.5, 0.5]) / np.sqrt(3.0)  # 2-point Gauss on [0, 1] (weights ½): Q4's full integration
 
 
-class PlaneTL(ElementTangents):
+class PlaneTL(ElementTangents, NonlinearModel):
     """The plane beam's total Lagrangian model over the free DOFs of ``plane`` (a
     :class:`~softimpact.fem.plane.PlaneModel`, its supports): ``K`` (linear), ``M``, ``n``, the internal force
     :meth:`internal_force`, the tangent :meth:`tangent` and the strain energy :meth:`strain_energy` (module

@@ -47,41 +47,38 @@ bending and a membrane block, 7.0 M stored entries against 13.3 M as one pattern
 step (three solves a step: the contact's stiffness is not in it) and the run costs 3.4× the linear
 direct run's stepping wall-clock, 3.7–4.1× its CPU time (benchmarks/bench_vk_ratio.py, BENCHMARKS.md).
 
-Solvers: :func:`solve_static` (load steps, full Newton per step, convergence reported) and
-:class:`VonKarmanNewmark` (implicit Newmark with Newton iterations per step, the same β, γ as
-:mod:`softimpact.fem.newmark`, energies reported). Both take any geometrically nonlinear structure
-model with this interface: ``K`` (the linear stiffness), ``M``, ``n`` (free DOFs), ``internal_force(d)``,
-``nonlinear_force(d)`` (= internal_force(d) − K d), ``tangent(d)`` and ``strain_energy(d)``; the plate's
-:class:`PlateVK` and the plane beam's :class:`~softimpact.fem.plane_tl.PlaneTL`.
+Solvers: the one nonlinear engine of :mod:`softimpact.fem.nonlinear` (:func:`solve_static`, :class:`VonKarmanNewmark`,
+re-exported here), which steps this plate as any :class:`~softimpact.fem.nonlinear.NonlinearModel`; an elastic–plastic
+section plugs into the same plate as :class:`~softimpact.fem.plate_plastic.PlasticPlate`.
 """
 
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 import scipy.sparse
 
-from ..errors import InputError, SolverFailed
-from .newmark import NewmarkParameters, spd_factor
+from ..errors import InputError
+from .nonlinear import KINEMATICS, DynamicResult, NonlinearModel, StaticResult, VonKarmanNewmark, _factor, _factor_solve, solve_static
 from .plate import EDGES, PHI_X, PHI_Y, Plate, PlateFE, U, V, W, _gauss01, _lagrange
 from .scatter import ElementTangents
 
-__all__ = ["DynamicResult", "IN_PLANE", "KINEMATICS", "PlateVK", "StaticResult", "VonKarmanNewmark", "solve_static"]
+__all__ = ["DynamicResult", "IN_PLANE", "KINEMATICS", "PlateVK", "StaticResult", "VonKarmanNewmark", "solve_static", "_factor", "_factor_solve"]
 
-KINEMATICS = ("linear", "von-karman")
 IN_PLANE = ("immovable", "movable")
 UNCOUPLED = 1e-12  # membrane–bending entries of K and M below this fraction of the largest diagonal entry are round-off of B = 0
 
 
-class PlateVK(ElementTangents):
+class PlateVK(ElementTangents, NonlinearModel):
     """The plate's von Kármán model over its free DOFs: ``K`` (linear), ``M``, the internal
     force :meth:`internal_force`, the tangent :meth:`tangent` and the strain energy
     :meth:`strain_energy`; rows :meth:`deflection` and loads :meth:`load_vector` as
-    :class:`~softimpact.fem.plate.PlateFE`'s, over this model's free DOFs."""
+    :class:`~softimpact.fem.plate.PlateFE`'s, over this model's free DOFs; ``curvatures``: the quadrature fields carry the
+    curvatures also when the section has no membrane–bending coupling (:meth:`curvatures`)."""
 
-    def __init__(self, plate: Plate, in_plane: str = "immovable"):
+    def __init__(self, plate: Plate, in_plane: str = "immovable", *, curvatures: bool = False):
+        self._curvatures = curvatures  # the quadrature fields carry κ (φ's gradients) even when B = 0: a nonlinear section, a stress check
         if in_plane not in IN_PLANE:
             raise InputError(f"plate in_plane: {in_plane!r} is not one of {', '.join(IN_PLANE)}")
         self.plate, self.in_plane = plate, in_plane
@@ -155,7 +152,7 @@ class PlateVK(ElementTangents):
         self._wq = wq[None] * (hx * hy)[:, None]  # (ne, nq)
         nodes = fe.grid_node[p * I[:, None] + a, p * J[:, None] + b]  # (ne, npe)
         self.coupled = not np.allclose(sec.B, 0.0, atol=1e-12 * np.abs(sec.A).max() * sec.thickness)
-        self._comps = (U, V, W, PHI_X, PHI_Y) if self.coupled else (U, V, W)
+        self._comps = (U, V, W, PHI_X, PHI_Y) if (self.coupled or self._curvatures) else (U, V, W)
         # global DOFs per element, component-major: dofs[e, c, k] of component comps[c] at local node k
         self._gdofs = 5 * nodes[:, None, :] + np.array(self._comps)[None, :, None]
         self._A, self._B = sec.A, sec.B
@@ -188,7 +185,7 @@ class PlateVK(ElementTangents):
         eL = np.stack([ux, vy, uy + vx], -1)
         eN = np.stack([0.5 * wx * wx, 0.5 * wy * wy, wx * wy], -1)
         kappa = None
-        if self.coupled:
+        if len(self._comps) == 5:
             px, py_ = grad(3)
             qx, qy = grad(4)
             kappa = np.stack([px, qy, py_ + qx], -1)
@@ -214,6 +211,14 @@ class PlateVK(ElementTangents):
         eL, eN, _, _, _ = self._fields(d)
         return eL + eN
 
+    def curvatures(self, d: np.ndarray) -> np.ndarray:
+        """κ = (φx,x, φy,y, φx,y + φy,x) at the quadrature points, shape (ne, nq, 3) [1/m] (a model built with
+        ``curvatures`` or a coupled section)."""
+        kappa = self._fields(d)[2]
+        if kappa is None:
+            raise InputError("this plate model does not carry the curvatures: build it with curvatures=True")
+        return kappa
+
     def membrane_forces(self, d: np.ndarray) -> np.ndarray:
         """N = A ε0 + B κ at the quadrature points, shape (ne, nq, 3) [N/m]."""
         eL, eN, kappa, _, _ = self._fields(d)
@@ -236,6 +241,8 @@ class PlateVK(ElementTangents):
         if self.coupled:
             mN = (eN @ B.T) * self._wq[..., None]  # B ε_N: the extra moment
             S += [(mN[..., 0], mN[..., 2]), (mN[..., 2], mN[..., 1])]
+        elif len(self._comps) == 5:  # curvatures carried (``curvatures``) with B = 0: no extra moment
+            S += [(np.zeros_like(wx), np.zeros_like(wx))] * 2
         return self._GT @ np.stack([np.stack(pair) for pair in S]).ravel()
 
     def _element_tangents(self, d: np.ndarray) -> np.ndarray:
@@ -283,264 +290,3 @@ class PlateVK(ElementTangents):
     def dof(self, node: int, component: int) -> int:
         """Index in this model's reduced system of a node's component; −1 if fixed."""
         return int(self._index[self.fe.basis.nodal_dofs[component, node]])
-
-
-def _factor(A):
-    """A factor of the sparse symmetric A with a ``solve``: :func:`~softimpact.fem.newmark.spd_factor`
-    (band or minimum-degree Cholesky-like) while A is positive definite, SuperLU with pivoting on
-    the minimum-degree ordering of A + Aᵀ otherwise (compressive membrane forces can make the
-    static tangent indefinite)."""
-    import scipy.sparse.linalg
-
-    csc = scipy.sparse.csc_matrix(A)
-    try:
-        return spd_factor(csc)
-    except np.linalg.LinAlgError:
-        return scipy.sparse.linalg.splu(csc, permc_spec="MMD_AT_PLUS_A")
-
-
-def _factor_solve(A, b):
-    """A⁻¹ b (see :func:`_factor`)."""
-    return _factor(A).solve(b)
-
-
-@dataclass(frozen=True)
-class StaticResult:
-    """Load-stepped Newton solution: displacements ``u`` (steps, n) at the load factors
-    ``load_factors`` (steps,), Newton ``iterations`` per step, the final relative residual
-    of each step ``residuals``, ``converged`` (all steps) and ``message``."""
-
-    u: np.ndarray
-    load_factors: np.ndarray
-    iterations: np.ndarray
-    residuals: np.ndarray
-    converged: bool
-    message: str
-
-
-def solve_static(
-    model, load: np.ndarray, *, load_steps: int = 10, load_factors=None, rtol: float = 1e-10, max_iterations: int = 30, kinematics: str = "von-karman"
-) -> StaticResult:
-    """Static equilibrium f_int(u) = λ·load at λ = k/load_steps, k = 1 … load_steps (or at the
-    increasing ``load_factors`` given), by full Newton with the consistent tangent, each step
-    starting from the previous step's solution. A step has converged when the residual is below
-    ``rtol`` of the load's norm. With ``kinematics="linear"``: one solve with K."""
-    if kinematics not in KINEMATICS:
-        raise InputError(f"kinematics: {kinematics!r} is not one of {', '.join(KINEMATICS)}")
-    if not (isinstance(load_steps, (int, np.integer)) and load_steps >= 1):
-        raise InputError(f"load_steps must be a positive integer, got {load_steps!r}")
-    load = np.asarray(load, float)
-    lams = np.arange(1, load_steps + 1) / load_steps if load_factors is None else np.asarray(load_factors, float)
-    if lams.ndim != 1 or lams.size == 0 or np.any(np.diff(lams) <= 0) or lams[0] <= 0:
-        raise InputError(f"load_factors must increase from a positive value, got {load_factors!r}")
-    load_steps = lams.size
-    if kinematics == "linear":
-        u1 = _factor_solve(model.K, load)
-        return StaticResult(np.outer(lams, u1), lams, np.ones(load_steps, int), np.zeros(load_steps), True, "linear")
-    u = np.zeros(model.n)
-    us, its, res = [], [], []
-    converged, message = True, "converged"
-    for lam in lams:
-        f = lam * load
-        scale = max(np.linalg.norm(f), 1e-300)
-        it = 0
-        while it < max_iterations:
-            it += 1
-            r = f - model.internal_force(u)
-            u = u + _factor_solve(model.tangent(u), r)
-            rel = np.linalg.norm(f - model.internal_force(u)) / scale
-            if rel <= rtol:
-                break
-        else:
-            converged, message = False, f"Newton did not converge at load factor {lam:g} ({max_iterations} iterations, residual {rel:.3g})"
-        us.append(u.copy())
-        its.append(it)
-        res.append(rel)
-        if not converged:
-            break
-    return StaticResult(np.array(us), lams[: len(us)], np.array(its), np.array(res), converged, message)
-
-
-@dataclass(frozen=True)
-class DynamicResult:
-    """Nonlinear Newmark run: ``t`` (steps + 1,), ``outputs`` (rows, steps + 1), the energies
-    ``kinetic``, ``strain``, ``work`` (external, trapezoidal) per time [J], Newton
-    ``iterations`` per step, tangent ``factorisations`` in all, final state ``u``, ``v``, ``a``."""
-
-    t: np.ndarray
-    outputs: np.ndarray
-    kinetic: np.ndarray
-    strain: np.ndarray
-    work: np.ndarray
-    iterations: np.ndarray
-    factorisations: int
-    u: np.ndarray
-    v: np.ndarray
-    a: np.ndarray
-
-    def balance_error(self) -> np.ndarray:
-        """(kinetic + strain) − (initial energy + work) [J] per time."""
-        return self.kinetic + self.strain - (self.kinetic[0] + self.strain[0]) - self.work
-
-
-class VonKarmanNewmark:
-    """Implicit Newmark (β, γ of :class:`~softimpact.fem.newmark.NewmarkParameters`) for
-    M a + C v + f_int(u) = f(t) of a nonlinear structure ``model`` (:class:`PlateVK`,
-    :class:`~softimpact.fem.plane_tl.PlaneTL`: the interface of the module docstring), with Newton
-    iterations per step on u_{n+1}:
-
-        r = f_{n+1} − M a_{n+1} − C v_{n+1} − f_int(u_{n+1}),   J = K_T(u_{n+1}) + a0 M + a1 C,
-
-    a_{n+1} = a0 (u_{n+1} − u_n) − a2 v_n − a3 a_n, v_{n+1} = v_n + dt ((1 − γ) a_n + γ a_{n+1}).
-    ``tangent="newton"`` refactors J at every iteration (quadratic convergence);
-    ``tangent="modified"`` keeps a factor while each iteration cuts the residual by at least
-    ``MODIFIED_RATE`` (so most steps of a small-amplitude run reuse one factor) and refactors
-    otherwise. A step has converged when ‖r‖ ≤ ``rtol``·max(‖r_0‖, ‖f_{n+1}‖, ‖M a_n‖), r_0 the
-    residual at the predictor, or when a correction after the first is below ``rtol`` of the step's
-    increment. The default
-    1e-6 leaves the energy balance to the time integrator (the balance error does not move between
-    1e-9 and 1e-6 on the tests' impulsive load) and, with ``"modified"``, takes two solves a step
-    to w/h > 1 on one factor.
-
-    Loads depending on u: :meth:`step` takes an optional ``extra(u) -> (force, stiffness)``, a
-    load (a sparse stiffness or None) that joins the residual and the Jacobian: one monolithic
-    Newton over the structure and that load.
-
-    Contact (the coupled stepper contract): ``contact``, an object with ``load(u) -> (F, b)``, the
-    contact force F [N] on the structure at u and the nodal shape b (n,) of a unit contact force
-    there (F·b the nodal loads), and ``solve(u, z) -> F'``, the contact force when the structure
-    is at u + F'·z (its scalar contact equation, bracketed). Each iteration condenses the contact
-    onto the structure's own linearisation: with J the structure's Jacobian (no contact term),
-    d = J⁻¹(r − F·b) the correction without contact force and z = J⁻¹·b its response to a unit
-    one (one more back-substitution), the new iterate is u + d + F'·z with F' = ``solve(u + d, z)``.
-    Why not the contact's tangent in J: a crushing or flowing law's force goes through the approach
-    RATE α̇ = γ/(β·dt)·α + q, so within one step F(w) rises with slopes of 10¹⁰ N/m over nanometres
-    and is clipped to zero where the rate turns negative (the end of a crush); Newton on the
-    monolithic residual then jumps between the clipped branch (no force, no tangent) and the
-    loaded one and never converges, consistent tangent or not. Condensed, the nonsmooth part is
-    the scalar equation the contact Newton brackets (:func:`softimpact.fem.impact.newton_contact`),
-    J stays the structure's (so ``"modified"`` keeps its factor across contact), and the step
-    converges as the structure's own Newton does.
-    """
-
-    MODIFIED_RATE = 0.25  # a kept factor must cut the residual at least 4× per iteration
-
-    def __init__(
-        self,
-        model,
-        dt: float,
-        C=None,
-        params: NewmarkParameters = NewmarkParameters(),
-        *,
-        rtol: float = 1e-6,
-        max_iterations: int = 30,
-        tangent: str = "newton",
-    ):
-        if not (math.isfinite(dt) and dt > 0):
-            raise InputError(f"time_step must be positive, got {dt!r}", "time_step")
-        if tangent not in ("newton", "modified"):
-            raise InputError(f"tangent: {tangent!r} is not 'newton' or 'modified'")
-        b, g = params.beta, params.gamma
-        self.model, self.dt, self.params, self.C = model, dt, params, C
-        self.a0, self.a1, self.a2, self.a3 = 1.0 / (b * dt * dt), g / (b * dt), 1.0 / (b * dt), 1.0 / (2.0 * b) - 1.0
-        self.rtol, self.max_iterations, self.tangent_kind = rtol, max_iterations, tangent
-        self._lu = None
-        self.factorisations = 0
-        # K_eff = K + a0 M + a1 C: the linear part of the residual in one product per iteration
-        self._keff = (model.K + self.a0 * model.M + (0.0 if C is None else self.a1 * C)).tocsr()
-
-    def _jacobian(self, u, extra_k):
-        J = self.model.tangent(u) + self.a0 * self.model.M
-        if self.C is not None:
-            J = J + self.a1 * self.C
-        if extra_k is not None:
-            J = J + extra_k
-        self.factorisations += 1
-        self._lu = _factor(J)
-
-    def initial_acceleration(self, u, v, f):
-        """a_0 from M a = f − C v − f_int(u)."""
-        rhs = f - self.model.internal_force(u) - (0.0 if self.C is None else self.C @ v)
-        if not np.any(rhs):
-            return np.zeros_like(rhs)  # at rest and unloaded (an impact's first contact): no factor of M needed
-        return _factor_solve(self.model.M, rhs)
-
-    def _finish(self, u1, u, v, a):
-        a1 = self.a0 * (u1 - u) - self.a2 * v - self.a3 * a
-        return u1, v + self.dt * ((1 - self.params.gamma) * a + self.params.gamma * a1), a1
-
-    def step(self, u, v, a, f1, extra=None, contact=None):
-        """(u1, v1, a1, iterations) of one step to the load f1, with ``extra`` and ``contact`` (class docstring)."""
-        g, dt = self.params.gamma, self.dt
-        M, C, model = self.model.M, self.C, self.model
-        u1 = u + dt * v + dt * dt * (0.5 - self.params.beta) * a  # zero new acceleration: the Newmark predictor
-        # M a1 + C v1 + K u1 = K_eff u1 − p with p from the step's start (Newmark's a1, v1 are affine in u1)
-        ma = M @ a
-        p = M @ (self.a0 * u + self.a2 * v) + self.a3 * ma
-        if C is not None:
-            p = p - C @ (v + dt * (1 - g) * a - dt * g * (self.a0 * u + self.a2 * v + self.a3 * a))
-        rhs = f1 + p
-        last = scale = np.inf
-        for it in range(1, self.max_iterations + 1):
-            r = rhs - self._keff @ u1 - model.nonlinear_force(u1)
-            ek = None
-            if extra is not None:
-                fe, ek = extra(u1)
-                r = r + fe
-            if contact is not None:
-                fc, shape = contact.load(u1)
-                r = r + fc * shape
-            norm = np.linalg.norm(r)
-            if it == 1:
-                # the forces in balance: load, inertia (at the step's start), the predictor's out-of-balance force
-                scale = max(norm, np.linalg.norm(f1), np.linalg.norm(ma), 1e-300)
-            elif norm <= self.rtol * scale:
-                return self._finish(u1, u, v, a) + (it - 1,)
-            if self._lu is None or self.tangent_kind == "newton" or norm > self.MODIFIED_RATE * last:
-                self._jacobian(u1, ek)
-            last = norm
-            du = self._lu.solve(r)
-            if contact is not None:
-                # the contact condensed on the linearised structure (class docstring): u + d + F'·z
-                z = self._lu.solve(shape)
-                free = u1 + du - fc * z
-                du = free + contact.solve(free, z) * z - u1
-            u1 = u1 + du
-            if it > 1 and np.linalg.norm(du) <= self.rtol * np.linalg.norm(u1 - u):
-                # a correction at round-off of the step's increment (Bathe's displacement criterion): no further force evaluation
-                return self._finish(u1, u, v, a) + (it,)
-        raise SolverFailed(
-            f"the von Karman Newmark–Newton step did not converge in {self.max_iterations} iterations (residual {norm:.3g} N): try a smaller time step"
-        )
-
-    def run(self, load, steps: int, rows: np.ndarray | None = None, u0=None, v0=None, energies: bool = True, extra=None) -> DynamicResult:
-        """March ``steps`` steps; ``load(t)`` -> force vector (or None for free vibration);
-        ``rows`` (k, n) the outputs recorded (default: none); ``energies=False`` skips the
-        strain energy (one more pass over the elements per step) and leaves it zero; ``extra``
-        as in :meth:`step` (its work is not in ``work``: a conservative ``extra``'s energy is
-        the caller's to add)."""
-        n = self.model.n
-        u = np.zeros(n) if u0 is None else np.asarray(u0, float).copy()
-        v = np.zeros(n) if v0 is None else np.asarray(v0, float).copy()
-        zero = np.zeros(n)
-
-        def force(t):
-            return zero if load is None else np.asarray(load(t), float)
-
-        f = force(0.0)
-        a = self.initial_acceleration(u, v, f)
-        rows = np.zeros((0, n)) if rows is None else np.atleast_2d(rows)
-        t = np.arange(steps + 1) * self.dt
-        out = np.zeros((rows.shape[0], steps + 1))
-        kin, strain, work, its = np.zeros(steps + 1), np.zeros(steps + 1), np.zeros(steps + 1), np.zeros(steps, int)
-        out[:, 0] = rows @ u
-        kin[0], strain[0] = 0.5 * v @ (self.model.M @ v), self.model.strain_energy(u)
-        for k in range(steps):
-            f1 = force(t[k + 1])
-            u1, v1, a1, its[k] = self.step(u, v, a, f1, extra)
-            work[k + 1] = work[k] + 0.5 * (u1 - u) @ (f + f1)
-            u, v, a, f = u1, v1, a1, f1
-            out[:, k + 1] = rows @ u
-            kin[k + 1] = 0.5 * v @ (self.model.M @ v)
-            strain[k + 1] = self.model.strain_energy(u) if energies else 0.0
-        return DynamicResult(t, out, kin, strain, work, its, self.factorisations, u, v, a)

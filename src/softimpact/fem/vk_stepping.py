@@ -18,6 +18,12 @@ A law whose force goes through the approach rate (the crushing law, the hydrodyn
 slopes of 10¹⁰ N/m, a force clipped to zero where the rate turns negative at the end of a crush) thus converges
 where a contact tangent in the plate's Jacobian made the iteration cycle between no force and full force.
 
+The structure may carry internal state (plastic strains, interface damage: a :class:`~softimpact.fem.nonlinear.NonlinearModel`):
+:meth:`VonKarmanStepper.apply` commits it after every converged step, counts the energy it dissipated in the
+structure's energy (strain + dissipated: the coupled balance closes with it) and writes the scalars it records
+(:attr:`~softimpact.fem.nonlinear.NonlinearModel.history_names`: areas, energies) into the structure's last output
+rows, placeholders kept for them, of the whole plate (divided by the share of it the model is: ¼ for a quarter).
+
 The converged step (u*, F*, r*) then fixes the affine model the loop sees: the bracket's top α̃ = x̃ − w̃ with w̃ = c·u* − h_s(r*)·F*, and any positive compliance
 h_s (here the linear structure's effective one, c·K_eff⁻¹·B, solved once) makes the loop's contact Newton land on
 α* = x̃ − β dt² F*/m − c·u* again (R(α*) = 0 exactly), to its tolerance. :meth:`apply` takes u* (the loop's
@@ -44,7 +50,7 @@ from ..errors import InputError
 from .direct import structure_history
 from .impact import ContactPatch, ContactStructure, ImpactHistory, PatchCompliance, newton_contact
 from .newmark import NewmarkParameters, spd_factor
-from .plate_vk import VonKarmanNewmark
+from .nonlinear import NonlinearNewmark
 from .stepping import CoupledStepper, check_time_step
 
 __all__ = ["VonKarmanStepper"]
@@ -111,14 +117,14 @@ class VonKarmanStepper(CoupledStepper):
         steps: int,
         newmark: NewmarkParameters = NewmarkParameters(),
         *,
-        engine: VonKarmanNewmark | None = None,
+        engine: NonlinearNewmark | None = None,
         stop_after: float | None = None,
         energy: bool = True,
         snapshots=(),
     ):
         super().__init__(law, mass, velocity, time_step, steps, stop_after)
-        if not isinstance(engine, VonKarmanNewmark):
-            raise InputError("the von Karman stepper needs the structure's VonKarmanNewmark as its engine (a linear structure steps 'direct' or 'kernels')")
+        if not isinstance(engine, NonlinearNewmark):
+            raise InputError("the nonlinear stepper needs the structure's NonlinearNewmark as its engine (a linear structure steps 'direct' or 'kernels')")
         check_time_step(engine.dt, self.dt)
         self.nm, self.vk, self.params, self.energy = engine, engine.model, engine.params, energy
         n = self.vk.n
@@ -136,9 +142,13 @@ class VonKarmanStepper(CoupledStepper):
         self._keep_snapshots(snapshots, self.vk.n)
         self.structure_iterations = 0  # the structure's Newton iterations, summed over the run
         self._n = n
+        # the scalars the structure records (its history rows: the last output rows), of the whole plate
+        self.rows = len(self.vk.history_names)
+        self.share = float(self.patch.patch.share) if self.rows else 1.0
 
     def _begin(self) -> None:
         super()._begin()
+        self.vk.reset()
         n = self._n
         self._structure_records(self.O.shape[0])
         self.u, self.v, self.acc = np.zeros(n), np.zeros(n), np.zeros(n)
@@ -197,9 +207,13 @@ class VonKarmanStepper(CoupledStepper):
         self.work[k1] = self.work[k] + 0.5 * sign * float((self.s_prev + fs) @ du)
         mid = 0.5 * (self.F[k] + f)
         self.mism[k1] = self.mism[k] + 0.5 * sign * float((self.s_prev + fs) @ du) - mid * (w[k1] - w[k])
+        model = self.vk
+        acc1 = self.nm.commit(u1, acc1)
         if self.energy:
-            self.ek[k1] = 0.5 * float(v1 @ (self.vk.M @ v1))
-            self.es[k1] = self.vk.strain_energy(u1)
+            self.ek[k1] = 0.5 * float(v1 @ (model.M @ v1))
+            self.es[k1] = model.strain_energy(u1) + model.dissipated_energy()
+        if self.rows:
+            self.y[-self.rows :, k1] = model.history(u1) / self.share
         self.u, self.v, self.acc, self.s_prev = u1, v1, acc1, fs
         if k1 in self.slot:
             self.saved[:, self.slot[k1]] = u1

@@ -26,7 +26,7 @@ from ..models.contact_laws import HertzLaw
 from ..models.materials import Material
 from ..workflows.beam_impact import BeamProblem
 from ..workflows.coupled import Impactor, ImpactProblem
-from ..workflows.plate_impact import PlateProblem
+from ..workflows.plate import PlateProblem
 from .beam_case import beam_problem, read_beam_gauges
 from .contact_law import CONTACT_LAWS, read_contact_law
 from .plate_case import plate_problem, read_plate_gauges
@@ -105,7 +105,7 @@ def impact_problem(data: dict, base: Path = Path(".")) -> tuple[ImpactProblem, t
     with naming({"gauges": "gauges", "time_step": "solver.time_step", "position": f"target.case ({target_path}): load.position"}):
         resolved = target.for_impact(solver, gauges)  # the force comes from the contact
     if cohesive is not None:
-        from ..workflows._cohesive_plate_model import CohesivePlateProblem
+        from ..workflows.plate.cohesive import CohesivePlateProblem
 
         with naming({"cohesive": "damage.cohesive", "kinematics": f"target.case ({target_path}): plate.kinematics"}):
             resolved = CohesivePlateProblem.of(resolved, *cohesive)

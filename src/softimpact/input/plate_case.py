@@ -3,7 +3,9 @@
 ``[plate]`` (length, width, elements, element ``mitc9`` or ``mitc4`` (default: see
 ``DEFAULT_ELEMENT``), support per edge, model, ``kinematics`` (``"linear"``, the default, or
 ``"von-karman"``), ``in_plane`` (``"immovable"``, the default, or ``"movable"``: see
-``DEFAULT_IN_PLANE``), ``[plate.laminate]``),
+``DEFAULT_IN_PLANE``), ``[plate.laminate]`` — or for a metal skin ``material`` (a catalogue metal by name, e.g.
+``"Al 2024-T3"``, or an inline table of its constants: :func:`read_metal`), ``thickness`` and ``plasticity``
+(true, the default for a metal: elastic–plastic; false: elastic, checked against yield)),
 ``[load]`` (position, contact_radius, history and ``[[load.table]]`` rows, read as in
 beam cases; or, with ``[solver] analysis = "static"``, a uniform ``pressure`` alone),
 ``[solver]`` (time step and duration; or ``analysis = "static"`` and ``load_steps``) and
@@ -21,12 +23,14 @@ from ..errors import InputError
 from ..fem.plate import EDGES, ELEMENTS
 from ..fem.plate_vk import IN_PLANE, KINEMATICS
 from ..models.laminate import Stack, parse_layup
+from ..models.metals import METALS, Metal, bilinear_hardening, metal
+from ..models.plasticity import LinearHardening
 from ..models.specimens import GAUGE_LENGTH
-from ..workflows.plate_impact import ANALYSES, PlateGauge, PlateLoad, PlateProblem, PlateSpec, check_problem
+from ..workflows.plate import ANALYSES, PlateGauge, PlateLoad, PlateProblem, PlateSpec, check_problem
 from .beam_case import read_load_history, read_ply
 from .toml import Table, load_case_toml, locate, naming, read_solver, read_units
 
-__all__ = ["PLATE_SUPPORTS", "PLATE_MODELS", "check_supports", "plate_problem", "read_plate_gauges", "load_plate_case"]
+__all__ = ["PLATE_SUPPORTS", "PLATE_MODELS", "check_supports", "plate_problem", "read_plate_gauges", "load_plate_case", "read_metal"]
 
 PLATE_SUPPORTS = ("clamped", "simply-supported", "free", "symmetry")  # symmetry: a mirror plane (quarter models)
 PLATE_MODELS = ("fsdt", "solid")
@@ -65,6 +69,35 @@ def check_supports(supports, key: str = "support") -> None:
     supported ones (the rule of case files and of ``si.Plate``)."""
     if supports.count("clamped") == 0 and supports.count("simply-supported") < 2:
         raise InputError(f"{key}: {dict(zip(EDGES, supports))} leaves the plate a mechanism (it needs a clamped edge or two simply supported edges)")
+
+
+def read_metal(tbl: Table, name: str = "material") -> Metal:
+    """A metal: a catalogue name (:data:`softimpact.models.metals.METALS`) or an inline table of its constants,
+    ``youngs_modulus``, ``poisson_ratio``, ``density``, ``yield_stress`` and either ``hardening_modulus`` (linear
+    hardening, default 0: perfectly plastic) or ``ultimate_strength`` with ``elongation`` (the catalogue's bilinear
+    estimate through them)."""
+    value = tbl.raw(name)
+    if isinstance(value, str):
+        return metal(value, tbl.key(name))
+    if not isinstance(value, dict):
+        raise InputError(f"{tbl.key(name)}: expected a metal's name ({', '.join(METALS)}) or a table of its constants, got {value!r}")
+    m = Table(value, tbl.key(name))
+    E = m.quantity("youngs_modulus", "stress")
+    nu = m.number("poisson_ratio")
+    rho = m.quantity("density", "density")
+    sy = m.quantity("yield_stress", "stress")
+    with naming({None: m.path}):
+        if "ultimate_strength" in m or "elongation" in m:
+            if "hardening_modulus" in m:
+                raise InputError(f"{m.key('hardening_modulus')}: give the hardening modulus or the ultimate strength and elongation, not both")
+            su, ef = m.quantity("ultimate_strength", "stress"), m.number("elongation")
+            hardening = bilinear_hardening(E, sy, su, ef)
+        else:
+            su = ef = None
+            hardening = LinearHardening(sy, m.quantity("hardening_modulus", "stress", default=0.0, positive=False))
+        out = Metal("user metal", E, nu, rho, f"inline in {tbl.key(name)}", hardening=hardening, ultimate=su, elongation=ef)
+    m.done()
+    return out
 
 
 def read_plate_gauges(top: Table) -> tuple[PlateGauge, ...]:
@@ -113,13 +146,36 @@ def plate_problem(data: dict, base: Path = Path("."), history: int | None = None
     supports = _supports(p)
     kinematics = p.string("kinematics", KINEMATICS[0], choices=KINEMATICS)
     in_plane = p.string("in_plane", DEFAULT_IN_PLANE, choices=IN_PLANE)
-    lam = p.table("laminate")
-    ply = read_ply(lam)
-    layup = lam.string("layup")  # (read outside the naming: its own errors name the key already)
-    with naming({None: lam.key("layup")}):
-        stack = Stack(ply, parse_layup(layup))
-    lam.done()
-    spec = PlateSpec(p.quantity("length", "length"), p.quantity("width", "length"), tuple(elements), stack, supports, element=element)
+    plasticity = p.raw("plasticity", None)
+    if plasticity is not None and not isinstance(plasticity, bool):
+        raise InputError(f"{p.key('plasticity')}: expected true or false, got {plasticity!r}")
+    if "material" in p:  # a metal skin: its material and thickness instead of a laminate
+        if "laminate" in p:
+            raise InputError(f"{p.key('material')}: a plate is a laminate ([plate.laminate]) or a metal (material and thickness), not both")
+        material, stack = read_metal(p), None
+        thickness = p.quantity("thickness", "length")
+    else:
+        if "thickness" in p or plasticity is not None:
+            key = p.key("thickness" if "thickness" in p else "plasticity")
+            raise InputError(f"{key}: goes with a metal plate's material; a laminate's thickness is its plies' and it is elastic")
+        lam = p.table("laminate")
+        ply = read_ply(lam)
+        layup = lam.string("layup")  # (read outside the naming: its own errors name the key already)
+        with naming({None: lam.key("layup")}):
+            stack = Stack(ply, parse_layup(layup))
+        lam.done()
+        material = thickness = None
+    with naming({"thickness": p.key("thickness"), "material": p.key("material")}):
+        spec = PlateSpec(
+            p.quantity("length", "length"),
+            p.quantity("width", "length"),
+            tuple(elements),
+            stack,
+            supports,
+            element=element,
+            material=material,
+            thickness=thickness,
+        )
     p.done()
 
     sv = top.table("solver")
@@ -154,7 +210,14 @@ def plate_problem(data: dict, base: Path = Path("."), history: int | None = None
     top.done()
     if analysis == "static" and gauges:
         raise InputError("gauges: a static plate run records the largest deflection only (gauges are for dynamic runs)")
-    names = {None: "case", "kinematics": p.key("kinematics"), "in_plane": p.key("in_plane"), "pressure": "load.pressure", "load_steps": sv.key("load_steps")}
+    names = {
+        None: "case",
+        "kinematics": p.key("kinematics"),
+        "in_plane": p.key("in_plane"),
+        "pressure": "load.pressure",
+        "load_steps": sv.key("load_steps"),
+        "plasticity": p.key("plasticity"),
+    }
     with naming(names):
         problem = PlateProblem(
             spec,
@@ -167,6 +230,7 @@ def plate_problem(data: dict, base: Path = Path("."), history: int | None = None
             analysis=analysis,
             pressure=pressure,
             load_steps=load_steps,
+            plasticity=plasticity,
         )
     check_problem(problem)
     return problem

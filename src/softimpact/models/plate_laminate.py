@@ -31,7 +31,7 @@ import numpy as np
 from ..errors import InputError
 from .laminate import Stack, abd
 
-__all__ = ["PlateSection", "SHEAR_CORRECTION", "plate_section"]
+__all__ = ["PlateSection", "SHEAR_CORRECTION", "plate_section", "isotropic_section"]
 
 SHEAR_CORRECTION = 5.0 / 6.0  # Reissner's value: parabolic shear stress in a homogeneous section
 
@@ -100,3 +100,21 @@ def plate_section(stack: Stack, shear_correction: float = SHEAR_CORRECTION) -> P
         I1 += rho * (zt**2 - zb**2) / 2
         I2 += rho * (zt**3 - zb**3) / 3
     return PlateSection(A, B, D, shear_correction * S, I0, I1, I2, float(h))
+
+
+def isotropic_section(
+    youngs_modulus: float, poisson_ratio: float, density: float, thickness: float, shear_correction: float = SHEAR_CORRECTION
+) -> PlateSection:
+    """The section of a homogeneous isotropic plate (a metal skin): A = Q·h, B = 0, D = Q·h³/12 with the plane-stress
+    Q = E/(1 − ν²)·[[1, ν, 0], [ν, 1, 0], [0, 0, (1 − ν)/2]], S = k·G·h·I (G = E/(2(1 + ν))), I0 = ρh, I1 = 0, I2 = ρh³/12."""
+    for name, v in (("youngs_modulus", youngs_modulus), ("density", density), ("thickness", thickness)):
+        if not (np.isfinite(v) and v > 0):
+            raise InputError(f"{name} must be a positive finite number, got {v!r}", name)
+    if not (-1.0 < poisson_ratio < 0.5):
+        raise InputError(f"poisson_ratio must lie in (-1, 0.5), got {poisson_ratio!r}", "poisson_ratio")
+    if not 0 < shear_correction <= 1:
+        raise InputError(f"shear_correction must be in (0, 1], got {shear_correction!r}")
+    E, nu, h = youngs_modulus, poisson_ratio, thickness
+    Q = E / (1 - nu * nu) * np.array([[1.0, nu, 0.0], [nu, 1.0, 0.0], [0.0, 0.0, 0.5 * (1 - nu)]])
+    G = E / (2 * (1 + nu))
+    return PlateSection(Q * h, np.zeros((3, 3)), Q * h**3 / 12, shear_correction * G * h * np.eye(2), density * h, 0.0, density * h**3 / 12, float(h))

@@ -199,7 +199,7 @@ class MeshedModel(Protocol):
 @runtime_checkable
 class Target(Protocol):
     """The structure an impactor strikes, at problem level (:class:`softimpact.workflows.beam_impact.BeamProblem`,
-    :class:`softimpact.workflows.plate_impact.PlateProblem`): everything above ``fem`` asks it, never its type.
+    :class:`softimpact.workflows.plate.PlateProblem`): everything above ``fem`` asks it, never its type.
 
     - ``load`` (its ``position``: the impact point, ``contact_radius``), ``solver``, ``gauges``, ``title`` (its display system is the edges': a case's ``units``, read by the app and the API);
     - ``model(patch_radius, damage=False)`` its :class:`StructureModel` (with ``damage``, the contact structure's
@@ -213,7 +213,9 @@ class Target(Protocol):
       read ("at_load", "at_<gauge>"), ``damage_gauges()`` the ``"damage"`` output group, ``damage_faces(gauges, damage)`` each damage point's (top, bottom) face strains,
       ``damage_section`` (plane, width) of a beam section or (None, None);
     - ``validity(max_deflection)`` the deflection envelope of its theory (``theory``: its label); ``kinematics``
-      ``"linear"`` or ``"von-karman"`` (a plate's or a beam's: the coupled stepper that runs it);
+      ``"linear"`` or ``"von-karman"``; ``coupled_stepper`` the stepper of a nonlinear target (von Kármán kinematics,
+      an elastic–plastic section, cohesive interfaces: a name of :data:`softimpact.fem.steppers.STEPPERS`) or None
+      for a linear one (direct stepping or contact kernels);
     - summary.json: ``gauge_summary(gauge)`` a gauge's entries, ``summary_extras(model, result)`` the target's
       own block (``target``: a plate's model and deflection, a beam's kinematics), ``summary_keys`` its sweep outputs; ``deflected_shapes`` whether the
       impact command draws its deflected shapes.
@@ -224,6 +226,7 @@ class Target(Protocol):
     gauges: tuple
     theory: str
     kinematics: str
+    coupled_stepper: str | None
     laminate_key: str
     deflected_shapes: bool
     summary_keys: tuple

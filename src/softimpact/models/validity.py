@@ -73,6 +73,8 @@ FLAG_LABELS = {
     "gauge_strain_past_allowables": "a gauge strain past the ply allowables",
     "contact_past_run_end": "a contact not ended, or one to come, at the run's end",
     "threshold_at_range_floor": "threshold at or below the lowest velocity searched",
+    "elastic_past_yield": "an elastic metal past yield",
+    "plastic_strain_past_elongation": "plastic strain past the elongation at break (the skin may tear)",
 }
 
 
@@ -153,6 +155,33 @@ def allowable_flags(where: str, max_strain_index: float, key: str = "max_strain_
             "and the elastic answer past that is not the structure's",
         )
     return Validity({key: max_strain_index}, flags, ("strains_past_allowables",) * len(flags))
+
+
+def yield_flags(where: str, von_mises_over_yield: float) -> Validity:
+    """An elastic run of a metal whose largest von Mises stress over its yield stress (``von_mises_over_yield``) passes 1:
+    past yield the elastic answer is not the structure's."""
+    flags = ()
+    if math.isfinite(von_mises_over_yield) and von_mises_over_yield > 1.0:
+        flags = (
+            f"{where}: the von Mises stress reaches {von_mises_over_yield:.3g} times the yield stress in an elastic run: past yield the "
+            "elastic answer is not the structure's (run it elastic-plastic: plasticity = true, the default for a metal)",
+        )
+    return Validity({"von_mises_over_yield": von_mises_over_yield}, flags, ("elastic_past_yield",) * len(flags))
+
+
+def tearing_flags(where: str, max_plastic_strain: float, elongation: float | None) -> Validity:
+    """An elastic–plastic run whose largest equivalent plastic strain passes the metal's elongation at break: the model has
+    no fracture, and the skin may have torn."""
+    if elongation is None or not math.isfinite(max_plastic_strain):
+        return Validity({})
+    r = max_plastic_strain / elongation
+    flags = ()
+    if r > 1.0:
+        flags = (
+            f"{where}: the equivalent plastic strain reaches {max_plastic_strain:.3g}, {r:.3g} times the elongation at break "
+            f"({elongation:.3g}): the skin may have torn, which the model (no fracture) cannot say",
+        )
+    return Validity({"plastic_strain_over_elongation": r}, flags, ("plastic_strain_past_elongation",) * len(flags))
 
 
 def surface_strain_bound(ply) -> float:

@@ -18,7 +18,7 @@ Meshes (SI, metres), one layout for every model:
   bilinear field at the centre and cheap (no quadrature); on a beam with ``kinematics =
   "von-karman"`` the same names hold the Green–Lagrange strain (the model's own measure; history.csv's gauges
   read their chords' stretch, which differs from it at second order in the rotation);
-- plate (:class:`softimpact.workflows.plate_impact.PlateModel`): the mid-surface, the node
+- plate (:class:`softimpact.workflows.plate.PlateModel`): the mid-surface, the node
   grid split into quads (an MITC9 element shows as its four sub-quads), z = 0; point
   data ``displacement`` (u, v, w) [m] (w up +) and ``rotation`` (φ_x, φ_y) [rad].
   Surface strains of a plate need the shape-function gradients per element and are not

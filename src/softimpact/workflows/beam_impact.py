@@ -169,6 +169,12 @@ class BeamProblem:
 
     theory = "linear beam theory"  # the deflection envelope's label (models.validity.deflection_validity)
     laminate_key = "beam.laminate.ply"  # where a case gives the laminate's ply (messages)
+
+    @property
+    def coupled_stepper(self) -> str | None:
+        """The coupled stepper of a large-deflection beam (the one nonlinear engine's), None for a linear one."""
+        return "von-karman" if self.kinematics == "von-karman" else None
+
     deflected_shapes = False  # the impact command draws no deflected shapes of a beam
     summary_keys = ()  # the sweep outputs of its summary extras (none)
 

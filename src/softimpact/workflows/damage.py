@@ -499,3 +499,44 @@ def coupled_damage(target, result, points: tuple[str, ...] | None = None, *, imp
         target_mass=target_mass,
         time=result.time,
     )
+
+
+def metal_damage(target, result, rest: dict | None) -> dict:
+    """summary.json's ``damage`` of an impact on a metal plate (``target.material`` a
+    :class:`~softimpact.models.metals.Metal`). Elastic–plastic (``rest``: the plate's state at rest after the run,
+    :meth:`softimpact.workflows.plate.NonlinearPlateModel.rest`): the dent (the permanent deflection under the impact
+    point), the plastic zone's area, the plastic work and the largest equivalent plastic strain, with the plastic
+    work's history from ``result``'s ``"columns"`` group. Elastic (``rest`` None): the largest von Mises stress over
+    the yield stress at the damage points (both faces, every time), from the ``"damage"`` group's face strains."""
+    from ..models.plasticity import von_mises
+
+    metal, h = target.material, target.thickness
+    if rest is not None:
+        dent = rest["dent_depth_m"]
+        cols = dict(zip(*result.groups["columns"])) if "columns" in result.groups else {}
+        work = cols.get("plastic_work_J")
+        first = None if work is None or not np.any(work > 0) else float(result.time[np.flatnonzero(work > 0)[0]])
+        words = (
+            f"dent {dent * 1e3:.3g} mm deep ({dent / h:.3g} of the thickness), plastic zone {rest['plastic_zone_area_m2'] * 1e6:.4g} mm², "
+            f"plastic work {rest['plastic_work_J']:.4g} J"
+            if rest["plastic_work_J"] > 0
+            else "no yield: the plate stayed elastic (no dent)"
+        )
+        return {
+            **rest,
+            "yield_onset_time_s": first,
+            "dent_note": "permanent mid-surface deflection under the impact point, positive into the plate, against the plate's rest before "
+            "the impact: the equilibrium at zero load reached from the run's end with its plastic strains (the motion let die away)",
+            "plasticity": f"J2 with {metal.hardening.describe()} ({metal.hardening_source}); rate: {metal.rate_source}",
+            "verdict": words,
+        }
+    names, rows = result.groups["damage"]
+    faces = target.damage_faces(result.strain, dict(zip(names, rows)))
+    Q = metal.plasticity().elastic
+    peak = 0.0
+    for top, bottom in faces.values():
+        for face in (top, bottom):
+            peak = max(peak, float(von_mises(strain_tensor(*face).T @ Q.T).max()))
+    ratio = peak / metal.yield_stress
+    words = f"elastic run: the von Mises stress reaches {ratio:.3g} times the yield stress at the damage points"
+    return {"max_von_mises_Pa": peak, "max_von_mises_over_yield": ratio, "verdict": words + (" (past yield: a dent is likely)" if ratio > 1 else "")}

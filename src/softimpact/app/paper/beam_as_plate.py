@@ -13,7 +13,7 @@ from ...output.plate_plots import beam_as_plate as beam_as_plate_figure
 from ...output.report import Section
 from ...units import INCH, display
 from ...workflows.beam_impact import BeamModel
-from ...workflows.plate_impact import PlateGauge, PlateLoad, PlateModel, PlateProblem, PlateSpec
+from ...workflows.plate import PlateGauge, PlateLoad, PlateModel, PlateProblem, PlateSpec
 from .. import Progress, no_progress
 
 __all__ = ["BEAM_CASES", "STRIP_ELEMENT", "beam_as_plate", "beam_as_plate_section"]
