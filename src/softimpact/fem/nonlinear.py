@@ -120,22 +120,30 @@ class StaticResult:
     message: str
 
 
+GROWTH_LIMIT = 10.0  # a static Newton step whose residual grows more than this factor (or is not finite) is damped
+
+
 def _newton(model, f, u, scale, rtol, max_iterations, line_search: bool = False):
     """Full Newton on f_int(u) = f from ``u``: (u, iterations, relative residual, converged). Load stepping takes full
     steps (from the previous load step they converge quadratically on the plates' stiffening: a residual-norm line
     search there took 12 iterations where full steps take 8, tests/test_plate_vk.py); with ``line_search`` a
-    correction that does not lower the residual is halved (at most :attr:`NonlinearNewmark.HALVINGS` times), as a
-    relaxation from a state far from equilibrium needs (:func:`relax`)."""
+    correction whose residual grows past :data:`GROWTH_LIMIT` times the last (or is not finite) is halved, at most
+    :attr:`NonlinearNewmark.HALVINGS` times: a safeguard against divergence that leaves Newton's own path alone
+    (a yielding section's first iterate may well raise the residual a few times before converging quadratically;
+    damping every rise took 20-40 iterations a load step where full steps take 6, tests/test_plastic_plate.py)."""
     r = f - model.internal_force(u)
     norm = float(np.linalg.norm(r))
     for it in range(1, max_iterations + 1):
-        du = _factor_solve(model.tangent(u), r)
+        try:
+            du = _factor_solve(model.tangent(u), r)
+        except RuntimeError:  # SuperLU: "Factor is exactly singular": a mechanism (a plastic collapse), no equilibrium
+            return u, it, math.inf, False
         step = 1.0
         for _ in range(NonlinearNewmark.HALVINGS + 1 if line_search else 1):
             trial = u + step * du
             r_new = f - model.internal_force(trial)
             n_new = float(np.linalg.norm(r_new))
-            if n_new < norm or n_new <= rtol * scale:
+            if n_new <= GROWTH_LIMIT * norm:  # (False for NaN: halved)
                 break
             step *= 0.5
         u, r, norm = trial, r_new, n_new
@@ -149,7 +157,8 @@ def solve_static(
 ) -> StaticResult:
     """Static equilibrium f_int(u) = λ·load at λ = k/load_steps, k = 1 … load_steps (or at the
     increasing ``load_factors`` given), by full Newton with the consistent tangent, each step
-    starting from the previous step's solution and committing the model's state at its end. A step has
+    starting from the previous step's solution and committing the model's state at its end (with a line search
+    where the model has internal state: a section yielding between two load steps). A step has
     converged when the residual is below ``rtol`` of the load's norm. With ``kinematics="linear"`` and a
     model without internal state (no :attr:`~NonlinearModel.history_names`): one solve with K."""
     if kinematics not in KINEMATICS:
@@ -169,9 +178,13 @@ def solve_static(
     converged, message = True, "converged"
     for lam in lams:
         f = lam * load
-        u, it, rel, ok = _newton(model, f, u, max(np.linalg.norm(f), 1e-300), rtol, max_iterations)
+        # a model with internal state (a yielding section) can make a full step from the last load step overshoot: damp it
+        u, it, rel, ok = _newton(model, f, u, max(np.linalg.norm(f), 1e-300), rtol, max_iterations, line_search=bool(model.history_names))
         if not ok:
-            converged, message = False, f"Newton did not converge at load factor {lam:g} ({max_iterations} iterations, residual {rel:.3g})"
+            why = (
+                f"{max_iterations} iterations, residual {rel:.3g}" if math.isfinite(rel) else f"the tangent became singular after {it} iterations: a mechanism"
+            )
+            converged, message = False, f"Newton did not converge at load factor {lam:g} ({why})"
         else:
             _commit(model, u, None)
         us.append(u.copy())

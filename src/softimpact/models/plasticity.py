@@ -50,6 +50,7 @@ __all__ = [
 P = np.array([[2.0, -1.0, 0.0], [-1.0, 2.0, 0.0], [0.0, 0.0, 6.0]]) / 3.0
 NEWTON_RTOL = 1e-12  # the return mapping's scalar equation, relative to ⅓σ_y²
 NEWTON_ITERATIONS = 50
+SURFACE_RTOL = 1e-8  # a trial this close to the yield surface (relative, in ⅓σ_y² units) lies on it
 
 
 def _finite_positive(name: str, value) -> None:
@@ -186,9 +187,13 @@ class J2PlaneStress:
         ee = np.asarray(strain, float) - np.asarray(plastic_strain, float)
         return 0.5 * np.einsum("...i,ij,...j->...", ee, self.elastic, ee)
 
-    def return_map(self, strain, plastic_strain, eps_p, rate_factor=1.0) -> ReturnMap:
+    def return_map(self, strain, plastic_strain, eps_p, rate_factor=1.0, loading=None) -> ReturnMap:
         """The stress of the total strains ``strain`` (N, 3) from the committed ``plastic_strain`` (N, 3) and
-        equivalent plastic strain ``eps_p`` (N,), the yield stress scaled by ``rate_factor`` (scalar or (N,))."""
+        equivalent plastic strain ``eps_p`` (N,), the yield stress scaled by ``rate_factor`` (scalar or (N,)).
+        ``loading`` (N,) bool: points that flowed plastically in their last committed increment; where such a point's
+        trial lies on the yield surface (a new increment's first iterate, the strain not yet moved) its tangent is
+        the continuum elastic–plastic one (Δγ → 0) instead of the elastic: the first Newton iterate of a load or time
+        step then follows the flow instead of overshooting it (with perfect plasticity, by far)."""
         E, nu = self.E, self.nu
         G = E / (2 * (1 + nu))
         Ce = self.elastic
@@ -213,7 +218,21 @@ class J2PlaneStress:
             idx = np.flatnonzero(plastic)
             s, p_strain, alpha_p, D, dg = self._plastic(trial[idx], a1[idx], a2[idx], a3[idx], a_n[idx], rf[idx], ep_n[idx], G)
             stress[idx], ep[idx], alpha[idx], tangent[idx], dgamma[idx] = s, p_strain, alpha_p, D, dg
+        if loading is not None:
+            on = np.flatnonzero(~plastic & np.asarray(loading, bool) & (0.5 * xi_trial - sy_n**2 / 3 >= -SURFACE_RTOL * sy_n**2))
+            if on.size:
+                _, H = self.hardening(a_n[on])
+                tangent[on] = self._continuum(trial[on], H * rf[on])
         return ReturnMap(stress, ep, alpha, tangent, dgamma)
+
+    def _continuum(self, stress, H):
+        """The continuum elastic–plastic tangent Cₑ − (CₑPσ)(CₑPσ)ᵀ/(σᵀPCₑPσ + ⅔ξH) (Box 9.6 at Δγ = 0) at stresses (N, 3) on the
+        yield surface, H (N,) the hardening slope."""
+        Ce = self.elastic
+        n = stress @ (Ce @ P).T
+        xi = np.einsum("pi,ij,pj->p", stress, P, stress)
+        denom = np.einsum("pi,ij,pj->p", stress, P, n) + 2 * xi * H / 3
+        return Ce[None] - (1 / denom)[:, None, None] * n[:, :, None] * n[:, None, :]
 
     def _plastic(self, trial, a1, a2, a3, a_n, rf, ep_n, G):
         """The closest-point return of the plastic points (module docstring). The scalar equation is solved as
