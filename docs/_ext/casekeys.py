@@ -193,7 +193,9 @@ def _variants() -> dict[str, list]:
         + [(_set(impact, contact=c),) for c in contact_laws]
         + [(_set(impact, impactor__material=m["material"], contact=c),) for m, c in flow_laws]
         + [(_set(impact, impactor=threat),)]
-        + [(_data("plate-ss-8in-impact-cohesive"),)],
+        + [(_data("plate-ss-8in-impact-cohesive"),)]
+        + [(_set(_data("plate-ss-8in-impact-cohesive"), damage__cohesive="dissimilar", damage__near_field="20 mm", damage__element_size="2 mm", damage__turon=True),)]
+        + [(_set(_data("plate-ss-8in-impact-cohesive"), damage__near_field="whole"),)],
         "series": [
             "paper-rubber-series",
             _set(_data("paper-rubber-series"), bar__dispersion="pochhammer-chree", gauge__bridge="quarter", gauge__gauge_factor=2.1, gauge__excitation="5 V", gauge__gain=100, gauge__polarity=-1, gauge__poisson_ratio=0.3, gauge__gauge_resistance_ohm=350, gauge__lead_resistance_ohm=0.4, gauge__shunt_resistance_ohm=100e3, gauge__shunt_step="-0.3 V"),
@@ -253,6 +255,8 @@ RAW_VALUES = {
     "plate.material": "a catalogue metal (`Al 2024-T3`, `Al 7075-T6`, `Al 6061-T6`, `steel S355`, `Ti-6Al-4V`) or an inline table "
     "(`youngs_modulus`, `poisson_ratio`, `density`, `yield_stress` and `hardening_modulus` or `ultimate_strength` with `elongation`); "
     "with `thickness`, in place of `[plate.laminate]`",
+    "turon": "true or false: the interface strengths lowered to Turon et al. 2007's for the near field's node spacing (eq. 12), so a coarser mesh resolves the process zone; every run that uses it says so",
+    "near_field": "a length (the half-width of the stacked square about the impact point) or `\"whole\"` (the whole plate stacked on its own mesh)",
     "plasticity": "true or false: a metal plate's section elastic-plastic (J2 through the thickness; the default) or elastic (checked against yield)",
     "ply": "a catalogue ply name (text) or an inline table (`E1`…`G23`, `nu12`…`nu23`, `density`, `thickness`)",
     "snapshots": "a list of times (quantities) within the run",

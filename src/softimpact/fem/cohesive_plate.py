@@ -66,37 +66,43 @@ HISTORY_ROWS = ("delaminated_area_m2", "process_zone_area_m2", "cohesive_stored_
 """The scalars a :class:`CohesivePlate` records every step (:meth:`CohesivePlate.history`), summed over the interfaces (then the areas per interface)."""
 
 
-def nodal_areas(fe) -> np.ndarray:
+def nodal_areas(fe, elements: np.ndarray | None = None) -> np.ndarray:
     """Tributary area [m²] of every node of a PlateFE's mesh (numbered ``fe.grid_node``): the tensor product of
-    the 1-D Newton–Cotes weights of the element's nodes (trapezoid for order 1, Simpson for order 2); they sum
-    to the plate's area."""
+    the 1-D Newton–Cotes weights of the element's nodes (trapezoid for order 1, Simpson for order 2), summed over
+    the elements (all, or those of the (nx, ny) bool mask ``elements``); they sum to the elements' area."""
     rules = {1: np.array([0.5, 0.5]), 2: np.array([1.0, 4.0, 1.0]) / 6.0}
     rule, p = rules[fe.order], fe.order
-
-    def weights(lines):
-        w = np.zeros(p * (lines.size - 1) + 1)
-        for e, h in enumerate(np.diff(lines)):
-            w[p * e : p * e + p + 1] += h * rule
-        return w
-
-    wx, wy = weights(fe.xs), weights(fe.ys)
+    mask = np.ones((fe.xs.size - 1, fe.ys.size - 1), bool) if elements is None else np.asarray(elements, bool)
+    hx, hy = np.diff(fe.xs), np.diff(fe.ys)
     area = np.zeros(fe.grid_node.size)
-    area[fe.grid_node.ravel()] = np.outer(wx, wy).ravel()
+    local = np.outer(rule, rule)  # (p + 1, p + 1) weights on the unit square
+    for i, j in zip(*np.nonzero(mask)):
+        nodes = fe.grid_node[p * i : p * i + p + 1, p * j : p * j + p + 1]
+        area[nodes.ravel()] += (local * hx[i] * hy[j]).ravel()
     return area
 
 
 class CohesivePlate(NonlinearModel):
     """The plate of ``plate`` (its mesh, supports, element; its section is replaced) with the laminate ``stack``
     split below the plies ``splits`` (1 = the top ply: 3 splits between plies 3 and 4) into sublaminates tied by
-    ``law`` (module docstring). Sublaminates top first, each over its
-    free DOFs with ``in_plane`` edges (:class:`~softimpact.fem.plate_vk.PlateVK`: ``"movable"`` is the whole
-    laminate's simple support: the tangential in-plane displacement and rotation zero on every sublaminate);
-    the stacked DOFs numbered node by node (:meth:`layer_dofs`: a sublaminate's positions).
+    ``law`` (module docstring), sublaminates top first, each with ``in_plane`` edges
+    (:class:`~softimpact.fem.plate_vk.PlateVK`: ``"movable"`` is the whole laminate's simple support).
 
-    ``K``, ``M``: block-diagonal, the sublaminates' own (no interface); ``damage`` (interfaces, nodes): the
-    committed damage; ``area`` (nodes,): the nodes' tributary areas."""
+    ``near`` (an (nx, ny) bool mask of the mesh's elements, or None for all) confines the stack to a near field: the
+    far field is one plate of the whole laminate (its linear FSDT section: the interfaces there stay intact and the
+    skin linear), tied to the stack along the near field's rim, where every sublaminate moves with the laminate's
+    normal, u_k = u + z_k·φx, v_k = v + z_k·φy, w_k = w, φ_k = φ (z_k the sublaminate's mid-plane above the
+    laminate's): a master–slave elimination, so the stacked DOFs (5 per sublaminate) exist only where damage can
+    run and the far field costs 5 DOFs a node. The near field may reach a symmetry edge (each sublaminate mirrored as
+    the laminate is), no other supported edge.
 
-    def __init__(self, plate: Plate, stack: Stack, splits, law: BilinearCohesive, in_plane: str = "movable"):
+    The DOFs are numbered node by node (a node's far-field and sublaminate DOFs together: the interfaces couple a
+    node's sublaminates; the layer-major order would make the band a whole sublaminate wide). ``T[k]`` maps them to
+    sublaminate k's own free DOFs (:meth:`layer_vector`), ``K``, ``M`` the sublaminates' and the far field's
+    assembled through them (no interface); ``damage`` (interfaces, nodes): the committed damage; ``area`` (nodes,):
+    the nodes' tributary areas within the near field."""
+
+    def __init__(self, plate: Plate, stack: Stack, splits, law: BilinearCohesive, in_plane: str = "movable", near: np.ndarray | None = None):
         n_ply = len(stack.angles)
         splits = tuple(int(k) for k in splits)
         if not splits or list(splits) != sorted(set(splits)) or splits[0] < 1 or splits[-1] >= n_ply:
@@ -106,40 +112,113 @@ class CohesivePlate(NonlinearModel):
         self.plate, self.stack, self.splits, self.law = plate, stack, splits, law
         bounds = (0, *splits, n_ply)
         self.stacks = tuple(Stack(stack.ply, tuple(stack.angles[a:b])) for a, b in zip(bounds[:-1], bounds[1:]))
-        self.layers = tuple(PlateVK(replace(plate, section=plate_section(s), membrane=True), in_plane) for s in self.stacks)
         self.thicknesses = tuple(s.thickness for s in self.stacks)
-        sizes = [layer.n for layer in self.layers]
-        self.offsets = tuple(int(o) for o in np.concatenate(([0], np.cumsum(sizes)[:-1])))  # of the layer-major numbering
-        self.n = int(sum(sizes))
-        # The stacked DOFs node by node (a node's DOFs of every sublaminate together): the interfaces couple a
-        # node's sublaminates, so the layer-major order would make the band a whole sublaminate wide
-        node = np.concatenate([lay.free // 5 for lay in self.layers])
-        layer = np.repeat(np.arange(len(sizes)), sizes)
-        self.order = np.lexsort((np.arange(self.n), layer, node))  # position → layer-major index
-        self.position = np.empty(self.n, int)
-        self.position[self.order] = np.arange(self.n)  # layer-major index → position
-        o = self.order
-        self.K = scipy.sparse.block_diag([lay.K for lay in self.layers], format="csr")[o][:, o].tocsr()
-        self.M = scipy.sparse.block_diag([lay.M for lay in self.layers], format="csr")[o][:, o].tocsr()
+        tops = stack.thickness / 2 - np.concatenate(([0.0], np.cumsum(self.thicknesses)[:-1]))
+        self.z = tuple(float(t - h / 2) for t, h in zip(tops, self.thicknesses))  # sublaminates' mid-planes above the laminate's
+        shape = (len(plate.grid()[0]) - 1, len(plate.grid()[1]) - 1)
+        self.near = np.ones(shape, bool) if near is None else np.asarray(near, bool)
+        if self.near.shape != shape or not self.near.any():
+            raise InputError(f"cohesive near field: expected a non-empty ({shape[0]}, {shape[1]}) element mask, got shape {self.near.shape}")
+        zoned = not self.near.all()
+        # a zoned stack keeps the plate's mirror planes (each sublaminate is mirrored as the laminate is); any other
+        # support is the far field's (a near field reaching one is refused: _check_interior)
+        own = tuple(k if (k == "symmetry" or not zoned) else "free" for k in plate.supports)
+        self.layers = tuple(PlateVK(replace(plate, section=plate_section(s), membrane=True, supports=own), in_plane, elements=self.near) for s in self.stacks)
+        self.far = PlateVK(replace(plate, membrane=True), in_plane, elements=~self.near) if zoned else None
         fe = self.layers[0].fe
         self.nodes = fe.grid_node.size
-        self.area = nodal_areas(fe)
-        self.G = self._interface_operator()[:, o].tocsr()
-        self.top = self.position[: sizes[0]]  # the top sublaminate's free DOFs, in its own order
+        near_nodes = fe.touched_nodes()
+        far_nodes = self.far.fe.touched_nodes() if zoned else np.zeros(self.nodes, bool)
+        self.rim = near_nodes & far_nodes  # nodes where the stack is slaved to the far field
+        if zoned:
+            self._check_interior(near_nodes)
+        self._number(near_nodes)
+        self.area = nodal_areas(fe, self.near)
+        self.G = (self._interface_operator() @ self._T).tocsr()
         self.interfaces = len(splits)
         self._a = np.tile(self.area, self.interfaces)  # per interface point (interface-major)
         self.history_names = HISTORY_ROWS + tuple(f"{q}_{j}" for q in HISTORY_ROWS[:2] for j in range(self.interfaces))
         self.reset()
 
+    def _check_interior(self, near_nodes: np.ndarray) -> None:
+        """A near field touching a supported edge would need the edge's conditions on every sublaminate: refused."""
+        fe = self.layers[0].fe
+        for edge, kind in zip(("x0", "x1", "y0", "y1"), self.plate.supports):
+            if kind not in ("free", "symmetry") and np.any(near_nodes[fe.edge_nodes(edge)]):
+                raise InputError(f"cohesive near field: it reaches the {kind} edge {edge}; keep it inside the plate (a smaller near field or a larger plate)")
+
+    def _number(self, near_nodes: np.ndarray) -> None:
+        """The global DOFs (node by node), ``T`` per sublaminate, the stacked operator ``_T`` and K, M."""
+        lays, far = self.layers, self.far
+        # candidate DOFs: the far field's free DOFs, then each sublaminate's free DOFs off the rim
+        keys = []  # (node, layer (−1: far), component) per global DOF
+        if far is not None:
+            keys.append(np.stack([far.free // 5, np.full(far.n, -1), far.free % 5], 1))
+        owned = []
+        for k, lay in enumerate(lays):
+            own = ~self.rim[lay.free // 5]
+            owned.append(own)
+            keys.append(np.stack([lay.free[own] // 5, np.full(own.sum(), k), lay.free[own] % 5], 1))
+        keys = np.concatenate(keys)
+        order = np.lexsort((keys[:, 2], keys[:, 1], keys[:, 0]))  # node, then layer (far first), then component
+        self.n = n = keys.shape[0]
+        position = np.empty(n, int)
+        position[order] = np.arange(n)  # candidate index → global DOF
+        offset = 0
+        if far is not None:
+            self._far_dofs = position[: far.n]
+            offset = far.n
+            far_index = np.full(far.fe.basis.N, -1)
+            far_index[far.free] = self._far_dofs
+        T = []
+        for k, (lay, own) in enumerate(zip(lays, owned)):
+            rows, cols, vals = [], [], []
+            mine = np.flatnonzero(own)
+            rows.append(mine)
+            cols.append(position[offset : offset + mine.size])
+            vals.append(np.ones(mine.size))
+            offset += mine.size
+            slaved = np.flatnonzero(~own)
+            if slaved.size:  # rim DOFs: the laminate's normal (class docstring)
+                node, comp = lay.free[slaved] // 5, lay.free[slaved] % 5
+                nd = far.fe.basis.nodal_dofs
+                for c, terms in (
+                    (U, ((U, 1.0), (PHI_X, self.z[k]))),
+                    (V, ((V, 1.0), (PHI_Y, self.z[k]))),
+                    (W, ((W, 1.0),)),
+                    (PHI_X, ((PHI_X, 1.0),)),
+                    (PHI_Y, ((PHI_Y, 1.0),)),
+                ):
+                    sel = comp == c
+                    for master, weight in terms:
+                        g = far_index[nd[master, node[sel]]]
+                        keep = g >= 0  # a master fixed by a support carries nothing (refused for the near field's rim anyway)
+                        rows.append(slaved[sel][keep])
+                        cols.append(g[keep])
+                        vals.append(np.full(keep.sum(), weight))
+            T.append(scipy.sparse.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(lay.n, n)))
+        self.T = tuple(T)
+        self._T = scipy.sparse.vstack(T).tocsr()  # the layer-major stacked DOFs from the global ones
+        self.offsets = tuple(int(o) for o in np.concatenate(([0], np.cumsum([lay.n for lay in lays])[:-1])))
+        self._stacked_n = sum(lay.n for lay in lays)
+        K = sum((t.T @ lay.K @ t for t, lay in zip(T, lays)), scipy.sparse.csr_matrix((n, n)))
+        M = sum((t.T @ lay.M @ t for t, lay in zip(T, lays)), scipy.sparse.csr_matrix((n, n)))
+        if far is not None:
+            E = scipy.sparse.csr_matrix((np.ones(far.n), (np.arange(far.n), self._far_dofs)), shape=(far.n, n))
+            self._E = E
+            K, M = K + E.T @ far.K @ E, M + E.T @ far.M @ E
+        self.K, self.M = K.tocsr(), M.tocsr()
+
     # ---- the interfaces' kinematics -------------------------------------------------------
     def _global(self, layer: int, component: int) -> np.ndarray:
-        """The stacked DOF of ``component`` at every node of sublaminate ``layer`` (−1 where fixed)."""
+        """The layer-major stacked DOF of ``component`` at every node of sublaminate ``layer`` (−1 where fixed)."""
         lay = self.layers[layer]
         local = lay._index[lay.fe.basis.nodal_dofs[component]]
         return np.where(local >= 0, local + self.offsets[layer], -1)
 
     def _interface_operator(self) -> scipy.sparse.csr_matrix:
-        """G (3·nodes·interfaces, n): rows (opening, sliding x, sliding y) per node, interface-major (module docstring)."""
+        """G (3·nodes·interfaces, stacked DOFs): rows (opening, sliding x, sliding y) per node, interface-major, over the
+        sublaminates' own DOFs, layer-major (module docstring); :attr:`G` is it composed with the global-to-stacked map."""
         rows, cols, vals = [], [], []
         nn = self.nodes
         p = np.arange(nn)
@@ -165,7 +244,7 @@ class CohesivePlate(NonlinearModel):
                 rows.append(base[keep] + row)
                 cols.append(dof[keep])
                 vals.append(np.full(keep.sum(), value))
-        shape = (3 * nn * len(self.splits), self.n)
+        shape = (3 * nn * len(self.splits), self._stacked_n)
         return scipy.sparse.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=shape)
 
     def opening(self, u: np.ndarray) -> np.ndarray:
@@ -249,17 +328,55 @@ class CohesivePlate(NonlinearModel):
         return (d >= 1.0) @ self.area, ((d > 0.0) & (d < 1.0)) @ self.area
 
     # ---- rows ----------------------------------------------------------------------------------
-    def layer_dofs(self, layer: int) -> np.ndarray:
-        """The stacked positions of sublaminate ``layer``'s free DOFs (in its own order)."""
-        o = self.offsets[layer]
-        return self.position[o : o + self.layers[layer].n]
+    def layer_vector(self, layer: int, u: np.ndarray) -> np.ndarray:
+        """Sublaminate ``layer``'s own free DOFs of the global vector(s) ``u`` (time on the last axis)."""
+        return self.T[layer] @ u
 
-    def layer_row(self, layer: int, row: np.ndarray) -> np.ndarray:
-        """A row over sublaminate ``layer``'s free DOFs as a row over the stacked DOFs."""
-        out = np.zeros(self.n)
-        out[self.layer_dofs(layer)] = row
+    def layer_dofs(self, layer: int) -> np.ndarray:
+        """The global DOF of each of sublaminate ``layer``'s free DOFs (in its own order), −1 where slaved at the rim."""
+        t = self.T[layer].tocsr()
+        lay = self.layers[layer]
+        own = ~self.rim[lay.free // 5]  # off the rim every row holds the one global DOF it is
+        out = np.full(t.shape[0], -1)
+        out[own] = t.indices[t.indptr[:-1][own]]
         return out
 
+    def layer_row(self, layer: int, row: np.ndarray) -> np.ndarray:
+        """A row over sublaminate ``layer``'s free DOFs as a row over the global DOFs."""
+        return np.asarray(self.T[layer].T @ row).ravel()
+
+    def in_near_field(self, x: float, y: float) -> bool:
+        """(x, y) lies in an element of the near field."""
+        fe = self.layers[0].fe
+        return any(self.near[i, j] for i, j, _, _ in fe._locate(x, y))
+
+    def far_row(self, row: np.ndarray) -> np.ndarray:
+        """A row over the far field's free DOFs as a row over the global DOFs."""
+        return np.asarray(self._E.T @ row).ravel()
+
     def deflection(self, x: float, y: float) -> np.ndarray:
-        """Row r with r·d = w(x, y) [m] of the top sublaminate (the struck one)."""
+        """Row r with r·d = w(x, y) [m] of the top sublaminate (the struck one) in the near field, of the laminate
+        in the far field."""
+        if self.far is not None and not self.in_near_field(x, y):
+            return self.far_row(self.far.deflection(x, y))
         return self.layer_row(0, self.layers[0].deflection(x, y))
+
+    def surface_strain(self, x: float, y: float, surface: str = "bottom", direction="x", length: float = 0.0) -> np.ndarray:
+        """Row r with r·d = the face strain of :meth:`~softimpact.fem.plate.PlateFE.surface_strain` at (x, y): the top
+        sublaminate's top face or the bottom one's bottom face in the near field, the laminate's face in the far field."""
+        if self.far is not None and not self.in_near_field(x, y):
+            far = self.far
+            return self.far_row(far.surface_strain(x, y, surface, direction, length))
+        k = 0 if surface == "top" else len(self.layers) - 1
+        lay = self.layers[k]
+        return self.layer_row(k, lay.surface_strain(x, y, surface, direction, length))
+
+    def surface_vector(self, u: np.ndarray) -> np.ndarray:
+        """The full DOF vector(s) (5 per node of the mesh, fixed ones zero) of what the fields show: the top
+        sublaminate in the near field, the laminate in the far field; time on the last axis."""
+        top = self.layers[0]
+        full = np.zeros((top.fe.basis.N,) + np.shape(u)[1:])
+        if self.far is not None:
+            full[self.far.free] = self._E @ u
+        full[top.free] = self.T[0] @ u
+        return full

@@ -102,13 +102,43 @@ import numpy as np
 from ..errors import InputError
 from ..models.plate_laminate import PlateSection
 
-__all__ = ["EDGES", "ELEMENTS", "SUPPORT_KINDS", "Plate", "PlateFE", "U", "V", "W", "PHI_X", "PHI_Y"]
+__all__ = ["EDGES", "ELEMENTS", "SUPPORT_KINDS", "GRADE_RATIO", "Plate", "PlateFE", "U", "V", "W", "PHI_X", "PHI_Y", "graded_lines"]
 
 EDGES = ("x0", "x1", "y0", "y1")
 ELEMENTS = ("mitc4", "mitc9")
 SUPPORT_KINDS = ("clamped", "simply-supported", "free", "symmetry")
 U, V, W, PHI_X, PHI_Y = range(5)
 _GAUSS2 = (0.5 - 0.5 / math.sqrt(3.0), 0.5 + 0.5 / math.sqrt(3.0))  # on [0, 1]
+GRADE_RATIO = 1.25  # a graded mesh's element size grows at most this much from one element to the next
+
+
+def graded_lines(length: float, lo: float, hi: float, fine: float, coarse: float, ratio: float = GRADE_RATIO) -> np.ndarray:
+    """Grid lines on [0, ``length``] [m]: equal elements of at most ``fine`` on [lo, hi], then elements growing by
+    ``ratio`` outward up to ``coarse`` (each side's sizes shrunk to end exactly on the plate's edge)."""
+    if not (0 <= lo < hi <= length and 0 < fine <= coarse and ratio > 1):
+        raise InputError(
+            f"graded mesh: need 0 <= lo < hi <= length and 0 < fine <= coarse, got lo {lo!r}, hi {hi!r}, length {length!r}, fine {fine!r}, coarse {coarse!r}"
+        )
+    n = max(1, math.ceil((hi - lo) / fine - 1e-9))
+    middle = np.linspace(lo, hi, n + 1)
+
+    def side(span: float) -> np.ndarray:
+        """Element sizes growing from ``fine`` to ``coarse`` over ``span`` [m], scaled to fill it exactly."""
+        if span <= 1e-12 * length:
+            return np.zeros(0)
+        sizes, h, total = [], fine, 0.0
+        while total < span:
+            h = min(h * ratio, coarse)
+            sizes.append(h)
+            total += h
+        sizes = np.array(sizes)
+        return sizes * span / sizes.sum()  # shrunk to fit: the growth stays at most ``ratio``
+
+    right = hi + np.cumsum(side(length - hi))
+    left = lo - np.cumsum(side(lo))[::-1]
+    lines = np.concatenate((left, middle, right))
+    lines[0], lines[-1] = 0.0, length
+    return lines
 
 
 @dataclass(frozen=True, eq=False)
@@ -194,7 +224,9 @@ class PlateFE:
     at (node_xs[i], node_ys[j]) being ``grid_node[i, j]``.
     """
 
-    def __init__(self, plate: Plate):
+    def __init__(self, plate: Plate, elements: np.ndarray | None = None):
+        """``elements``: an (nx, ny) bool mask of the elements assembled (None: all); the DOFs of nodes no assembled
+        element touches are removed with the supported ones (a part of the plate: a stacked near field, its far field)."""
         self.plate = plate
         sec = plate.section
         xs, ys = plate.grid()
@@ -214,6 +246,10 @@ class PlateFE:
         nxp, nyp = self.node_xs.size, self.node_ys.size
         self.grid_node = np.arange(nxp * nyp).reshape(nxp, nyp)
         self.membrane = (not sec.is_symmetric()) if plate.membrane is None else bool(plate.membrane)
+        ne = (xs.size - 1, ys.size - 1)
+        self.elements = np.ones(ne, bool) if elements is None else np.asarray(elements, bool)
+        if self.elements.shape != ne or not self.elements.any():
+            raise InputError(f"plate elements mask: expected a non-empty ({ne[0]}, {ne[1]}) bool array, got shape {self.elements.shape}")
         if self.order == 1:
             self._assemble_mitc4(sec)
         else:
@@ -240,6 +276,12 @@ class PlateFE:
         mesh = MeshQuad(points, cells)
         element = ElementVector(ElementQuad1(), 5)
         self.mesh, self.element = mesh, element
+        # cells numbered i·ny + j, as the mask's ravel (row-major over (i, j))
+        subset = None if self.elements.all() else np.flatnonzero(self.elements.ravel())
+
+        def Basis(mesh, element, quadrature, _cls=Basis):
+            return _cls(mesh, element, quadrature=quadrature, elements=subset)
+
         full = Basis(mesh, element, quadrature=_tensor_rule(2, 2))
         self.basis = full
         A, Bm, D, S = sec.A, sec.B, sec.D, sec.S
@@ -370,9 +412,7 @@ class PlateFE:
         mats = [[self._element_matrices(sec, a * hx.max(), b * hy.max(), comps) for b in uy] for a in ux]
         Ke = np.array([[k for k, _ in row] for row in mats])  # (n_hx, n_hy, ndof, ndof)
         Me = np.array([[m for _, m in row] for row in mats])
-        nx, ny = hx.size, hy.size
-        I, J = np.meshgrid(np.arange(nx), np.arange(ny), indexing="ij")
-        I, J = I.ravel(), J.ravel()
+        I, J = np.nonzero(self.elements)  # the assembled elements (row-major: I·ny + J)
         nodes = np.stack([self.grid_node[2 * I + a, 2 * J + b] for a, b in self._local], axis=1)  # (ne, 9)
         dofs = self._index[(5 * nodes[:, :, None] + np.array(comps)).reshape(I.size, -1)]  # (ne, ndof)
         group = ix[I] * uy.size + iy[J]
@@ -395,9 +435,18 @@ class PlateFE:
         g = self.grid_node
         return {"x0": g[0, :], "x1": g[-1, :], "y0": g[:, 0], "y1": g[:, -1]}[edge]
 
+    def touched_nodes(self) -> np.ndarray:
+        """(n_nodes,) bool: the nodes of the assembled elements."""
+        I, J = np.nonzero(self.elements)
+        p = self.order
+        out = np.zeros(self.grid_node.size, bool)
+        for a, b in self._local:
+            out[self.grid_node[p * I + a, p * J + b]] = True
+        return out
+
     def _support_dofs(self) -> np.ndarray:
         nd = self.basis.nodal_dofs
-        fixed = []
+        fixed = [nd[:, ~self.touched_nodes()].ravel()]
         for edge, kind in zip(EDGES, self.plate.supports):
             nodes = self.edge_nodes(edge)
             if kind == "clamped":
@@ -567,10 +616,11 @@ class PlateFE:
         ``pressure`` a callable of (x, y) arrays or a constant (4 × 4 Gauss per element)."""
         g, wg = _gauss01(4)
         I, J, S, T = np.meshgrid(np.arange(self.xs.size - 1), np.arange(self.ys.size - 1), g, g, indexing="ij")
+        I, J, S, T = (a[self.elements] for a in (I, J, S, T))  # the assembled elements only, (ne, 4, 4)
         hx, hy = np.diff(self.xs)[I], np.diff(self.ys)[J]
         X, Y = self.xs[I] + S * hx, self.ys[J] + T * hy
         q = pressure(X, Y) if callable(pressure) else np.full(X.shape, float(pressure))
-        wgt = q * hx * hy * wg[None, None, :, None] * wg[None, None, None, :]
+        wgt = q * hx * hy * wg[None, :, None] * wg[None, None, :]
         nodes, N = self.shape(I, J, S, T)
         f = np.bincount(nodes.ravel(), weights=(N * wgt[..., None]).ravel(), minlength=self.grid_node.size)
         full = np.zeros(self.basis.N)

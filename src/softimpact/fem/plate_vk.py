@@ -77,20 +77,22 @@ class PlateVK(ElementTangents, NonlinearModel):
     :class:`~softimpact.fem.plate.PlateFE`'s, over this model's free DOFs; ``curvatures``: the quadrature fields carry the
     curvatures also when the section has no membrane–bending coupling (:meth:`curvatures`)."""
 
-    def __init__(self, plate: Plate, in_plane: str = "immovable", *, curvatures: bool = False):
+    def __init__(self, plate: Plate, in_plane: str = "immovable", *, curvatures: bool = False, elements: np.ndarray | None = None):
         self._curvatures = curvatures  # the quadrature fields carry κ (φ's gradients) even when B = 0: a nonlinear section, a stress check
         if in_plane not in IN_PLANE:
             raise InputError(f"plate in_plane: {in_plane!r} is not one of {', '.join(IN_PLANE)}")
         self.plate, self.in_plane = plate, in_plane
-        # The linear model over every DOF (no support, membrane kept), reduced here to our own supports.
-        self.fe = fe = PlateFE(replace(plate, supports=("free",) * 4, membrane=True))
+        # The linear model over every DOF (no support, membrane kept), reduced here to our own supports; ``elements``:
+        # the part of the plate assembled (PlateFE's mask), the nodes outside it removed
+        self.fe = fe = PlateFE(replace(plate, supports=("free",) * 4, membrane=True), elements)
         self.fixed = self._support_dofs()
         self.free = np.setdiff1d(np.arange(fe.basis.N), self.fixed)
         self.n = self.free.size
         self._index = np.full(fe.basis.N, -1)
         self._index[self.free] = np.arange(self.n)
-        self.K = fe.K[self.free][:, self.free].tocsr()
-        self.M = fe.M[self.free][:, self.free].tocsr()
+        self._loc = loc = fe._index[self.free]  # our free DOFs among the FE's (all of its own but the untouched nodes')
+        self.K = fe.K[loc][:, loc].tocsr()
+        self.M = fe.M[loc][:, loc].tocsr()
         self._elements()
         if not self.coupled:
             self.K, self.M = self._uncoupled(self.K), self._uncoupled(self.M)
@@ -113,7 +115,7 @@ class PlateVK(ElementTangents, NonlinearModel):
     # ---- supports -------------------------------------------------------------------
     def _support_dofs(self) -> np.ndarray:
         nd = self.fe.basis.nodal_dofs
-        fixed = []
+        fixed = [nd[:, ~self.fe.touched_nodes()].ravel()]
         for edge, kind in zip(EDGES, self.plate.supports):
             nodes = self.fe.edge_nodes(edge)
             normal, tangential = (U, V) if edge[0] == "x" else (V, U)
@@ -143,9 +145,7 @@ class PlateVK(ElementTangents, NonlinearModel):
         dNs = (dN1[:, None, a] * N1[None, :, b]).reshape(-1, a.size)  # (nq, npe)
         dNt = (N1[:, None, a] * dN1[None, :, b]).reshape(-1, a.size)
         wq = np.outer(ws, ws).ravel()
-        nx, ny = fe.xs.size - 1, fe.ys.size - 1
-        I, J = np.meshgrid(np.arange(nx), np.arange(ny), indexing="ij")
-        I, J = I.ravel(), J.ravel()
+        I, J = np.nonzero(fe.elements)  # the assembled elements, row-major
         hx, hy = np.diff(fe.xs)[I], np.diff(fe.ys)[J]
         self._Dx = dNs[None] / hx[:, None, None]  # (ne, nq, npe)
         self._Dy = dNt[None] / hy[:, None, None]
@@ -281,11 +281,15 @@ class PlateVK(ElementTangents, NonlinearModel):
     # ---- rows and loads -------------------------------------------------------------
     def deflection(self, x: float, y: float) -> np.ndarray:
         """Row r with r·d = w(x, y) [m]."""
-        return self.fe.deflection(x, y)[self.free]
+        return self.fe.deflection(x, y)[self._loc]
+
+    def surface_strain(self, x: float, y: float, surface: str = "bottom", direction="x", length: float = 0.0) -> np.ndarray:
+        """Row r with r·d = the face strain of :meth:`~softimpact.fem.plate.PlateFE.surface_strain`, over this model's free DOFs."""
+        return self.fe.surface_strain(x, y, surface, direction, length)[self._loc]
 
     def load_vector(self, pressure) -> np.ndarray:
         """Consistent nodal loads of a transverse pressure [Pa] (up +), as PlateFE.load_vector."""
-        return self.fe.load_vector(pressure)[self.free]
+        return self.fe.load_vector(pressure)[self._loc]
 
     def dof(self, node: int, component: int) -> int:
         """Index in this model's reduced system of a node's component; −1 if fixed."""

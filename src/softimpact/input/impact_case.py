@@ -100,45 +100,61 @@ def impact_problem(data: dict, base: Path = Path(".")) -> tuple[ImpactProblem, t
     c.done()
     solver = read_solver(top.table("solver"))
     gauges = read_gauges(top) if "gauges" in top else target.gauges
-    cohesive = read_cohesive(top.table("damage", optional=True), target)
+    cohesive = read_cohesive(top.table("damage", optional=True), target, diameter)
     top.done()
     with naming({"gauges": "gauges", "time_step": "solver.time_step", "position": f"target.case ({target_path}): load.position"}):
         resolved = target.for_impact(solver, gauges)  # the force comes from the contact
     if cohesive is not None:
         from ..workflows.plate.cohesive import CohesivePlateProblem
 
-        with naming({"cohesive": "damage.cohesive", "kinematics": f"target.case ({target_path}): plate.kinematics"}):
-            resolved = CohesivePlateProblem.of(resolved, *cohesive)
+        splits, interface_law, zone = cohesive
+        names = {"cohesive": "damage.cohesive", "kinematics": f"target.case ({target_path}): plate.kinematics"}
+        names.update({k: f"damage.{k}" for k in ("near_field", "element_size", "turon")})
+        with naming(names):
+            resolved = CohesivePlateProblem.of(resolved, splits, interface_law, **zone)
     files = (target_path,) if law_path is None else (target_path, law_path)
     return ImpactProblem(resolved, str(target_path), impactor, material, name, law, title), files
 
 
-def read_cohesive(d: Table | None, target) -> tuple[tuple[int, ...], BilinearCohesive] | None:
+NEAR_FIELD_DIAMETERS = 1.5  # the stacked near field's default half-width, in impactor diameters (a drop weight's delaminations reach ~1-2 d)
+
+
+def read_cohesive(d: Table | None, target, diameter: float | None = None) -> tuple[tuple[int, ...], BilinearCohesive, dict] | None:
     """``[damage]``: ``cohesive``, the interfaces ``[{ between = [k, k + 1] }, ...]`` (plies counted from the top,
-    1 = the top ply) tying a plate's sublaminates, and their bilinear law (:class:`~softimpact.models.cohesive.BilinearCohesive`):
+    1 = the top ply) or ``"dissimilar"`` (every interface between plies of different angles) tying a plate's
+    sublaminates, and their bilinear law (:class:`~softimpact.models.cohesive.BilinearCohesive`):
     ``penalty`` [N/m³] (required: the interface stiffness is a modelling choice), ``G_Ic`` (required: the
     catalogue's plies have no mode-I toughness), ``bk_exponent`` (Benzeggagh–Kenane's η, required), and by default
     the ply's ``G_IIc``, its transverse tensile strength Y_t as ``normal_strength`` and its in-plane shear strength
-    S12 as ``shear_strength``. None without a ``[damage]`` table."""
+    S12 as ``shear_strength``; the stacked near field's half-width ``near_field`` (default
+    :data:`NEAR_FIELD_DIAMETERS` impactor diameters; ``"whole"``: the whole plate on its own mesh), its
+    ``element_size`` (default: the process zone's, :meth:`~softimpact.workflows.plate.cohesive.CohesivePlateProblem.resolution`)
+    and ``turon`` (Turon et al.'s strengths for that size; default false). None without a ``[damage]`` table."""
     if d is None:
         return None
-    rows = d.tables("cohesive")
-    if not rows:
-        raise InputError(f"{d.key('cohesive')}: name at least one interface ({{ between = [k, k + 1] }})")
     if not isinstance(target, PlateProblem):
         raise InputError(f"{d.key('cohesive')}: cohesive interfaces split a plate's laminate: the target is not a plate")
-    n = len(target.plate.stack.angles) if getattr(target.plate.stack, "angles", None) else 0
-    splits = []
-    for row in rows:
-        pair = row.raw("between")
-        if not (isinstance(pair, list) and len(pair) == 2 and all(isinstance(k, int) and not isinstance(k, bool) for k in pair) and pair[1] == pair[0] + 1):
-            raise InputError(f"{row.key('between')}: expected two consecutive ply numbers [k, k + 1] (1 = the top ply), got {pair!r}")
-        if not 1 <= pair[0] < n:
-            raise InputError(f"{row.key('between')}: plies {pair!r} are not both in the laminate's {n} plies (a layup is needed)")
-        if pair[0] in splits:
-            raise InputError(f"{row.key('between')}: the interface {pair!r} is named twice")
-        splits.append(pair[0])
-        row.done()
+    angles = getattr(target.plate.stack, "angles", None) or ()
+    n = len(angles)
+    if d.raw("cohesive", None) == "dissimilar":
+        splits = [k for k in range(1, n) if angles[k - 1] != angles[k]]
+        if not splits:
+            raise InputError(f"{d.key('cohesive')}: 'dissimilar': the laminate has no two adjacent plies of different angles")
+    else:
+        rows = d.tables("cohesive")
+        if not rows:
+            raise InputError(f"{d.key('cohesive')}: name at least one interface ({{ between = [k, k + 1] }}) or 'dissimilar'")
+        splits = []
+        for row in rows:
+            pair = row.raw("between")
+            if not (isinstance(pair, list) and len(pair) == 2 and all(isinstance(k, int) and not isinstance(k, bool) for k in pair) and pair[1] == pair[0] + 1):
+                raise InputError(f"{row.key('between')}: expected two consecutive ply numbers [k, k + 1] (1 = the top ply), got {pair!r}")
+            if not 1 <= pair[0] < n:
+                raise InputError(f"{row.key('between')}: plies {pair!r} are not both in the laminate's {n} plies (a layup is needed)")
+            if pair[0] in splits:
+                raise InputError(f"{row.key('between')}: the interface {pair!r} is named twice")
+            splits.append(pair[0])
+            row.done()
     strength = target.plate.stack.ply.strength
     ply = "the ply's" if strength is not None else None
 
@@ -162,8 +178,18 @@ def read_cohesive(d: Table | None, target) -> tuple[tuple[int, ...], BilinearCoh
             GIIc=from_ply("G_IIc", "toughness", ply and strength.GIIc),
             eta=d.number("bk_exponent"),
         )
+    if d.raw("near_field", None) == "whole":
+        near = None
+        if "element_size" in d:
+            raise InputError(f"{d.key('element_size')}: the whole plate stacked keeps its own mesh; an element size goes with a near field")
+    else:
+        default = None if diameter is None else NEAR_FIELD_DIAMETERS * diameter
+        near = d.quantity("near_field", "length", default=default)
+    zone = {"near_field": near, "element_size": d.quantity("element_size", "length", default=None), "turon": d.raw("turon", False)}
+    if not isinstance(zone["turon"], bool):
+        raise InputError(f"{d.key('turon')}: expected true or false, got {zone['turon']!r}")
     d.done()
-    return tuple(splits), law
+    return tuple(splits), law, zone
 
 
 def load_impact_case(case: str) -> tuple[ImpactProblem, tuple[Path, ...]]:

@@ -43,7 +43,24 @@ import numpy as np
 
 from ..errors import InputError
 
-__all__ = ["BilinearCohesive", "CohesiveResponse"]
+__all__ = ["BilinearCohesive", "CohesiveResponse", "ZONE_FACTOR", "ZONE_ELEMENTS", "process_zone_length", "turon_strength"]
+
+ZONE_FACTOR = 9 * math.pi / 32  # M of l_cz = M·E·G_c/τ²: Rice's value, the one Turon et al. 2007 (eq. 12) is built on
+ZONE_ELEMENTS = 3  # the fewest node spacings a process zone may span (the issue's floor; Turon et al. recommend more)
+
+
+def process_zone_length(E: float, G: float, strength: float) -> float:
+    """l_cz = M·E·G_c/τ⁰² [m] (M = :data:`ZONE_FACTOR`): the length of the cohesive zone ahead of a crack in a body of
+    transverse modulus E [Pa] (Turon, Dávila, Camanho & Costa 2007, Eng. Fract. Mech. 74:1665, as quoted in NASA's
+    CompDam_DGD and saullocastro/panels — the paper itself not retrieved; the prefactor is Rice's 9π/32 ≈ 0.88)."""
+    return ZONE_FACTOR * E * G / strength**2
+
+
+def turon_strength(E: float, G: float, size: float, elements: int = ZONE_ELEMENTS) -> float:
+    """τ̄ = sqrt(9π·E·G_c/(32·N_e·l_e)) [Pa] (Turon et al. 2007, eq. 12, as quoted second-hand): the interface strength
+    whose process zone :func:`process_zone_length` spans ``elements`` N_e node spacings of ``size`` l_e [m] — a
+    lowered strength that keeps the fracture energy G_c, so that a coarser mesh resolves the zone."""
+    return math.sqrt(9 * math.pi * E * G / (32 * elements * size))
 
 
 @dataclass(frozen=True)
@@ -114,6 +131,18 @@ class BilinearCohesive:
         published prefactors (Hillerborg's, Rice's, Turon et al. 2007's M) were not retrieved: this is the
         scale only; a simulation reports the damaged length it resolved (:mod:`softimpact.fem.cohesive_beam`)."""
         return float(E * self.GIc / self.N**2)
+
+    def process_zone(self, E: float) -> float:
+        """The shorter of the pure-mode process zones, min(l_cz(G_Ic, N), l_cz(G_IIc, S)) [m], in a body of transverse
+        modulus ``E`` (:func:`process_zone_length`): what a mesh must resolve."""
+        return min(process_zone_length(E, self.GIc, self.N), process_zone_length(E, self.GIIc, self.S))
+
+    def adjusted(self, E: float, size: float, elements: int = ZONE_ELEMENTS) -> BilinearCohesive:
+        """This law with Turon et al.'s engineering strengths for node spacing ``size`` [m]: each pure-mode strength
+        lowered to :func:`turon_strength` where it is higher (never raised), toughnesses and penalty kept."""
+        from dataclasses import replace
+
+        return replace(self, N=min(self.N, turon_strength(E, self.GIc, size, elements)), S=min(self.S, turon_strength(E, self.GIIc, size, elements)))
 
     # -- the constitutive update --------------------------------------------------------------------------------
     def initial_damage(self, shape) -> np.ndarray:

@@ -5,6 +5,7 @@ engine, :data:`softimpact.fem.steppers.STEPPERS` ``"cohesive"``)."""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -26,24 +27,37 @@ def interface_label(split: int) -> str:
 
 class _TopView(_SupportedView):
     """The top sublaminate's mesh seen over the stacked DOFs (``n``): :meth:`expand` maps a stacked vector (or
-    snapshots) to the top sublaminate's full vector, so deflected shapes and fields show the struck sublaminate."""
+    snapshots) to a full vector of the mesh, the struck sublaminate's in the near field and the laminate's in the far
+    field (:meth:`~softimpact.fem.cohesive_plate.CohesivePlate.surface_vector`), so deflected shapes and fields show the
+    struck face."""
 
     def __init__(self, stack, plate):
         super().__init__(stack.layers[0], plate)
-        self.n, self._top = stack.n, stack.top
+        self.n, self._stack = stack.n, stack
 
     def expand(self, u: np.ndarray) -> np.ndarray:
-        return super().expand(np.asarray(u)[self._top])
+        return self._stack.surface_vector(np.asarray(u))
 
 
 @dataclass(frozen=True)
 class CohesivePlateProblem(PlateProblem):
     """A plate problem whose laminate is split below the plies ``splits`` (1 = the top ply) into sublaminates
     tied by the cohesive ``law`` (:mod:`softimpact.fem.cohesive_plate`); linear kinematics only (the sublaminates
-    are linear: the interfaces are the nonlinearity). A coupled impact on it steps ``"cohesive"``."""
+    are linear: the interfaces are the nonlinearity). A coupled impact on it steps ``"cohesive"``.
+
+    ``near_field`` [m]: the half-width of the square about the impact point where the laminate is stacked and the
+    mesh graded down to ``element_size`` [m] (None for that size: the process zone's, :meth:`resolution`); outside
+    it, one plate of the laminate on the problem's own mesh (:class:`~softimpact.fem.cohesive_plate.CohesivePlate`'s
+    far field). None: the whole plate stacked on the problem's mesh (the process zone then as resolved as that mesh
+    lets it be: :meth:`resolution` says). ``turon``: the interface strengths lowered to Turon et al.'s for the
+    near field's node spacing (:meth:`~softimpact.models.cohesive.BilinearCohesive.adjusted`), so a coarser mesh
+    resolves the zone; off by default, and every run that uses it says so."""
 
     splits: tuple[int, ...] = ()
     law: BilinearCohesive | None = None
+    near_field: float | None = None
+    element_size: float | None = None
+    turon: bool = False
 
     coupled_stepper = "cohesive"  # the target's own stepper (fem.steppers.STEPPERS)
 
@@ -56,25 +70,149 @@ class CohesivePlateProblem(PlateProblem):
         n = len(self.plate.stack.angles)
         if list(self.splits) != sorted(set(self.splits)) or self.splits[0] < 1 or self.splits[-1] >= n:
             raise InputError(f"cohesive interfaces below plies {list(self.splits)!r}: each between plies k and k + 1, 1 ≤ k < {n}, each once", "cohesive")
+        for key in ("near_field", "element_size"):
+            v = getattr(self, key)
+            if v is not None and not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+                raise InputError(f"{key} must be a positive length, got {v!r} m", key)
+        if self.element_size is not None and self.near_field is None:
+            raise InputError("element_size: the near field's element size needs a near field (near_field)", "element_size")
+        if self.near_field is not None and self.load is not None:
+            x, y = self.load.position
+            spec = self.plate
+            if min(x, y) < 0 or x > spec.length_x or y > spec.length_y:
+                raise InputError(f"near_field: the impact point {self.load.position!r} m is off the plate", "near_field")
 
     @classmethod
-    def of(cls, problem: PlateProblem, splits, law: BilinearCohesive) -> CohesivePlateProblem:
-        """``problem`` with the interfaces below the plies ``splits`` (sorted) tied by ``law``."""
+    def of(cls, problem: PlateProblem, splits, law: BilinearCohesive, *, near_field=None, element_size=None, turon: bool = False) -> CohesivePlateProblem:
+        """``problem`` with the interfaces below the plies ``splits`` (sorted) tied by ``law`` (class docstring for the rest)."""
         fields = {f: getattr(problem, f) for f in PlateProblem.__dataclass_fields__}
-        return cls(**fields, splits=tuple(sorted(int(k) for k in splits)), law=law)
+        return cls(**fields, splits=tuple(sorted(int(k) for k in splits)), law=law, near_field=near_field, element_size=element_size, turon=bool(turon))
+
+    # --- the process zone and the mesh that resolves it ---
+
+    @property
+    def transverse_modulus(self) -> float:
+        """E3 of the ply [Pa]: the modulus of the process zone's length."""
+        return float(self.plate.stack.ply.E3)
+
+    def resolution(self) -> dict:
+        """What the mesh makes of the process zone: the law's shorter pure-mode zone l_cz
+        (:meth:`~softimpact.models.cohesive.BilinearCohesive.process_zone`, of the law the run uses: Turon's if asked),
+        the node spacing it needs (l_cz/:data:`~softimpact.models.cohesive.ZONE_ELEMENTS`), the mesh's node spacing where
+        the interfaces are (the near field's, or the whole plate's largest) and the zone's span in node spacings."""
+        from ...models.cohesive import ZONE_ELEMENTS
+
+        law, spacing = self.run_law(), self.node_spacing()
+        zone = law.process_zone(self.transverse_modulus)
+        return {
+            "process_zone_m": zone,
+            "node_spacing_needed_m": zone / ZONE_ELEMENTS,
+            "node_spacing_m": spacing,
+            "zone_spacings": zone / spacing,
+            "turon": self.turon,
+        }
+
+    def node_spacing(self) -> float:
+        """The node spacing [m] where the interfaces are: the near field's element size over the element's order (MITC9:
+        half of it), or the problem's largest element's without a near field."""
+        order = 2 if self.plate.element == "mitc9" else 1
+        if self.near_field is not None:
+            return self.near_element_size() / order
+        nx, ny = self.plate.elements
+        return max(self.plate.length_x / nx, self.plate.length_y / ny) / order
+
+    def near_element_size(self) -> float:
+        """The near field's element size [m]: ``element_size``, or the one whose node spacing resolves the law's own
+        process zone over :data:`~softimpact.models.cohesive.ZONE_ELEMENTS` (Turon's law being set by the size, not setting it)."""
+        from ...models.cohesive import ZONE_ELEMENTS
+
+        if self.element_size is not None:
+            return self.element_size
+        order = 2 if self.plate.element == "mitc9" else 1
+        return order * self.law.process_zone(self.transverse_modulus) / ZONE_ELEMENTS
+
+    def run_law(self) -> BilinearCohesive:
+        """The law the run uses: ``law``, or with ``turon`` its strengths adjusted to the near field's node spacing."""
+        if not self.turon:
+            return self.law
+        return self.law.adjusted(self.transverse_modulus, self.node_spacing())
+
+    def stacked_mesh(self):
+        """(plate, near mask or None): the :class:`~softimpact.fem.plate.Plate` the stack is built on (graded about the
+        impact point to the near field's element size) and the near field's elements."""
+        from dataclasses import replace
+
+        from ...fem.plate import graded_lines
+
+        plate = self.plate.plate()
+        if self.near_field is None:
+            return plate, None
+        spec, (x0, y0), R = self.plate, self.load.position, self.near_field
+        fine = self.near_element_size()
+        xs = graded_lines(spec.length_x, max(0.0, x0 - R), min(spec.length_x, x0 + R), fine, max(fine, spec.length_x / spec.elements[0]))
+        ys = graded_lines(spec.length_y, max(0.0, y0 - R), min(spec.length_y, y0 + R), fine, max(fine, spec.length_y / spec.elements[1]))
+        plate = replace(plate, nx=xs.size - 1, ny=ys.size - 1, xs=tuple(xs), ys=tuple(ys))
+        cx, cy = 0.5 * (xs[:-1] + xs[1:]), 0.5 * (ys[:-1] + ys[1:])
+        near = (np.abs(cx - x0)[:, None] < R) & (np.abs(cy - y0)[None, :] < R)
+        return plate, near
 
     def model(self, patch_radius: float | None = None, damage: bool = False) -> CohesivePlateModel:
         """The :class:`CohesivePlateModel` (``patch_radius`` unused: the disc is the contact's)."""
         return CohesivePlateModel(self, damage=damage)
 
+    def check(self) -> None:
+        """Refuse, before anything is built, a stack too big for the machine: the near field's nodes carry 5 DOFs per
+        sublaminate, the far field's 5; the factor of a 2-D grid of N nodes of b DOFs each, ordered by minimum degree,
+        holds about 3·N·log₂N·b² entries (seen: 29 M for 17 775 DOFs of 15 sublaminates, tests' fixture in
+        benchmarks/bench_cohesive_factor.py), a step four solves of it. A refusal names the node spacing the process
+        zone needs and what Turon's strengths would allow."""
+        from ...errors import TooLarge
+        from ...guards import require_resources
+
+        plate, near = self.stacked_mesh()
+        order = 2 if self.plate.element == "mitc9" else 1
+        layers = len(self.splits) + 1
+        if near is None:
+            near = np.ones((plate.nx, plate.ny), bool)
+        n_near = (order * near.any(axis=1).sum() + 1) * (order * near.any(axis=0).sum() + 1)
+        n_all = (order * plate.nx + 1) * (order * plate.ny + 1)
+        n_far = max(n_all - n_near, 0)
+        dofs = 5 * (layers * n_near + n_far)
+        fill = 3.0 * (n_near * math.log2(max(n_near, 2)) * (5 * layers) ** 2 + n_far * math.log2(max(n_far, 2)) * 25)
+        steps = self.solver.steps if self.solver is not None else 1
+        what = f"a stack of {layers} sublaminates ({dofs} DOF, {near.sum()} near-field elements of {self.node_spacing() * order * 1e3:.3g} mm)"
+        try:
+            require_resources(what, 2 * 8.0 * fill, 4 * 2 * fill * steps)
+        except TooLarge as exc:
+            res = self.resolution()
+            advice = "" if self.turon else "; Turon's strengths (turon = true) resolve it on a coarser near field (element_size, e.g. 2 mm)"
+            raise TooLarge(
+                f"{exc}. The process zone ({res['process_zone_m'] * 1e3:.3g} mm) needs a node spacing of {res['node_spacing_needed_m'] * 1e3:.3g} mm"
+                f"{advice}, or a smaller near field"
+            ) from None
+
     def summary_extras(self, model, result) -> dict:
-        """The plate's ``target`` block with its sublaminates and interfaces."""
+        """The plate's ``target`` block with its sublaminates and interfaces, the near field and the process zone's
+        resolution (and the interface law the run used, Turon's where asked)."""
         out = super().summary_extras(model, result)
+        law = self.run_law()
         out["target"] = {
             **out["target"],
-            "model": f"fsdt ({self.plate.element.upper()}), {len(self.splits) + 1} sublaminates tied by cohesive interfaces",
+            "model": f"fsdt ({self.plate.element.upper()}), {len(self.splits) + 1} sublaminates tied by cohesive interfaces"
+            + ("" if self.near_field is None else f" in a {2 * self.near_field * 1e3:.4g}-mm near field, one plate of the laminate beyond it"),
             "interfaces": [interface_label(k) for k in self.splits],
             "in_plane": "movable",
+            "elements": [int(n) for n in model.stack.near.shape],
+            "near_field_half_width_m": self.near_field,
+            "cohesive_resolution": self.resolution(),
+            "cohesive_law": {
+                "penalty_N_m3": law.K,
+                "normal_strength_Pa": law.N,
+                "shear_strength_Pa": law.S,
+                "G_Ic_J_m2": law.GIc,
+                "G_IIc_J_m2": law.GIIc,
+                "bk_exponent": law.eta,
+            },
         }
         return out
 
@@ -101,8 +239,8 @@ class CohesivePlateModel:
 
         self.problem = problem
         self.damage = problem.damage_gauges() if damage else ()
-        plate = problem.plate.plate()
-        self.stack = st = CohesivePlate(plate, problem.plate.stack, problem.splits, problem.law)
+        plate, near = problem.stacked_mesh()
+        self.stack = st = CohesivePlate(plate, problem.plate.stack, problem.splits, problem.run_law(), near=near)
         top = st.layers[0]
         self.fe = _TopView(st, plate)
         self._view = _SupportedView(top, plate)  # the contact disc's nodes: the top sublaminate's own DOFs
@@ -111,12 +249,9 @@ class CohesivePlateModel:
         self.solver = problem.solver
         self.stepper = NonlinearNewmark(st, problem.solver.time_step, self.C, problem.solver.newmark, tangent="modified")
         gauges = problem.gauges + self.damage
-        last = len(st.layers) - 1
 
         def row(g):
-            layer = 0 if g.surface == "top" else last
-            lay = st.layers[layer]
-            return st.layer_row(layer, lay.fe.surface_strain(*g.position, g.surface, g.direction, g.length)[lay.free])
+            return st.surface_strain(*g.position, g.surface, g.direction, g.length)
 
         labels = [interface_label(k) for k in problem.splits]
         self.column_names = HISTORY_ROWS + tuple(f"{q}_{lab}" for q in HISTORY_ROWS[:2] for lab in labels)
@@ -151,12 +286,15 @@ class CohesivePlateModel:
         patch = CircularPatch(self._view, point, reach, grow=True)
         dofs = top._index[patch.dofs]
         if np.any(dofs < 0):
-            raise NoContactRoom(f"contact patch about {tuple(point)!r} m reaches a supported edge")
+            raise NoContactRoom(f"contact patch about {tuple(point)!r} m reaches a supported edge or the cohesive near field's rim")
+        dofs = st.layer_dofs(0)[dofs]
+        if np.any(dofs < 0):
+            raise NoContactRoom(f"contact patch about {tuple(point)!r} m reaches the cohesive near field's rim: widen cohesive.near_field")
         return ContactStructure(
             M=st.M,
             K=st.K,
             surface_x=top.fe.node_xy()[0, patch.nodes],
-            surface_dofs=st.layer_dofs(0)[dofs],
+            surface_dofs=dofs,
             load_sign=-1.0,  # w is up +, the impact pushes down
             center=float(point[0]),
             approach_row=-st.deflection(*point),

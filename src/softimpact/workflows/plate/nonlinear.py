@@ -24,6 +24,10 @@ class _SupportedView:
     def __init__(self, vk, plate: Plate):
         self._fe, self.plate, self.n, self.free = vk.fe, plate, vk.n, vk.free
 
+    def dof(self, node: int, component: int) -> int:
+        """The full DOF number of a node's component (``vk``'s ``_index`` maps it to its own, −1 where fixed)."""
+        return int(self._fe.basis.nodal_dofs[component, node])
+
     def expand(self, u: np.ndarray) -> np.ndarray:
         """Full DOF vector(s) (fixed DOFs zero) from ``vk``'s reduced ones; time on the last axis."""
         full = np.zeros((self._fe.basis.N,) + np.shape(u)[1:])
@@ -68,7 +72,7 @@ class NonlinearPlateModel:
         self.stepper = VonKarmanNewmark(vk, problem.solver.time_step, self.C, problem.solver.newmark, tangent="modified")
         gauges = problem.gauges + self.damage
         self.column_names = tuple(vk.history_names)
-        rows = [vk.fe.surface_strain(*g.position, g.surface, g.direction, g.length)[vk.free] for g in gauges]
+        rows = [vk.surface_strain(*g.position, g.surface, g.direction, g.length) for g in gauges]
         rows += [np.zeros(vk.n)] * len(self.column_names)  # placeholders the stepper fills with the plate's recorded scalars
         self.O = np.array(rows).reshape(len(rows), vk.n)
         self._names = tuple(g.name for g in gauges) + self.column_names
