@@ -256,7 +256,7 @@ RAW_VALUES = {
     "(`youngs_modulus`, `poisson_ratio`, `density`, `yield_stress` and `hardening_modulus` or `ultimate_strength` with `elongation`); "
     "with `thickness`, in place of `[plate.laminate]`",
     "turon": "true or false: the interface strengths lowered to Turon et al. 2007's for the near field's node spacing (eq. 12), so a coarser mesh resolves the process zone; every run that uses it says so",
-    "near_field": "a length (the half-width of the stacked square about the impact point) or `\"whole\"` (the whole plate stacked on its own mesh)",
+    "near_field": 'a length (the half-width of the stacked square about the impact point) or `"whole"` (the whole plate stacked on its own mesh)',
     "plasticity": "true or false: a metal plate's section elastic-plastic (J2 through the thickness; the default) or elastic (checked against yield)",
     "ply": "a catalogue ply name (text) or an inline table (`E1`…`G23`, `nu12`…`nu23`, `density`, `thickness`)",
     "snapshots": "a list of times (quantities) within the run",
