@@ -22,10 +22,10 @@ LENGTH, DIAMETER, GAUGE = 1.0, 0.020, 0.5  # m
 BALL_DIAMETER, BALL_VELOCITY = 0.008, 3.0  # m, m/s: a steel ball
 REBOUND_SD = 0.01  # the rebound's measurement: 1 % of it, one sigma
 NOISE = 0.005  # recorder noise, one sigma, as a fraction of the record's largest reading
-SAMPLE, PRE, LENGTH_S = 0.4e-6, 100e-6, 1100e-6  # s: sample interval (2.5 MHz), pre-trigger, record length (five echoes)
+SAMPLE, PRE, LENGTH_S = 0.4e-6, 500e-6, 1500e-6  # s: sample interval (2.5 MHz), pre-trigger, record length (five echoes)
 HIDDEN_BAR = Material("hidden steel", HIDDEN_E, HIDDEN_NU, DENSITY, "the tests' hidden bar")
-TRUE_BRIDGE = Bridge("quarter", HIDDEN_GF, 5.0, 500.0)
-NOMINAL_BRIDGE = Bridge("quarter", NOMINAL_GF, 5.0, 500.0)
+TRUE_BRIDGE = Bridge("quarter", HIDDEN_GF, 5.0, 500.0, polarity=-1)  # tension reads positive volts
+NOMINAL_BRIDGE = Bridge("quarter", NOMINAL_GF, 5.0, 500.0, polarity=-1)
 
 
 @lru_cache(maxsize=4)

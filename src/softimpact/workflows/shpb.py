@@ -25,7 +25,9 @@ strain rate 2cε_R/L and c(ε_I − ε_R − ε_T)/L) and in Edgar-Mendonca/SHPB
 v2 = cε_T, mean stress (P1 + P2)/(2A_s)); the two texts themselves were not retrieved.
 
 Dynamic equilibrium. The specimen's stress is uniform only once waves have crossed it several times. The
-check: R(τ) = 2(F1 − F2)/(F1 + F2), while the mean force exceeds :data:`LOADED_FRACTION` of its peak; the
+check: R(τ) = 2(F1 − F2)/(F1 + F2) of the forces smoothed over :data:`EQUILIBRIUM_SMOOTHING` (the record's noise
+is magnified in F1, the small difference of two large waves), while the mean force exceeds :data:`LOADED_FRACTION`
+of its peak; the
 window where |R| ≤ :data:`EQUILIBRIUM_TOLERANCE` (5 %, the tolerance quoted for Gray's chapter in the public
 summaries, which were all that could be read of it) is reported, and a flag raised when the specimen was out of
 equilibrium over the part of the curve that is used: when no window holds, when it holds less than
@@ -74,6 +76,7 @@ __all__ = [
 
 EQUILIBRIUM_TOLERANCE = 0.05  # |2(F1 − F2)/(F1 + F2)| within this: equilibrium (module docstring)
 LOADED_FRACTION = 0.1  # R is judged only while the mean force exceeds this fraction of its peak (noise elsewhere)
+EQUILIBRIUM_SMOOTHING = 4e-6  # s: the forces are smoothed over this long for R (a few transits of a mm-long specimen; :func:`_equilibrium`)
 MODULUS_BAND = (0.1, 0.6)  # the modulus is the slope of the rise between these fractions of the peak stress
 PLATEAU = 0.05  # the strength and its strain rate: means over the samples within this fraction of the peak stress
 PLATEAU_IN_WINDOW = 0.8  # the strength is in equilibrium when this share of its plateau lies in the equilibrium window
@@ -310,7 +313,18 @@ def _face_waves(rec: ShpbRecord, incident: BarSide, transmitted: BarSide, settin
 
 
 def _equilibrium(tau, F1, F2, tolerance):
-    """(R(τ), the window (start, end) where |R| ≤ tolerance the longest while loaded, loaded mask)."""
+    """(R(τ), the window (start, end) where |R| ≤ tolerance the longest while loaded, loaded mask, its indices).
+
+    R is computed from the forces smoothed over EQUILIBRIUM_SMOOTHING (a quadratic Savitzky–Golay filter): the front
+    force is the small difference ε_I + ε_R of two large waves, so its record noise is magnified (5 % of R per sample
+    for a specimen 20 times softer than the bars, at 0.5 % noise); equilibrium is a matter of several wave transits,
+    which the filter keeps."""
+    from scipy.signal import savgol_filter
+
+    dt = float(tau[1] - tau[0])
+    window = max(5, int(round(EQUILIBRIUM_SMOOTHING / dt)) | 1)
+    if window < F1.size:
+        F1, F2 = savgol_filter(F1, window, 2), savgol_filter(F2, window, 2)
     mean = 0.5 * (F1 + F2)
     loaded = mean > LOADED_FRACTION * float(np.max(mean))
     with np.errstate(divide="ignore", invalid="ignore"):
