@@ -45,6 +45,7 @@ def test_summary(r, specimen) -> dict:
         "equilibrium_at_strength": r.equilibrium_at_strength,
         "equilibrium_in_rise": r.equilibrium_in_rise,
         "flags": list(r.flags),
+        "notes": list(r.notes),
     }
 
 
@@ -68,7 +69,7 @@ def _tests_csv(results, series) -> str:
     rows = [(t.name, test_summary(r, t.specimen)) for t, r in zip(series.tests, results) if r is not None]
     cols = {"test": [n for n, _ in rows]}
     for key in rows[0][1] if rows else ():
-        cols[key] = [("; ".join(s[key]).replace(",", ";") if key == "flags" else s[key]) for _, s in rows]
+        cols[key] = [("; ".join(s[key]).replace(",", ";") if key in ("flags", "notes") else s[key]) for _, s in rows]
     return csv_text({k: np.array(v, dtype=object) for k, v in cols.items()})
 
 

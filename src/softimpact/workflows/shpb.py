@@ -169,7 +169,8 @@ class ShpbResult:
     ``strain_one``, ``strain_three``; ``equilibrium_ratio`` R (NaN where the specimen is not loaded). Scalars:
     ``equilibrium_window`` (start, end) [s] (NaN, NaN: none), whether it holds the plateau (``equilibrium_at_strength``)
     and the rise (``equilibrium_in_rise``), ``modulus`` [Pa] and its standard error (NaN when the rise is not in
-    equilibrium), ``strength`` [Pa] (the plateau's mean stress) and the ``strain_rate`` there [1/s]; ``flags``: sentences."""
+    equilibrium), ``strength`` [Pa] (the plateau's mean stress) and the ``strain_rate`` there [1/s]; ``flags``: what
+    puts the strength in doubt (sentences); ``notes``: what puts only the modulus in doubt."""
 
     name: str
     time: np.ndarray
@@ -194,6 +195,7 @@ class ShpbResult:
     strength: float
     strain_rate: float
     flags: tuple[str, ...]
+    notes: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -397,8 +399,9 @@ def analyse_test(rec: ShpbRecord, incident: BarSide, transmitted: BarSide, speci
             f"{rec.name}: not in dynamic equilibrium at the strength: the faces' forces agree within {tol} over {share:.0%} of the plateau only "
             f"({window[0] * 1e6:.1f} to {window[1] * 1e6:.1f} us): the strength is one face's, not the specimen's (specimen too long, or loaded too fast, for its wave speed)"
         )
+    notes = []
     if idx is not None and not in_rise:
-        flags.append(
+        notes.append(
             f"{rec.name}: not in dynamic equilibrium during the rise: the faces' forces agree within {tol} only from {window[0] * 1e6:.1f} us, "
             "when the stress has passed half its peak: no modulus is read from the rise"
         )
@@ -427,6 +430,7 @@ def analyse_test(rec: ShpbRecord, incident: BarSide, transmitted: BarSide, speci
         strength,
         rate_at,
         tuple(flags),
+        tuple(notes),
     )
 
 
