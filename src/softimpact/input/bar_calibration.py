@@ -41,10 +41,10 @@ from types import SimpleNamespace
 
 from ..errors import InputError
 from ..models.bridge import Bridge
+from ..models.specimens import BarSpec
 from ..workflows.bar_calibration import BarGeometry, KnownImpact, Shot
-from .bar_case import read_bar
 from .series import RECORD_UNITS, read_bridge, read_test_record
-from .toml import Table, load_toml, locate, naming, read_units
+from .toml import Table, load_toml, locate, naming, read_material, read_units
 
 __all__ = ["UNKNOWNS", "CalibrationFile", "load_calibration_file", "read_record_key"]
 
@@ -134,10 +134,7 @@ def load_calibration_file(arg: str) -> CalibrationFile:
     }
     density = b.quantity("density", "density", default=None)
     material_raw = b.raw("material")
-    bar_keys = Table({k: b.data[k] for k in ("material", "length", "diameter") if k in b.data}, b.path)
-    spec = read_bar(bar_keys)
-    for k in ("length", "diameter"):
-        b.raw(k)
+    spec = BarSpec(read_material(b), b.quantity("length", "length"), b.quantity("diameter", "length"))
     b.done()
     g = top.table("gauge")
     position = g.quantity("position", "length", positive=False)

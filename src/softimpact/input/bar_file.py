@@ -45,9 +45,9 @@ def bar_tables(top: Table, base: Path, bar_key: str = "bar", gauge_key: str | No
     gauge_raw = top.raw(gauge_key, None) if gauge_key is not None else None
     if gauge_raw is not None and not isinstance(gauge_raw, dict):
         raise InputError(f"{gauge_key}: expected a table, got {gauge_raw!r}")
-    if BAR_FILE_KEY not in bar:
+    name = bar.string(BAR_FILE_KEY, "")
+    if not name:
         return bar, (Table(gauge_raw, gauge_key) if gauge_raw is not None else None), None
-    name = bar.string(BAR_FILE_KEY)
     path = Path(name) if Path(name).is_absolute() else base / name
     data = load_bar_file(path, bar.key(BAR_FILE_KEY))
     merged = {**data["bar"], **{k: v for k, v in bar.data.items() if k != BAR_FILE_KEY}}
