@@ -15,8 +15,9 @@ GETTING_STARTED = ROOT / "docs" / "getting-started.md"
 
 
 def test_every_task_has_an_example():
-    """The eight tasks of the gallery are there (bar test, reduce and fit, beam, own plate, calibration, sweep, hail and bird, large deflection)."""
-    assert len(EXAMPLES) == 8
+    """The nine tasks of the gallery are there (bar test, reduce and fit, beam, own plate, calibration, sweep, hail and bird, large deflection,
+    a lab's own bars)."""
+    assert len(EXAMPLES) == 9
 
 
 @pytest.mark.parametrize("path", EXAMPLES, ids=lambda p: p.stem)
