@@ -94,6 +94,14 @@ def test_one_shot_recovers_the_hidden_constant(one_shot, constant, truth):
     assert all(g.passed for g in one_shot.gates)
 
 
+def test_effective_radius_with_poisson_ratio_given():
+    """With ν given (the hidden 0.29), the dispersion gives the bar's radius instead: 10 mm within its 95 % interval (under 5 % wide)."""
+    geometry = BarGeometry(lb.LENGTH, lb.DIAMETER, lb.DENSITY, lb.GAUGE, lb.HIDDEN_NU, STEEL.wave_speed, unknown="radius")
+    cal = calibrate_bar([_shot(7)], geometry)
+    assert cal.poisson_ratio is None
+    assert abs(cal.radius.value - lb.DIAMETER / 2) <= cal.radius.half_width < 0.05 * lb.DIAMETER / 2
+
+
 def test_modulus_is_density_times_speed_squared(one_shot):
     """E = ρ·c0² of the calibrated wave speed (its relative interval twice c0's, the density exact)."""
     E, c = one_shot.youngs_modulus, one_shot.wave_speed

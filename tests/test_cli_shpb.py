@@ -76,6 +76,7 @@ def test_hail_run_inside_the_measured_rates_is_not_extrapolated(tmp_path, law_fi
     assert ("strain rate" in run.output) is flagged
 
 
+@pytest.mark.slow  # an FE run of a 40-mm specimen (the flag itself: tests/test_shpb.py, quick)
 def test_specimen_too_long_exits_3(tmp_path):
     """A series with a 40-mm specimen loaded in 25 us (out of equilibrium at its strength): exit 3, the files written, marked failed."""
     t, inc, tr, _ = lb.split_bar_records(0.040, 9.0e9, SpecimenLaw(), 25e6, 25e-6, elements=40)

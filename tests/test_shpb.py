@@ -132,6 +132,7 @@ def test_rate_law_recovers_the_hidden_power_law():
         assert law(rate) == pytest.approx(sigma_1000 * (rate / 1000.0) ** m, rel=0.002)
 
 
+@pytest.mark.slow  # an FE run, three analyses and six dispersive moves: 2-3 s
 def test_dispersion_correction_restores_equilibrium():
     """Records dispersed along each wave's path from the loaded end (first mode; the elastic set-up is linear, so each FE
     wave is moved by its path: incident 0.5 m, reflected 1.5 m, transmitted 1.3 m), the pulse rising in 12 us: read without
