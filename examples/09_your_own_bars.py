@@ -1,6 +1,6 @@
 """
 Your own bars: calibrate them, test a material on them, use what it gives
-========================================================================
+=========================================================================
 
 A lab's instrumented bar drifts: a new bar, a re-glued gauge, another amplifier. ``calibrate-bar``
 reads the bar's own records (steel balls dropped on its end) and gives its wave speed (from the

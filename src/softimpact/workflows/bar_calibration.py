@@ -59,6 +59,7 @@ __all__ = [
 AGREEMENT_P = 0.01  # the shots disagree when their χ² about the pooled value is this improbable
 ECHO_CHI2_LIMIT = 4.0  # the echo fit's residual power over the noise's: above, the records are not echoes of one wave in a uniform bar
 NOMINAL_SPEED_SLACK = 0.05  # a wave speed this far from the nominal material's is flagged (another material, a wrong length)
+END_CLEARANCE = 0.1  # of the length: a gauge nearer an end has its two ends' echoes arriving together (refused)
 LOSS_FLAG = 0.8  # an echo amplitude below this: the ends are not free, or the bar damps (flagged)
 DETECTION_SIGMAS = 8.0  # the incident wave's arrival: the record leaves its noise by this many σ ...
 DETECTION_FRACTION = 0.05  # ... and by this fraction of its largest excursion
@@ -277,7 +278,11 @@ def _shot(shot: Shot, bar: BarGeometry) -> ShotCalibration:
         noise = 1e-6 * float(np.max(np.abs(y)))  # a noise-free (synthetic) record: the fit needs a scale
     c1 = _coarse_speed(t, y, arrival, bar)
     x = bar.gauge_position
-    both = min(x, bar.length - x) > 0.1 * bar.length  # arrivals from both ends far enough apart to tell
+    if min(x, bar.length - x) < END_CLEARANCE * bar.length:
+        raise InputError(
+            f"{shot.name}: the gauge at {x:.4g} m is within a tenth of the bar's length of an end: its echoes from the two ends "
+            "arrive together and cannot be timed apart (calibrate with a gauge nearer the middle)"
+        )
     echo = fit_echoes(
         t,
         y,
@@ -289,7 +294,7 @@ def _shot(shot: Shot, bar: BarGeometry) -> ShotCalibration:
         wave_speed=c1,
         gauge_position=x,
         unknown=bar.unknown,
-        fit_position=both,
+        fit_position=True,
     )
     c0 = echo.value("wave_speed")
     if echo.reduced_chi2 > ECHO_CHI2_LIMIT:
@@ -297,8 +302,7 @@ def _shot(shot: Shot, bar: BarGeometry) -> ShotCalibration:
     amps = [echo.value(n) for n in echo.names if n.startswith("amplitude_")]
     if min(amps) < LOSS_FLAG:
         flags.append(f"{shot.name}: an echo returns with {min(amps):.0%} of the incident wave: an end is not free, or the bar damps")
-    x_fit = echo.value("gauge_position") if both else x
-    impulse, impulse_sd = _impulse(t, y, arrival, 2.0 * (bar.length - x_fit) / c0, noise, n_pre)
+    impulse, impulse_sd = _impulse(t, y, arrival, 2.0 * (bar.length - echo.value("gauge_position")) / c0, noise, n_pre)
     S, S_sd = math.nan, math.nan
     if shot.impact is not None:
         p, pv_sd, _ = shot.impact.momentum()
@@ -351,15 +355,15 @@ def _agreement(name: str, chi2: float, n: int, what: str) -> Gate | None:
     )
 
 
-def _constant(fits, name: str, systematic: float, meaning: str, residual: float, gates: list, what: str) -> Constant:
-    """The pooled constant ``name`` of the echo fits, its systematic standard uncertainty added after pooling."""
+def _constant(fits, name: str, shared: float, meaning: str, residual: float, gates: list, what: str) -> Constant:
+    """The pooled constant ``name`` of the echo fits, the relative standard uncertainty ``shared`` by every shot added after pooling."""
     vals = [f.value(name) for f in fits]
     sds = [f.half_width(name) / Z95 for f in fits]
     mean, sd, chi2 = pool(vals, sds)
     gate = _agreement(name, chi2, len(vals), what)
     if gate is not None:
         gates.append(gate)
-    return Constant(mean, Z95 * math.hypot(sd, systematic), residual, meaning, tuple((v, Z95 * s) for v, s in zip(vals, sds)))
+    return Constant(mean, Z95 * math.hypot(sd, shared * mean), residual, meaning, tuple((v, Z95 * s) for v, s in zip(vals, sds)))
 
 
 def calibrate_bar(shots, bar: BarGeometry) -> BarCalibration:
@@ -389,8 +393,7 @@ def calibrate_bar(shots, bar: BarGeometry) -> BarCalibration:
         )
     rms = max(f.residual_rms for f in fits)
     meaning = f"rms of the echo fits' residuals, strain (largest over the shots; residual power up to {worst:.3g} times the noise's)"
-    c = _constant(fits, "wave_speed", 0.0, meaning, rms, gates, "wave speed")
-    c = Constant(c.value, math.hypot(c.half_width, Z95 * c.value * bar.length_sd / bar.length), c.residual, c.residual_meaning, c.shots)
+    c = _constant(fits, "wave_speed", bar.length_sd / bar.length, meaning, rms, gates, "wave speed")  # c0 ∝ L: only p/c0 is seen
     if abs(c.value / bar.wave_speed - 1) > NOMINAL_SPEED_SLACK:
         flags.append(
             f"the wave speed {c.value:.5g} m/s is {c.value / bar.wave_speed - 1:+.1%} from the nominal material's {bar.wave_speed:.5g} m/s: another material, or a wrong length?"
@@ -401,14 +404,12 @@ def calibrate_bar(shots, bar: BarGeometry) -> BarCalibration:
     nu = radius = None
     a = bar.diameter / 2
     if bar.unknown == "poisson_ratio":
-        nu = _constant(fits, "poisson_ratio", 0.0, meaning, rms, gates, "Poisson's ratio")
-        nu = Constant(nu.value, math.hypot(nu.half_width, Z95 * nu.value * (bar.diameter_sd / bar.diameter)), rms, meaning, nu.shots)
+        nu = _constant(fits, "poisson_ratio", bar.diameter_sd / bar.diameter, meaning, rms, gates, "Poisson's ratio")  # ν·a is what is seen
     elif bar.unknown == "radius":
         radius = _constant(fits, "radius", 0.0, meaning, rms, gates, "effective radius")
     x = None
     if all("gauge_position" in f.names for f in fits):
-        x = _constant(fits, "gauge_position", 0.0, meaning, rms, gates, "gauge position")
-        x = Constant(x.value, math.hypot(x.half_width, Z95 * x.value * bar.length_sd / bar.length), rms, meaning, x.shots)
+        x = _constant(fits, "gauge_position", bar.length_sd / bar.length, meaning, rms, gates, "gauge position")  # δx = x·δL/L
     sensitivity = _sensitivity(good, bar, c, a, gates, shots)
     return BarCalibration(bar, c, E, nu, radius, x, sensitivity, tuple(results), tuple(gates), tuple(flags))
 
