@@ -28,7 +28,8 @@ form σ_c = A·(ε̇/1 s⁻¹)^m: written for the reader, checked against the pa
 ``method`` says how the strength was measured (absent: bar tests of spheres, ``softimpact identify``). A law
 measured on the material itself, in two-bar (split Hopkinson) tests (``softimpact shpb``, method
 "two-bar (split Hopkinson) tests ..."), has no impactor's velocity, diameter or mass in ``identified_on``: its
-``strain_rate_1_s`` (the rates measured) and, when the specimens' density was given, ``projectile.density_kg_m3``.
+``strain_rate_1_s`` (the rates measured) and, when the specimens' density was given, ``projectile.density_kg_m3``;
+its ``fit.rms_over_F0`` holds each test's residual ln(σ_test/σ_law) (a strength's, not a force history's).
 """
 
 from __future__ import annotations
