@@ -244,6 +244,8 @@ SLOW_EXAMPLES = {
     "softimpact.api.chain.identify",  # identifies a law on the 13 tests of the built-in series (minutes)
     "softimpact.api.chain.fit",  # fits the built-in series (seconds)
     "softimpact.api.chain.calibrate",  # calibrates a Table II history (seconds)
+    "softimpact.api.chain.calibrate_bar",  # five records' echoes fitted (the same run as tests/test_cli_calibrate_bar.py)
+    "softimpact.api.chain.shpb",  # five two-bar tests (the same run as tests/test_cli_shpb.py)
 }
 
 

@@ -10,7 +10,17 @@ from softimpact.cli import EXAMPLES, main
 # Examples that take more than a few seconds on 2 shared cores: executed in the slow tier only.
 # Measured one at a time (2 cores, loaded): bar 1.9 s, beam 0.7 s, impact 0.9 s; converge 2 s, sweep 4 s, reduce 6 s,
 # fit 10 s, calibrate 16 s, plate 18 s, identify 58 s.
-SLOW = {"converge", "sweep", "reduce", "fit", "calibrate", "plate", "identify"}
+SLOW = {
+    "converge",
+    "sweep",
+    "reduce",
+    "fit",
+    "calibrate",
+    "plate",
+    "identify",
+    "calibrate-bar",
+    "shpb",
+}  # the last two: run in tests/test_cli_calibrate_bar.py and test_cli_shpb.py
 NOT_RUN = {"paper": "the whole paper takes minutes; run by the lead at merge"}
 
 

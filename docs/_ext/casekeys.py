@@ -28,6 +28,8 @@ FORMATS = {
     "series": "Bar test series (`softimpact reduce`, `fit`, `identify`)",
     "calibration": "Calibration series (`softimpact calibrate SERIES`)",
     "sweep": "Sweep spec (`softimpact sweep`)",
+    "bar-calibration": "Bar calibration file (`softimpact calibrate-bar`)",
+    "two-bar": "Two-bar series (`softimpact shpb`)",
 }
 _METHODS = ("quantity", "number", "integer", "string", "table", "tables", "raw")
 
@@ -174,7 +176,7 @@ def _variants() -> dict[str, list]:
     ]
     row = {"velocity": "1166 in/s", "peak_force": "100 lbf", "time_of_peak": "50 us", "duration": "200 us", "contact_radius": "0.1 in"}
     return {
-        "bar": [(bar,), (_set(bar, bar__material=_INLINE_MATERIAL, bar__end_cap={"material": "steel", "diameter": "1 in", "length": "0.25 in"}, output={"snapshots": ["10 us"]}),)]
+        "bar": [(bar,), (_set(bar, bar__file="bar.toml"),), (_set(bar, bar__material=_INLINE_MATERIAL, bar__end_cap={"material": "steel", "diameter": "1 in", "length": "0.25 in"}, output={"snapshots": ["10 us"]}),)]
         + [(_set(bar, contact=c),) for c in contact_laws]
         + [(_set(bar, projectile__material=m["material"], contact=c),) for m, c in flow_laws]
         + [(_set(bar, projectile={**threat, "velocity": "30 m/s"}),)],
@@ -202,6 +204,18 @@ def _variants() -> dict[str, list]:
             _set(_data("paper-rubber-series"), gauge__second_position="27 in", test=[{"name": "t", "record": {"file": "a.tdms", "channel": "g", "unit": "mV"}, "second_record": "b.csv", "velocity": "1000 in/s", "diameter": "0.5 in", "mass": "1 g", "accept_flagged": True}]),
         ],
         "calibration": ["paper-long-calibration", _set(_data("paper-long-calibration"), projectile="rubber-1/2in", constants="scaling.json", test=[{"name": "t", "measured": "m.csv", "velocity": "1000 in/s", "contact_radius": "0.1 in", "contact_time": "10 us", "reference": {"peak_force": "1 lbf", "time_of_peak": "1 us", "duration": "2 us", "contact_radius": "0.1 in"}}])],
+        "bar-calibration": [
+            "lab-bar-calibration",
+            _set(_data("lab-bar-calibration"), bar__material=_INLINE_MATERIAL, bar__length_uncertainty="0.2 mm", bar__diameter_uncertainty="0.01 mm", bar__density="7850 kg/m^3", bar__density_uncertainty="5 kg/m^3", bar__dispersion_unknown="radius",
+                 shot=[{"name": "s", "record": {"file": "lab-bar-calibration/ball-1.csv", "channel": "gauge", "unit": "mV"}, "ball": {"mass": "2 g", "velocity": "3 m/s", "mass_uncertainty": "1 mg", "velocity_uncertainty": "0.01 m/s", "rebound_max": "3 m/s"}},
+                       {"record": "lab-bar-calibration/ball-2.csv", "ball": {"mass": "2 g", "velocity": "3 m/s", "rebound": "2.8 m/s", "rebound_uncertainty": "0.03 m/s"}}]),
+        ],
+        "two-bar": [
+            "ice-shpb-series",
+            _set(_data("ice-shpb-series"), dispersion="pochhammer-chree", specimen__density="900 kg/m^3",
+                 test=[{"name": "t", "incident": "a.csv", "transmitted": {"file": "a.csv", "channel": "t", "unit": "V"}, "specimen": {"length": "5 mm", "diameter": "12 mm", "density": "900 kg/m^3"}, "transmitted_delay": "1 us"}]),
+            _set(_data("ice-shpb-series"), incident_bar={"file": "incident-bar.toml"}),
+        ],
         "sweep": [
             ({"sweep": {"case": "paper-long-beam", "method": "monte-carlo", "runs": 10, "seed": 1, "chunk": 5, "outputs": ["peak_force_N"], "parameter": [
                 {"key": "load.history", "value": {"shape": "skewed", "peak_force": "1 lbf", "time_of_peak": "1 us", "duration": "2 us"}},
@@ -215,7 +229,7 @@ def _variants() -> dict[str, list]:
 
 def record() -> dict[str, dict[str, Key]]:
     """Run every reader over its variants and return the keys asked for, per format."""
-    from softimpact.input import bar_case, beam_case, impact_case, plate_case, series, sweep_spec, toml
+    from softimpact.input import bar_calibration, bar_case, beam_case, impact_case, plate_case, series, shpb_series, sweep_spec, toml
 
     rec = Recorder()
     readers = {
@@ -232,6 +246,14 @@ def record() -> dict[str, dict[str, Key]]:
                 try:
                     if fmt in readers:
                         readers[fmt](*variant)
+                    elif fmt in ("bar-calibration", "two-bar"):  # read by name: hand the reader the variant's data
+                        module, reader, name = {
+                            "bar-calibration": (bar_calibration, bar_calibration.load_calibration_file, "lab-bar-calibration"),
+                            "two-bar": (shpb_series, shpb_series.load_shpb_series, "ice-shpb-series"),
+                        }[fmt]
+                        data = toml.load_toml(toml.locate(name)) if isinstance(variant, str) else variant
+                        with mock.patch.object(module, "load_toml", lambda path, data=data: data):
+                            reader(name)
                     else:  # the series readers take a name: hand them the variant's data
                         name = variant if isinstance(variant, str) else {"series": "paper-rubber-series", "calibration": "paper-long-calibration"}[fmt]
                         data = toml.load_toml(toml.locate(name)) if isinstance(variant, str) else variant
@@ -270,6 +292,11 @@ RAW_VALUES = {
     "direction": '`"x"`, `"y"` or an angle in degrees from x',
     "record": "a path (relative to the series file) or a table `{ file, channel, unit }`",
     "second_record": "as `record`: the second gauge's record",
+    "incident": "a path (relative to the series file) or a table `{ file, channel, unit }`: the incident bar's record",
+    "gauge": "a table: the gauge's `position` and bridge keys (below); with `bar.file` its keys replace the bar file's `[gauge]`",
+    "incident_gauge": "a table: the incident gauge's `position` (from the struck end) and bridge keys, as a series' `[gauge]`",
+    "transmitted_gauge": "a table: the transmitted gauge's `position` (from the specimen) and bridge keys, as a series' `[gauge]`",
+    "transmitted": "as `incident`: the transmitted bar's record, on the same clock",
     "channel": "a channel name (`group/channel` or a unique `channel`) or an index",
     "accept_flagged": "true or false: fit this test even if flagged",
     "constants": "a scaling.json path (of `softimpact fit`) or a preset name",
@@ -297,9 +324,20 @@ _CONTEXT_DEFAULTS = {
     **{f"load.history.alpha{i}": f"the `constants` preset's α{i}" for i in range(1, 5)},
     "series:title": "the file's name",
     "calibration:title": "the file's name",
+    "bar-calibration:title": "the file's name",
+    "two-bar:title": "the file's name",
+    "bar-calibration:shot[].name": "the record's file name",
+    "two-bar:test[].name": "the incident record's file name",
+    "bar.density": "the material's",
+    "specimen.density": "the specimen material's",
+    "test[].specimen.length": "`specimen.length`",
+    "test[].specimen.diameter": "`specimen.diameter`",
+    "test[].specimen.density": "`specimen.density`",
     "series:test[].name": "the record's file name",
     "calibration:test[].name": "the measured file's name",
     "gauge.poisson_ratio": "the bar material's",
+    "incident_gauge.poisson_ratio": "the bar material's",
+    "transmitted_gauge.poisson_ratio": "the bar material's",
     "load.table[].contact_radius": "`load.contact_radius`",
     "contact.target_modulus": "the ply's through-thickness modulus",
     "projectile.mass": "from density and diameter",

@@ -17,7 +17,8 @@ Structures and impactors: :class:`Beam`, :class:`Plate`, :class:`Laminate`, :cla
 Runs: :func:`impact`, :func:`press` (a static uniform pressure on a plate), :func:`load` and :func:`run` (any case
 file or built-in name).
 The chain of the paper: :func:`reduce`, :func:`fit`, :func:`predict`, :func:`identify`,
-:func:`calibrate`, :func:`converge`, :func:`sweep`; lab records: :func:`read_record`; the named
+:func:`calibrate`, :func:`converge`, :func:`sweep`; lab records: :func:`read_record`; a lab's own bars:
+:func:`calibrate_bar` and :func:`shpb` (two-bar tests); the named
 materials, plies, projectiles, contact laws and cases: :func:`catalogue`.
 
 The names are imported on first use (PEP 562), so ``import softimpact`` imports
@@ -60,6 +61,8 @@ _LAZY = {
     "sweep": "api",
     "read_record": "api",
     "catalogue": "api",
+    "calibrate_bar": "api",
+    "shpb": "api",
     "Case": "api",
     "ImpactResult": "api",
     "BeamResult": "api",

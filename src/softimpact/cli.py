@@ -34,7 +34,7 @@ import warnings
 import click
 
 from . import __version__
-from .app.options import CALIBRATE, CASE, CONVERGE, IDENTIFY, PREDICT, SERIES, SWEEP
+from .app.options import CALIBRATE, CALIBRATE_BAR, CASE, CONVERGE, IDENTIFY, PREDICT, SERIES, SHPB, SWEEP
 from .errors import EXIT_CHECK, EXIT_INPUT, EXIT_INTERNAL, CheckFailed, InputError, SoftimpactWarning, SolverFailed
 
 __all__ = ["main"]
@@ -244,6 +244,8 @@ EXAMPLES = {
     "impact": (None, "softimpact impact paper-long-beam-impact --no-figures --out impact-out"),
     "identify": (None, "softimpact identify paper-rubber-series --no-figures --out identify-out"),
     "paper": (None, "softimpact paper --out paper-out"),
+    "calibrate-bar": (None, "softimpact calibrate-bar lab-bar-calibration --no-figures --out calibrate-bar-out"),
+    "shpb": (None, "softimpact shpb ice-shpb-series --no-figures --out shpb-out"),
 }
 
 
@@ -561,6 +563,38 @@ def paper_cmd(out, figures):
     from .app.paper import paper
 
     _run(paper, out, figures=figures)
+
+
+@_command("calibrate-bar", "A lab's bar calibrated from its records into a bar file (bar.toml).", options=CALIBRATE_BAR, accept_poor=True)
+@click.argument("calibration")
+def calibrate_bar_cmd(calibration, units, out, figures, accept_poor):
+    """Calibrate a lab's bar from the records of a CALIBRATION file (file or built-in name): the wave speed from
+    the echoes' times, Poisson's ratio (or the effective radius) from their dispersion, the gauge's position, and
+    the gauge factor from known impacts (a ball's momentum); each with its 95 % interval and its fit's residual.
+
+    Writes bar.toml (a bar file that bar cases and series read: [bar] file = "bar.toml"), calibration.json,
+    shots.csv and, with figures, echoes-<shot>.png and calibration.png. Exit 3 when the records disagree.
+    """
+    from .app.calibrate_bar import calibrate_bar
+
+    _run(calibrate_bar, out, accept_poor, calibration=calibration, units=units, figures=figures)
+
+
+@_command("shpb", "Two-bar (split Hopkinson) tests -> stress-strain curves at rate, a rate law.", options=SHPB, accept_poor=True)
+@click.argument("series")
+def shpb_cmd(series, units, out, figures, accept_poor):
+    """Analyse the two-bar (split Hopkinson) tests of a SERIES file (file or built-in name): each record's waves
+    moved to the specimen's faces, one-, two- and three-wave stress, strain rate and strain, the dynamic
+    equilibrium check, the modulus and the strength at rate; across tests, a rate-dependent strength
+    sigma = sigma_ref (rate/rate_ref)^m with its intervals and the range of rates measured.
+
+    Writes tests.csv, curve-<test>.csv per test, summary.json, law.json (a crushing law for impact and bar cases,
+    law = "identified", with three tests or more) and, with figures, stress-strain-<test>.png,
+    equilibrium-<test>.png and rate-law.png.
+    """
+    from .app.shpb import shpb
+
+    _run(shpb, out, accept_poor, series_name=series, units=units, figures=figures)
 
 
 if __name__ == "__main__":  # pragma: no cover

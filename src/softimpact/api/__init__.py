@@ -17,6 +17,7 @@ The index (every name is also ``si.NAME``):
   (:mod:`softimpact.app`) with the options of the same table the command line reads
   (:mod:`softimpact.app.options`): :func:`reduce`, :func:`fit`, :func:`predict`, :func:`identify`,
   :func:`calibrate`, :func:`converge`, :func:`sweep`; :func:`read_record` reads one channel of a lab record;
+  a lab's own bars: :func:`calibrate_bar` (a bar file from its records) and :func:`shpb` (two-bar tests);
   :func:`catalogue` lists the named materials, plies, projectiles, contact laws and built-in cases;
 - the frozen results (:mod:`softimpact.api.results`): :class:`ImpactResult`, :class:`BeamResult`,
   :class:`PlateResult`, :class:`BarResult`, :class:`CommandResult`, :class:`Record`.
@@ -39,7 +40,7 @@ needs it. Not re-exported here: the layers below (:mod:`softimpact.models`, :mod
 imported explicitly.
 """
 
-from .chain import calibrate, catalogue, converge, fit, identify, predict, read_record, reduce, sweep
+from .chain import calibrate, calibrate_bar, catalogue, converge, fit, identify, predict, read_record, reduce, shpb, sweep
 from .commands import Case, impact, load, press, run
 from .results import BarResult, BeamResult, CommandResult, ImpactResult, PlateResult, Record, StaticPlateResult
 from .structures import Bar, Beam, Laminate, Plate, Sphere
@@ -71,4 +72,6 @@ __all__ = [
     "sweep",
     "read_record",
     "catalogue",
+    "calibrate_bar",
+    "shpb",
 ]

@@ -8,13 +8,13 @@ from __future__ import annotations
 import warnings
 from pathlib import Path
 
-from ..app.options import CALIBRATE, CONVERGE, IDENTIFY, PREDICT, SERIES, SWEEP
+from ..app.options import CALIBRATE, CALIBRATE_BAR, CONVERGE, IDENTIFY, PREDICT, SERIES, SHPB, SWEEP
 from ..errors import SoftimpactWarning
 from ._edge import _Heard, _one_line
 from ._options import given, python_terms, takes
 from .results import CommandResult, Record
 
-__all__ = ["reduce", "fit", "predict", "identify", "calibrate", "converge", "sweep", "read_record", "catalogue"]
+__all__ = ["reduce", "fit", "predict", "identify", "calibrate", "converge", "sweep", "read_record", "catalogue", "calibrate_bar", "shpb"]
 
 
 def _command(command: str, call, table=()) -> CommandResult:
@@ -348,3 +348,73 @@ def catalogue():
     from ..app.catalogue import catalogue as build
 
     return build()
+
+
+@takes(CALIBRATE_BAR, "calibration")
+def calibrate_bar(calibration, **options) -> CommandResult:
+    """Calibrate a lab's bar from its records: the wave speed c0 [m/s] from the echoes, Poisson's ratio from their
+    dispersion, the gauge's position [m] and its gauge factor from known impacts, each with its 95 % interval.
+
+    Parameters
+    ----------
+    calibration : str or Path
+        A calibration file (the bar as known, its gauge and bridge, the shots) or a built-in name.
+    {options}
+
+    Returns
+    -------
+    CommandResult
+        ``json("calibration.json")``: each constant (SI) with its 95 % half-width and its fit's residual;
+        ``files()["bar.toml"]``: the bar file that bar cases and series read (``[bar] file = "bar.toml"``).
+
+    Raises
+    ------
+    softimpact.errors.InputError
+        A missing or unreadable record, or one without an echo to time.
+
+    Examples
+    --------
+    >>> import softimpact as si
+    >>> c = si.calibrate_bar("lab-bar-calibration", figures=False).json("calibration.json")["constants"]
+    >>> abs(c["wave_speed_m_s"]["value"] - 5097.77) <= c["wave_speed_m_s"]["ci95_half_width"]  # the synthetic bar's hidden c0
+    True
+    """
+    from ..app.calibrate_bar import calibrate_bar as command
+
+    given_ = given(calibrate_bar, options)
+    return _command("softimpact calibrate-bar", lambda: command(calibration=str(calibration), **given_), CALIBRATE_BAR)
+
+
+@takes(SHPB, "series")
+def shpb(series, **options) -> CommandResult:
+    """Two-bar (split Hopkinson) tests: each test's stress [Pa], strain rate [1/s] and strain at the specimen, its
+    equilibrium window, modulus and strength; across tests a rate-dependent strength with its intervals (law.json).
+
+    Parameters
+    ----------
+    series : str or Path
+        A two-bar series file (the bars, their gauges, the specimen, the tests) or a built-in name.
+    {options}
+
+    Returns
+    -------
+    CommandResult
+        ``table("tests.csv")``: per test strength_Pa, strain_rate_1_s, modulus_Pa, the equilibrium window;
+        ``json("law.json")``: the crushing law (strength at a reference rate, rate exponent, the rates measured).
+
+    Raises
+    ------
+    softimpact.errors.InputError
+        A missing or unreadable record, or records too short for the waves to pass their gauges.
+
+    Examples
+    --------
+    >>> import softimpact as si
+    >>> m = si.shpb("ice-shpb-series", figures=False).json("law.json")["parameters"]["rate_exponent"]
+    >>> abs(m["value"] - 0.2) <= m["ci95_half_width"]  # the synthetic ice's hidden exponent, 0.2, within the interval
+    True
+    """
+    from ..app.shpb import shpb as command
+
+    given_ = given(shpb, options)
+    return _command("softimpact shpb", lambda: command(series_name=str(series), **given_), SHPB)

@@ -65,5 +65,5 @@ def identify(*, series_name: str, law: str = "soft", units: str | None = None, f
         f"t_F0 {np.abs(cl.peak_time_errors).max():.1%} "
         f"(worst {cl.names[worst]}); law.json"
     )
-    inputs = (series.path, *(t.record for t in series.tests))
+    inputs = (series.path, *(t.record for t in series.tests), *((series.bar_file,) if series.bar_file else ()))
     return Outcome(files, line, inputs, tuple(warnings), gates)

@@ -185,3 +185,9 @@ SWEEP = (
     UNITS,
     FIGURES,
 )
+
+CALIBRATE_BAR = (UNITS, FIGURES)  # calibrate-bar: a calibration file (file or built-in name), its display units and the figures
+
+SHPB = (UNITS, FIGURES)  # shpb: a two-bar series (file or built-in name), its display units and the figures
+
+__all__ += ["CALIBRATE_BAR", "SHPB"]

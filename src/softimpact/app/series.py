@@ -56,7 +56,7 @@ def reduce(*, series_name: str, units: str | None = None, figures: bool = True, 
             "quality": quality(gates),
         }
     )
-    inputs = (series.path, *(t.record for t in series.tests))
+    inputs = (series.path, *(t.record for t in series.tests), *((series.bar_file,) if series.bar_file else ()))
     return Outcome(files, f"{done} of {len(reduced)} records reduced; tests.csv", inputs, tuple(warnings), gates)
 
 
@@ -84,5 +84,5 @@ def fit(*, series_name: str, units: str | None = None, figures: bool = True, pro
         lines.append(
             f"{label:>10s}: alpha1 {a['alpha1']:.3f}  alpha2 {a['alpha2']:.3f}  alpha3 {a['alpha3']:.3f}  alpha4 {a['alpha4']:.3f}  ({len(g.points)} tests)"
         )
-    inputs = (series.path, *(t.record for t in series.tests))
+    inputs = (series.path, *(t.record for t in series.tests), *((series.bar_file,) if series.bar_file else ()))
     return Outcome(files, "\n".join(lines + ["scaling.json"]), inputs, tuple(warnings), gates)

@@ -86,6 +86,6 @@ def builtin_listing() -> list[tuple[str, str, str]]:
         try:
             kind = kind_of(data).name
         except InputError:
-            kind = "series" if ("test" in data or "tests" in data) else "?"
+            kind = "two-bar" if "incident_bar" in data else "bar-cal" if "shot" in data else "series" if ("test" in data or "tests" in data) else "?"
         rows.append((name, kind, str(data.get("title", ""))))
     return rows

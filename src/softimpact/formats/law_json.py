@@ -25,6 +25,11 @@ form σ_c = A·(ε̇/1 s⁻¹)^m: written for the reader, checked against the pa
 ``identified_on`` with ``strain_rate_1_s`` too (the tests' V/d: the strength law's measured range), and
 ``fit.contact_start_shift_s``, each test's fitted first contact after its reduced record's.
 ``d_ref_m`` (the largest tested diameter) means nothing to the law (it has no size scaling) and may be absent.
+``method`` says how the strength was measured (absent: bar tests of spheres, ``softimpact identify``). A law
+measured on the material itself, in two-bar (split Hopkinson) tests (``softimpact shpb``, method
+"two-bar (split Hopkinson) tests ..."), has no impactor's velocity, diameter or mass in ``identified_on``: its
+``strain_rate_1_s`` (the rates measured) and, when the specimens' density was given, ``projectile.density_kg_m3``;
+its ``fit.rms_over_F0`` holds each test's residual ln(σ_test/σ_law) (a strength's, not a force history's).
 """
 
 from __future__ import annotations
@@ -46,6 +51,7 @@ CRUSHING_FAMILY = CrushingIdentifiedLaw.family  # "crushing"
 CRUSHING_FORM = "F = A(s)*(sigma_ref*(sdot/d/rate_ref)^rate_exponent + rho*sdot^2), A = pi*s*(d - s) (models/crushing_law.py)"
 CRUSHING_RANGES = "strength_ref > 0, 0 <= rate_exponent < 1"
 COEFFICIENT_TOL = 1e-9  # relative: coefficient_at_1_per_s_Pa against strength_ref·reference_rate^(−rate_exponent)
+MATERIAL_METHOD = "two-bar"  # a crushing law.json whose method starts so was measured on the material (softimpact shpb), not on spheres
 FORM = (
     "F = (m*V^2/d)*[k*(alpha/d)^n*(1 + c*alpha_dot/V) + sigma] >= 0, k = k_ref*(d/d_ref)^q_k, c = c_ref*(d/d_ref)^q_c, "
     "n = p*(d/d_ref)^q_p; Maxwell arm d(sigma)/dt = kappa*d(max(alpha,0)/d)/dt - sigma*V/(theta*d), "
@@ -73,7 +79,7 @@ def law_summary(law: IdentifiedLaw | CrushingIdentifiedLaw, test_names, closure=
         "form": CRUSHING_FORM if crushing else FORM,
         "units": "SI",
         "series": series,
-        "d_ref_m": law.d_ref,
+        **({"d_ref_m": law.d_ref} if math.isfinite(law.d_ref) else {}),  # a law without a size (two-bar tests) has none
         "parameters": {n: {"value": float(v), "ci95_half_width": float(h)} for n, v, h in zip(law.names, law.values, law.half_widths)},
         "fit": {"cost": law.cost, "rms_over_F0": dict(zip(test_names, map(float, law.rms_per_test)))},
     }
@@ -82,6 +88,7 @@ def law_summary(law: IdentifiedLaw | CrushingIdentifiedLaw, test_names, closure=
         out["coefficient_at_1_per_s_Pa"] = law.coefficient_at_1_per_s
         if law.start_shifts is not None:  # each test's fitted first contact after its record's (not read back: the tests', not the law's)
             out["fit"]["contact_start_shift_s"] = dict(zip(test_names, map(float, law.start_shifts)))
+        out["method"] = law.method
     if law.identified_on is not None:
         out["identified_on"] = dict(law.identified_on)
     if projectile is not None:
@@ -217,11 +224,18 @@ def _read_crushing(data: dict, path, argument: str) -> CrushingIdentifiedLaw:
     cost = fit.get("cost")
     cost = math.nan if cost is None else number(cost, "fit.cost")
     ranges = None
+    method = data.get("method", "bar tests (softimpact identify)")
+    if not isinstance(method, str):
+        raise InputError(f"{argument}: {path}: method must be text, got {method!r}")
+    # a law measured on two-bar tests (softimpact shpb) is a material's: no impactor's velocity, diameter or mass
+    sized = not method.startswith(MATERIAL_METHOD)
     if "identified_on" in data:
         on = table(data, "identified_on", "")
         ranges = {}
         for k in ("velocity_m_s", "diameter_m", "strain_rate_1_s"):  # the last: the strength law's measured range
             if k not in on:
+                if k != "strain_rate_1_s" and not sized:
+                    continue
                 raise InputError(f"{argument}: {path} is not a crushing law.json: no identified_on.{k}")
             ranges[k] = pair(on[k], f"identified_on.{k}")
         if "projectile" in on:
@@ -229,6 +243,8 @@ def _read_crushing(data: dict, path, argument: str) -> CrushingIdentifiedLaw:
             ranges["projectile"] = {}
             for k in ("mass_kg", "diameter_m", "density_kg_m3"):
                 if k not in proj:
+                    if k != "density_kg_m3" and not sized:
+                        continue
                     raise InputError(f"{argument}: {path} is not a crushing law.json: no identified_on.projectile.{k}")
                 ranges["projectile"][k] = pair(proj[k], f"identified_on.projectile.{k}")
-    return CrushingIdentifiedLaw(CRUSHING_PARAMETERS, np.array(values), np.array(half), rate, d_ref, rms, cost, ranges)
+    return CrushingIdentifiedLaw(CRUSHING_PARAMETERS, np.array(values), np.array(half), rate, d_ref, rms, cost, ranges, method=method)

@@ -18,6 +18,7 @@ from ..fem.bar import Rod
 from ..models.contact_laws import HertzLaw
 from ..models.specimens import BarSpec, EndCap, Gauge, Impactor
 from ..workflows.bar_impact import BarImpactProblem, check_problem
+from .bar_file import bar_tables
 from .contact_law import CONTACT_LAWS, note_law_keys, read_contact_law
 from .projectile import read_sphere
 from .toml import Table, load_case_toml, locate, naming, read_material, read_solver, read_units
@@ -65,7 +66,7 @@ def bar_problem(data: dict, base: Path = Path(".")) -> BarImpactProblem:
     top = Table(data)
     title = top.string("title", "")
     read_units(top)  # checked here; the display system is the edge's (input.toml.case_units), not the problem's
-    bar = read_bar(top.table("bar"))
+    bar = read_bar(bar_tables(top, base, gauge_key=None)[0])  # the bar's own table, or a bar file's (input/bar_file.py)
     p = top.table("projectile")
     sphere = read_sphere(p)
     material, diameter = sphere.material, sphere.diameter

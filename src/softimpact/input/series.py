@@ -30,6 +30,7 @@ from ..models.bridge import CONFIGURATIONS, Bridge
 from ..models.empirical import PRESETS, PROJECTILES
 from ..models.specimens import BarSpec
 from .bar_case import read_bar
+from .bar_file import bar_tables
 from .toml import Table, load_toml, locate, naming, read_units
 
 __all__ = [
@@ -37,6 +38,7 @@ __all__ = [
     "Series",
     "TestRecord",
     "load_series",
+    "read_bridge",
     "read_test_record",
     "DISPERSION",
     "CalibrationTest",
@@ -86,6 +88,7 @@ class Series:
     synthetic: str = ""
     dispersion: str = "none"
     second_position: float | None = None  # a second gauge [m]: two-gauge wave separation
+    bar_file: Path | None = None  # the bar file its [bar] names (input/bar_file.py), an input of the run
 
 
 @dataclass(frozen=True)
@@ -98,7 +101,7 @@ class TestRecord:
     metadata: dict
 
 
-def _read_bridge(g: Table, bar: BarSpec) -> Bridge:
+def read_bridge(g: Table, bar: BarSpec) -> Bridge:
     """The bridge keys of ``[gauge]`` (module docstring) as a :class:`Bridge`, shunt-calibrated if asked."""
     name = g.string("bridge", "quarter")
     configuration = BRIDGE_ALIASES.get(name, name)
@@ -211,10 +214,11 @@ def load_series(arg: str) -> Series:
     title = top.string("title", path.stem)
     system = read_units(top)
     synthetic = top.string("synthetic", "")
-    bar_tbl = top.table("bar")
+    bar_tbl, g, bar_file = bar_tables(top, path.parent)  # the bar's own table, or a bar file's (input/bar_file.py)
     dispersion = bar_tbl.string("dispersion", "none", choices=DISPERSION)
     bar = read_bar(bar_tbl)
-    g = top.table("gauge")
+    if g is None:
+        raise InputError("gauge: missing (required)")
     position = g.quantity("position", "length", positive=False)
     if not 0 <= position < bar.length:
         raise InputError(f"gauge.position: {g.raw('position')!r} is not on the bar (0 to {bar.length:.6g} m)")
@@ -224,7 +228,7 @@ def load_series(arg: str) -> Series:
             raise InputError(f"gauge.second_position: {g.raw('second_position')!r} must lie beyond position, on the bar (to {bar.length:.6g} m)")
         if dispersion != "none":
             raise InputError("gauge.second_position: two-gauge separation with bar.dispersion is not implemented (use one or the other)")
-    bridge = _read_bridge(g, bar) if "gauge_factor" in g else None
+    bridge = read_bridge(g, bar) if "gauge_factor" in g else None
     g.done()
     tests = []
     for t in top.tables("test"):
@@ -257,7 +261,7 @@ def load_series(arg: str) -> Series:
     if len(set(names)) != len(names):
         raise InputError(f"test: names must be unique, got duplicates in {names}")
     top.done()
-    return Series(title, system, bar, position, bridge, tuple(tests), path, synthetic, dispersion, second_position)
+    return Series(title, system, bar, position, bridge, tuple(tests), path, synthetic, dispersion, second_position, bar_file)
 
 
 @dataclass(frozen=True)

@@ -347,11 +347,14 @@ def identified_range_validity(ranges: dict | None, velocity: float, diameter: fl
     of each (an ``extrapolated_*`` flag beyond :data:`RANGE_SLACK`, the density beyond :data:`DENSITY_SLACK`)."""
     if ranges is None:
         return Validity({})
-    checks = [("velocity", velocity, ranges["velocity_m_s"], "m/s"), ("diameter", diameter, ranges["diameter_m"], "m")]
+    # a law measured on the material (two-bar tests) records no velocity, diameter or mass: only what it holds is checked
+    given = (("velocity", velocity, "velocity_m_s", "m/s"), ("diameter", diameter, "diameter_m", "m"))
+    checks = [(name, value, ranges[key], unit) for name, value, key, unit in given if key in ranges]
     proj = ranges.get("projectile")
     if proj is not None and mass is not None:
         density = mass / (math.pi / 6 * diameter**3)
-        checks += [("mass", mass, proj["mass_kg"], "kg"), ("density", density, proj["density_kg_m3"], "kg/m^3")]
+        given = (("mass", mass, "mass_kg", "kg"), ("density", density, "density_kg_m3", "kg/m^3"))
+        checks += [(name, value, proj[key], unit) for name, value, key, unit in given if key in proj]
     return range_flags(f"the impactor for {what}", checks)
 
 

@@ -87,6 +87,7 @@ class CrushingIdentifiedLaw:
     covariance: np.ndarray | None = None
     at_bounds: tuple = ()
     start_shifts: np.ndarray | None = None  # s: each test's fitted first contact after the record's (module docstring)
+    method: str = "bar tests (softimpact identify)"  # how the strength was measured: the strength law's source
 
     family = "crushing"  # law.json's family (a class attribute, not a field)
     has_memory = False
@@ -103,7 +104,7 @@ class CrushingIdentifiedLaw:
         lo = min(max(lo, RATE_FLOOR), 0.5 * hi)
         sigma, m = (float(v) for v in self.values)
         return PowerLawStrength(
-            sigma, min(max(m, 0.0), CRUSHING_UPPER[1]), (lo, hi), self.reference_rate, "identified from bar tests (softimpact identify)", ramp_below=RATE_FLOOR
+            sigma, min(max(m, 0.0), CRUSHING_UPPER[1]), (lo, hi), self.reference_rate, f"identified from {self.method}", ramp_below=RATE_FLOOR
         )
 
     def law(self, mass: float, diameter: float, velocity: float) -> CrushingLaw:
