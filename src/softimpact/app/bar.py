@@ -8,6 +8,7 @@ import numpy as np
 
 from ..cases.run import execute
 from ..input.bar_case import load_bar_case
+from ..input.sweep_spec import case_files
 from ..input.toml import case_units
 from ..models.validity import warn
 from ..output.bar import bar_files
@@ -41,4 +42,4 @@ def bar(*, case: str, units: str | None = None, figures: bool = True, progress: 
         f"peak force {result.peak_force * fu.factor:.1f} {fu.label} at {result.time_of_peak * tu.factor:.1f} {tu.label}, "
         f"contact {result.contact_duration * tu.factor:.1f} {tu.label} ({time.perf_counter() - t0:.2f} s)"
     )
-    return Outcome(files, line, (path,))
+    return Outcome(files, line, case_files(path))

@@ -8,6 +8,7 @@ import numpy as np
 
 from ..cases.run import execute
 from ..input.beam_case import load_beam_case
+from ..input.sweep_spec import case_files
 from ..input.toml import case_units
 from ..output.beam import beam_files
 from ..output.fields import field_files
@@ -37,4 +38,4 @@ def beam(
     su = display(system, "strain")
     peaks = ", ".join(f"{g.name} {eps[np.argmax(np.abs(eps))] * su.factor:.0f} {su.label}" for g, eps in zip(problem.gauges, result.strain))
     line = f"{model.plane.n} DOF, {steps} steps ({time.perf_counter() - t0:.1f} s); peak strains {peaks}"
-    return Outcome(files, line, (path,), run.warnings.flags)
+    return Outcome(files, line, case_files(path), run.warnings.flags)

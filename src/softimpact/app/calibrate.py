@@ -14,6 +14,7 @@ from pathlib import Path
 from ..errors import InputError
 from ..input.beam_case import load_beam_case
 from ..input.series import CalibrationTest, is_calibration_series, load_calibration_series
+from ..input.sweep_spec import case_files
 from ..input.toml import case_units
 from ..models.empirical import PROJECTILES
 from ..output.calibration import calibration_files, series_calibration_files
@@ -67,7 +68,7 @@ def calibrate_command(
         gates = calibration_gates(items)
         files = series_calibration_files(models, series, items, series_fits(series, items), figures, gates=gates, units=system)
         line = f"{len(items) - len(warnings)} of {len(items)} tests calibrated ({time.perf_counter() - t0:.1f} s); calibration.json"
-        return Outcome(files, line, (series.path, case_path, *(t.measured for t in series.tests)), warnings, gates)
+        return Outcome(files, line, (series.path, *case_files(case_path), *(t.measured for t in series.tests)), warnings, gates)
     if not measured or not velocity:
         raise InputError("--measured and --velocity are required with a beam case")
     V = parse(velocity, "velocity", "--velocity")
@@ -90,4 +91,4 @@ def calibrate_command(
         f"tF0 {c.time_of_peak * tu.factor:.1f} {tu.label}, T {c.duration * tu.factor:.1f} {tu.label} ({c.message}); "
         f"{c.check.message if c.check else ''}; {time.perf_counter() - t0:.1f} s"
     )
-    return Outcome(files, line, (case_path, Path(measured)), gates=gates)
+    return Outcome(files, line, (*case_files(case_path), Path(measured)), gates=gates)

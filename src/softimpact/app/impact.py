@@ -9,6 +9,7 @@ import numpy as np
 from ..cases import KINDS
 from ..cases.run import execute
 from ..input.impact_case import load_impact_case
+from ..input.sweep_spec import case_files
 from ..input.toml import case_units
 from ..models.validity import warn
 from ..output.fields import field_files, kept_frames, select_kept
@@ -67,4 +68,4 @@ def impact(*, case: str, units: str | None = None, figures: bool = True, fields:
         f"{problem.law_name}: F0 {result.peak_force * fu.factor:.1f} {fu.label} at {result.time_of_peak * tu.factor:.1f} {tu.label}, {T}, "
         f"{len(result.contacts)} contact(s); peak strains {peaks}{_damage_words(run.summary, fu)} ({model.size} DOF, {steps} steps, {time.perf_counter() - t0:.1f} s)"
     )
-    return Outcome(files, line, inputs, unfinished)
+    return Outcome(files, line, case_files(inputs[0]), unfinished)  # the case and every file it names: never removed

@@ -61,7 +61,8 @@ def sweep(
         line = threshold_lines(th, system) + "\n" + line  # the command line ends the last line with the files written
     # validity flags raised here (the probes' reading of their cases) are the runs' own, counted per run
     found = [str(w.message).strip() for w in caught.held if not getattr(w.message, "flag", "")]
-    return Outcome(files, line, (s.path, s.case_path), tuple(sweep_warnings(summary, found)))
+    read = (s.path, s.case_path, *(Path(f) for f, _ in s.inputs))  # every file the runs read: never replaced nor removed
+    return Outcome(files, line, read, tuple(sweep_warnings(summary, found)))
 
 
 MAX_THRESHOLDS = 6  # threshold rows printed (all of them in thresholds.csv and summary.json)

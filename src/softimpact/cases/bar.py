@@ -39,8 +39,10 @@ class BarKind:
 
         if history is not None:
             raise InputError("--history: a bar case has no table of histories", "history")
+        from ..input.sweep_spec import case_files
+
         problem, path = load_bar_case(case)
-        return problem, (path,)
+        return problem, case_files(path)  # the case and every file it names
 
     def problem(self, data, base):
         from ..input.bar_case import bar_problem

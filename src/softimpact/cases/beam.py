@@ -43,9 +43,10 @@ class BeamKind:
 
     def load(self, case, history=None):
         from ..input.beam_case import load_beam_case
+        from ..input.sweep_spec import case_files
 
         problem, path = load_beam_case(case, history)
-        return problem, (path,)
+        return problem, case_files(path)  # the case and every file it names
 
     def problem(self, data, base):
         from ..input.beam_case import beam_problem

@@ -190,9 +190,12 @@ class ImpactKind:
             raise InputError("--history: an impact case has no table of histories (its force comes from the contact)", "history")
         path = locate(case)
         bar = bar_target(load_toml(path), path.parent)
+        from ..input.sweep_spec import case_files
+
         if bar is not None:
-            return bar[0], (path, bar[1])
-        return load_impact_case(case)
+            return bar[0], case_files(path)
+        problem, _ = load_impact_case(case)
+        return problem, case_files(path)  # the case, its target case, a law.json, and what those name
 
     def problem(self, data, base):
         from ..input.impact_case import impact_problem

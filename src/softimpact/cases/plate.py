@@ -42,9 +42,10 @@ class PlateKind:
 
     def load(self, case, history=None):
         from ..input.plate_case import load_plate_case
+        from ..input.sweep_spec import case_files
 
         problem, path = load_plate_case(case, history)
-        return problem, (path,)
+        return problem, case_files(path)  # the case and every file it names
 
     def problem(self, data, base):
         from ..input.plate_case import plate_problem

@@ -107,7 +107,7 @@ def impact_validity(problem, result, damage: dict | None = None) -> Validity:
     """The envelopes of a coupled run (:func:`softimpact.models.validity.coupled_validity`): the contact law's approach and
     contact radius against the impactor's size, the law's own envelope, the target's deflection against its thickness (its theory,
     :meth:`~softimpact.models.protocols.Target.validity`), and with ``damage`` (summary.json's) the strains
-    against the ply allowables."""
+    against the ply allowables (none when ``damage`` holds no indices: a cohesive run's growth alone, without the damage group)."""
     from ..models.validity import coupled_validity, tearing_flags, yield_flags
 
     v = coupled_validity(problem, result, None if damage is None else damage.get("max_strain"))

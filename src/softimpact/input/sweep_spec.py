@@ -59,6 +59,7 @@ __all__ = [
     "SweepSpec",
     "Run",
     "load_sweep_spec",
+    "case_files",
     "read_sweep_spec",
     "scaling_covariance",
     "set_dotted",
@@ -585,3 +586,15 @@ def input_files(case_path: Path, case_data: dict, params=()) -> tuple[tuple[str,
                     continue  # a file that does not parse is refused where it is read; its bytes are already counted
             todo += [(f, None) for k, v in _strings(data) if (f := _file_of(v, k, path.parent)) is not None]
     return tuple(sorted((str(p), d) for p, d in found.items()))
+
+
+def case_files(case_path) -> tuple[Path, ...]:
+    """Every file a case reads: the case itself first, then each file it names (a target case, a law.json, a force
+    table, a record) and those name in turn (:func:`input_files`). A run's inputs: never replaced nor removed by
+    its outputs (:func:`softimpact.output.files.write_outputs`)."""
+    path = Path(case_path).resolve()
+    try:
+        data = load_toml(path)
+    except InputError:
+        return (path,)
+    return (path, *(Path(f) for f, _ in input_files(path, data) if Path(f) != path))
