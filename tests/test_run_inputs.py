@@ -51,7 +51,10 @@ def _predict(folder: Path) -> list[str]:
 
 def _beam_table(folder: Path) -> list[str]:
     _earlier_run(folder / "out", "force.csv", "time_s,force_N\n0,0\n1e-4,100\n2e-4,0\n3e-4,0\n")
-    case = BEAM.replace('history = { shape = "skewed", peak_force = "44 lbf", time_of_peak = "30 us", duration = "355 us" }', 'history = { shape = "table", file = "out/force.csv" }')
+    case = BEAM.replace(
+        'history = { shape = "skewed", peak_force = "44 lbf", time_of_peak = "30 us", duration = "355 us" }',
+        'history = { shape = "table", file = "out/force.csv" }',
+    )
     (folder / "beam.toml").write_text(case.replace('duration = "450 us"', 'duration = "300 us"'))
     return ["beam", folder / "beam.toml", "--no-figures"], "force.csv"
 
@@ -65,7 +68,9 @@ def _sweep(folder: Path) -> list[str]:
     return ["sweep", folder / "spec.toml", "--no-figures", "--workers", "0"], "law.json"
 
 
-@pytest.mark.parametrize("setup", [_impact, _predict, _beam_table, _sweep], ids=["impact-law.json", "predict-scaling.json", "beam-force-table", "sweep-law.json"])
+@pytest.mark.parametrize(
+    "setup", [_impact, _predict, _beam_table, _sweep], ids=["impact-law.json", "predict-scaling.json", "beam-force-table", "sweep-law.json"]
+)
 def test_a_file_the_run_reads_survives_an_out_that_holds_it(tmp_path, setup):
     """--out at the folder holding a file the run reads, which an earlier softimpact run wrote there: the run exits 0
     leaving the file byte for byte, lists it among its manifest's inputs, and the same command run again exits 0."""

@@ -17,7 +17,7 @@ import re
 from contextlib import contextmanager
 
 from ..errors import InputError
-from ._edge import _text
+from ._edge import _text, misspelt
 
 __all__ = ["takes", "given", "python_terms"]
 
@@ -77,7 +77,7 @@ def given(fn, options: dict) -> dict:
     out = {}
     for name in options:
         if name not in {o.name for o in fn.options}:
-            raise TypeError(f"{fn.__name__}() got an unexpected keyword argument {name!r}")
+            raise misspelt(name, [o.name for o in fn.options], f"si.{fn.__name__}")  # an InputError and a TypeError
     for o in fn.options:
         if o.required and o.name not in options:
             raise TypeError(f"{fn.__name__}() missing required keyword-only argument: {o.name!r}")

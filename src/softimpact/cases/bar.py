@@ -86,6 +86,10 @@ class BarKind:
         result, plain, inferred = _run_bar(problem, summary)
         return Run(result, None, bar_summary(result, plain) if summary else {}, bar_validity(result), problem, plain=plain, inferred=inferred)
 
+    def refusal(self, problem, study):
+        """Every bar case sweeps and converges."""
+        return None
+
     def damage_refusal(self, problem):
         return None  # a bar has no damage outputs: the sweep's check of the outputs names it
 

@@ -105,6 +105,10 @@ class BeamKind:
         validity = beam_validity(result)
         return Run(result, model, beam_summary(model, result, validity) if summary else {}, validity, problem, kept=kept)
 
+    def refusal(self, problem, study):
+        """Every beam case sweeps and converges."""
+        return None
+
     def damage_refusal(self, problem):
         from ..workflows.damage import damage_refusal
 

@@ -342,6 +342,12 @@ class ImpactKind:
         damage = len(model.contact_groups().get("damage", ())) > 0  # the model ran with the damage group
         return _scalars(self._finish(problem, result, model, damage))
 
+    def refusal(self, problem, study):
+        """An impact on a bar target: the bar kind's answer; every impact on a beam or plate sweeps and converges
+        (the target's own kinematics and interfaces step each run)."""
+        other = _other_kind(problem)
+        return other.refusal(problem, study) if other else None
+
     def damage_refusal(self, problem):
         """Why an impact has no damage outputs (its target's laminate), None when it has them."""
         from ..workflows.damage import damage_refusal

@@ -124,12 +124,25 @@ class PlateKind:
 
         return damage_refusal(problem)
 
+    def refusal(self, problem, study):
+        """Why ``study`` ("a sweep", "converge") cannot run ``problem``: only linear dynamic plates are wired into them
+        (a static plate has no steps to refine nor impulse responses to share), None for those."""
+        if problem.analysis == "static":
+            return (
+                f"{study} of a plate case runs linear dynamic plates only for now: this one is static (solver.analysis = 'static'); "
+                "run each load with `softimpact plate`"
+            )
+        if problem.kinematics != "linear":
+            return f"{study} of a plate case runs linear dynamic plates only for now (plate.kinematics = 'linear'); an impact case on it sweeps and converges"
+        return None
+
     def _linear_dynamic_only(self, problem, what: str) -> None:
         """Refuse a static or von Kármán plate case where only linear dynamic runs are wired (``what``: the study)."""
         from ..errors import InputError
 
-        if problem.analysis == "static" or problem.kinematics != "linear":
-            raise InputError(f"{what} of a plate case runs linear dynamic plates only for now (solver.analysis = 'dynamic', plate.kinematics = 'linear')")
+        why = self.refusal(problem, what)
+        if why is not None:
+            raise InputError(why)
 
     def study(self, problem, stride, progress=None):
         """Peak deflection under the load, gauge peaks and histories; the model's size."""

@@ -104,6 +104,9 @@ def plan_sweep(spec: SweepSpec) -> SweepPlan:
         try:
             checked = kind.problem(spec.case_for(central[i], kind.expand), base)
             kind.check(checked)  # the command's discretisation floors and resource guards, before any run
+            why = kind.refusal(checked, "a sweep")  # a kind of run a sweep does not take: refused now, not run by run
+            if why is not None:
+                raise InputError(why)
         except InputError as exc:
             raise InputError(f"sweep: {spec.case_path.name}: {exc}") from None
         if i == 0:
