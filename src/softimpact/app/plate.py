@@ -7,6 +7,7 @@ import time
 import numpy as np
 
 from ..cases.run import execute
+from ..errors import InputError
 from ..input.plate_case import load_plate_case
 from ..input.sweep_spec import case_files
 from ..input.toml import case_units
@@ -28,6 +29,8 @@ def plate(
     system = display_system(units, case_units(path))
     t0 = time.perf_counter()
     if problem.analysis == "static":
+        if fields:  # an option the run cannot honour is refused, never dropped
+            raise InputError("--fields: a static plate run has no time steps to write as fields (summary.json holds its deflection): leave --fields out")
         run = execute(problem)
         s, lu = run.summary, display(system, "length")
         its = s["newton"]["iterations"]
