@@ -247,6 +247,13 @@ EXAMPLES = {
 }
 
 
+# the top-level help's examples (``softimpact --help``): where to start, as typed, each one run by tests/test_cli_examples.py
+MAIN_EXAMPLES = ("cases", "bar", "impact")
+main.epilog = (
+    "\b\nExamples:\n" + "\n".join(f"  {EXAMPLES[n][1]}" for n in MAIN_EXAMPLES) + "\n  softimpact COMMAND --help   (each command's options and its own example)"
+)
+
+
 def _epilog(name: str) -> str:
     """The ``Example:`` block of a command's --help (``\\b``: click keeps its lines as written)."""
     needs, line = EXAMPLES[name]
@@ -271,19 +278,40 @@ def _out_option(command: str) -> click.Option:
     )
 
 
+class _TableOption(click.Option):
+    """A click option whose help lists the rows of a table (``{projectiles}``), filled when the help is shown
+    (:func:`softimpact.app.options.filled`: the tables' modules are imported then, not at every start)."""
+
+    def get_help_record(self, ctx):
+        from .app.options import filled
+
+        self.help = filled(self.help)
+        return super().get_help_record(ctx)
+
+
+class _TableCommand(click.Command):
+    """A click command whose help text lists the rows of a table (``{contact_laws}``), filled when the help is shown."""
+
+    def format_help_text(self, ctx, formatter):
+        from .app.options import filled
+
+        self.help = filled(self.help)
+        super().format_help_text(ctx, formatter)
+
+
 def _option(o) -> click.Option:
     """The click option of an :class:`softimpact.app.options.Option`: ``--name`` (``--name/--no-name`` for a
     bool), its type or choices, default and help as the table writes them; its value reaches the command
     under the option's name."""
     if o.type is bool:
-        return click.Option([f"{o.flag}/--no-{o.flag[2:]}", o.name], default=o.default, show_default=True, help=o.help)
+        return _TableOption([f"{o.flag}/--no-{o.flag[2:]}", o.name], default=o.default, show_default=True, help=o.help)
     if o.choices:
         kind = click.Choice(list(o.choices))
     elif o.file:
         kind = click.Path(dir_okay=False)
     else:
         kind = {str: click.STRING, int: click.INT, float: click.FLOAT}[o.type]
-    return click.Option([o.flag, o.name], type=kind, default=o.default, required=o.required, show_default=o.default is not None, help=o.help)
+    return _TableOption([o.flag, o.name], type=kind, default=o.default, required=o.required, show_default=o.default is not None, help=o.help)
 
 
 def _figures_option() -> click.Option:
@@ -348,7 +376,7 @@ def _command(
     where calibrate has always had it) and ``--fields`` (when asked for); the function runs under :func:`_guarded`."""
 
     def decorate(fn):
-        command = main.command(name, short_help=short_help, epilog=_epilog(name))(_guarded(fn))
+        command = main.command(name, cls=_TableCommand, short_help=short_help, epilog=_epilog(name))(_guarded(fn))
         command.params.extend(_option(o) for o in options if o.name != "figures")
         shared = [_history_option(history)] if history is not None else []
         if accept_poor == "before-out":
@@ -526,7 +554,7 @@ def calibrate_cmd(case, accept_poor, out, **options):
 @click.argument("case")
 def impact_cmd(case, units, out, figures, fields):
     """Coupled impact of a rigid impactor on a beam or plate (CASE: file or built-in name), the
-    contact force found each step from a contact law (hertz, hertz-unloading, hunt-crossley, identified).
+    contact force found each step from a contact law ({contact_laws}).
 
     Writes history.csv, summary.json and, with figures, force-history.png,
     approach.png, gauge-strains.png, energy.png (and on a plate plate-mesh.png, deflection.png);

@@ -38,8 +38,11 @@ def bar(*, case: str, units: str | None = None, figures: bool = True, progress: 
     files = bar_files(result, run.plain, run.inferred, figures, summary=run.summary, units=system)
     warn(run.warnings)
     fu, tu = display(system, "force"), display(system, "time")
+    contact = (
+        f"contact {result.contact_duration * tu.factor:.1f} {tu.label}" if np.isfinite(result.contact_duration) else "contact not ended by the end of the run"
+    )
     line = (
         f"peak force {result.peak_force * fu.factor:.1f} {fu.label} at {result.time_of_peak * tu.factor:.1f} {tu.label}, "
-        f"contact {result.contact_duration * tu.factor:.1f} {tu.label} ({time.perf_counter() - t0:.2f} s)"
+        f"{contact} ({time.perf_counter() - t0:.2f} s)"
     )
     return Outcome(files, line, case_files(path))

@@ -37,5 +37,5 @@ def beam(
         files.update(field_files(model, (kept, result.time[kept], result.displacement[:, kept])))
     su = display(system, "strain")
     peaks = ", ".join(f"{g.name} {eps[np.argmax(np.abs(eps))] * su.factor:.0f} {su.label}" for g, eps in zip(problem.gauges, result.strain))
-    line = f"{model.plane.n} DOF, {steps} steps ({time.perf_counter() - t0:.1f} s); peak strains {peaks}"
+    line = f"{model.plane.n} DOF, {steps} steps ({time.perf_counter() - t0:.1f} s)" + (f"; peak strains {peaks}" if peaks else "")  # no empty field
     return Outcome(files, line, case_files(path), run.warnings.flags)

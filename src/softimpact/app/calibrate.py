@@ -86,9 +86,11 @@ def calibrate_command(
     c = items[0].calibration
     fu, tu = display(system, "force"), display(system, "time")
     se = c.standard_errors.get("peak_force")
-    line = (
+    parts = (
         f"{c.method}: F0 {c.peak_force * fu.factor:.1f} {fu.label}{f' ± {se * fu.factor:.2g}' if se else ''}, "
-        f"tF0 {c.time_of_peak * tu.factor:.1f} {tu.label}, T {c.duration * tu.factor:.1f} {tu.label} ({c.message}); "
-        f"{c.check.message if c.check else ''}; {time.perf_counter() - t0:.1f} s"
+        f"tF0 {c.time_of_peak * tu.factor:.1f} {tu.label}, T {c.duration * tu.factor:.1f} {tu.label} ({c.message})",
+        c.check.message if c.check else "",
+        f"{time.perf_counter() - t0:.1f} s",
     )
+    line = "; ".join(p for p in parts if p)  # no empty field
     return Outcome(files, line, (*case_files(case_path), Path(measured)), gates=gates)

@@ -66,6 +66,7 @@ def impact(*, case: str, units: str | None = None, figures: bool = True, fields:
     )
     line = (
         f"{problem.law_name}: F0 {result.peak_force * fu.factor:.1f} {fu.label} at {result.time_of_peak * tu.factor:.1f} {tu.label}, {T}, "
-        f"{len(result.contacts)} contact(s); peak strains {peaks}{_damage_words(run.summary, fu)} ({model.size} DOF, {steps} steps, {time.perf_counter() - t0:.1f} s)"
+        f"{len(result.contacts)} contact(s){f'; peak strains {peaks}' if peaks else ''}{_damage_words(run.summary, fu)} "
+        f"({model.size} DOF, {steps} steps, {time.perf_counter() - t0:.1f} s)"
     )
-    return Outcome(files, line, case_files(inputs[0]), unfinished)  # the case and every file it names: never removed
+    return Outcome(files, line, case_files(inputs[0], inputs[1:]), unfinished)  # the case and every file it names: never removed
