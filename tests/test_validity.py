@@ -132,12 +132,17 @@ def test_law_json_records_the_projectile_it_was_identified_on(tmp_path):
     assert p["density_kg_m3"][0] == pytest.approx(1.1e-3 / (math.pi / 6 * (0.5 * INCH) ** 3), rel=1e-12)
 
 
-def test_a_rubber_law_used_for_a_steel_ball_is_warned(tmp_path):
-    """The rubber ball's identified law used for a steel ball of the same diameter: warned (mass and density
-    outside what it was identified on); the rubber ball itself at the same velocity is not."""
+def test_a_rubber_law_used_for_a_steel_ball_is_refused_and_a_denser_ball_warned(tmp_path):
+    """The rubber ball's identified law used for a steel ball of the same diameter (7.6 times its density: another
+    material, issue 42) is refused, nothing written; a ball 1.64 times as heavy (1.8 g against 1.1 g, within a factor 2)
+    runs, warned (mass and density outside what it was identified on); the rubber ball itself is not."""
     _law(tmp_path, True)
     (tmp_path / "steel.toml").write_text(_impact("steel"))
     r = _run("impact", tmp_path / "steel.toml", "--out", tmp_path / "s", "--no-figures")
+    assert r.exit_code == 2 and "kg/m^3" in r.output and "another material" in r.output, r.output
+    assert not (tmp_path / "s").exists()
+    (tmp_path / "heavy.toml").write_text(_impact("silicone rubber").replace('diameter = "0.5 in"', 'diameter = "0.5 in"\nmass = "1.8 g"'))
+    r = _run("impact", tmp_path / "heavy.toml", "--out", tmp_path / "h", "--no-figures")
     assert r.exit_code == 0, r.output
     w = _warnings(r.output)
     assert any("density" in x and "kg/m^3" in x for x in w) and any("mass" in x for x in w)
@@ -154,7 +159,7 @@ def test_an_old_law_json_without_the_projectile_is_warned_as_unchecked(tmp_path)
     (tmp_path / "steel.toml").write_text(_impact("steel"))
     r = _run("impact", tmp_path / "steel.toml", "--out", tmp_path / "s", "--no-figures")
     assert r.exit_code == 0, r.output
-    assert any("cannot be checked" in x for x in _warnings(r.output))
+    assert any("cannot be checked" in x for x in _warnings(r.output))  # no record of the projectile: a steel ball only warned
 
 
 def test_a_thin_plate_past_linear_theory_and_its_allowables_is_warned(tmp_path):

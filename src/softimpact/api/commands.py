@@ -59,10 +59,11 @@ def _law(law, hertz, sphere: Sphere):
 
     if _is_law_file(law):
         from ..formats.law_json import read_law
-        from ..input.contact_law import warn_outside
+        from ..input.contact_law import check_family, warn_outside
 
         path = Path(law)
         identified = read_law(path, "law")
+        check_family(identified, sphere.material, sphere.mass, sphere.diameter, f"law ({path.name})", "the Sphere's material")
         warn_outside(identified.identified_on, sphere.velocity, sphere.diameter, path, sphere.mass)
         return "identified", identified.law(sphere.mass, sphere.diameter, sphere.velocity), path
     if isinstance(law, str) and law in MATERIAL_LAWS:  # ice's crushing, gelatin's flow: the sphere's own law

@@ -194,8 +194,8 @@ class ImpactKind:
 
         if bar is not None:
             return bar[0], case_files(path)
-        problem, _ = load_impact_case(case)
-        return problem, case_files(path)  # the case, its target case, a law.json, and what those name
+        problem, files = load_impact_case(case)
+        return problem, case_files(path, files[1:])  # the case, its target case, a law.json, and what those name
 
     def problem(self, data, base):
         from ..input.impact_case import impact_problem

@@ -146,10 +146,24 @@ def read_law(path, argument: str = "contact.law_file") -> IdentifiedLaw | Crushi
         raise InputError(
             f"{argument}: {path} is not a law.json (needs family, d_ref_m and parameters {', '.join(n for n in names if n not in LATER)})"
         ) from None
+    if ranges is not None:
+        _check_ranges(ranges, path, argument)
     arm_ok = values[6] == 0.0 or (values[6] > 0.0 and values[7] > 0.0)
     if not (np.all(np.isfinite(values)) and values[0] > 0 and values[1] > 0 and values[2] >= 0 and arm_ok and math.isfinite(d_ref) and d_ref > 0):
         raise InputError(f"{argument}: {path} has parameters out of range (k_ref > 0, p > 0, c_ref >= 0, kappa_ref >= 0 with theta_ref > 0, d_ref_m > 0)")
     return IdentifiedLaw(names, values, half, d_ref, rms, cost, ranges)
+
+
+def _check_ranges(ranges: dict, path, argument: str, where: str = "identified_on.") -> None:
+    """Each [min, max] of a law.json's ``identified_on`` (and of its ``projectile``) finite, positive and in order: a
+    reversed or edited range would otherwise be reported as "outside 105-13 m/s" (InputError naming the key)."""
+    for key, pair in ranges.items():
+        if isinstance(pair, dict):
+            _check_ranges(pair, path, argument, f"{where}{key}.")
+            continue
+        lo, hi = pair
+        if not (math.isfinite(lo) and math.isfinite(hi) and 0.0 < lo <= hi):
+            raise InputError(f"{argument}: {path}: {where}{key} must be [min, max] with 0 < min <= max, got [{lo!r}, {hi!r}]")
 
 
 def crushing_range_error(values) -> str | None:
@@ -231,4 +245,5 @@ def _read_crushing(data: dict, path, argument: str) -> CrushingIdentifiedLaw:
                 if k not in proj:
                     raise InputError(f"{argument}: {path} is not a crushing law.json: no identified_on.projectile.{k}")
                 ranges["projectile"][k] = pair(proj[k], f"identified_on.projectile.{k}")
+        _check_ranges(ranges, path, argument)
     return CrushingIdentifiedLaw(CRUSHING_PARAMETERS, np.array(values), np.array(half), rate, d_ref, rms, cost, ranges)
