@@ -118,8 +118,12 @@ def plan_sweep(spec: SweepSpec) -> SweepPlan:
             if why is not None:
                 raise InputError(f"sweep.outputs: {o!r}: {why}")
         if o not in known:
+            import difflib
+
+            near = difflib.get_close_matches(o, known, n=1, cutoff=0.75)
+            hint = f"did you mean {near[0]!r}? " if near else ""
             raise InputError(
-                f"sweep.outputs: {o!r} is not an output of {'an' if kind.name[:1] in 'aeiou' else 'a'} {kind.name} case (known: {', '.join(known)})"
+                f"sweep.outputs: {o!r} is not an output of {'an' if kind.name[:1] in 'aeiou' else 'a'} {kind.name} case ({hint}known: {', '.join(known)})"
             )
     groups: dict[str, list[int]] = {}
     for r, data in zip(runs, cases):

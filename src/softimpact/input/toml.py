@@ -170,6 +170,8 @@ class Table:
                 raise InputError(f"{self.key(name)}: not read here (value {self.data[name]!r}); it is read only with {self._read_with[name]}")
             # an optional key asked for and not given that looks like it (its default was taken: a misspelling)
             near = difflib.get_close_matches(name, [k for k in self._used if k not in self.data], n=1, cutoff=0.75)
+            # or a key the table read that is also given (a sweep's misspelt key set beside the case's own)
+            near = near or difflib.get_close_matches(name, sorted(self._used - {name}), n=1, cutoff=0.75)
             hint = f"; is it a misspelling of {near[0]!r}?" if near else ""
             raise InputError(f"{self.key(name)}: unknown key (value {self.data[name]!r}){hint}")
 

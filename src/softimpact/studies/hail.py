@@ -42,11 +42,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..errors import InputError
 from ..models.crushing_law import CrushingLaw
 from ..models.delamination import REGIME_BOUNDS, response_regime
 from ..models.projectiles import projectile_material
 from ..models.validity import range_floor_validity
-from .thresholds import ONSET, check_range, gci_two_meshes, structure, structure_run, threshold_velocity
+from .thresholds import ONSET, check_map, check_range, gci_two_meshes, structure, structure_run, threshold_velocity
 
 __all__ = [
     "RHYMER_THICKNESSES",
@@ -213,6 +214,11 @@ def hail_map(
     memoryless and the quasi-isotropic panels have no bending–extension coupling; on the thinnest panel, 8 × 8 at
     2 µs, w/h 2-3, its peak force is the full plate's within 0.7 %, ``tests/test_rom_maps.py``)."""
     check_range(lo, hi)
+    check_map(indices, diameters, known=(ONSET, "delamination"))
+    if len(thicknesses) != len(layups):  # zip would drop the panels past the shorter list, silently
+        raise InputError(f"thicknesses and layups: one layup per panel thickness, got {len(thicknesses)} thicknesses and {len(layups)} layups", "layups")
+    if kinematics not in ("linear", "von-karman"):
+        raise InputError(f"kinematics: {kinematics!r} is not one of linear, von-karman", "kinematics")
     meshes = meshes or ((4, 4e-6), (8, 2e-6))
     start = {(r.thickness, r.diameter, r.index): r.velocity for r in guesses if math.isfinite(r.velocity)}
     rows = []

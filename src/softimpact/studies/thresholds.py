@@ -114,6 +114,8 @@ __all__ = [
     "run_validity",
     "stepped_run",
     "structure_run",
+    "check_range",
+    "check_map",
 ]
 
 INDICES = ("tsai_wu", "delamination")  # the damage indices thresholded by default
@@ -405,6 +407,27 @@ def check_range(lo: float, hi: float) -> None:
         raise InputError(f"threshold velocity range: need 0 < lo < hi (finite), got lo = {lo!r} m/s, hi = {hi!r} m/s", "lo")
 
 
+def check_map(indices, diameters, known=(*INDICES, ONSET), **scalars) -> None:
+    """Refuse, before any run, a map's arguments it would fail on or silently mis-read: an index not among ``known``
+    (the nearest suggested), no diameter or one not positive and finite [m], and any of ``scalars`` (name → value:
+    ``strength_cov``, ``draws``) not a finite non-negative number (a NaN scatter would give a NaN band)."""
+    import difflib
+
+    if isinstance(indices, str) or not len(indices):
+        raise InputError(f"indices: expected a list of indices of {', '.join(known)}, got {indices!r}", "indices")
+    for index in indices:
+        if index not in known:
+            near = difflib.get_close_matches(str(index), known, n=1, cutoff=0.6)
+            raise InputError(
+                f"indices: {index!r} is not an index of the maps ({f'did you mean {near[0]!r}? ' if near else ''}known: {', '.join(known)})", "indices"
+            )
+    if isinstance(diameters, str) or not len(diameters) or not all(isinstance(d, (int, float)) and math.isfinite(d) and d > 0 for d in diameters):
+        raise InputError(f"diameters: expected positive finite diameters [m], got {diameters!r}", "diameters")
+    for name, value in scalars.items():
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not (math.isfinite(value) and value >= 0):
+            raise InputError(f"{name}: expected a finite number >= 0, got {value!r}", name)
+
+
 def law_draws(law, draws: int, seed: int = 1) -> list:
     """``draws`` copies of the identified ``law`` with its spread parameters drawn (Latin hypercube,
     ``seed``) from its covariance, or its 95 % half-widths /1.96 when it has none; draws outside the
@@ -463,6 +486,7 @@ def threshold_map(
     from scipy.stats import norm
 
     check_range(lo, hi)
+    check_map(indices, diameters, strength_cov=strength_cov, draws=draws, strength_quantiles=strength_quantiles)
     drawn = law_draws(law, draws, seed) if band_from is None else []
     q = norm.ppf((np.arange(strength_quantiles) + 0.5) / strength_quantiles)
     factors = np.maximum(1.0 + strength_cov * q, 0.05)
