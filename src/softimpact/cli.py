@@ -104,7 +104,9 @@ def _guarded(fn):
             click.echo(f"softimpact: error: {_one_line(exc)}", err=True)
             sys.exit(EXIT_INPUT)
         except SolverFailed as exc:
-            click.echo(f"softimpact: solver failed: {_one_line(exc)}", err=True)
+            if "out" in kwargs:
+                _write_failure(kwargs["out"], exc)
+            click.echo(f"softimpact: solver failed: {_one_line(exc)} (summary.json says why, marked failed)", err=True)
             sys.exit(EXIT_CHECK)
         except CheckFailed as exc:
             click.echo(f"softimpact: check failed: {_one_line(exc)} (diagnostics written, marked failed; --accept-poor to accept)", err=True)
@@ -124,6 +126,27 @@ def _guarded(fn):
             figure_format.reset(token)
 
     return wrapper
+
+
+def _write_failure(out: str, exc: Exception) -> None:
+    """A solver that gave up leaves its diagnostics as a failed check does (exit 3): summary.json with the status and
+    the reason, and manifest.json marked failed, so the folder says what happened instead of holding nothing."""
+    from .output.files import json_text, write_outputs
+
+    ctx = click.get_current_context(silent=True)
+    summary = {"status": "failed", "reason": _one_line(exc), "softimpact_version": __version__}
+    manifest = {
+        "status": "failed",
+        "accept_poor": False,
+        "command": ctx.command_path if ctx is not None else "softimpact",
+        "arguments": dict(ctx.params) if ctx is not None else {},
+        "warnings": list(ctx.meta.get("softimpact.warnings", [])) if ctx is not None else [],
+        "gates": [],
+    }
+    try:
+        write_outputs(out, {"summary.json": json_text(summary)}, manifest=manifest, force=_forced())
+    except InputError:  # the folder refuses (a file of the user's): the one line still says why
+        pass
 
 
 class _Progress:
