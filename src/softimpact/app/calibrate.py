@@ -27,6 +27,18 @@ from .options import display_system
 __all__ = ["calibrate_command"]
 
 
+def _linear_only(problem, case) -> None:
+    """Calibration fits the force history on the beam's linear response (impulse responses convolved with the
+    history, :mod:`softimpact.workflows.calibration`): a large-deflection beam would be calibrated as a linear one
+    without a word, so it is refused, naming its key."""
+    if problem.kinematics != "linear":
+        raise InputError(
+            f"beam.kinematics = {problem.kinematics!r} ({case}): calibrate fits the force history on the beam's linear response "
+            "(its impulse responses), so a large-deflection beam cannot be calibrated; set beam.kinematics = 'linear' (and check "
+            "the linear beam's deflection over thickness in its warnings)"
+        )
+
+
 def calibrate_command(
     *,
     case: str,
@@ -58,6 +70,7 @@ def calibrate_command(
             raise InputError("--measured/--velocity: not used with a series file (its [[test]] entries give them)")
         series = load_calibration_series(case)
         problem, case_path = load_beam_case(series.case)
+        _linear_only(problem, case_path)
         system = display_system(units, case_units(series.case))
         radii = [t.contact_radius or problem.load.contact_radius for t in series.tests]
         models = calibration_model(problem, radii, fit_radius)
@@ -75,6 +88,7 @@ def calibrate_command(
     r0 = parse(contact_radius, "length", "--contact-radius") if contact_radius else None
     tc = parse(contact_time, "time", "--contact-time") if contact_time else None
     problem, case_path = load_beam_case(case)
+    _linear_only(problem, case_path)
     system = display_system(units, case_units(case))
     test = CalibrationTest(Path(measured).stem, Path(measured), V, r0, tc)
     models = calibration_model(problem, [r0 or problem.load.contact_radius], fit_radius)

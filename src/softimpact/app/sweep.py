@@ -38,7 +38,10 @@ def sweep(
 ) -> Outcome:
     """``softimpact sweep SPEC --out DIR``: the spec and the scheduler's address are checked whole before anything is written;
     ``workers`` None: the machine's cores; ``units``: the display system of the lines and figures (None: the case's)."""
+    from ..output.files import check_writable
+
     t0 = time.perf_counter()
+    check_writable(out_dir)  # the checkpoints' folder: an empty path (Python's out="") would put them in the working folder
     check_scheduler(scheduler)
     with HeldWarnings() as caught:  # the spec's and the probes' warnings: shown once each, below
         s = load_sweep_spec(spec)
