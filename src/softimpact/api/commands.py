@@ -403,6 +403,10 @@ def _run(case: Case, figures: bool = True):
     from ..models.validity import warn
 
     run = execute(case.problem, figures=figures)
+    if case.kind == "impact":  # an identified law's envelope, from the law.json read (the command line's check)
+        from ..cases.impact import with_identified_envelope
+
+        run = with_identified_envelope(run, next((f for f in case.files if Path(f).suffix == ".json"), None))
     warn(run.warnings)
     kind = kind_for(run.problem).name  # an impact case on a bar target reads as a bar problem, and runs as one
     if kind == "bar":

@@ -7,6 +7,7 @@ import time
 import numpy as np
 
 from ..cases import KINDS
+from ..cases.impact import with_identified_envelope
 from ..cases.run import execute
 from ..input.impact_case import load_impact_case
 from ..input.sweep_spec import case_files
@@ -48,6 +49,7 @@ def impact(*, case: str, units: str | None = None, figures: bool = True, fields:
     t0 = time.perf_counter()
     steps = problem.solver.steps
     run = execute(problem, figures=figures, fields=fields, progress=lambda k: progress(k, steps, "stepping"))
+    run = with_identified_envelope(run, inputs[2] if len(inputs) > 2 else None)  # the law.json's identified envelope
     result, model = run.result, run.model
     files = impact_files(problem, select_kept(result, run.shown) if fields else result, figures, model=model, summary=run.summary, units=system)
     if fields:

@@ -44,7 +44,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..models.crushing_law import CrushingLaw
-from ..models.delamination import REGIME_BOUNDS, response_regime
+from ..models.delamination import REGIME_BOUNDS, criterion_validity, response_regime
 from ..models.projectiles import projectile_material
 from ..models.validity import range_floor_validity
 from .thresholds import ONSET, check_map, check_range, gci_two_meshes, structure, structure_run, threshold_velocity
@@ -233,12 +233,13 @@ def hail_map(
                 vc = math.nan if vc <= lo else vc  # a coarse onset at the floor is not found: no GCI from it
                 mass = _density(law) * math.pi / 6.0 * d**3
                 peak, validity = math.nan, {"flags": []}
+                ratio = mass / fine.problem.target.mass
+                regime = response_regime(mass, fine.problem.target.mass, wave_below=REGIME_BOUNDS[0], quasi_static_above=REGIME_BOUNDS[1])
                 if math.isfinite(v):
                     problem, result = structure_run(fine, law, d, v)
                     peak = max(c.peak_force for c in result.contacts)
-                    validity = (run_validity(problem, result) + range_floor_validity(v, lo)).summary()
-                ratio = mass / fine.problem.target.mass
-                regime = response_regime(mass, fine.problem.target.mass, wave_below=REGIME_BOUNDS[0], quasi_static_above=REGIME_BOUNDS[1])
+                    # the run's checks, and a quasi-static threshold applied outside its regime (criterion_outside_regime)
+                    validity = (run_validity(problem, result) + range_floor_validity(v, lo) + criterion_validity(regime, (index,))).summary()
                 row = HailRow(
                     h, d, mass, index, v, vc, gci_two_meshes(v, vc), peak, _threshold_force(fine, index), validity, ratio, regime, fine.kinematics, v <= lo
                 )

@@ -92,12 +92,21 @@ import numpy as np
 from ..errors import InputError
 from ..fem.contact import group_outputs
 from ..fem.newmark import SolverSpec
-from ..models.delamination import REGIME_BOUNDS, response_regime
+from ..models.delamination import REGIME_BOUNDS, criterion_validity, response_regime
 from ..models.materials import Material
 from ..models.specimens import Impactor
-from ..models.validity import Validity, coupled_validity, identified_range_validity, range_floor_validity
+from ..models.validity import (
+    Validity,
+    coupled_validity,
+    identified_contact_validity,
+    identified_range_validity,
+    plate_span,
+    plate_thickness_validity,
+    range_floor_validity,
+)
 from ..workflows.coupled import ImpactProblem, impact_kernels, run_impact
 from ..workflows.damage import coupled_damage, delamination_force, olsson_force
+from ..workflows.plate_impact import PlateProblem
 
 __all__ = [
     "INDICES",
@@ -323,10 +332,14 @@ def run_validity(problem: ImpactProblem, result, identified=None) -> Validity:
     warns when it reads the law (:func:`~softimpact.models.validity.identified_range_validity`)."""
     dmg = coupled_damage(problem.target, result, impactor_mass=problem.impactor.mass).summary()
     v = coupled_validity(problem, result, dmg["max_strain"])
+    if isinstance(problem.target, PlateProblem):  # plate theory's geometry, as the impact command checks its plate target
+        spec = problem.target.plate
+        v += plate_thickness_validity(spec.stack.thickness, plate_span(spec.length_x, spec.length_y, spec.supports))
     if identified is not None:
         i = problem.impactor
         ranges = identified_range_validity(identified.identified_on, i.velocity, i.diameter, i.mass, "the identified law")
         v += Validity({}, ranges.flags, ranges.names)  # its flags (the command's warnings); its ratios stay out of the row
+        v += identified_contact_validity(identified.identified_on, float(np.max(result.approach)), i.diameter, float(np.max(result.contact_radius)))
     return v
 
 
@@ -518,6 +531,8 @@ def threshold_map(
                 count, reached, (p05, p95, med, law_lo, law_hi) = len(vs), int(np.isfinite(vs).sum()), _drawn_band(vs, beta, factors, widen)
             ratio = mass / s.problem.target.mass
             regime = response_regime(mass, s.problem.target.mass, wave_below=REGIME_BOUNDS[0], quasi_static_above=REGIME_BOUNDS[1])
+            if math.isfinite(nominal):  # a quasi-static threshold's row on a wave-controlled impact says so (criterion_outside_regime)
+                flags += criterion_validity(regime, (index,)).names
             rows.append(
                 MapRow(
                     s.name,
