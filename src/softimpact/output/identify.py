@@ -125,11 +125,17 @@ def approach_record(tests, approaches, law, bar_radius: float) -> dict:
     range over the tests of each one's largest approach over its diameter, α_max/d (the approach the law is known to,
     checked where it is used: :func:`softimpact.models.validity.identified_contact_validity`), and of its largest contact
     radius, the law's own a(α_max) (:meth:`radius`), over the bar's radius (the patch must lie on the bar's face)."""
+    from ..models.protocols import HistoryLaw, StepBoundLaw
+
     over_d, over_bar = [], []
     for t, a in zip(tests, approaches):
         alpha = float(np.max(a.approach[a.main_pulse])) if np.any(a.main_pulse) else float(np.max(a.approach))
         over_d.append(alpha / t.diameter)
-        over_bar.append(float(law.law(t.mass, t.diameter, t.velocity).radius(alpha)) / bar_radius)
+        one = law.law(t.mass, t.diameter, t.velocity)
+        if isinstance(one, StepBoundLaw):  # a law with memory, bound to the test's sampling (its radius does not depend on it)
+            one = one.for_time_step(float(t.time[1] - t.time[0]))
+        one = one.branch(one.initial_state()) if isinstance(one, HistoryLaw) else one  # its radius is its branch's
+        over_bar.append(float(one.radius(alpha)) / bar_radius)
     return {"approach_over_diameter": [min(over_d), max(over_d)], "contact_radius_over_bar_radius": [min(over_bar), max(over_bar)]}
 
 
