@@ -110,3 +110,12 @@ def test_a_plate_model_named_solid_says_it_is_not_implemented(tmp_path):
     (tmp_path / "p.toml").write_text(text)
     r = CliRunner().invoke(main, ["plate", str(tmp_path / "p.toml"), "--out", str(tmp_path / "o")])
     assert r.exit_code == 2 and "not implemented" in r.output
+
+
+def test_a_misspelt_catalogue_table_gets_the_nearest_name():
+    """si.catalogue().to_frame("material") (an AttributeError before) is an InputError suggesting "materials"."""
+    import softimpact as si
+    from softimpact.errors import InputError
+
+    with pytest.raises(InputError, match="did you mean 'materials'"):
+        si.catalogue().to_frame("material")
