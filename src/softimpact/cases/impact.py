@@ -356,7 +356,7 @@ class ImpactKind:
             dmg = coupled_damage(target, result, impactor_mass=problem.impactor.mass).summary() if damage else None
             dmg = delamination_growth(dmg, result)  # cohesive interfaces: the delaminated area, in the verdict
         note = None if dmg is not None else damage_refusal(target, "target.case: ")
-        validity = impact_validity(problem, result, dmg) + _target_validity(target, dmg)
+        validity = impact_validity(problem, result, dmg) + _criterion_validity(dmg)
         summary = impact_summary(problem, result, validity, dmg, note, target.summary_extras(model, result))
         return Run(result, model, summary, validity, problem, shown, kept)
 
@@ -468,16 +468,14 @@ def with_identified_envelope(run, law_file):
     return dataclasses.replace(run, warnings=validity, summary={**run.summary, "validity": validity.summary()} if run.summary else run.summary)
 
 
-def _target_validity(target, damage: dict | None):
-    """What the coupled run's own checks leave out: a plate target's geometry against plate theory
-    (:func:`softimpact.cases.plate.geometry_validity`) and, with the damage block, a delamination criterion applied
-    outside the response regime it was derived for (:func:`softimpact.models.delamination.criterion_validity`)."""
+def _criterion_validity(damage: dict | None):
+    """What the coupled run's own checks (:func:`softimpact.cases.run.impact_validity`) leave out: with the damage block,
+    a delamination criterion applied outside the response regime it was derived for
+    (:func:`softimpact.models.delamination.criterion_validity`)."""
     from ..models.delamination import criterion_validity
     from ..models.validity import Validity
-    from ..workflows.plate_impact import PlateProblem
-    from .plate import geometry_validity
 
-    v = geometry_validity(target) if isinstance(target, PlateProblem) else Validity({})
+    v = Validity({})
     if damage is not None and damage.get("regime"):
         v += criterion_validity(damage["regime"], ("olsson", "delamination"))
     return v

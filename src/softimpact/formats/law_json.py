@@ -169,6 +169,8 @@ def _check_ranges(ranges: dict, path, argument: str, where: str = "identified_on
         if isinstance(pair, dict):
             _check_ranges(pair, path, argument, f"{where}{key}.")
             continue
+        if not (isinstance(pair, (list, tuple)) and len(pair) == 2):
+            raise InputError(f"{argument}: {path}: {where}{key} must be [min, max], got {pair!r}")
         lo, hi = pair
         if not (math.isfinite(lo) and math.isfinite(hi) and 0.0 < lo <= hi):
             raise InputError(f"{argument}: {path}: {where}{key} must be [min, max] with 0 < min <= max, got [{lo!r}, {hi!r}]")

@@ -165,13 +165,17 @@ PSD_TOL = 1e-10  # relative to the largest eigenvalue: a covariance's eigenvalue
 
 
 def covariance_factor(C) -> np.ndarray:
-    """L with L·Lᵀ = C for a symmetric positive SEMI-definite covariance ``C`` (n, n): V·sqrt(max(λ, 0)) of its
-    eigen-decomposition, so a singular covariance (parameters perfectly correlated, or one with no spread) draws on
-    the subspace it spans, where a Cholesky factor fails. Eigenvalues below −:data:`PSD_TOL`·λ_max are not round-off:
-    a ValueError (the caller names the file)."""
+    """L with L·Lᵀ = C for a symmetric positive SEMI-definite covariance ``C`` (n, n): its Cholesky factor when C is
+    definite (the draws as before), else V·sqrt(max(λ, 0)) of its eigen-decomposition, so a singular covariance
+    (parameters perfectly correlated, or one with no spread) draws on the subspace it spans, where Cholesky fails.
+    Eigenvalues below −:data:`PSD_TOL`·λ_max are not round-off: a ValueError (the caller names the file)."""
     C = np.asarray(C, float)
     if C.size == 0 or not np.any(C):
         return np.zeros_like(C)
+    try:
+        return np.linalg.cholesky(C + 1e-300 * np.eye(len(C)))
+    except np.linalg.LinAlgError:  # singular (or not a covariance): the eigen-decomposition says which
+        pass
     lam, V = np.linalg.eigh(0.5 * (C + C.T))
     if lam.min() < -PSD_TOL * max(lam.max(), 0.0):
         raise ValueError(f"the covariance is not positive semi-definite (eigenvalue {lam.min():.3g} against the largest {lam.max():.3g})")
