@@ -31,7 +31,7 @@ def geometry_validity(problem):
     from ..models.validity import plate_span, plate_thickness_validity
 
     spec = problem.plate
-    return plate_thickness_validity(spec.stack.thickness, plate_span(spec.length_x, spec.length_y, spec.supports))
+    return plate_thickness_validity(spec.total_thickness, plate_span(spec.length_x, spec.length_y, spec.supports))
 
 
 class PlateKind:

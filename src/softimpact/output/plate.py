@@ -117,7 +117,7 @@ def plate_static_validity(result, model=None):
     against the ply allowables (``membrane_strain_index``, a lower bound of the faces' index: flagged past 1)."""
     from ..models.validity import Validity, allowable_flags, deflection_validity, small_strain_validity
 
-    h = result.problem.plate.stack.thickness
+    h = result.problem.plate.total_thickness
     w = float(result.max_deflection[-1])
     if result.kinematics == "linear":
         v = deflection_validity("linear plate theory (FSDT)", w, h)
@@ -152,7 +152,7 @@ def plate_static_summary(model, result, validity=None) -> dict:
         "supports": dict(zip(("x0", "x1", "y0", "y1"), p.plate.supports)),
         "pressure_Pa": float(p.pressure),
         "max_deflection_m": float(result.max_deflection[-1]),
-        "max_deflection_over_thickness": float(result.max_deflection[-1] / p.plate.stack.thickness),
+        "max_deflection_over_thickness": float(result.max_deflection[-1] / p.plate.total_thickness),
         "deflection_note": "largest transverse deflection of the mid-surface over the plate, positive along the pressure",
         "load_steps": {"pressure_Pa": [float(q) for q in result.pressure], "max_deflection_m": [float(w) for w in result.max_deflection]},
         "newton": {

@@ -334,7 +334,7 @@ def run_validity(problem: ImpactProblem, result, identified=None) -> Validity:
     v = coupled_validity(problem, result, dmg["max_strain"])
     if isinstance(problem.target, PlateProblem):  # plate theory's geometry, as the impact command checks its plate target
         spec = problem.target.plate
-        v += plate_thickness_validity(spec.stack.thickness, plate_span(spec.length_x, spec.length_y, spec.supports))
+        v += plate_thickness_validity(spec.total_thickness, plate_span(spec.length_x, spec.length_y, spec.supports))
     if identified is not None:
         i = problem.impactor
         ranges = identified_range_validity(identified.identified_on, i.velocity, i.diameter, i.mass, "the identified law")
