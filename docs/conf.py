@@ -116,3 +116,16 @@ html_theme_options = {
 # width (the navigation bar links them); an empty "Section Navigation" column would only narrow them.
 html_sidebars = {"**": [], "gallery/index": ["sidebar-nav-bs"]}
 html_sidebars |= {f"gallery/{p.stem}": ["sidebar-nav-bs"] for p in (HERE.parent / "examples").glob("[0-9][0-9]_*.py")}
+
+
+def _tables_filled(app, ctx, lines):
+    """The command line's help texts list the rows of their tables (``{contact_laws}``), filled when shown
+    (softimpact.app.options.filled): the reference page fills them too."""
+    from softimpact.app.options import filled
+
+    lines[:] = [filled(line) for line in lines]
+
+
+def setup(app):
+    for event in ("sphinx-click-process-description", "sphinx-click-process-options"):
+        app.connect(event, _tables_filled)

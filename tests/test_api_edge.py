@@ -113,10 +113,12 @@ def test_predict_refuses_a_bad_keyword_value_before_running_naming_it(monkeypatc
 
 
 def test_an_unknown_keyword_is_pythons_type_error(monkeypatch):
-    """si.predict(unit=...) (a misspelt keyword) is the TypeError Python gives any function, before anything runs."""
+    """si.predict(unit=...) (a misspelt keyword) is a TypeError, as Python gives any function, and an InputError that
+    names the keyword and suggests the one meant (issue 43), before anything runs."""
     monkeypatch.setattr("softimpact.app.predict.predict", _never_called)
-    with pytest.raises(TypeError, match="unexpected keyword argument 'unit'"):
+    with pytest.raises(TypeError, match="unit: not a keyword of si.predict \\(did you mean 'units'\\?\\)") as caught:
         si.predict(projectile="rubber-1/2in", velocity="1166 in/s", unit="SI")
+    assert isinstance(caught.value, InputError)
     with pytest.raises(TypeError, match="missing required keyword-only argument: 'velocity'"):
         si.predict(projectile="rubber-1/2in")
 

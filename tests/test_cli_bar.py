@@ -92,7 +92,8 @@ def test_builtin_case_by_name_with_figures(tmp_path):
 
 def test_a_contact_iteration_that_does_not_converge_is_a_named_failure(tmp_path, monkeypatch):
     """A contact Newton iteration cut to one iteration fails to converge: exit 3 and one line saying when (time,
-    step) and how far (residual, bracket), not an internal error (exit 70); nothing written."""
+    step) and how far (residual, bracket), not an internal error (exit 70); the folder holds that reason alone
+    (summary.json marked failed, no results: there are none)."""
     import softimpact.fem.impact as impact
 
     monkeypatch.setattr(impact, "NEWTON_MAXITER", 1)
@@ -101,4 +102,6 @@ def test_a_contact_iteration_that_does_not_converge_is_a_named_failure(tmp_path,
     lines = [ln for ln in result.output.splitlines() if ln.strip()]
     assert len(lines) == 1 and lines[0].startswith("softimpact: solver failed: the contact Newton iteration did not converge at t = ")
     assert "(step 1)" in lines[0] and "residual" in lines[0] and "bracket" in lines[0]
-    assert not (out / "summary.json").exists()
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["status"] == "failed" and summary["reason"] in lines[0]
+    assert sorted(p.name for p in out.iterdir()) == ["manifest.json", "summary.json"]

@@ -217,6 +217,8 @@ def mutated(draw, base: str) -> str:
         m = _ASSIGNMENT.match(lines[i]) if assignments else None
         edit = draw(st.sampled_from(["scale", "scale", "scale", "value", "value", "value", "key", "delete", "duplicate", "garbage"]))
         q = _QUOTED_NUMBER.match(m[4]) if m else None
+        if q and not re.fullmatch(r"[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?", q[1]):  # "+" or "1e": text a value edit made, not a number
+            q = None
         if edit == "scale" and q:  # a plausible value: the number scaled, the unit kept
             factor = draw(st.sampled_from([0.0, -1.0, 1e-3, 0.1, 0.5, 0.9, 1.1, 2.0, 10.0, 1e3, 1e6]))
             lines[i] = f'{m[1]}{m[2]}{m[3]}"{float(q[1]) * factor!r} {q[2]}"{q[3]}'
@@ -449,3 +451,92 @@ def test_impact_with_a_mutated_law_file(tmp_path_factory, text):
     (folder / "law.json").write_text(text, encoding="utf-8", errors="surrogatepass")
     (folder / "case.toml").write_text(SOFT_IMPACT_CASE)
     _invoke("impact", folder / "case.toml", folder / "out")
+
+
+# --- the newer surfaces (issue 42): crushing and flow laws, static plates, cohesive interfaces, and their run kinds
+# through sweep and converge ------------------------------------------------------------------------------------------
+
+# An ice sphere crushing on the bar and a gelatin sphere flowing on it, each law's own keys given (so they are mutated);
+# a short run on a coarse bar (well under a second).
+FLOW_BAR = (
+    locate("hail-bar-50mm")
+    .read_text()
+    .replace("elements = 39", "elements = 20")
+    .replace('time_step = "0.5 us"', 'time_step = "2 us"')
+    .replace('duration = "1200 us"', 'duration = "200 us"')
+    .replace('law = "crushing"', 'law = "crushing"\nstrength_coefficient = "8.9 MPa"\nstrength_exponent = 0.15')
+)
+GELATIN_BAR = (
+    FLOW_BAR.replace('material = "ice"', 'material = "gelatin"')
+    .replace(
+        'law = "crushing"\nstrength_coefficient = "8.9 MPa"\nstrength_exponent = 0.15', 'law = "hydrodynamic"\nsound_speed = "1482.9 m/s"\nhugoniot_slope = 2.0'
+    )
+    .replace('diameter = "50.8 mm"', 'diameter = "25 mm"')
+)
+STATIC_PLATE = locate("plate-ss-pressure-vk").read_text().replace("load_steps = 10", "load_steps = 3")
+COHESIVE_TARGET = locate("plate-ss-8in-quarter").read_text().replace("elements = [24, 24]", "elements = [2, 2]")
+COHESIVE_IMPACT = (
+    locate("plate-ss-8in-impact-cohesive")
+    .read_text()
+    .replace('case = "plate-ss-8in-quarter"', 'case = "target.toml"')
+    .replace('time_step = "1 us"', 'time_step = "4 us"')
+    .replace('duration = "600 us"', 'duration = "20 us"')
+)
+VK_BEAM = BEAM_CASE.replace("[beam]\n", '[beam]\nkinematics = "von-karman"\n').replace('duration = "150 us"', 'duration = "40 us"')
+
+
+@budget(ci=4, long=300)
+@given(text=st.one_of(mutated(FLOW_BAR), mutated(GELATIN_BAR)))
+def test_mutated_crushing_and_flow_law_cases(tmp_path_factory, text):
+    """`softimpact bar` of an ice (crushing) or gelatin (hydrodynamic) sphere on mutations of its case and its law's own
+    keys (strength, exponent, sound speed, Hugoniot slope: inf, NaN, 1e300 among the values) keeps the property."""
+    _run_case(tmp_path_factory, "bar", text)
+
+
+@budget(ci=3, long=200)
+@given(text=mutated(STATIC_PLATE))
+def test_mutated_static_plate_cases(tmp_path_factory, text):
+    """`softimpact plate` on mutations of the static von Kármán plate (pressure, load steps, in-plane edges) keeps the property."""
+    _run_case(tmp_path_factory, "plate", text)
+
+
+@budget(ci=2, long=100)
+@given(text=mutated(COHESIVE_IMPACT))
+def test_mutated_cohesive_impact_cases(tmp_path_factory, text):
+    """`softimpact impact` on mutations of the cohesive plate impact (its interfaces, penalty, toughness, exponent) keeps the property."""
+    folder = _folder(tmp_path_factory)
+    (folder / "target.toml").write_text(COHESIVE_TARGET)
+    (folder / "case.toml").write_text(text, encoding="utf-8", errors="surrogatepass")
+    _invoke("impact", folder / "case.toml", folder / "out")
+
+
+# The new run kinds as a sweep varies them (a key and two values) and as converge refines them.
+RUN_KINDS = {
+    "cohesive": (COHESIVE_IMPACT, "impactor.velocity", '["3 m/s", "5 m/s"]'),
+    "static plate": (STATIC_PLATE, "load.pressure", '["10 psi", "20 psi"]'),
+    "von Karman beam": (VK_BEAM, "load.history.velocity", '["1000 in/s", "2000 in/s"]'),
+    "flow law on a bar": (FLOW_BAR, "projectile.velocity", '["30 m/s", "61 m/s"]'),
+}
+
+
+@budget(ci=3, long=100)
+@given(kind=st.sampled_from(sorted(RUN_KINDS)), command=st.sampled_from(["sweep", "converge"]), edit=st.integers(0, 2), data=st.data())
+def test_new_run_kinds_through_sweep_and_converge(tmp_path_factory, kind, command, edit, data):
+    """Each new run kind (cohesive interfaces, a static plate, a von Kármán beam, a crushing sphere on the bar), its case
+    or its spec mutated or not, through `softimpact sweep` and `softimpact converge --levels 2`: the property (a
+    static plate is refused at once, with one line), never an internal error."""
+    case, key, values = RUN_KINDS[kind]
+    folder = _folder(tmp_path_factory)
+    (folder / "target.toml").write_text(COHESIVE_TARGET)
+    spec = f'[sweep]\ncase = "case.toml"\nmethod = "grid"\noutputs = ["peak_force_N"]\n[[sweep.parameter]]\nkey = "{key}"\nvalues = {values}\n'
+    if edit == 1:
+        case = data.draw(mutated(case))
+    elif edit == 2 and command == "sweep":
+        spec = data.draw(mutated(spec))
+    (folder / "case.toml").write_text(case, encoding="utf-8", errors="surrogatepass")
+    (folder / "spec.toml").write_text(spec, encoding="utf-8", errors="surrogatepass")
+    out = folder / "out"
+    args = ["sweep", str(folder / "spec.toml"), "--workers", "0"] if command == "sweep" else ["converge", str(folder / "case.toml"), "--levels", "2"]
+    with time_limit():
+        result = CliRunner().invoke(main, [*args, "--out", str(out), "--no-figures"])
+    check_run(result, out)

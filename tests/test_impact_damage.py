@@ -266,12 +266,12 @@ def test_delamination_index_takes_the_largest_force_of_any_contact(tmp_path):
 ONSET_KEYS = ("olsson_threshold_force_N", "peak_over_olsson", "regime", "impactor_over_target_mass", "target_mass_kg", "regime_note")
 
 
-def _plate_case(tmp_path, layup="[90/0]5s", mass=None):
-    """The small 4 × 4 in plate (tests/_support/problems.PLATE) struck by the 1/2-in steel ball (``mass``: its mass)."""
+def _plate_case(tmp_path, layup="[90/0]5s", mass=None, diameter="0.5 in"):
+    """The small 4 × 4 in plate (tests/_support/problems.PLATE) struck by the steel ball of ``diameter`` (``mass``: its mass)."""
     (tmp_path / "plate.toml").write_text(PLATE.format(layup=layup, force="10 lbf"))
     extra = f'mass = "{mass}"\n' if mass else ""
     (tmp_path / "case.toml").write_text(
-        'units = "in-lbf-s"\n[target]\ncase = "plate.toml"\n[impactor]\nmaterial = "steel"\ndiameter = "0.5 in"\nvelocity = "100 in/s"\n'
+        f'units = "in-lbf-s"\n[target]\ncase = "plate.toml"\n[impactor]\nmaterial = "steel"\ndiameter = "{diameter}"\nvelocity = "100 in/s"\n'
         + extra
         + '[contact]\nlaw = "hertz"\n[solver]\ntime_step = "2 us"\nduration = "200 us"\n'
     )
@@ -335,11 +335,13 @@ def test_one_ply_angle_has_no_interface_between_orientations(tmp_path):
 
 @pytest.mark.parametrize(("mass", "regime"), [("5 g", "wave-controlled"), ("40 g", "intermediate"), ("300 g", "quasi-static")])
 def test_regime_spans_the_bounds_with_the_impactor_mass(tmp_path, mass, regime):
-    """Impactors of 5, 40 and 300 g on the 4 × 4 in plate (mass ρ·h·a² by hand = 45.6 g): ratios 0.11, 0.88 and 6.6
-    fall below, between and above the stand-in bounds 0.25 and 2.5, and the summary says so, with the mass by hand."""
+    """Steel impactors of 5, 40 and 300 g (solid balls: d = (6m/(πρ))^(1/3), so that the mass fits the material) on the
+    4 × 4 in plate (mass ρ·h·a² by hand = 45.6 g): ratios 0.11, 0.88 and 6.6 fall below, between and above the stand-in
+    bounds 0.25 and 2.5, and the summary says so, with the mass by hand."""
     from softimpact.models.delamination import REGIME_BOUNDS
 
-    r, s = _impact(_plate_case(tmp_path, mass=mass), tmp_path / "out")
+    d = (6 * float(mass.split()[0]) * 1e-3 / (math.pi * 7833.413032987483)) ** (1 / 3)  # the catalogue steel's density
+    r, s = _impact(_plate_case(tmp_path, mass=mass, diameter=f"{d!r} m"), tmp_path / "out")
     assert r.exit_code == 0, r.output
     a = 4 * 0.0254
     plate_mass = PLY.density * 20 * PLY.thickness * a * a

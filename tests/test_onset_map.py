@@ -74,3 +74,15 @@ def test_the_report_lays_out_the_onset_map_with_each_rows_regime(beam):
     (_, header, table), text = _onset_table(rows, display("in-lbf-s", "velocity"))
     assert header == ["structure", "d = 0.5 in"] and table[0][0] == "long beam"
     assert rows[0]["regime"] in table[0][1] and "not retrieved" in text[0]
+
+
+def test_onset_rows_outside_the_quasi_static_regime_carry_the_criterion_flag(beam):
+    """An onset-map row (Olsson's quasi-static F_d) whose ball is light against the beam (wave-controlled or intermediate)
+    carries criterion_outside_regime and so is not inside validity (issue 42); a Tsai–Wu row of the same ball does not
+    carry it (that index assumes no regime)."""
+    s, law = beam
+    rows = T.threshold_map(s, law, [0.5 * INCH], 500 * INCH, 30000 * INCH, draws=0, strength_quantiles=3, indices=(T.ONSET, "tsai_wu"))
+    onset, tsai_wu = rows
+    assert onset.regime != "quasi-static" and math.isfinite(onset.nominal)
+    assert "criterion_outside_regime" in onset.flags and onset.as_dict()["inside_validity"] is False
+    assert "criterion_outside_regime" not in tsai_wu.flags

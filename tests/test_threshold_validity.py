@@ -103,7 +103,9 @@ def test_a_rows_validity_columns_equal_the_impact_commands_summary_at_its_thresh
     for name in row.ratios:
         assert columns[name] == pytest.approx(validity[name], rel=1e-9, abs=1e-12), name
     fitted = result.output.count("it was fitted on")  # the command's warnings on the law's range (read with the law)
-    assert len(row.flags) == len(validity["flags"]) + fitted
+    # the command's run also reports the delamination criteria (its damage block), outside their regime here; a Tsai–Wu row does not
+    criteria = sum("quasi-static threshold" in f for f in validity["flags"])
+    assert len(row.flags) == len(validity["flags"]) - criteria + fitted
     assert columns["inside_validity"] is (not row.flags)
 
 

@@ -286,7 +286,7 @@ RAW_VALUES = {
     "plate.elements": "`[along x, along y]`, two integers ≥ 2",
     "fractions": "a table of angle (degrees, as the key) = volume fraction",
     "frequencies": "two frequencies (quantities) at which the Rayleigh damping equals `ratio`",
-    "support": "a table `{ x0 = …, x1 = …, y0 = …, y1 = … }` of edge supports",
+    "support": 'one support for all four edges (`"simply-supported"`) or a table `{ x0 = …, x1 = …, y0 = …, y1 = … }` of edge supports',
     "position": "`[x, y]`, two lengths",
     "grow": "true or false: the contact disc grows with the force by eq (10)",
     "direction": '`"x"`, `"y"` or an angle in degrees from x',
@@ -368,9 +368,33 @@ def _note(k: Key) -> str:
     return _KEY_NOTES.get(f"{k.fmt}:{k.path}", _KEY_NOTES.get(k.path, ""))
 
 
+# Keys of which one or the other is required (each "required" where its reader gets to it): said so in the default
+# column, keyed by "format:path".
+_STATIC = '`solver.analysis = "static"`'
+_EITHER_OR = {
+    "plate:load.pressure": f"required with {_STATIC} (a uniform pressure); else `load.history`",
+    "plate:load.history": f"required unless {_STATIC} (then `load.pressure`)",
+    "plate:load.position": f"required unless {_STATIC}",
+    "plate:load.contact_radius": f"required unless {_STATIC}",
+    "plate:solver.time_step": f"required unless {_STATIC}",
+    "plate:solver.duration": f"required unless {_STATIC}",
+    "beam:beam.laminate": "one of `beam.laminate` and `beam.material`",
+    "beam:beam.material": "one of `beam.laminate` and `beam.material`",
+    "bar:projectile.material": "required unless `projectile.threat`",
+    "bar:projectile.diameter": "required unless `projectile.threat`",
+    "bar:projectile.velocity": "required unless `projectile.threat` (then its velocity)",
+    "impact:impactor.material": "required unless `impactor.threat`",
+    "impact:impactor.diameter": "required unless `impactor.threat`",
+    "impact:impactor.velocity": "required unless `impactor.threat` (then its velocity)",
+}
+
+
 def _default(k: Key) -> str:
     from softimpact import units
 
+    either = _EITHER_OR.get(f"{k.fmt}:{k.path}")
+    if either:
+        return either
     context = _CONTEXT_DEFAULTS.get(f"{k.fmt}:{k.path}", _CONTEXT_DEFAULTS.get(k.path))
     if context and not k.required:
         return context

@@ -104,7 +104,9 @@ def _guarded(fn):
             click.echo(f"softimpact: error: {_one_line(exc)}", err=True)
             sys.exit(EXIT_INPUT)
         except SolverFailed as exc:
-            click.echo(f"softimpact: solver failed: {_one_line(exc)}", err=True)
+            if "out" in kwargs:
+                _write_failure(kwargs["out"], exc)
+            click.echo(f"softimpact: solver failed: {_one_line(exc)} (summary.json says why, marked failed)", err=True)
             sys.exit(EXIT_CHECK)
         except CheckFailed as exc:
             click.echo(f"softimpact: check failed: {_one_line(exc)} (diagnostics written, marked failed; --accept-poor to accept)", err=True)
@@ -124,6 +126,27 @@ def _guarded(fn):
             figure_format.reset(token)
 
     return wrapper
+
+
+def _write_failure(out: str, exc: Exception) -> None:
+    """A solver that gave up leaves its diagnostics as a failed check does (exit 3): summary.json with the status and
+    the reason, and manifest.json marked failed, so the folder says what happened instead of holding nothing."""
+    from .output.files import json_text, write_outputs
+
+    ctx = click.get_current_context(silent=True)
+    summary = {"status": "failed", "reason": _one_line(exc), "softimpact_version": __version__}
+    manifest = {
+        "status": "failed",
+        "accept_poor": False,
+        "command": ctx.command_path if ctx is not None else "softimpact",
+        "arguments": dict(ctx.params) if ctx is not None else {},
+        "warnings": list(ctx.meta.get("softimpact.warnings", [])) if ctx is not None else [],
+        "gates": [],
+    }
+    try:
+        write_outputs(out, {"summary.json": json_text(summary)}, manifest=manifest, force=_forced())
+    except InputError:  # the folder refuses (a file of the user's): the one line still says why
+        pass
 
 
 class _Progress:
@@ -249,6 +272,13 @@ EXAMPLES = {
 }
 
 
+# the top-level help's examples (``softimpact --help``): where to start, as typed, each one run by tests/test_cli_examples.py
+MAIN_EXAMPLES = ("cases", "bar", "impact")
+main.epilog = (
+    "\b\nExamples:\n" + "\n".join(f"  {EXAMPLES[n][1]}" for n in MAIN_EXAMPLES) + "\n  softimpact COMMAND --help   (each command's options and its own example)"
+)
+
+
 def _epilog(name: str) -> str:
     """The ``Example:`` block of a command's --help (``\\b``: click keeps its lines as written)."""
     needs, line = EXAMPLES[name]
@@ -273,19 +303,40 @@ def _out_option(command: str) -> click.Option:
     )
 
 
+class _TableOption(click.Option):
+    """A click option whose help lists the rows of a table (``{projectiles}``), filled when the help is shown
+    (:func:`softimpact.app.options.filled`: the tables' modules are imported then, not at every start)."""
+
+    def get_help_record(self, ctx):
+        from .app.options import filled
+
+        self.help = filled(self.help)
+        return super().get_help_record(ctx)
+
+
+class _TableCommand(click.Command):
+    """A click command whose help text lists the rows of a table (``{contact_laws}``), filled when the help is shown."""
+
+    def format_help_text(self, ctx, formatter):
+        from .app.options import filled
+
+        self.help = filled(self.help)
+        super().format_help_text(ctx, formatter)
+
+
 def _option(o) -> click.Option:
     """The click option of an :class:`softimpact.app.options.Option`: ``--name`` (``--name/--no-name`` for a
     bool), its type or choices, default and help as the table writes them; its value reaches the command
     under the option's name."""
     if o.type is bool:
-        return click.Option([f"{o.flag}/--no-{o.flag[2:]}", o.name], default=o.default, show_default=True, help=o.help)
+        return _TableOption([f"{o.flag}/--no-{o.flag[2:]}", o.name], default=o.default, show_default=True, help=o.help)
     if o.choices:
         kind = click.Choice(list(o.choices))
     elif o.file:
         kind = click.Path(dir_okay=False)
     else:
         kind = {str: click.STRING, int: click.INT, float: click.FLOAT}[o.type]
-    return click.Option([o.flag, o.name], type=kind, default=o.default, required=o.required, show_default=o.default is not None, help=o.help)
+    return _TableOption([o.flag, o.name], type=kind, default=o.default, required=o.required, show_default=o.default is not None, help=o.help)
 
 
 def _figures_option() -> click.Option:
@@ -350,7 +401,7 @@ def _command(
     where calibrate has always had it) and ``--fields`` (when asked for); the function runs under :func:`_guarded`."""
 
     def decorate(fn):
-        command = main.command(name, short_help=short_help, epilog=_epilog(name))(_guarded(fn))
+        command = main.command(name, cls=_TableCommand, short_help=short_help, epilog=_epilog(name))(_guarded(fn))
         command.params.extend(_option(o) for o in options if o.name != "figures")
         shared = [_history_option(history)] if history is not None else []
         if accept_poor == "before-out":
@@ -528,7 +579,7 @@ def calibrate_cmd(case, accept_poor, out, **options):
 @click.argument("case")
 def impact_cmd(case, units, out, figures, fields):
     """Coupled impact of a rigid impactor on a beam or plate (CASE: file or built-in name), the
-    contact force found each step from a contact law (hertz, hertz-unloading, hunt-crossley, identified).
+    contact force found each step from a contact law ({contact_laws}).
 
     Writes history.csv, summary.json and, with figures, force-history.png,
     approach.png, gauge-strains.png, energy.png (and on a plate plate-mesh.png, deflection.png);

@@ -83,7 +83,8 @@ class CheckFailed(RuntimeError):
 
 class SolverFailed(CheckFailed):
     """A solver gave up (exit code 3, as a failed check): the message says where (time, step) and
-    how far it was from converging (residual, bracket), in one line. Nothing is written."""
+    how far it was from converging (residual, bracket), in one line. The command line writes summary.json with
+    that reason and a manifest marked failed (no results: there are none)."""
 
     def __init__(self, message: str):
         super().__init__((), message)

@@ -14,9 +14,13 @@ from ..errors import HeldWarnings, InputError
 # --- quantities at the edge ---------------------------------------------------------------------
 
 
-def _si(value, kind: str, name: str) -> float:
-    """``value`` (a unit string or a pint quantity) as an SI float of ``kind``; InputError naming ``name``."""
+def _si(value, kind: str, name: str, positive: bool = True) -> float:
+    """``value`` (a unit string or a pint quantity) as an SI float of ``kind``, positive unless ``positive`` is False (a
+    position) and within its physical range (:data:`softimpact.input.toml.PHYSICAL_RANGES`); an InputError naming
+    ``name``, the argument the user gave, and echoing the value as given, with its unit (``length: must be positive,
+    got '-250 mm'``), never the layers' own names and SI floats."""
     from .. import units
+    from ..input.toml import check_physical
 
     if hasattr(value, "magnitude") and hasattr(value, "to"):  # a pint quantity, of any registry
         try:
@@ -25,8 +29,12 @@ def _si(value, kind: str, name: str) -> float:
             raise InputError(f"{name}: {value!r} is not {units.a_or_an(kind)}") from None
         if not math.isfinite(si):
             raise InputError(f"{name}: {value!r} is not a finite {kind}")
-        return si
-    return units.parse(value, kind, name)
+        shown = str(value)
+    else:
+        si, shown = units.parse(value, kind, name), value
+    if positive and not si > 0:
+        raise InputError(f"{name}: must be positive, got {shown!r}")
+    return check_physical(si, kind, name, shown, positive)
 
 
 def _text(value, kind: str, name: str) -> str | None:
@@ -55,7 +63,7 @@ def _material(value, name: str):
 def _point(value, name: str) -> tuple[float, float]:
     if isinstance(value, str) or not hasattr(value, "__len__") or len(value) != 2:
         raise InputError(f"{name}: expected a point (x, y) of two lengths, got {value!r}")
-    return (_si(value[0], "length", f"{name}[0]"), _si(value[1], "length", f"{name}[1]"))
+    return (_si(value[0], "length", f"{name}[0]", positive=False), _si(value[1], "length", f"{name}[1]", positive=False))
 
 
 def _elements(value, count: int, name: str) -> tuple[int, ...]:
@@ -63,6 +71,49 @@ def _elements(value, count: int, name: str) -> tuple[int, ...]:
     if len(values) != count or not all(isinstance(n, int) and not isinstance(n, bool) and n >= 1 for n in values):
         raise InputError(f"{name}: expected {count} positive integer(s), got {value!r}")
     return values
+
+
+# --- keywords at the edge ---------------------------------------------------------------------------
+
+
+class KeywordError(InputError, TypeError):
+    """A keyword the function or class does not take (a misspelling, most often): an :class:`InputError` naming it
+    with the nearest keyword it takes, and a TypeError, what Python itself raises for an unknown keyword."""
+
+
+def misspelt(name: str, known, what: str) -> KeywordError:
+    """The error for the keyword ``name`` that ``what`` (``"si.Plate"``) does not take among ``known``: the nearest
+    of them suggested (difflib, as a case file's misspelt key is), all of them listed otherwise."""
+    import difflib
+
+    near = difflib.get_close_matches(name, list(known), n=1, cutoff=0.6)
+    hint = f"did you mean {near[0]!r}?" if near else f"it takes {', '.join(known)}"
+    return KeywordError(f"{name}: not a keyword of {what} ({hint})", name)
+
+
+def keywords(what: str):
+    """Decorate an API function (or a class's ``__init__``) so that a keyword it does not take is a
+    :class:`KeywordError` naming it and suggesting the nearest it takes (``lenght`` → ``length``), not Python's bare
+    TypeError; everything else passes to the function unchanged."""
+    import functools
+    import inspect
+
+    def decorate(fn):
+        sig = inspect.signature(fn)
+        known = [p.name for p in sig.parameters.values() if p.name != "self" and p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)]
+        takes_any = any(p.kind is p.VAR_KEYWORD for p in sig.parameters.values())
+
+        @functools.wraps(fn)
+        def wrapper(*args, **kwargs):
+            if not takes_any:
+                for name in kwargs:
+                    if name not in known:
+                        raise misspelt(name, known, what)
+            return fn(*args, **kwargs)
+
+        return wrapper
+
+    return decorate
 
 
 # --- warnings at the edge --------------------------------------------------------------------------

@@ -17,7 +17,7 @@ import re
 from contextlib import contextmanager
 
 from ..errors import InputError
-from ._edge import _text
+from ._edge import _text, misspelt
 
 __all__ = ["takes", "given", "python_terms"]
 
@@ -37,9 +37,22 @@ def _type_text(o) -> str:
     return text + (", optional" if o.default is None and not o.required else "")
 
 
+# A help text's table placeholders (:data:`softimpact.app.options.HELP_TABLES`) in a docstring, which is written when
+# the API is imported (the tables import numpy: the command line fills them when --help is shown)
+_TABLE_WORDS = {
+    "contact_laws": "the contact laws si.catalogue() lists",
+    "projectiles": "the projectiles si.catalogue() lists",
+    "scaling_presets": "the presets' own names",
+    "materials": "a material si.catalogue() lists",
+}
+
+
 def _entry(o, indent: str) -> str:
-    """The Parameters entry of an option: its help, the unit kind in brackets, the default."""
-    help = o.help if o.kind is None else f"{o.help} [{o.kind}]"
+    """The Parameters entry of an option: its help (its tables' placeholders in words), the unit kind in brackets, the default."""
+    text = o.help
+    for key, words in _TABLE_WORDS.items():
+        text = text.replace("{" + key + "}", words)
+    help = text if o.kind is None else f"{text} [{o.kind}]"
     default = f" Default {o.default!r}." if o.default is not None else ""
     return f"{indent}{o.name} : {_type_text(o)}\n{indent}    {help}{default}"
 
@@ -77,7 +90,7 @@ def given(fn, options: dict) -> dict:
     out = {}
     for name in options:
         if name not in {o.name for o in fn.options}:
-            raise TypeError(f"{fn.__name__}() got an unexpected keyword argument {name!r}")
+            raise misspelt(name, [o.name for o in fn.options], f"si.{fn.__name__}")  # an InputError and a TypeError
     for o in fn.options:
         if o.required and o.name not in options:
             raise TypeError(f"{fn.__name__}() missing required keyword-only argument: {o.name!r}")

@@ -10,7 +10,7 @@ from pathlib import Path
 
 from ..app.options import CALIBRATE, CALIBRATE_BAR, CONVERGE, IDENTIFY, PREDICT, SERIES, SHPB, SWEEP
 from ..errors import SoftimpactWarning
-from ._edge import _Heard, _one_line
+from ._edge import _Heard, _one_line, keywords
 from ._options import given, python_terms, takes
 from .results import CommandResult, Record
 
@@ -292,6 +292,7 @@ def sweep(spec, *, out, **options) -> CommandResult:
     return _command("softimpact sweep", lambda: command(spec=str(spec), out_dir=str(out), **given_), SWEEP)
 
 
+@keywords("si.read_record")
 def read_record(path, *, channel: str | int | None = None) -> Record:
     """Read one channel of a lab record file (TDMS, MAT, HDF5, CSV, Tektronix, …).
 
@@ -326,6 +327,7 @@ def read_record(path, *, channel: str | int | None = None) -> Record:
     return Record(r.time, r.signal, r.unit, dict(r.metadata))
 
 
+@keywords("si.catalogue")
 def catalogue():
     """The catalogue: every named material, ply, projectile, projectile material, set of scaling constants,
     contact law and built-in case (the tables of ``softimpact catalogue`` and of the docs' catalogue page).

@@ -7,7 +7,7 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from ..errors import InputError
-from ._edge import _Heard, _naming, _point, _si
+from ._edge import _Heard, _naming, _point, _si, keywords
 from ._options import python_terms
 from .results import BarResult, BeamResult, ImpactResult, PlateResult, StaticPlateResult
 from .structures import Bar, Beam, Plate, Sphere
@@ -28,7 +28,7 @@ def _beam_gauges(gauges: dict | None):
         if extra:
             raise InputError(f"gauges[{name!r}]: unknown key {sorted(extra)[0]!r} (position, surface, length)")
         length = _si(g["length"], "length", f"gauges[{name!r}].length") if "length" in g else BeamGauge.length
-        out.append(BeamGauge(str(name), _si(g["position"], "length", f"gauges[{name!r}].position"), g.get("surface", "bottom"), length))
+        out.append(BeamGauge(str(name), _si(g["position"], "length", f"gauges[{name!r}].position", positive=False), g.get("surface", "bottom"), length))
     return tuple(out)
 
 
@@ -59,10 +59,11 @@ def _law(law, hertz, sphere: Sphere):
 
     if _is_law_file(law):
         from ..formats.law_json import read_law
-        from ..input.contact_law import warn_outside
+        from ..input.contact_law import check_family, warn_outside
 
         path = Path(law)
         identified = read_law(path, "law")
+        check_family(identified, sphere.material, sphere.mass, sphere.diameter, f"law ({path.name})", "the Sphere's material")
         warn_outside(identified.identified_on, sphere.velocity, sphere.diameter, path, sphere.mass)
         return "identified", identified.law(sphere.mass, sphere.diameter, sphere.velocity), path
     if isinstance(law, str) and law in MATERIAL_LAWS:  # ice's crushing, gelatin's flow: the sphere's own law
@@ -71,6 +72,7 @@ def _law(law, hertz, sphere: Sphere):
     return law_name(law), resolved, None  # a law object by its CONTACT_LAWS name, as a case file names it
 
 
+@keywords("si.impact")
 def impact(
     structure,
     *,
@@ -159,6 +161,7 @@ def _impact(structure, at, impactor, law, time_step, duration, gauges, target_mo
 
     if not isinstance(impactor, Sphere):
         raise InputError(f"impactor: expected a si.Sphere, got {type(impactor).__name__}")
+    _check_units(units)  # before anything is built: an unknown display system is refused now, not at .write()
     with _naming():
         solver = SolverSpec(_si(time_step, "time", "time_step"), _si(duration, "time", "duration"), NewmarkParameters(beta, gamma))
     modulus = _si(target_modulus, "stress", "target_modulus") if target_modulus is not None else None
@@ -182,7 +185,7 @@ def _impact(structure, at, impactor, law, time_step, duration, gauges, target_mo
         from ..workflows.beam_impact import BeamLoad, BeamProblem
 
         with _naming():
-            target = BeamProblem(spec, BeamLoad(_si(at, "length", "at"), radius, None), solver, _beam_gauges(gauges), title)
+            target = BeamProblem(spec, BeamLoad(_si(at, "length", "at", positive=False), radius, None), solver, _beam_gauges(gauges), title)
     else:
         from ..workflows.plate import PlateLoad, PlateProblem
 
@@ -197,6 +200,7 @@ def _impact(structure, at, impactor, law, time_step, duration, gauges, target_mo
     return _run(Case("impact", problem, () if law_file is None else (law_file,), units=units))
 
 
+@keywords("si.press")
 def press(plate: Plate, *, pressure, load_steps: int = 10, units: str = "in-lbf-s", title: str = "") -> StaticPlateResult:
     """A uniform pressure on the plate's top face, solved statically in ``load_steps`` equal increments
     (full Newton on the von Kármán plate; one linear solve with ``kinematics="linear"``): the case file's
@@ -266,7 +270,7 @@ def _bar_impact(bar: Bar, at, sphere: Sphere, law, solver, gauges, units: str, t
     law_file = None
     if _is_law_file(law) or (isinstance(law, str) and law in MATERIAL_LAWS):
         _, law, law_file = _law(law, None, sphere)
-    gs = tuple(Gauge(str(n), _si(p, "length", f"gauges[{n!r}]")) for n, p in (gauges or {}).items())
+    gs = tuple(Gauge(str(n), _si(p, "length", f"gauges[{n!r}]", positive=False)) for n, p in (gauges or {}).items())
     projectile = Impactor(sphere.mass, sphere.diameter, sphere.velocity, sphere.material)
     return _run(Case("bar", BarImpactProblem(bar.spec, projectile, solver, gs, law, title), () if law_file is None else (law_file,), units=units))
 
@@ -297,6 +301,7 @@ class Case:
     units: str = "in-lbf-s"
 
 
+@keywords("si.load")
 def load(case, *, history: int | None = None, units: str | None = None) -> Case:
     """Read a case file or a built-in case by name, of any kind, and check it.
 
@@ -348,6 +353,7 @@ def _check_units(units) -> None:
         raise InputError(f"units: {units!r} is not one of {', '.join(DISPLAY_SYSTEMS)}")
 
 
+@keywords("si.run")
 def run(problem, *, figures: bool = True, units: str | None = None):
     """Run a case (from :func:`load`) or a problem object as its command would.
 
@@ -397,6 +403,10 @@ def _run(case: Case, figures: bool = True):
     from ..models.validity import warn
 
     run = execute(case.problem, figures=figures)
+    if case.kind == "impact":  # an identified law's envelope, from the law.json read (the command line's check)
+        from ..cases.impact import with_identified_envelope
+
+        run = with_identified_envelope(run, next((f for f in case.files if Path(f).suffix == ".json"), None))
     warn(run.warnings)
     kind = kind_for(run.problem).name  # an impact case on a bar target reads as a bar problem, and runs as one
     if kind == "bar":

@@ -6,7 +6,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from ..errors import InputError
-from ._edge import _elements, _material, _si
+from ._edge import _elements, _material, _si, keywords
 
 __all__ = ["Laminate", "Beam", "Plate", "Bar", "Sphere"]
 
@@ -45,6 +45,7 @@ class Laminate:
     layup: str
     stack: object = field(repr=False, compare=False)
 
+    @keywords("si.Laminate")
     def __init__(self, ply, layup: str):
         from ..models.laminate import PLIES, Ply, Stack, parse_layup
 
@@ -114,6 +115,7 @@ class Beam:
 
     spec: object
 
+    @keywords("si.Beam")
     def __init__(
         self,
         *,
@@ -214,6 +216,7 @@ class Plate:
     kinematics: str = "linear"
     in_plane: str = "immovable"
 
+    @keywords("si.Plate")
     def __init__(
         self,
         *,
@@ -292,6 +295,7 @@ class Bar:
 
     spec: object
 
+    @keywords("si.Bar")
     def __init__(self, material, *, length, diameter, elements: int = 39, end_cap: dict | None = None):
         from ..models.specimens import BarSpec, EndCap
 
@@ -358,6 +362,7 @@ class Sphere:
     velocity: float
     mass: float
 
+    @keywords("si.Sphere")
     def __init__(self, material, diameter, *, velocity, mass=None):
         from ..models.materials import sphere_mass
         from ..models.specimens import Impactor
@@ -368,6 +373,10 @@ class Sphere:
             raise InputError(f"diameter: must be positive, got {diameter!r}")
         v = _si(velocity, "velocity", "velocity")
         m = sphere_mass(mat, d) if mass is None else _si(mass, "mass", "mass")
+        if mass is not None:  # the case file's check: a mass its material and size cannot have
+            from ..input.projectile import check_mass
+
+            check_mass(mat, d, m, "mass", mass)
         Impactor(m, d, v)  # the same checks as every other path
         for k, value in (("material", mat), ("diameter", d), ("velocity", v), ("mass", m)):
             object.__setattr__(self, k, value)

@@ -9,6 +9,7 @@ import numpy as np
 from ..cases.run import execute
 from ..input.bar_case import load_bar_case
 from ..input.bar_file import bar_file_of
+from ..input.sweep_spec import case_files
 from ..input.toml import case_units
 from ..models.validity import warn
 from ..output.bar import bar_files
@@ -38,8 +39,12 @@ def bar(*, case: str, units: str | None = None, figures: bool = True, progress: 
     files = bar_files(result, run.plain, run.inferred, figures, summary=run.summary, units=system)
     warn(run.warnings)
     fu, tu = display(system, "force"), display(system, "time")
+    contact = (
+        f"contact {result.contact_duration * tu.factor:.1f} {tu.label}" if np.isfinite(result.contact_duration) else "contact not ended by the end of the run"
+    )
     line = (
         f"peak force {result.peak_force * fu.factor:.1f} {fu.label} at {result.time_of_peak * tu.factor:.1f} {tu.label}, "
-        f"contact {result.contact_duration * tu.factor:.1f} {tu.label} ({time.perf_counter() - t0:.2f} s)"
+        f"{contact} ({time.perf_counter() - t0:.2f} s)"
     )
-    return Outcome(files, line, (path, *filter(None, (bar_file_of(path),))))
+    inputs = case_files(path)
+    return Outcome(files, line, (*inputs, *(f for f in filter(None, (bar_file_of(path),)) if f not in inputs)))

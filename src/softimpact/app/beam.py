@@ -8,6 +8,7 @@ import numpy as np
 
 from ..cases.run import execute
 from ..input.beam_case import load_beam_case
+from ..input.sweep_spec import case_files
 from ..input.toml import case_units
 from ..output.beam import beam_files
 from ..output.fields import field_files
@@ -36,5 +37,5 @@ def beam(
         files.update(field_files(model, (kept, result.time[kept], result.displacement[:, kept])))
     su = display(system, "strain")
     peaks = ", ".join(f"{g.name} {eps[np.argmax(np.abs(eps))] * su.factor:.0f} {su.label}" for g, eps in zip(problem.gauges, result.strain))
-    line = f"{model.plane.n} DOF, {steps} steps ({time.perf_counter() - t0:.1f} s); peak strains {peaks}"
-    return Outcome(files, line, (path,), run.warnings.flags)
+    line = f"{model.plane.n} DOF, {steps} steps ({time.perf_counter() - t0:.1f} s)" + (f"; peak strains {peaks}" if peaks else "")  # no empty field
+    return Outcome(files, line, case_files(path), run.warnings.flags)

@@ -14,6 +14,7 @@ from pathlib import Path
 from ..errors import InputError
 from ..input.beam_case import load_beam_case
 from ..input.series import CalibrationTest, is_calibration_series, load_calibration_series
+from ..input.sweep_spec import case_files
 from ..input.toml import case_units
 from ..models.empirical import PROJECTILES
 from ..output.calibration import calibration_files, series_calibration_files
@@ -24,6 +25,18 @@ from . import Outcome, Progress, no_progress
 from .options import display_system
 
 __all__ = ["calibrate_command"]
+
+
+def _linear_only(problem, case) -> None:
+    """Calibration fits the force history on the beam's linear response (impulse responses convolved with the
+    history, :mod:`softimpact.workflows.calibration`): a large-deflection beam would be calibrated as a linear one
+    without a word, so it is refused, naming its key."""
+    if problem.kinematics != "linear":
+        raise InputError(
+            f"beam.kinematics = {problem.kinematics!r} ({case}): calibrate fits the force history on the beam's linear response "
+            "(its impulse responses), so a large-deflection beam cannot be calibrated; set beam.kinematics = 'linear' (and check "
+            "the linear beam's deflection over thickness in its warnings)"
+        )
 
 
 def calibrate_command(
@@ -57,6 +70,7 @@ def calibrate_command(
             raise InputError("--measured/--velocity: not used with a series file (its [[test]] entries give them)")
         series = load_calibration_series(case)
         problem, case_path = load_beam_case(series.case)
+        _linear_only(problem, case_path)
         system = display_system(units, case_units(series.case))
         radii = [t.contact_radius or problem.load.contact_radius for t in series.tests]
         models = calibration_model(problem, radii, fit_radius)
@@ -67,13 +81,14 @@ def calibrate_command(
         gates = calibration_gates(items)
         files = series_calibration_files(models, series, items, series_fits(series, items), figures, gates=gates, units=system)
         line = f"{len(items) - len(warnings)} of {len(items)} tests calibrated ({time.perf_counter() - t0:.1f} s); calibration.json"
-        return Outcome(files, line, (series.path, case_path, *(t.measured for t in series.tests)), warnings, gates)
+        return Outcome(files, line, (series.path, *case_files(case_path), *(t.measured for t in series.tests)), warnings, gates)
     if not measured or not velocity:
         raise InputError("--measured and --velocity are required with a beam case")
     V = parse(velocity, "velocity", "--velocity")
     r0 = parse(contact_radius, "length", "--contact-radius") if contact_radius else None
     tc = parse(contact_time, "time", "--contact-time") if contact_time else None
     problem, case_path = load_beam_case(case)
+    _linear_only(problem, case_path)
     system = display_system(units, case_units(case))
     test = CalibrationTest(Path(measured).stem, Path(measured), V, r0, tc)
     models = calibration_model(problem, [r0 or problem.load.contact_radius], fit_radius)
@@ -85,9 +100,11 @@ def calibrate_command(
     c = items[0].calibration
     fu, tu = display(system, "force"), display(system, "time")
     se = c.standard_errors.get("peak_force")
-    line = (
+    parts = (
         f"{c.method}: F0 {c.peak_force * fu.factor:.1f} {fu.label}{f' ± {se * fu.factor:.2g}' if se else ''}, "
-        f"tF0 {c.time_of_peak * tu.factor:.1f} {tu.label}, T {c.duration * tu.factor:.1f} {tu.label} ({c.message}); "
-        f"{c.check.message if c.check else ''}; {time.perf_counter() - t0:.1f} s"
+        f"tF0 {c.time_of_peak * tu.factor:.1f} {tu.label}, T {c.duration * tu.factor:.1f} {tu.label} ({c.message})",
+        c.check.message if c.check else "",
+        f"{time.perf_counter() - t0:.1f} s",
     )
-    return Outcome(files, line, (case_path, Path(measured)), gates=gates)
+    line = "; ".join(p for p in parts if p)  # no empty field
+    return Outcome(files, line, (*case_files(case_path), Path(measured)), gates=gates)

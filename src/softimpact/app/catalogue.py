@@ -56,7 +56,16 @@ class Catalogue:
         return (self.materials, self.plies, self.projectiles, self.projectile_materials, self.scaling_constants, self.contact_laws, self.cases)
 
     def to_frame(self, table: str):
-        """The DataFrame of the table named ``table`` (``"materials"``, ``"plies"``…; needs pandas)."""
+        """The DataFrame of the table named ``table`` (``"materials"``, ``"plies"``…; needs pandas); an InputError naming
+        a name that is not a table's, with the nearest one."""
+        import difflib
+
+        names = [t.name for t in self.tables]
+        if table not in names:
+            from ..errors import InputError
+
+            near = difflib.get_close_matches(str(table), names, n=1, cutoff=0.6)
+            raise InputError(f"table: {table!r} is not a table of the catalogue ({f'did you mean {near[0]!r}? ' if near else ''}known: {', '.join(names)})")
         return getattr(self, table).to_frame()
 
 

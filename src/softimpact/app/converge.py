@@ -36,6 +36,9 @@ def converge(
         raise InputError(f"--ratio: the refinement ratio must be an integer ≥ 2, got {ratio!r}")
     kind, _ = case_kind(case)
     problem, inputs = kind.load(case, history)
+    why = kind.refusal(problem, "converge")
+    if why is not None:
+        raise InputError(why)
     t0 = time.perf_counter()
     result, sizes = study_case(kind, problem, levels, ratio, progress)
     files = converge_files(result, sizes, problem, kind.name, figures, units=display_system(units, case_units(case)))

@@ -10,7 +10,7 @@ from ..fem.bar import Rod
 from ..gates import passed_if
 from ..input.series import load_series
 from ..input.series_records import read_series_records
-from ..output.identify import identify_files
+from ..output.identify import approach_record, identify_files
 from ..studies.series import failed_reductions, reduce_series
 from ..units import display
 from ..workflows.identification import identify_series, predict_pulses, unfixed_parameters
@@ -45,6 +45,13 @@ def identify(*, series_name: str, law: str = "soft", units: str | None = None, f
     )
     if unfixed:
         warnings = (*warnings, f"parameters the data do not fix (their ± means nothing alone; the predictions hold): {', '.join(unfixed)}")
+    over_bar = approach_record(tests, approaches, law, series.bar.diameter / 2)["contact_radius_over_bar_radius"][1]
+    if over_bar > 1.0:  # the identification's own envelope: the ball's contact must lie on the bar's face
+        warnings = (
+            *warnings,
+            f"the identified law's contact radius reaches {over_bar:.3g} times the bar's radius on its own tests: the contact overhung "
+            "the bar's end, where the bar's flat-face model of the contact does not hold",
+        )
     worst = int(np.argmax(err.max(axis=1)))
     lu = display(series.units, "length")
     gates = (
@@ -56,7 +63,10 @@ def identify(*, series_name: str, law: str = "soft", units: str | None = None, f
     )
     if family == "crushing":  # the law itself in the line: two numbers, the strength at the reference rate and the exponent
         (sigma, m), (hs, hm) = law.values, law.half_widths
-        what = f"crushing strength {sigma / 1e6:.4g} MPa ±{hs / sigma:.1%} at {law.reference_rate:.4g} 1/s, rate exponent {m:.4g} ±{hm:.2g}"
+        # in the display system asked for (--units): psi in in-lbf-s; MPa in SI (a strength's own scale: SI's GPa would read 0.0089)
+        su = display(series.units, "stress")
+        strength = f"{sigma / 1e6:.4g} MPa" if series.units == "SI" else f"{sigma * su.factor:.4g} {su.label}"
+        what = f"crushing strength {strength} ±{hs / sigma:.1%} at {law.reference_rate:.4g} 1/s, rate exponent {m:.4g} ±{hm:.2g}"
     else:
         what = f"d_ref {law.d_ref * lu.factor:.3g} {lu.label}"
     line = (

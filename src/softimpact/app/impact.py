@@ -7,8 +7,10 @@ import time
 import numpy as np
 
 from ..cases import KINDS
+from ..cases.impact import with_identified_envelope
 from ..cases.run import execute
 from ..input.impact_case import load_impact_case
+from ..input.sweep_spec import case_files
 from ..input.toml import case_units
 from ..models.validity import warn
 from ..output.fields import field_files, kept_frames, select_kept
@@ -47,6 +49,7 @@ def impact(*, case: str, units: str | None = None, figures: bool = True, fields:
     t0 = time.perf_counter()
     steps = problem.solver.steps
     run = execute(problem, figures=figures, fields=fields, progress=lambda k: progress(k, steps, "stepping"))
+    run = with_identified_envelope(run, inputs[2] if len(inputs) > 2 else None)  # the law.json's identified envelope
     result, model = run.result, run.model
     files = impact_files(problem, select_kept(result, run.shown) if fields else result, figures, model=model, summary=run.summary, units=system)
     if fields:
@@ -65,6 +68,7 @@ def impact(*, case: str, units: str | None = None, figures: bool = True, fields:
     )
     line = (
         f"{problem.law_name}: F0 {result.peak_force * fu.factor:.1f} {fu.label} at {result.time_of_peak * tu.factor:.1f} {tu.label}, {T}, "
-        f"{len(result.contacts)} contact(s); peak strains {peaks}{_damage_words(run.summary, fu)} ({model.size} DOF, {steps} steps, {time.perf_counter() - t0:.1f} s)"
+        f"{len(result.contacts)} contact(s){f'; peak strains {peaks}' if peaks else ''}{_damage_words(run.summary, fu)} "
+        f"({model.size} DOF, {steps} steps, {time.perf_counter() - t0:.1f} s)"
     )
-    return Outcome(files, line, inputs, unfinished)
+    return Outcome(files, line, case_files(inputs[0], inputs[1:]), unfinished)  # the case and every file it names: never removed

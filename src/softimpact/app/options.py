@@ -27,6 +27,8 @@ __all__ = [
     "DISPLAY_SYSTEMS",
     "defaults",
     "display_system",
+    "HELP_TABLES",
+    "filled",
 ]
 
 
@@ -70,6 +72,33 @@ class Option:
         return "--" + self.name.replace("_", "-")
 
 
+def _names(module: str, table: str) -> str:
+    """The names of the table ``table`` of ``softimpact.<module>``, comma-separated (imported when asked)."""
+    import importlib
+
+    return ", ".join(getattr(importlib.import_module(f"softimpact.{module}"), table))
+
+
+# The tables a help text lists the choices of, by the placeholder it writes (``{contact_laws}``): filled from the table
+# itself when the help is shown (:func:`filled`), so a new row (a contact law, a projectile) appears in --help with it.
+HELP_TABLES = {
+    "contact_laws": lambda: _names("models.contact_laws", "CONTACT_LAWS"),
+    "projectiles": lambda: _names("models.empirical", "PROJECTILES"),
+    "scaling_presets": lambda: _names("models.empirical", "PRESETS"),
+    "materials": lambda: _names("models.materials", "CATALOGUE"),
+}
+
+
+def filled(text: str | None) -> str | None:
+    """``text`` with each placeholder of :data:`HELP_TABLES` (``{contact_laws}``) replaced by its table's names; any
+    other brace (a TOML inline table of an example) left as written."""
+    import re
+
+    if not text or "{" not in text:
+        return text
+    return re.sub(r"\{(\w+)\}", lambda m: HELP_TABLES[m.group(1)]() if m.group(1) in HELP_TABLES else m.group(0), text)
+
+
 def defaults(table: tuple[Option, ...]) -> dict:
     """The default of every option of ``table`` that has one, by name."""
     return {o.name: o.default for o in table if not o.required}
@@ -82,7 +111,7 @@ FIGURES = Option("figures", "Draw the figures (the numbers are written either wa
 # None: the case's (or series') own ``units`` key, else in-lbf-s (the paper's system); the files stay SI either way
 UNITS = Option(
     "units",
-    "Display units of the printed lines, tables and figures: in-lbf-s or SI (default: the case's or series' own units key, "
+    f"Display units of the printed lines, tables and figures: {' or '.join(DISPLAY_SYSTEMS)} (default: the case's or series' own units key, "
     "else in-lbf-s). The files (summary.json, CSV) stay SI.",
     choices=DISPLAY_SYSTEMS,
 )
@@ -111,7 +140,7 @@ IDENTIFY = (
 )
 
 PREDICT = (
-    Option("projectile", "A named projectile (rubber-1/2in, rubber-3/8in), or give the mass and the diameter."),
+    Option("projectile", "A named projectile ({projectiles}), or give the mass and the diameter."),
     Option("mass", 'Projectile mass, e.g. "1.1 g".', kind="mass"),
     Option("diameter", 'Projectile diameter, e.g. "0.5 in".', kind="length"),
     Option("velocity", 'Impact velocity, e.g. "1166 in/s".', kind="velocity", required=True),
@@ -124,13 +153,13 @@ PREDICT = (
     ),
     Option(
         "constants",
-        "Scaling constants: a projectile's (rubber-1/2in, rubber-3/8in: Table I) or a scaling.json from `softimpact fit` "
-        "(the old names silicone-1/2in, silicone-3/8in are deprecated aliases, still accepted).",
+        "Scaling constants: a projectile's ({projectiles}: Table I) or a scaling.json from `softimpact fit` "
+        "(the old names {scaling_presets} are deprecated aliases, still accepted).",
     ),
     Option("group", "Group of a scaling.json to use (a diameter such as '0.5 in', or pooled).", "pooled"),
     Option("tail", "Empirical model: add the tail that carries the rest of eq (7)'s impulse.", False, type=bool),
-    Option("material", "Projectile material (hertz and wilbeck models; ice for crushing, gelatin for hydrodynamic).", "silicone rubber"),
-    Option("target", "Target material (hertz model).", "Al 6061-T6"),
+    Option("material", "Projectile material, one of {materials} (hertz and wilbeck models; ice for crushing, gelatin for hydrodynamic).", "silicone rubber"),
+    Option("target", "Target material (hertz model), one of {materials}.", "Al 6061-T6"),
     Option("bar", "Drive the bar of this bar case (file or built-in name) with the predicted force."),
     Option("beam", "Drive this beam case (file or built-in name) with the predicted force."),
     UNITS,
@@ -149,11 +178,11 @@ CALIBRATE = (
     Option("contact_radius", 'r0 from the imprint, e.g. "0.25 in" (default: the case\'s).', kind="length"),
     Option("contact_time", 'First contact on the record\'s clock, e.g. "100 us" (default: estimated).', kind="time"),
     Option("fit_radius", "Least squares: fit r0 too.", False, type=bool),
-    Option("projectile", "Projectile of the bar-model start.", "rubber-1/2in"),
+    Option("projectile", "Projectile of the bar-model start, one of {projectiles}.", "rubber-1/2in"),
     Option(
         "constants",
-        "Scaling constants of the start: a projectile's (rubber-1/2in, rubber-3/8in) or a scaling.json (default: the projectile's; "
-        "the old names silicone-1/2in, silicone-3/8in are deprecated aliases, still accepted).",
+        "Scaling constants of the start: a projectile's ({projectiles}) or a scaling.json (default: the projectile's; "
+        "the old names {scaling_presets} are deprecated aliases, still accepted).",
     ),
     Option(
         "budget",

@@ -7,7 +7,9 @@ import time
 import numpy as np
 
 from ..cases.run import execute
+from ..errors import InputError
 from ..input.plate_case import load_plate_case
+from ..input.sweep_spec import case_files
 from ..input.toml import case_units
 from ..output.fields import field_files, kept_frames, select_kept
 from ..output.plate import plate_files, plate_static_files
@@ -27,6 +29,8 @@ def plate(
     system = display_system(units, case_units(path))
     t0 = time.perf_counter()
     if problem.analysis == "static":
+        if fields:  # an option the run cannot honour is refused, never dropped
+            raise InputError("--fields: a static plate run has no time steps to write as fields (summary.json holds its deflection): leave --fields out")
         run = execute(problem)
         s, lu = run.summary, display(system, "length")
         its = s["newton"]["iterations"]
@@ -34,7 +38,7 @@ def plate(
             f"{s['dofs']} DOF, {problem.kinematics}, {len(its)} load steps ({sum(its)} Newton iterations, "
             f"{time.perf_counter() - t0:.1f} s); max deflection {s['max_deflection_m'] * lu.factor:.4g} {lu.label}"
         )
-        return Outcome(plate_static_files(s, system), line, (path,), run.warnings.flags)
+        return Outcome(plate_static_files(s, system), line, case_files(path), run.warnings.flags)
     steps = problem.solver.steps
     run = execute(problem, figures=figures, fields=fields, progress=lambda k: progress(k, steps, "stepping"))
     model, result = run.model, run.result
@@ -46,4 +50,4 @@ def plate(
     peaks = "".join(f", {g.name} {eps[np.argmax(np.abs(eps))] * su.factor:.0f} {su.label}" for g, eps in zip(problem.gauges, result.strain))
     w = result.deflection[0]
     line = f"{model.size} DOF, {steps} steps ({time.perf_counter() - t0:.1f} s); peak deflection {w[np.argmax(np.abs(w))] * lu.factor:.3g} {lu.label}{peaks}"
-    return Outcome(files, line, (path,), run.warnings.flags)
+    return Outcome(files, line, case_files(path), run.warnings.flags)

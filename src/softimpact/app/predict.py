@@ -4,11 +4,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
 from ..errors import InputError
 from ..input.scaling_constants import scaling_law
+from ..input.sweep_spec import case_files
 from ..models.empirical import PROJECTILES, HertzModel, PulseParameters, WilbeckModel
 from ..models.materials import lookup
 from ..output.predict import predict_files
@@ -88,6 +90,8 @@ def predict(
         f"{model}: F0 {params.peak_force * fu.factor:.4g} {fu.label} at {params.time_of_peak * tu.factor:.4g} {tu.label}, "
         f"T {params.duration * tu.factor:.4g} {tu.label}, I {params.impulse * iu.factor:.4g} {iu.label}"
     )
+    if constants is not None and Path(constants).is_file():  # a scaling.json: read, so never removed
+        inputs = [*inputs, Path(constants)]
     return Outcome(files, line, tuple(inputs), tuple(notes))
 
 
@@ -212,11 +216,11 @@ def _driven(bar: str | None, beam: str | None, pulse):
 
         problem, path = load_bar_case(bar)
         res = execute(problem, force=pulse).result
-        return [path], (res.time, res.force, problem.gauges, res.strain), "compressive"
+        return list(case_files(path)), (res.time, res.force, problem.gauges, res.strain), "compressive"
     if beam is not None:
         from ..input.beam_case import load_beam_case
 
         problem, path = load_beam_case(beam)
         res = execute(problem, energy=False, force=pulse).result
-        return [path], (res.time, res.force, problem.gauges, res.strain), "absolute"
+        return list(case_files(path)), (res.time, res.force, problem.gauges, res.strain), "absolute"
     return [], None, ""

@@ -38,7 +38,10 @@ def sweep(
 ) -> Outcome:
     """``softimpact sweep SPEC --out DIR``: the spec and the scheduler's address are checked whole before anything is written;
     ``workers`` None: the machine's cores; ``units``: the display system of the lines and figures (None: the case's)."""
+    from ..output.files import check_writable
+
     t0 = time.perf_counter()
+    check_writable(out_dir)  # the checkpoints' folder: an empty path (Python's out="") would put them in the working folder
     check_scheduler(scheduler)
     with HeldWarnings() as caught:  # the spec's and the probes' warnings: shown once each, below
         s = load_sweep_spec(spec)
@@ -61,7 +64,8 @@ def sweep(
         line = threshold_lines(th, system) + "\n" + line  # the command line ends the last line with the files written
     # validity flags raised here (the probes' reading of their cases) are the runs' own, counted per run
     found = [str(w.message).strip() for w in caught.held if not getattr(w.message, "flag", "")]
-    return Outcome(files, line, (s.path, s.case_path), tuple(sweep_warnings(summary, found)))
+    read = (s.path, s.case_path, *(Path(f) for f, _ in s.inputs))  # every file the runs read: never replaced nor removed
+    return Outcome(files, line, read, tuple(sweep_warnings(summary, found)))
 
 
 MAX_THRESHOLDS = 6  # threshold rows printed (all of them in thresholds.csv and summary.json)

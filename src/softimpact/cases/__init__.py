@@ -23,7 +23,9 @@ kind (:data:`KINDS`, :func:`kind_of`). A kind provides
 - ``problem_class()``: the type of its problems (:func:`kind_for` finds a problem's kind by it);
 - ``execute(problem, *, figures, fields, damage, method, kernels, model, energy, stop_after, progress) -> Run``:
   the one run of a problem (:func:`softimpact.cases.run.execute`, which dispatches here);
-- ``damage_refusal(problem)``: why the problem has no damage outputs (None when it has them, or has none to give).
+- ``damage_refusal(problem)``: why the problem has no damage outputs (None when it has them, or has none to give);
+- ``refusal(problem, study)``: why ``study`` ("a sweep", "converge") cannot run the problem (None when it can):
+  both ask before any run, so a kind of run a study does not take is refused at once, never run by run.
 
 This package sits below app: it imports input, output, workflows, fem and models.
 """

@@ -39,8 +39,10 @@ class BarKind:
 
         if history is not None:
             raise InputError("--history: a bar case has no table of histories", "history")
+        from ..input.sweep_spec import case_files
+
         problem, path = load_bar_case(case)
-        return problem, (path,)
+        return problem, case_files(path)  # the case and every file it names
 
     def problem(self, data, base):
         from ..input.bar_case import bar_problem
@@ -83,6 +85,10 @@ class BarKind:
             return Run(simulate_force(problem.bar, problem.solver, problem.gauges, force), None, {}, Validity({}), problem)
         result, plain, inferred = _run_bar(problem, summary)
         return Run(result, None, bar_summary(result, plain) if summary else {}, bar_validity(result), problem, plain=plain, inferred=inferred)
+
+    def refusal(self, problem, study):
+        """Every bar case sweeps and converges."""
+        return None
 
     def damage_refusal(self, problem):
         return None  # a bar has no damage outputs: the sweep's check of the outputs names it

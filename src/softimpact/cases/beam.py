@@ -43,9 +43,10 @@ class BeamKind:
 
     def load(self, case, history=None):
         from ..input.beam_case import load_beam_case
+        from ..input.sweep_spec import case_files
 
         problem, path = load_beam_case(case, history)
-        return problem, (path,)
+        return problem, case_files(path)  # the case and every file it names
 
     def problem(self, data, base):
         from ..input.beam_case import beam_problem
@@ -103,6 +104,10 @@ class BeamKind:
         kept = sampled_steps(problem.solver.steps, FRAMES if frames is None else frames) if fields else ()
         validity = beam_validity(result)
         return Run(result, model, beam_summary(model, result, validity) if summary else {}, validity, problem, kept=kept)
+
+    def refusal(self, problem, study):
+        """Every beam case sweeps and converges."""
+        return None
 
     def damage_refusal(self, problem):
         from ..workflows.damage import damage_refusal

@@ -10,7 +10,7 @@ import numpy as np
 
 from ._common import GAUGE_FIELDS, magnitude_and_history, without
 
-__all__ = ["ImpactKind", "SharedModel", "bar_target", "KERNEL_MIN_RUNS"]
+__all__ = ["ImpactKind", "SharedModel", "bar_target", "KERNEL_MIN_RUNS", "with_identified_envelope"]
 
 # Keys of an impact case that leave the target's model (mesh, step, factorisation) unchanged: the
 # impactor's velocity, mass, material and diameter and the contact law. The diameter sets only the
@@ -117,6 +117,52 @@ def _nonlinearity(target) -> str:
     return "an elastic-plastic metal section"
 
 
+PENALTY_RATIO = 1e4  # a cohesive penalty K above this many times the plies' E3/t adds no accuracy, only ill-conditioning
+
+
+def _penalty_cause(target) -> str:
+    """Words naming the cohesive interfaces' penalty as the likely cause of a failed step when it is more than
+    :data:`PENALTY_RATIO` times the thinnest sublaminate's through-thickness stiffness E3/t: the intact stack's extra
+    compliance is of order E3/(t·K), 1e-4 there (the built-in case's 1e15 N/m³ is about 40 times E3/t and agrees
+    with 1e17 to 1e-3 in peak force), so a stiffer penalty changes nothing but the step's conditioning. '' otherwise."""
+    law, stack = target.law, target.plate.stack
+    bounds = (0, *target.splits, len(stack.angles))
+    thinnest = min(b - a for a, b in zip(bounds[:-1], bounds[1:])) * stack.ply.thickness
+    stiffness = stack.ply.E3 / thinnest
+    ratio = law.K / stiffness
+    if ratio <= PENALTY_RATIO:
+        return ""
+    return (
+        f"the interfaces' penalty (damage.penalty = {law.K:.3g} N/m^3) is {ratio:.3g} times the thinnest sublaminate's through-thickness "
+        f"stiffness E3/t ({stiffness:.3g} N/m^3): that stiff a penalty adds no accuracy, only ill-conditioning; give damage.penalty "
+        f"of 10 to {PENALTY_RATIO:g} times E3/t (before refining the mesh or the step)"
+    )
+
+
+def require_crossing_steps(velocity: float, diameter: float, time_step: float) -> None:
+    """Refuse a coupled run whose impactor crosses its own diameter in fewer than
+    :data:`softimpact.fem.linear.MIN_STEPS_PER_RISE` steps: d/V bounds what any contact can last while the impactor
+    crushes or flows (a crushing ice sphere is consumed in about d/V; an elastic one's approach stays far below d), so a
+    coarser step can carry the sphere through its whole contact between two steps (an ice sphere at 2000 m/s stepped at
+    20 us: peak force 0, as if it had passed through the plate). InputError naming solver.time_step with the step that
+    resolves it. The rise of a law's force has its own check (:func:`softimpact.guards.require_contact_steps`)."""
+    import math
+
+    from ..errors import InputError
+    from ..fem.linear import MIN_STEPS_PER_RISE
+
+    crossing = diameter / velocity
+    if crossing < MIN_STEPS_PER_RISE * time_step:
+        advised = crossing / MIN_STEPS_PER_RISE * 1e6
+        scale = 10.0 ** (2 - math.floor(math.log10(advised)))
+        raise InputError(
+            f"a time step of {time_step * 1e6:.4g} us cannot follow the impactor: at {velocity:.4g} m/s it crosses its own diameter "
+            f"({diameter * 1e3:.4g} mm, the longest a crushing contact can last) in {crossing * 1e6:.4g} us, fewer than {MIN_STEPS_PER_RISE} steps; "
+            f"give solver.time_step = {math.floor(advised * scale) / scale:g} us or less",  # rounded down: the advice taken as written passes
+            "time_step",
+        )
+
+
 def bar_target(data: dict, base: Path):
     """An impact case whose target is a bar case, as that bar case with the impact case's impactor
     (``[projectile]``), contact law, solver, gauges (if given), title and units: a
@@ -190,9 +236,12 @@ class ImpactKind:
             raise InputError("--history: an impact case has no table of histories (its force comes from the contact)", "history")
         path = locate(case)
         bar = bar_target(load_toml(path), path.parent)
+        from ..input.sweep_spec import case_files
+
         if bar is not None:
-            return bar[0], (path, bar[1])
-        return load_impact_case(case)
+            return bar[0], case_files(path)
+        problem, files = load_impact_case(case)
+        return problem, case_files(path, files[1:])  # the case, its target case, a law.json, and what those name
 
     def problem(self, data, base):
         from ..input.impact_case import impact_problem
@@ -215,6 +264,7 @@ class ImpactKind:
             return other.check(problem)
         problem.target.check()
         i = problem.impactor
+        require_crossing_steps(i.velocity, i.diameter, problem.solver.time_step)
         require_contact_steps(problem.law, i.mass, i.velocity, i.diameter, problem.solver.time_step)
 
     def refine(self, problem, factor):
@@ -257,7 +307,7 @@ class ImpactKind:
         """The coupled run (:func:`softimpact.cases.run.execute`): the target's model (with its ``"damage"`` output
         group when ``damage`` and its laminate allow the indices), the snapshots the figures and fields draw, the run
         (``method``: direct stepping, or kernel runs), the damage indices, the validity and summary.json's content."""
-        from ..errors import InputError
+        from ..errors import InputError, SolverFailed
         from ..output.fields import FRAMES, sampled_steps
         from ..output.impact import snapshot_steps
         from ..workflows.coupled import run_impact
@@ -278,7 +328,13 @@ class ImpactKind:
         model = model or problem.model(damage=damage)
         if progress is not None:
             progress(0)
-        model, result = run_impact(problem, model, energy, stop_after, snaps, method=method, kernels=kernels)
+        try:
+            model, result = run_impact(problem, model, energy, stop_after, snaps, method=method, kernels=kernels)
+        except SolverFailed as exc:  # the stepper knows its residual, not the case: say what in the case may cause it
+            cause = _penalty_cause(problem.target) if own == "cohesive" else ""
+            if not cause:
+                raise
+            raise SolverFailed(f"{exc}; {cause}") from None
         if progress is not None:
             progress(steps)
         return self._finish(problem, result, model, damage, shown, kept)
@@ -300,7 +356,7 @@ class ImpactKind:
             dmg = coupled_damage(target, result, impactor_mass=problem.impactor.mass).summary() if damage else None
             dmg = delamination_growth(dmg, result)  # cohesive interfaces: the delaminated area, in the verdict
         note = None if dmg is not None else damage_refusal(target, "target.case: ")
-        validity = impact_validity(problem, result, dmg)
+        validity = impact_validity(problem, result, dmg) + _criterion_validity(dmg)
         summary = impact_summary(problem, result, validity, dmg, note, target.summary_extras(model, result))
         return Run(result, model, summary, validity, problem, shown, kept)
 
@@ -323,6 +379,8 @@ class ImpactKind:
         other = _other_kind(problem)
         if other:
             return other.run(None, data, base, outputs, problem)
+        contact = data.get("contact") if isinstance(data.get("contact"), dict) else {}
+        law_file = Path(base) / contact["law_file"] if isinstance(contact.get("law_file"), str) else None
         damage = _wants_damage(outputs)
         shared = isinstance(prepared, SharedModel)
         model = prepared.get(problem) if shared else None
@@ -330,7 +388,7 @@ class ImpactKind:
             run = self.execute(problem, damage=damage, model=model, energy=False, method="kernels", kernels=prepared.kernels(problem, data))
         else:
             run = self.execute(problem, damage=damage, model=model, method="direct")
-        return _scalars(run)
+        return _scalars(with_identified_envelope(run, law_file))
 
     def summary(self, problem, result, model=None):
         """The scalars of ``softimpact impact``'s summary.json (:meth:`execute`'s) of a coupled ``result`` of
@@ -338,6 +396,12 @@ class ImpactKind:
         the names of the run's validity flags (as the command's)."""
         damage = len(model.contact_groups().get("damage", ())) > 0  # the model ran with the damage group
         return _scalars(self._finish(problem, result, model, damage))
+
+    def refusal(self, problem, study):
+        """An impact on a bar target: the bar kind's answer; every impact on a beam or plate sweeps and converges
+        (the target's own kinematics and interfaces step each run)."""
+        other = _other_kind(problem)
+        return other.refusal(problem, study) if other else None
 
     def damage_refusal(self, problem):
         """Why an impact has no damage outputs (its target's laminate), None when it has them."""
@@ -378,6 +442,43 @@ class ImpactKind:
 
     def expand(self, data, key):
         pass
+
+
+def with_identified_envelope(run, law_file):
+    """``run`` (a coupled :class:`~softimpact.cases.run.Run`) with the geometric envelope of its identified law: the
+    approach over the diameter its bar tests reached (law.json ``law_file``'s ``identified_on``,
+    :func:`softimpact.models.validity.identified_contact_validity`) in its validity and summary.json's; unchanged for
+    another law, no file, or a law.json that does not record it. The law object a run steps holds no record of what
+    it was identified on: the file does, and every caller that read one passes it here (the impact command, the API,
+    a sweep's runs; the maps check it with their law)."""
+    import dataclasses
+
+    from ..formats.law_json import read_law
+    from ..models.validity import identified_contact_validity
+
+    if law_file is None or run.problem.law_name != "identified" or not hasattr(run.result, "approach"):
+        return run
+    r = run.result
+    extra = identified_contact_validity(
+        read_law(law_file).identified_on, float(np.max(r.approach)), run.problem.impactor.diameter, float(np.max(r.contact_radius))
+    )
+    if not extra.values and not extra.flags:
+        return run
+    validity = run.warnings + extra
+    return dataclasses.replace(run, warnings=validity, summary={**run.summary, "validity": validity.summary()} if run.summary else run.summary)
+
+
+def _criterion_validity(damage: dict | None):
+    """What the coupled run's own checks (:func:`softimpact.cases.run.impact_validity`) leave out: with the damage block,
+    a delamination criterion applied outside the response regime it was derived for
+    (:func:`softimpact.models.delamination.criterion_validity`)."""
+    from ..models.delamination import criterion_validity
+    from ..models.validity import Validity
+
+    v = Validity({})
+    if damage is not None and damage.get("regime"):
+        v += criterion_validity(damage["regime"], ("olsson", "delamination"))
+    return v
 
 
 def _scalars(run) -> dict:

@@ -9,7 +9,7 @@ import numpy as np
 
 from ._common import LOAD_KEYS, expand_ply, gauge_keys, gauge_outputs, magnitude_and_history, without
 
-__all__ = ["PlateKind", "mirrored_loads"]
+__all__ = ["PlateKind", "mirrored_loads", "geometry_validity"]
 
 
 def _wants_damage(outputs) -> bool:
@@ -22,6 +22,16 @@ def mirrored_loads(problem) -> tuple[str, ...]:
         f'plate.support.{edge} = "symmetry" does not pass through the load point: the model carries the load mirrored about it too'
         for edge in problem.mirrored_edges()
     )
+
+
+def geometry_validity(problem):
+    """A plate theory's envelope in the plate's geometry (:func:`softimpact.models.validity.plate_thickness_validity`):
+    the laminate's thickness over the shorter span (:func:`~softimpact.models.validity.plate_span`), on every plate run
+    (dynamic, static, a coupled impact's target, a map's row)."""
+    from ..models.validity import plate_span, plate_thickness_validity
+
+    spec = problem.plate
+    return plate_thickness_validity(spec.total_thickness, plate_span(spec.length_x, spec.length_y, spec.supports))
 
 
 class PlateKind:
@@ -42,9 +52,10 @@ class PlateKind:
 
     def load(self, case, history=None):
         from ..input.plate_case import load_plate_case
+        from ..input.sweep_spec import case_files
 
         problem, path = load_plate_case(case, history)
-        return problem, (path,)
+        return problem, case_files(path)  # the case and every file it names
 
     def problem(self, data, base):
         from ..input.plate_case import plate_problem
@@ -101,8 +112,8 @@ class PlateKind:
         kept = sampled_steps(steps, FRAMES if frames is None else frames) if fields else ()
         snaps = np.union1d(shown, kept).astype(int) if fields else shown
         result = model.direct(force, progress=progress, energy=energy, snapshots=snaps)  # force None: the model's problem's history
-        validity = Validity({}, mirrored_loads(problem)) + plate_validity(result)
-        return Run(result, model, plate_summary(model, result) if summary else {}, validity, problem, shown, kept)
+        validity = Validity({}, mirrored_loads(problem)) + plate_validity(result) + geometry_validity(problem)
+        return Run(result, model, plate_summary(model, result, validity) if summary else {}, validity, problem, shown, kept)
 
     def _static(self, problem, model=None):
         """A static plate run (:func:`softimpact.workflows.plate.solve_plate_static`): its summary and envelope;
@@ -113,22 +124,35 @@ class PlateKind:
         from .run import Run
 
         model, result = solve_plate_static(problem, model)
-        validity = plate_static_validity(result)
+        validity = plate_static_validity(result, model) + geometry_validity(problem)
         if not result.converged:
             validity += Validity({}, (f"static plate: {result.message}",), ("",))
-        return Run(result, model, plate_static_summary(model, result), validity, problem)
+        return Run(result, model, plate_static_summary(model, result, validity), validity, problem)
 
     def damage_refusal(self, problem):
         from ..workflows.damage import damage_refusal
 
         return damage_refusal(problem)
 
+    def refusal(self, problem, study):
+        """Why ``study`` ("a sweep", "converge") cannot run ``problem``: only linear dynamic plates are wired into them
+        (a static plate has no steps to refine nor impulse responses to share), None for those."""
+        if problem.analysis == "static":
+            return (
+                f"{study} of a plate case runs linear dynamic plates only for now: this one is static (solver.analysis = 'static'); "
+                "run each load with `softimpact plate`"
+            )
+        if problem.kinematics != "linear":
+            return f"{study} of a plate case runs linear dynamic plates only for now (plate.kinematics = 'linear'); an impact case on it sweeps and converges"
+        return None
+
     def _linear_dynamic_only(self, problem, what: str) -> None:
         """Refuse a static or von Kármán plate case where only linear dynamic runs are wired (``what``: the study)."""
         from ..errors import InputError
 
-        if problem.analysis == "static" or problem.kinematics != "linear":
-            raise InputError(f"{what} of a plate case runs linear dynamic plates only for now (solver.analysis = 'dynamic', plate.kinematics = 'linear')")
+        why = self.refusal(problem, what)
+        if why is not None:
+            raise InputError(why)
 
     def study(self, problem, stride, progress=None):
         """Peak deflection under the load, gauge peaks and histories; the model's size."""
@@ -184,7 +208,7 @@ class PlateKind:
         from ..output.plate import plate_scalars, plate_validity
 
         scalars = {**plate_scalars(result), **gauge_outputs(result.time, [g.name for g in problem.gauges], result.strain)}
-        v = plate_validity(result)
+        v = plate_validity(result) + geometry_validity(problem)
         return {**scalars, "validity": {"deflection_over_thickness": v.values["deflection_over_thickness"]}, "validity_flags": v.names}
 
     def _damage(self, problem, strains: dict, force: np.ndarray) -> dict:

@@ -107,12 +107,19 @@ def impact_validity(problem, result, damage: dict | None = None) -> Validity:
     """The envelopes of a coupled run (:func:`softimpact.models.validity.coupled_validity`): the contact law's approach and
     contact radius against the impactor's size, the law's own envelope, the target's deflection against its thickness (its theory,
     :meth:`~softimpact.models.protocols.Target.validity`), and with ``damage`` (summary.json's) the strains
-    against the ply allowables."""
+    against the ply allowables (none when ``damage`` holds no indices: a cohesive run's growth alone, without the damage group),
+    a metal target's yield or tearing, and on a plate target the plate's thickness against its span
+    (:func:`softimpact.cases.plate.geometry_validity`)."""
     from ..models.validity import coupled_validity, tearing_flags, yield_flags
+    from ..workflows.plate_impact import PlateProblem
 
     v = coupled_validity(problem, result, None if damage is None else damage.get("max_strain"))
     if damage is not None and "max_von_mises_over_yield" in damage:  # an elastic metal target
         v += yield_flags("the target (elastic metal)", damage["max_von_mises_over_yield"])
     if damage is not None and "max_equivalent_plastic_strain" in damage:  # an elastic-plastic metal target
         v += tearing_flags("the target (elastic-plastic metal)", damage["max_equivalent_plastic_strain"], problem.target.material.elongation)
+    if isinstance(problem.target, PlateProblem):  # plate theory's geometry (cases.plate.geometry_validity), on every plate target
+        from .plate import geometry_validity
+
+        v += geometry_validity(problem.target)
     return v

@@ -104,6 +104,9 @@ def plan_sweep(spec: SweepSpec) -> SweepPlan:
         try:
             checked = kind.problem(spec.case_for(central[i], kind.expand), base)
             kind.check(checked)  # the command's discretisation floors and resource guards, before any run
+            why = kind.refusal(checked, "a sweep")  # a kind of run a sweep does not take: refused now, not run by run
+            if why is not None:
+                raise InputError(why)
         except InputError as exc:
             raise InputError(f"sweep: {spec.case_path.name}: {exc}") from None
         if i == 0:
@@ -115,8 +118,12 @@ def plan_sweep(spec: SweepSpec) -> SweepPlan:
             if why is not None:
                 raise InputError(f"sweep.outputs: {o!r}: {why}")
         if o not in known:
+            import difflib
+
+            near = difflib.get_close_matches(o, known, n=1, cutoff=0.75)
+            hint = f"did you mean {near[0]!r}? " if near else ""
             raise InputError(
-                f"sweep.outputs: {o!r} is not an output of {'an' if kind.name[:1] in 'aeiou' else 'a'} {kind.name} case (known: {', '.join(known)})"
+                f"sweep.outputs: {o!r} is not an output of {'an' if kind.name[:1] in 'aeiou' else 'a'} {kind.name} case ({hint}known: {', '.join(known)})"
             )
     groups: dict[str, list[int]] = {}
     for r, data in zip(runs, cases):

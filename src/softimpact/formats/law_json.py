@@ -13,7 +13,10 @@ their relative errors).
 
 ``identified_on`` holds the ranges of the tests: ``velocity_m_s``, ``diameter_m`` and ``projectile``
 (``mass_kg``, ``diameter_m``, ``density_kg_m3``: what the law may be used for; files written before it
-read without it, and a case using them is warned that the projectile cannot be checked).
+read without it, and a case using them is warned that the projectile cannot be checked), and the law's own
+geometry on them, ``approach_over_diameter`` and ``contact_radius_over_bar_radius`` (the range of each test's
+largest): the envelope a run's approach is checked against (an identified law is fitted to its balls' own
+flattening, so Hertz's small-contact check does not apply to it). Each range must read [min, max].
 
 Older files (the memoryless law, before the Maxwell arm; or before ``q_p``) lack the later
 parameters: they read as 0, i.e. no arm and no size power, the law they were written for.
@@ -59,6 +62,9 @@ FORM = (
     "contact radius a = sqrt(d*alpha)"
 )
 LATER = ("q_p", "kappa_ref", "theta_ref", "q_kappa", "q_theta")  # parameters older law.json files lack (read as 0)
+# identified_on's record of the law's own geometry on its tests (output.identify.approach_record): the range of the
+# tests' largest approach over diameter and of their largest contact radius over the bar's radius; older files lack it
+GEOMETRY = ("approach_over_diameter", "contact_radius_over_bar_radius")
 
 
 def projectile_record(tests) -> dict:
@@ -146,17 +152,35 @@ def read_law(path, argument: str = "contact.law_file") -> IdentifiedLaw | Crushi
         ranges = data.get("identified_on")  # absent from files written before it was recorded
         if ranges is not None:
             proj = ranges.get("projectile")  # absent from files written before it was recorded
+            reached = {k: ranges[k] for k in GEOMETRY if k in ranges}  # absent from files written before they were recorded
             ranges = {k: [float(x) for x in ranges[k]] for k in ("velocity_m_s", "diameter_m")}
+            ranges.update({k: [float(x) for x in v] for k, v in reached.items()})
             if proj is not None:
                 ranges["projectile"] = {k: [float(x) for x in proj[k]] for k in ("mass_kg", "diameter_m", "density_kg_m3")}
     except (KeyError, TypeError, ValueError, AttributeError):
         raise InputError(
             f"{argument}: {path} is not a law.json (needs family, d_ref_m and parameters {', '.join(n for n in names if n not in LATER)})"
         ) from None
+    if ranges is not None:
+        _check_ranges(ranges, path, argument)
     arm_ok = values[6] == 0.0 or (values[6] > 0.0 and values[7] > 0.0)
     if not (np.all(np.isfinite(values)) and values[0] > 0 and values[1] > 0 and values[2] >= 0 and arm_ok and math.isfinite(d_ref) and d_ref > 0):
         raise InputError(f"{argument}: {path} has parameters out of range (k_ref > 0, p > 0, c_ref >= 0, kappa_ref >= 0 with theta_ref > 0, d_ref_m > 0)")
     return IdentifiedLaw(names, values, half, d_ref, rms, cost, ranges)
+
+
+def _check_ranges(ranges: dict, path, argument: str, where: str = "identified_on.") -> None:
+    """Each [min, max] of a law.json's ``identified_on`` (and of its ``projectile``) finite, positive and in order: a
+    reversed or edited range would otherwise be reported as "outside 105-13 m/s" (InputError naming the key)."""
+    for key, pair in ranges.items():
+        if isinstance(pair, dict):
+            _check_ranges(pair, path, argument, f"{where}{key}.")
+            continue
+        if not (isinstance(pair, (list, tuple)) and len(pair) == 2):
+            raise InputError(f"{argument}: {path}: {where}{key} must be [min, max], got {pair!r}")
+        lo, hi = pair
+        if not (math.isfinite(lo) and math.isfinite(hi) and 0.0 < lo <= hi):
+            raise InputError(f"{argument}: {path}: {where}{key} must be [min, max] with 0 < min <= max, got [{lo!r}, {hi!r}]")
 
 
 def crushing_range_error(values) -> str | None:
@@ -238,6 +262,9 @@ def _read_crushing(data: dict, path, argument: str) -> CrushingIdentifiedLaw:
                     continue
                 raise InputError(f"{argument}: {path} is not a crushing law.json: no identified_on.{k}")
             ranges[k] = pair(on[k], f"identified_on.{k}")
+        for k in GEOMETRY:  # absent from files written before they were recorded
+            if k in on:
+                ranges[k] = pair(on[k], f"identified_on.{k}")
         if "projectile" in on:
             proj = table(on, "projectile", "identified_on.")
             ranges["projectile"] = {}
@@ -247,4 +274,5 @@ def _read_crushing(data: dict, path, argument: str) -> CrushingIdentifiedLaw:
                         continue
                     raise InputError(f"{argument}: {path} is not a crushing law.json: no identified_on.projectile.{k}")
                 ranges["projectile"][k] = pair(proj[k], f"identified_on.projectile.{k}")
+        _check_ranges(ranges, path, argument)
     return CrushingIdentifiedLaw(CRUSHING_PARAMETERS, np.array(values), np.array(half), rate, d_ref, rms, cost, ranges, method=method)

@@ -29,7 +29,7 @@ from ..models.materials import Material
 from ..models.projectiles import LinearHugoniot, PowerLawStrength, projectile_material
 from .toml import Table
 
-__all__ = ["CONTACT_LAWS", "CRITICAL_INDENTATION", "HUNT_CROSSLEY_FORMS", "LAW_KEYS", "note_law_keys", "read_contact_law", "warn_outside"]
+__all__ = ["CONTACT_LAWS", "CRITICAL_INDENTATION", "HUNT_CROSSLEY_FORMS", "LAW_KEYS", "note_law_keys", "read_contact_law", "check_family", "warn_outside"]
 
 CRITICAL_INDENTATION = 0.08e-3  # m: Yang & Sun (1982), graphite/epoxy struck by a 12.7 mm steel ball
 HUNT_CROSSLEY_FORMS = ("lankarani-nikravesh", "hunt-crossley")
@@ -65,6 +65,7 @@ def read_contact_law(
         path = Path(file) if Path(file).is_absolute() else base / file
         given = c.raw("parameters", None)  # read before the file, so a case's keys are all known even when the file is not
         identified = _with_parameters(read_law(path, c.key("law_file")), c, given)
+        check_family(identified, material, mass, diameter, f"{c.key('law_file')} ({path.name})", where)
         warn_outside(identified.identified_on, velocity, diameter, path, mass)
         return identified.law(mass, diameter, velocity), path
     h = hertz()
@@ -139,6 +140,43 @@ def _with_parameters(law, c: Table, given):
     if not (k > 0 and p > 0 and cr >= 0 and ka >= 0 and (ka == 0 or th > 0)):
         raise InputError(f"{c.key('parameters')}: out of range (k_ref > 0, p > 0, c_ref >= 0, kappa_ref >= 0 with theta_ref > 0), got {given!r}")
     return dataclasses.replace(law, values=values)
+
+
+def check_family(identified, material: Material | None, mass: float, diameter: float, law_key: str, material_key: str = "material") -> None:
+    """Refuse an identified law on a projectile of another family than the one it was identified on: a crushing law
+    (law.json's ``family`` "crushing", an ice sphere's) on a projectile whose material does not crush (no crushing
+    strength: rubber, steel), a soft projectile's law on one that does (ice); and a projectile whose density
+    m/(π·d³/6) lies more than :data:`~softimpact.input.projectile.MASS_DENSITY_FACTOR` times outside the identified
+    projectiles' (law.json's ``identified_on.projectile``): another material (a steel ball under a rubber ball's law).
+    Within that factor a density off by more than 20 % is an extrapolation, warned (:func:`warn_outside`)."""
+    import math
+
+    from ..models.projectiles import PROJECTILES
+    from .projectile import MASS_DENSITY_FACTOR
+
+    crushing = getattr(identified, "family", None) == CRUSHING_FAMILY
+    if material is not None:
+        record = next((r for k, r in PROJECTILES.items() if k.lower() == material.name.lower()), None)
+        crushes = record is not None and record.strength is not None
+        if crushing and not crushes:
+            raise InputError(
+                f"{law_key}: holds a crushing law (family {CRUSHING_FAMILY!r}, an ice sphere's) and the impactor is {material.name} "
+                f"({material_key}): a law identified on one projectile family does not drive another; give an ice impactor, or the law of its own material"
+            )
+        if not crushing and crushes:
+            raise InputError(
+                f"{law_key}: holds a soft projectile's law (rubber, gel) and the impactor is {material.name} ({material_key}), which crushes: "
+                "give its crushing law (law = 'crushing', or a law.json of `softimpact identify --law crushing`)"
+            )
+    proj = (identified.identified_on or {}).get("projectile")
+    if proj is not None and diameter > 0:
+        density = mass / (math.pi / 6.0 * diameter**3)
+        lo, hi = proj["density_kg_m3"]
+        if not lo / MASS_DENSITY_FACTOR <= density <= hi * MASS_DENSITY_FACTOR:
+            raise InputError(
+                f"{law_key}: identified on projectiles of {lo:.4g}-{hi:.4g} kg/m^3, and the impactor's density is {density:.4g} kg/m^3 "
+                f"(more than {MASS_DENSITY_FACTOR:g} times outside: another material, {material_key}): a law identified on one projectile does not drive another"
+            )
 
 
 def warn_outside(ranges: dict | None, velocity: float, diameter: float, path: Path, mass: float | None = None) -> None:

@@ -37,8 +37,14 @@ __all__ = ["CONTACT_LAWS", "ImpactProblem", "impact_problem", "load_impact_case"
 
 
 def _mirrors_through_impact(target: PlateProblem, where: str) -> None:
-    """A plate's symmetry edge mirrors the impactor too: it must pass through the impact point
-    (a half or quarter model of one impact), else the model would be struck twice."""
+    """A plate struck by an impactor: a dynamic plate with an impact point (a static plate under a uniform pressure has
+    neither steps nor a load point: refused naming it); its symmetry edges mirror the impactor too, so each must pass
+    through the impact point (a half or quarter model of one impact), else the model would be struck twice."""
+    if target.analysis == "static":
+        raise InputError(
+            f"{where}: a static plate case (solver.analysis = 'static', a uniform pressure): an impact strikes a dynamic plate "
+            "at its load.position; give a plate case with a [load] position and a [solver] time step"
+        )
     mirrored = target.mirrored_edges()
     if mirrored:
         raise InputError(

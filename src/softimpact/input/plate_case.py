@@ -33,7 +33,7 @@ from .toml import Table, load_case_toml, locate, naming, read_solver, read_units
 __all__ = ["PLATE_SUPPORTS", "PLATE_MODELS", "check_supports", "plate_problem", "read_plate_gauges", "load_plate_case", "read_metal"]
 
 PLATE_SUPPORTS = ("clamped", "simply-supported", "free", "symmetry")  # symmetry: a mirror plane (quarter models)
-PLATE_MODELS = ("fsdt", "solid")
+PLATE_MODELS = ("fsdt",)  # the layered solid model is not implemented: not a choice (a case naming it is told so)
 MIN_ELEMENTS = 2  # per direction: one element cannot place a load or gauge inside the plate
 # The element when a case names none, in every command that reads a plate case (plate,
 # converge, impact, sweep): MITC9, whose flexural dispersion error is O(h⁴) (1.8 % on the
@@ -54,21 +54,48 @@ def _point(tbl: Table, name: str) -> tuple[float, float]:
 
 
 def _supports(tbl: Table) -> tuple[str, str, str, str]:
+    """``support``: one kind for all four edges (``support = "simply-supported"``, as ``si.Plate`` takes it) or a table
+    of the four edges."""
     value = tbl.raw("support")
-    if not isinstance(value, dict):
-        raise InputError(f"{tbl.key('support')}: expected a table {{ x0 = ..., x1 = ..., y0 = ..., y1 = ... }}, got {value!r}")
-    s = Table(value, tbl.key("support"))
-    out = tuple(s.string(e, choices=PLATE_SUPPORTS) for e in EDGES)
-    s.done()
+    if isinstance(value, str):
+        if value not in PLATE_SUPPORTS:
+            raise InputError(f"{tbl.key('support')}: {value!r} is not one of {', '.join(PLATE_SUPPORTS)}")
+        out = (value,) * 4
+    elif isinstance(value, dict):
+        s = Table(value, tbl.key("support"))
+        out = tuple(s.string(e, choices=PLATE_SUPPORTS) for e in EDGES)
+        s.done()
+    else:
+        raise InputError(f"{tbl.key('support')}: expected one support for all edges or a table {{ x0 = ..., x1 = ..., y0 = ..., y1 = ... }}, got {value!r}")
     check_supports(out, tbl.key("support"))
     return out
 
 
+# What each support stops of the plate's rigid motions w = c0 + c1·x + c2·y (unit square, edges x0: x = 0, x1: x = 1,
+# y0: y = 0, y1: y = 1): rows of the linear conditions on (c0, c1, c2). A simply supported edge holds w = 0 along it
+# (two conditions), a clamped one its slope across too, a symmetry edge only that slope (w free along it), a free
+# edge nothing.
+_HELD = {
+    "x0": {"simply-supported": [[1, 0, 0], [0, 0, 1]], "clamped": [[1, 0, 0], [0, 0, 1], [0, 1, 0]], "symmetry": [[0, 1, 0]]},
+    "x1": {"simply-supported": [[1, 1, 0], [0, 0, 1]], "clamped": [[1, 1, 0], [0, 0, 1], [0, 1, 0]], "symmetry": [[0, 1, 0]]},
+    "y0": {"simply-supported": [[1, 0, 0], [0, 1, 0]], "clamped": [[1, 0, 0], [0, 1, 0], [0, 0, 1]], "symmetry": [[0, 0, 1]]},
+    "y1": {"simply-supported": [[1, 0, 1], [0, 1, 0]], "clamped": [[1, 0, 1], [0, 1, 0], [0, 0, 1]], "symmetry": [[0, 0, 1]]},
+}
+
+
 def check_supports(supports, key: str = "support") -> None:
-    """Refuse edges (x0, x1, y0, y1) that leave the plate a mechanism: it needs a clamped edge or two simply
-    supported ones (the rule of case files and of ``si.Plate``)."""
-    if supports.count("clamped") == 0 and supports.count("simply-supported") < 2:
-        raise InputError(f"{key}: {dict(zip(EDGES, supports))} leaves the plate a mechanism (it needs a clamped edge or two simply supported edges)")
+    """Refuse edges (x0, x1, y0, y1) that leave the plate a mechanism: a rigid motion w = c0 + c1·x + c2·y that no
+    edge stops (:data:`_HELD`: the conditions have rank 3 exactly when none is left). A clamped edge, two simply
+    supported ones, or one with a symmetry edge across it hold the plate; a half or quarter model's symmetry edges
+    count for the slope they hold (the rule of case files and of ``si.Plate``)."""
+    import numpy as np
+
+    rows = [r for edge, kind in zip(EDGES, supports) for r in _HELD[edge].get(kind, [])]
+    if not rows or np.linalg.matrix_rank(np.array(rows, float)) < 3:
+        raise InputError(
+            f"{key}: {dict(zip(EDGES, supports))} leaves the plate a mechanism: a rigid motion no edge stops (it needs a clamped edge, "
+            "two simply supported edges, or a simply supported edge and a symmetry edge across it)"
+        )
 
 
 def read_metal(tbl: Table, name: str = "material") -> Metal:
@@ -134,9 +161,9 @@ def plate_problem(data: dict, base: Path = Path("."), history: int | None = None
     title = top.string("title", "")
     read_units(top)  # checked here; the display system is the edge's (input.toml.case_units), not the problem's
     p = top.table("plate")
-    model = p.string("model", PLATE_MODELS[0], choices=PLATE_MODELS)
-    if model == "solid":
+    if p.raw("model", PLATE_MODELS[0]) == "solid":
         raise InputError(f"{p.key('model')}: the layered solid model is not implemented yet (use 'fsdt')")
+    p.string("model", PLATE_MODELS[0], choices=PLATE_MODELS)
     element = p.string("element", DEFAULT_ELEMENT, choices=ELEMENTS)
     elements = p.raw("elements", [48, 48])
     if not (isinstance(elements, list) and len(elements) == 2 and all(isinstance(e, int) and not isinstance(e, bool) for e in elements)):
@@ -182,6 +209,8 @@ def plate_problem(data: dict, base: Path = Path("."), history: int | None = None
     analysis = sv.string("analysis", ANALYSES[0], choices=ANALYSES)
     ld = top.table("load")
     if analysis == "static":
+        if history is not None:
+            raise InputError(f"--history: a static plate case has no [[load.table]] rows to pick (its load is {ld.key('pressure')})", "history")
         if "pressure" not in ld:
             raise InputError(f"{ld.key('pressure')}: missing (a static plate run, {sv.key('analysis')} = 'static', takes a uniform pressure)")
         pressure = ld.quantity("pressure", "stress")

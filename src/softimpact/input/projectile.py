@@ -13,6 +13,7 @@ sets them.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from ..errors import InputError
@@ -20,7 +21,12 @@ from ..models.materials import CATALOGUE, Material, sphere_mass
 from ..models.threats import flight_hail_velocity, hail_terminal_velocity
 from .toml import Table, read_material
 
-__all__ = ["Sphere", "read_sphere"]
+__all__ = ["Sphere", "read_sphere", "check_mass", "MASS_DENSITY_FACTOR"]
+
+# A sphere's mass over that of a solid sphere of its material of its diameter may lie between 1/F and F: natural hail is
+# lighter than solid ice, a ball may be hollow or filled; a sphere twice or half as dense as its material is not of it
+# (another material, or a mass given in the wrong unit: a "1.1 kg" rubber ball is a thousand times a 1.1 g one).
+MASS_DENSITY_FACTOR = 2.0
 
 
 @dataclass(frozen=True)
@@ -53,4 +59,21 @@ def read_sphere(tbl: Table) -> Sphere:
         fall = hail_terminal_velocity(diameter) if airspeed is None else flight_hail_velocity(airspeed, diameter)
         velocity = tbl.quantity("velocity", "velocity", default=fall)
     mass = tbl.quantity("mass", "mass", default=None)
+    if mass is not None:
+        check_mass(material, diameter, mass, tbl.key("mass"), tbl.raw("mass"))
     return Sphere(material, diameter, velocity, sphere_mass(material, diameter) if mass is None else mass)
+
+
+def check_mass(material: Material, diameter: float, mass: float, key: str, given) -> None:
+    """Refuse a sphere's ``mass`` [kg] (``given`` as written, at ``key``) more than :data:`MASS_DENSITY_FACTOR` times
+    above or below that of a solid sphere of ``material`` of ``diameter`` [m]: its density m/(π·d³/6) is then not the
+    material's (InputError naming the key, the density it implies and the material's)."""
+    solid = sphere_mass(material, diameter)
+    ratio = mass / solid
+    if not 1.0 / MASS_DENSITY_FACTOR <= ratio <= MASS_DENSITY_FACTOR:
+        density = mass / (math.pi / 6.0 * diameter**3)
+        raise InputError(
+            f"{key}: {given!r} is {ratio:.3g} times the mass of a solid {diameter * 1e3:.4g}-mm sphere of {material.name} ({solid * 1e3:.4g} g): "
+            f"a density of {density:.4g} kg/m^3 against the material's {material.density:.4g} (it must lie within a factor {MASS_DENSITY_FACTOR:g} of it): "
+            "check the mass's unit, or give the sphere's own material"
+        )

@@ -59,6 +59,7 @@ __all__ = [
     "SweepSpec",
     "Run",
     "load_sweep_spec",
+    "case_files",
     "read_sweep_spec",
     "scaling_covariance",
     "set_dotted",
@@ -160,6 +161,27 @@ class Drawn:
         return self.a * np.exp(self.b * norm.ppf(u))
 
 
+PSD_TOL = 1e-10  # relative to the largest eigenvalue: a covariance's eigenvalues above −this are round-off of a zero
+
+
+def covariance_factor(C) -> np.ndarray:
+    """L with L·Lᵀ = C for a symmetric positive SEMI-definite covariance ``C`` (n, n): its Cholesky factor when C is
+    definite (the draws as before), else V·sqrt(max(λ, 0)) of its eigen-decomposition, so a singular covariance
+    (parameters perfectly correlated, or one with no spread) draws on the subspace it spans, where Cholesky fails.
+    Eigenvalues below −:data:`PSD_TOL`·λ_max are not round-off: a ValueError (the caller names the file)."""
+    C = np.asarray(C, float)
+    if C.size == 0 or not np.any(C):
+        return np.zeros_like(C)
+    try:
+        return np.linalg.cholesky(C + 1e-300 * np.eye(len(C)))
+    except np.linalg.LinAlgError:  # singular (or not a covariance): the eigen-decomposition says which
+        pass
+    lam, V = np.linalg.eigh(0.5 * (C + C.T))
+    if lam.min() < -PSD_TOL * max(lam.max(), 0.0):
+        raise ValueError(f"the covariance is not positive semi-definite (eigenvalue {lam.min():.3g} against the largest {lam.max():.3g})")
+    return V * np.sqrt(np.clip(lam, 0.0, None))
+
+
 @dataclass(frozen=True)
 class Scaling:
     """α1–α4 of a scaling.json as a joint normal (mean, covariance), set as ``key``.alpha1..4."""
@@ -179,8 +201,7 @@ class Scaling:
         """Uniforms (n, 4) → correlated normal draws (n, 4) through the Cholesky factor."""
         from scipy.stats import norm
 
-        C = np.asarray(self.covariance, float)
-        L = np.linalg.cholesky(C + 1e-300 * np.eye(4)) if np.any(C) else np.zeros((4, 4))
+        L = covariance_factor(self.covariance)  # checked when read: semi-definite (a singular one draws on its span)
         return np.asarray(self.mean) + norm.ppf(u) @ L.T
 
 
@@ -212,8 +233,7 @@ class LawDraw:
         """Uniforms (n, dims) → correlated normal draws (n, dims) through the Cholesky factor."""
         from scipy.stats import norm
 
-        C = np.asarray(self.covariance, float)
-        L = np.linalg.cholesky(C + 1e-300 * np.eye(self.dims))
+        L = covariance_factor(self.covariance)  # checked when read: semi-definite (a singular one draws on its span)
         return np.asarray(self.mean) + norm.ppf(u) @ L.T
 
 
@@ -423,8 +443,12 @@ def _law_draw(path: Path, key: str, where: str) -> LawDraw:
         raise InputError(f"{where}: {path} is not a law.json with parameters (value, ci95_half_width)") from None
     if not names:
         raise InputError(f"{where}: {path}: no parameter has a spread (ci95_half_width > 0): nothing to draw")
-    if cov.shape != (len(names), len(names)) or not np.all(np.isfinite(cov)) or np.any(np.linalg.eigvalsh(0.5 * (cov + cov.T)) < 0):
-        raise InputError(f"{where}: {path}: the covariance is not a symmetric positive semi-definite matrix")
+    if cov.shape != (len(names), len(names)) or not np.all(np.isfinite(cov)) or not np.allclose(cov, cov.T, rtol=1e-9, atol=0.0):
+        raise InputError(f"{where}: {path}: the covariance is not a finite symmetric matrix of the parameters with a spread ({', '.join(names)})")
+    try:
+        covariance_factor(cov)
+    except ValueError as exc:
+        raise InputError(f"{where}: {path}: {exc}") from None
     return LawDraw(key, tuple(names), tuple(mean), tuple(map(tuple, cov)), str(path))
 
 
@@ -585,3 +609,18 @@ def input_files(case_path: Path, case_data: dict, params=()) -> tuple[tuple[str,
                     continue  # a file that does not parse is refused where it is read; its bytes are already counted
             todo += [(f, None) for k, v in _strings(data) if (f := _file_of(v, k, path.parent)) is not None]
     return tuple(sorted((str(p), d) for p, d in found.items()))
+
+
+def case_files(case_path, known=()) -> tuple[Path, ...]:
+    """Every file a case reads: the case itself first (as given), the files ``known`` to have been read (as their
+    reader named them: a law.json relative to the case's folder), then each other file it names (a target case, a
+    force table, a record) and those name in turn (:func:`input_files`), resolved. A run's inputs: never replaced nor
+    removed by its outputs (:func:`softimpact.output.files.write_outputs`)."""
+    first = [Path(case_path), *(Path(k) for k in known)]
+    seen = {p.resolve() for p in first}
+    try:
+        data = load_toml(Path(case_path))
+    except InputError:
+        return tuple(dict.fromkeys(first))
+    more = [Path(f) for f, _ in input_files(Path(case_path), data) if Path(f).resolve() not in seen]
+    return tuple(dict.fromkeys(first + more))

@@ -11,6 +11,7 @@ addressed by name as well as by path.
 from __future__ import annotations
 
 import difflib
+import math
 import tomllib
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -22,9 +23,54 @@ from ..errors import InputError
 from ..fem.newmark import NewmarkParameters, SolverSpec
 from ..models.materials import Material, lookup
 
-__all__ = ["Table", "naming", "builtin_cases", "locate", "load_toml", "read_material", "read_solver", "read_units", "case_units"]
+__all__ = [
+    "Table",
+    "naming",
+    "PHYSICAL_RANGES",
+    "check_physical",
+    "builtin_cases",
+    "locate",
+    "load_toml",
+    "read_material",
+    "read_solver",
+    "read_units",
+    "case_units",
+]
 
 _MISSING = object()
+
+# The physical range of a quantity of each kind in a case or an API call, SI: (least positive value, largest magnitude,
+# why). Past it no structure, projectile or material of this toolkit's problems exists, and the answer's arithmetic
+# means nothing (a strength of 1e300 Pa gives forces of 1e300 N; a sphere of 1e300 m overflows its volume): such a
+# value is a slip (a unit, an exponent), refused naming the key. The least value binds only where a key must be
+# positive (a size, a step), never a position or an offset.
+PHYSICAL_RANGES = {
+    "length": (1e-9, 1e4, "a nanometre (below it no continuum) to 10 km"),
+    "mass": (1e-12, 1e7, "a nanogram to 10 000 t"),
+    "time": (1e-12, 1e5, "a picosecond to a day"),
+    "velocity": (0.0, 1e4, "10 km/s, past any bird, hail or debris impact (hypervelocity impact is other physics)"),
+    "stress": (0.0, 1e13, "ten times diamond's modulus"),
+    "density": (1.0, 1e5, "from below any foam to four times osmium's"),
+    "force": (0.0, 1e10, "10 GN"),
+    "impulse": (0.0, 1e8, "1e8 N s"),
+    "energy": (0.0, 1e10, "10 GJ"),
+    "moment": (0.0, 1e10, "10 GN m"),
+    "toughness": (0.0, 1e7, "a hundred times a tough metal's fracture energy"),
+    "interface_stiffness": (0.0, 1e21, "1e21 N/m^3, a million times a stiff adhesive layer's E/t"),
+    "frequency": (0.0, 1e12, "a terahertz"),
+    "voltage": (0.0, 1e6, "a megavolt"),
+}
+
+
+def check_physical(si: float, kind: str, key: str, given, positive: bool = True) -> float:
+    """``si`` (the SI value of ``given``, a quantity of ``kind``) within :data:`PHYSICAL_RANGES`: its magnitude at most
+    the kind's largest and, when ``positive``, at least its least positive value; else an InputError naming ``key``
+    and echoing ``given`` as written (its unit with it). Returns ``si``."""
+    lo, hi, why = PHYSICAL_RANGES.get(kind, (0.0, float("inf"), ""))
+    if abs(si) > hi or (positive and 0.0 < si < lo):
+        bound = f"at most {hi:g} {units.SI_UNITS[kind]}" if abs(si) > hi else f"at least {lo:g} {units.SI_UNITS[kind]}"
+        raise InputError(f"{key}: {given!r} is outside the physical range of {units.a_or_an(kind)} ({bound}: {why})")
+    return si
 
 
 @contextmanager
@@ -79,12 +125,17 @@ class Table:
         q = units.parse(value, kind, self.key(name))
         if positive and not q > 0:
             raise InputError(f"{self.key(name)}: must be positive, got {value!r}")
-        return q
+        return check_physical(q, kind, self.key(name), value, positive)
 
-    def number(self, name: str, default=_MISSING) -> float:
+    def number(self, name: str, default=_MISSING, lo: float = -math.inf, hi: float = math.inf, why: str = "") -> float:
+        """A plain number, finite and within [``lo``, ``hi``] (``why``: the reason for the bounds, in the error)."""
         value = self.raw(name, default)
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise InputError(f"{self.key(name)}: expected a number, got {value!r}")
+        if not math.isfinite(value):
+            raise InputError(f"{self.key(name)}: expected a finite number, got {value!r}")
+        if not lo <= value <= hi:
+            raise InputError(f"{self.key(name)}: {value!r} is outside {lo:g} to {hi:g}{f' ({why})' if why else ''}")
         return float(value)
 
     def integer(self, name: str, default=_MISSING, minimum: int = 1) -> int:
@@ -119,6 +170,8 @@ class Table:
                 raise InputError(f"{self.key(name)}: not read here (value {self.data[name]!r}); it is read only with {self._read_with[name]}")
             # an optional key asked for and not given that looks like it (its default was taken: a misspelling)
             near = difflib.get_close_matches(name, [k for k in self._used if k not in self.data], n=1, cutoff=0.75)
+            # or a key the table read that is also given (a sweep's misspelt key set beside the case's own)
+            near = near or difflib.get_close_matches(name, sorted(self._used - {name}), n=1, cutoff=0.75)
             hint = f"; is it a misspelling of {near[0]!r}?" if near else ""
             raise InputError(f"{self.key(name)}: unknown key (value {self.data[name]!r}){hint}")
 

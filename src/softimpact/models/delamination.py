@@ -67,6 +67,8 @@ __all__ = [
     "REGIMES",
     "REGIME_BOUNDS",
     "REGIME_BOUNDS_NOTE",
+    "CRITERIA",
+    "criterion_validity",
     "OnsetThresholds",
     "onset_thresholds",
     "DCB",
@@ -162,6 +164,49 @@ def response_regime(impactor_mass: float, plate_mass: float, *, wave_below: floa
         raise InputError(f"wave_below must be below quasi_static_above, got {lo!r} and {hi!r}", "wave_below")
     r = _positive("impactor_mass", impactor_mass) / _positive("plate_mass", plate_mass)
     return REGIMES[0] if r < lo else REGIMES[2] if r > hi else REGIMES[1]
+
+
+# Which delamination criterion applies where (docs/delamination.md, "Which criterion where"): by the name the maps and
+# damage outputs give it, (what it is, the response regimes its derivation holds in, why).
+CRITERIA = {
+    "olsson": (
+        "Olsson's F_d",
+        ("quasi-static",),
+        "a quasi-static threshold: derived for a plate bending under a slowly applied point load (large-mass impact)",
+    ),
+    "delamination": (
+        "Davies-Zhang's P_c",
+        ("quasi-static",),
+        "a quasi-static threshold: derived for a static point load on a plate, the moment P/(4 pi) at the delamination front",
+    ),
+    "interlaminar_index": (
+        "the interlaminar index",
+        REGIMES,
+        "the run's own interlaminar shear against the ply's shear strengths, at every instant: no response regime assumed",
+    ),
+}
+
+
+def criterion_validity(regime: str, criteria):
+    """A ``criterion_outside_regime`` flag when one of ``criteria`` (keys of :data:`CRITERIA`) was derived for a response
+    regime other than the impact's ``regime`` (:func:`response_regime`): Olsson's and Davies–Zhang's thresholds are
+    quasi-static, so on a wave-controlled or intermediate impact their ratio is reported but not a verdict (the
+    interlaminar index, computed from the run's own stresses, applies in every regime). Nothing for an unknown regime."""
+    from .validity import Validity
+
+    outside = [c for c in criteria if c in CRITERIA and regime in REGIMES and regime not in CRITERIA[c][1]]
+    if not outside:
+        return Validity({})
+    names = " and ".join(CRITERIA[c][0] for c in outside)
+    return Validity(
+        {},
+        (
+            f"{names}: {'a quasi-static threshold' if len(outside) == 1 else 'quasi-static thresholds'} applied to {'an' if regime[:1] in 'aeiou' else 'a'} {regime} impact, outside the regime "
+            f"{'it was' if len(outside) == 1 else 'they were'} derived for (the regime by M_i/M_p, stand-in bounds): "
+            "a ratio to read, not a verdict; the interlaminar index and the run's own stresses apply in every regime",
+        ),
+        ("criterion_outside_regime",),
+    )
 
 
 @dataclass(frozen=True)

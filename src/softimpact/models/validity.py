@@ -13,8 +13,11 @@ Limits, each with its reason:
   5 % short of the sphere's ((a/R)²/4) and the half-space assumption strained. For the Hertz
   family only (hertz, hertz-unloading, hunt-crossley); a soft projectile's identified law is
   fitted to its own flattening.
-- contact radius ≤ the projectile's radius (every law): no sphere touches over more than its
-  own radius; and on a bar, ≤ the bar's radius (the contact would overhang the bar's end).
+- contact radius ≤ the projectile's radius, for the Hertz family (the laws whose derivation assumes a small
+  contact): no sphere touches over more than its own radius; and on a bar, ≤ the bar's radius (the contact
+  would overhang the bar's end). An identified law is fitted to its balls' own flattening: its envelope is what
+  it was identified on (:func:`identified_contact_validity`: the approach over the diameter its tests reached),
+  not a small-contact relation; a crushing sphere's cap cannot pass its radius by construction.
 - :data:`DEFLECTION_OVER_THICKNESS` = 0.5. Linear plate (and beam) theory neglects the membrane
   stretching of the mid-surface, which stiffens the plate as (w/h)²: for a clamped circular plate
   under uniform pressure w + 0.488·w³/h² = q·a⁴/(64D) (Timoshenko & Woinowsky-Krieger 1959, §97),
@@ -106,11 +109,8 @@ def contact_validity(law_name: str, max_approach: float, max_radius: float, diam
             f"{diameter:.4g} m), past the {HERTZ_APPROACH_OVER_DIAMETER:g} where Hertz's small-contact assumption (a << R) holds"
         )
         names.append("hertz_approach")
-    if v["contact_radius_over_projectile_radius"] > 1.0:
-        flags.append(
-            f"{law_name}: the contact radius reaches {v['contact_radius_over_projectile_radius']:.3g} times the projectile's radius "
-            f"({max_radius:.4g} m against {diameter / 2:.4g} m): no sphere touches over more than its own radius"
-        )
+    if law_name in HERTZ_FAMILY and v["contact_radius_over_projectile_radius"] > 1.0:
+        flags.append(_past_radius(law_name, max_radius, diameter))
         names.append("contact_past_projectile_radius")
     if bar_radius is not None:
         v["contact_radius_over_bar_radius"] = max_radius / bar_radius
@@ -118,6 +118,14 @@ def contact_validity(law_name: str, max_approach: float, max_radius: float, diam
             flags.append(f"{law_name}: the contact radius {max_radius:.4g} m exceeds the bar's radius {bar_radius:.4g} m (the contact overhangs the bar's end)")
         names.append("contact_past_bar_radius")
     return Validity(v, tuple(flags), tuple(names))
+
+
+def _past_radius(law_name: str, max_radius: float, diameter: float) -> str:
+    """The flag of a contact radius [m] past the projectile's radius (``diameter`` [m] / 2)."""
+    return (
+        f"{law_name}: the contact radius reaches {max_radius / (diameter / 2):.3g} times the projectile's radius "
+        f"({max_radius:.4g} m against {diameter / 2:.4g} m): no sphere touches over more than its own radius"
+    )
 
 
 def deflection_validity(what: str, max_deflection: float, thickness: float) -> Validity:
@@ -359,3 +367,86 @@ def identified_range_validity(ranges: dict | None, velocity: float, diameter: fl
 
 
 __all__ += ["coupled_validity", "run_end_validity", "range_floor_validity", "identified_range_validity"]
+
+
+# --- Models past their range where a number is reported (issue 42): plate theory on a thick plate, von Karman's strains ---
+
+PLATE_THICKNESS_OVER_SPAN = 0.1  # h/a: plate theories neglect the through-thickness normal stress, an error of order (h/a)^2
+SMALL_STRAIN_LIMIT = 0.02  # von Karman's strain drops the in-plane rotation term u,x^2/2, about eps/2 of the strain: 1 % at 2 %
+
+FLAG_LABELS.update(
+    {
+        "plate_thicker_than_span_tenth": f"laminate thicker than {PLATE_THICKNESS_OVER_SPAN:g} of the span (plate theory)",
+        "strain_past_small_strain": f"mid-surface strain > {SMALL_STRAIN_LIMIT:.0%} (von Karman's small strain)",
+        "criterion_outside_regime": "a quasi-static delamination threshold on a wave-controlled or intermediate impact",
+    }
+)
+
+
+def plate_span(length_x: float, length_y: float, supports) -> float:
+    """A plate's shorter span [m] between its edges (x0, x1, y0, y1 ``supports``): a half or quarter model's length
+    doubled across each symmetry edge (the whole plate's)."""
+    x0, x1, y0, y1 = supports
+    return min(length_x * (2 if "symmetry" in (x0, x1) else 1), length_y * (2 if "symmetry" in (y0, y1) else 1))
+
+
+def plate_thickness_validity(thickness: float, span: float) -> Validity:
+    """A plate theory's (FSDT's) envelope in its geometry: the laminate's ``thickness`` [m] over the plate's shorter
+    ``span`` [m] (the length between its edges). Past :data:`PLATE_THICKNESS_OVER_SPAN` the plate is thick: the
+    through-thickness normal stress and the sections' warping that a plate theory neglects are no longer small (their
+    share grows as (h/a)²), so its deflections and strains are not the structure's. The ratio is reported, the flag raised past it."""
+    r = thickness / span
+    flags = ()
+    if r > PLATE_THICKNESS_OVER_SPAN:
+        flags = (
+            f"plate theory (FSDT): the laminate is {r:.3g} of the plate's shorter span (h {thickness:.4g} m, span {span:.4g} m), past the "
+            f"{PLATE_THICKNESS_OVER_SPAN:g} where a plate theory holds (a thick plate: its through-thickness stress is neglected); "
+            "check the laminate's thickness (an inline ply's thickness is one ply's)",
+        )
+    return Validity({"thickness_over_span": r}, flags, ("plate_thicker_than_span_tenth",) * len(flags))
+
+
+def small_strain_validity(what: str, max_strain: float) -> Validity:
+    """The largest principal mid-surface strain of a von Kármán plate against :data:`SMALL_STRAIN_LIMIT`: its strain
+    measure keeps the transverse rotations' w,x²/2 and drops the in-plane ones' u,x²/2, about ε/2 of the strain itself,
+    and its laminate is linear elastic; past the limit neither is small, whatever the deflection."""
+    flags = ()
+    if math.isfinite(max_strain) and abs(max_strain) > SMALL_STRAIN_LIMIT:
+        flags = (
+            f"{what}: the mid-surface strain reaches {abs(max_strain):.3g} ({abs(max_strain):.1%}), past the {SMALL_STRAIN_LIMIT:.0%} where von "
+            "Karman's strains (which drop the in-plane rotations' terms) and a linear elastic laminate hold",
+        )
+    return Validity({"max_membrane_strain": abs(max_strain)}, flags, ("strain_past_small_strain",) * len(flags))
+
+
+__all__ += ["PLATE_THICKNESS_OVER_SPAN", "SMALL_STRAIN_LIMIT", "plate_span", "plate_thickness_validity", "small_strain_validity"]
+
+
+FLAG_LABELS["extrapolated_approach"] = "approach past what the identified law's tests reached"
+
+
+def identified_contact_validity(ranges: dict | None, max_approach: float, diameter: float, max_radius: float | None = None) -> Validity:
+    """An identified law's geometric envelope: the run's largest approach over the impactor's ``diameter`` [m] against
+    the largest its bar tests reached (law.json's ``identified_on.approach_over_diameter``, the range of each test's
+    largest), flagged more than :data:`RANGE_SLACK` beyond it: the law's force there is an extrapolation of its fit.
+    A law.json that does not record it (written before it was kept) cannot be checked so: its contact radius
+    ``max_radius`` [m] is then held to the ball's radius, as a small-contact law's is (:func:`contact_validity`)."""
+    reached = (ranges or {}).get("approach_over_diameter")
+    if reached is None:
+        if max_radius is None or max_radius <= diameter / 2:
+            return Validity({})
+        return Validity(
+            {}, (_past_radius("identified (its law.json records no approach it was identified to)", max_radius, diameter),), ("contact_past_projectile_radius",)
+        )
+    r = max_approach / diameter
+    hi = float(reached[1])
+    flags = ()
+    if r > (1 + RANGE_SLACK) * hi:
+        flags = (
+            f"the identified law: the approach reaches {r:.3g} of the impactor's diameter, past the {hi:.3g} its bar tests reached: "
+            "its force there is an extrapolation of the fit",
+        )
+    return Validity({"approach_over_identified_max": r / hi}, flags, ("extrapolated_approach",) * len(flags))
+
+
+__all__ += ["identified_contact_validity"]

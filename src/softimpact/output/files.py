@@ -10,7 +10,8 @@ their SHA-256, the inputs and theirs, the package version, status and command,
 signed as softimpact's (``generator`` and ``signature``: a SHA-256 over the files'
 names and hashes). A reused DIR never mixes runs: the files the previous manifest
 lists that this run does not rewrite are removed (only those, only while unchanged
-since that run wrote them, and only when that manifest is softimpact's own: another
+since that run wrote them, never a file this run reads — a law.json an earlier
+``identify`` wrote there, now a case's input —, and only when that manifest is softimpact's own: another
 tool's ``manifest.json`` lists nothing softimpact may touch, and is itself the
 user's file). Every writer takes the folder's lock (:data:`LOCK`), the command line
 for the whole run (:func:`claim_output`), a Python ``.write()`` for its write. The staging folder is named ``.softimpact-<pid>-…``; it is
@@ -229,6 +230,17 @@ def _file_sha256(path: Path) -> str | None:
     return h.hexdigest()
 
 
+def _resolved(paths) -> set[Path]:
+    """The files ``paths`` resolved (symlinks followed): a run's inputs, whatever path named them."""
+    out = set()
+    for p in paths:
+        try:
+            out.add(Path(p).resolve())
+        except (OSError, RuntimeError, ValueError):
+            continue
+    return out
+
+
 def check_writable(out_dir) -> None:
     """Refuse, before any computing, an output folder that cannot be created or written.
 
@@ -271,8 +283,9 @@ def foreign_files(out_dir, inputs=(), names=None) -> list[Path]:
     if not out.is_dir():
         return []
     previous = _previous_files(out)
-    protected = {Path(p).resolve() for p in inputs}
-    if names is None:
+    protected = _resolved(inputs)
+    if names is None:  # before computing, this run's inputs are not all known yet: the previous run's read files are the user's too
+        protected |= _previous_inputs(out)
         candidates = [
             p
             for p in out.rglob("*")
@@ -435,20 +448,34 @@ def _previous_files(out: Path) -> dict[str, str]:
     return _own_manifest(out) or {}
 
 
+def _previous_inputs(out: Path) -> set[Path]:
+    """The files a previous softimpact run into ``out`` read (its signed manifest's ``inputs``), resolved."""
+    if _own_manifest(out) is None:
+        return set()
+    try:
+        listed = json.loads((out / MANIFEST).read_text(encoding="utf-8")).get("inputs")
+    except (OSError, ValueError, AttributeError):
+        return set()
+    return _resolved(listed) if isinstance(listed, dict) else set()
+
+
 def _foreign_manifest(out: Path) -> bool:
     """Whether ``out`` holds a manifest.json softimpact did not write (the user's or another tool's)."""
     path = out / MANIFEST
     return (path.is_file() or path.is_symlink()) and (path.is_symlink() or _own_manifest(out) is None)
 
 
-def _remove_previous(out: Path, previous: dict[str, str], keep) -> None:
-    """Remove the previous run's files not rewritten now: only listed names inside ``out``, unchanged since."""
+def _remove_previous(out: Path, previous: dict[str, str], keep, inputs=()) -> None:
+    """Remove the previous run's files not rewritten now: only listed names inside ``out``, unchanged since, and
+    never a file this run reads (``inputs``: a law.json an earlier ``identify`` wrote into ``out``, read by this
+    run's case, stays where it is, the earlier run's manifest notwithstanding)."""
     root = out.resolve()
+    protected = _resolved(inputs)
     for name, digest in previous.items():
         if name in keep or name == MANIFEST:
             continue
         path = (out / name).resolve()
-        if root not in path.parents or not path.is_file() or path.is_symlink():
+        if root not in path.parents or not path.is_file() or (out / name).is_symlink() or path in protected:
             continue
         if _file_sha256(path) == digest:
             path.unlink()
@@ -494,7 +521,7 @@ def write_outputs(out_dir, files: dict[str, bytes | str], inputs=(), manifest: d
     if "\x00" in str(out_dir):  # no file system takes it (os raises ValueError, not OSError)
         raise InputError(f"--out: {str(out_dir)!r} holds a NUL character, which no folder name can")
     out = Path(out_dir)
-    protected = {Path(p).resolve() for p in inputs}
+    protected = _resolved(inputs)
     names = list(files) + ([MANIFEST] if manifest is not None else [])
     targets = {name: (out / name) for name in names}
     for name, target in targets.items():
@@ -533,7 +560,7 @@ def _write_staged(out: Path, files: dict, inputs, manifest: dict | None, targets
                 else:
                     path.write_bytes(content)
             if manifest is not None:
-                _remove_previous(out, _previous_files(out), set(files))
+                _remove_previous(out, _previous_files(out), set(files), inputs)
             for name, target in targets.items():  # the manifest last: it lists a complete run
                 target.parent.mkdir(parents=True, exist_ok=True)
                 os.replace(staging / name, target)

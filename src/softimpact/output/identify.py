@@ -120,10 +120,31 @@ def force_approach_figure(tests, law, approaches, system: str):
     return fig
 
 
+def approach_record(tests, approaches, law, bar_radius: float) -> dict:
+    """What the law's own geometry reached on the bar tests it was identified on (law.json's ``identified_on``): the
+    range over the tests of each one's largest approach over its diameter, α_max/d (the approach the law is known to,
+    checked where it is used: :func:`softimpact.models.validity.identified_contact_validity`), and of its largest contact
+    radius, the law's own a(α_max) (:meth:`radius`), over the bar's radius (the patch must lie on the bar's face)."""
+    from ..models.protocols import HistoryLaw, StepBoundLaw
+
+    over_d, over_bar = [], []
+    for t, a in zip(tests, approaches):
+        alpha = float(np.max(a.approach[a.main_pulse])) if np.any(a.main_pulse) else float(np.max(a.approach))
+        over_d.append(alpha / t.diameter)
+        one = law.law(t.mass, t.diameter, t.velocity)
+        if isinstance(one, StepBoundLaw):  # a law with memory, bound to the test's sampling (its radius does not depend on it)
+            one = one.for_time_step(float(t.time[1] - t.time[0]))
+        one = one.branch(one.initial_state()) if isinstance(one, HistoryLaw) else one  # its radius is its branch's
+        over_bar.append(float(one.radius(alpha)) / bar_radius)
+    return {"approach_over_diameter": [min(over_d), max(over_d)], "contact_radius_over_bar_radius": [min(over_bar), max(over_bar)]}
+
+
 def identify_files(series, tests, law, approaches, closure, figures: bool = True, prefix: str = "", predictions=()) -> dict[str, bytes | str]:
-    """law.json (with the predictive intervals, :func:`predictions_summary`), closure.csv,
+    """law.json (with the predictive intervals, :func:`predictions_summary`; ``identified_on`` with the tests' projectiles
+    and the approach and contact radius they reached, :func:`approach_record`), closure.csv,
     predictions.csv, approach-<test>.csv and (optionally) closure-forces.png, force-approach.png."""
     summary = law_summary(law, [t.name for t in tests], closure, str(series.path), projectile_record(tests))
+    summary.setdefault("identified_on", {}).update(approach_record(tests, approaches, law, series.bar.diameter / 2))
     summary.update(predictions_summary(law, predictions))
     files = {
         prefix + "law.json": json_text(summary),

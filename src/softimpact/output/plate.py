@@ -42,7 +42,7 @@ def plate_validity(result):
     return v
 
 
-def plate_summary(model, result) -> dict:
+def plate_summary(model, result, validity=None) -> dict:
     """The scalars of a plate run, SI with unit-suffixed keys, and the resolved case.
 
     A gauge's peak is the extreme within the run's window; when it sits on the
@@ -69,7 +69,7 @@ def plate_summary(model, result) -> dict:
         "natural_frequencies_Hz": [float(f) for f in model.frequencies(min(5, model.size - 2))],
         **plate_scalars(result),
         "gauges": gauges,
-        "validity": plate_validity(result).summary(),
+        "validity": (plate_validity(result) if validity is None else validity).summary(),  # the run's (cases.plate), with its geometry's
         "case_SI": p,
     }
     if result.energies:
@@ -108,19 +108,25 @@ def plate_files(model, result, figures: bool = True, summary: dict | None = None
     return files
 
 
-def plate_static_validity(result):
+def plate_static_validity(result, model=None):
     """The envelope of a static plate run: with linear kinematics, the largest deflection against the
     thickness (:func:`softimpact.models.validity.deflection_validity`); von Kármán kinematics is the model
-    past it (its ratio is reported, not flagged). With von Kármán kinematics and ply strengths, the mid-surface strains
+    past it (its ratio is reported, not flagged), within its own small strains: with its ``model``, the largest principal
+    mid-surface strain (:func:`~softimpact.models.validity.small_strain_validity`: a plate at 17 thicknesses stretched
+    3 % is flagged). With von Kármán kinematics and ply strengths, the mid-surface strains
     against the ply allowables (``membrane_strain_index``, a lower bound of the faces' index: flagged past 1)."""
-    from ..models.validity import Validity, allowable_flags, deflection_validity
+    from ..models.validity import Validity, allowable_flags, deflection_validity, small_strain_validity
 
-    h = result.problem.plate.stack.thickness
+    h = result.problem.plate.total_thickness
     w = float(result.max_deflection[-1])
     if result.kinematics == "linear":
         v = deflection_validity("linear plate theory (FSDT)", w, h)
     else:
         v = Validity({"deflection_over_thickness": w / h}, ())
+        if model is not None:
+            e = np.asarray(model.membrane_strain(result.u), float).reshape(-1, 3)  # (εx, εy, γxy) at the plate's points
+            mean, radius = 0.5 * (e[:, 0] + e[:, 1]), np.hypot(0.5 * (e[:, 0] - e[:, 1]), 0.5 * e[:, 2])
+            v += small_strain_validity("von Karman plate", float(np.max(np.abs(mean) + radius)))  # the largest principal strain's magnitude
     if math.isfinite(result.membrane_strain_index):
         v += allowable_flags(
             "the plate's plies, from the mid-surface strains alone (a lower bound of the faces')", result.membrane_strain_index, "membrane_strain_index"
@@ -128,7 +134,7 @@ def plate_static_validity(result):
     return v
 
 
-def plate_static_summary(model, result) -> dict:
+def plate_static_summary(model, result, validity=None) -> dict:
     """summary.json of a static plate run (uniform pressure): the largest mid-surface deflection
     ``max_deflection_m`` (its magnitude, along the pressure) and ``kinematics``, Newton's convergence
     (``newton``: iterations and final relative residual per load step, ``converged``, ``message``), the
@@ -146,7 +152,7 @@ def plate_static_summary(model, result) -> dict:
         "supports": dict(zip(("x0", "x1", "y0", "y1"), p.plate.supports)),
         "pressure_Pa": float(p.pressure),
         "max_deflection_m": float(result.max_deflection[-1]),
-        "max_deflection_over_thickness": float(result.max_deflection[-1] / p.plate.stack.thickness),
+        "max_deflection_over_thickness": float(result.max_deflection[-1] / p.plate.total_thickness),
         "deflection_note": "largest transverse deflection of the mid-surface over the plate, positive along the pressure",
         "load_steps": {"pressure_Pa": [float(q) for q in result.pressure], "max_deflection_m": [float(w) for w in result.max_deflection]},
         "newton": {
@@ -155,7 +161,7 @@ def plate_static_summary(model, result) -> dict:
             "converged": bool(result.converged),
             "message": result.message,
         },
-        "validity": plate_static_validity(result).summary(),
+        "validity": (plate_static_validity(result, model) if validity is None else validity).summary(),
         "case_SI": p,
     }
 

@@ -42,11 +42,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..errors import InputError
 from ..models.crushing_law import CrushingLaw
-from ..models.delamination import REGIME_BOUNDS, response_regime
+from ..models.delamination import REGIME_BOUNDS, criterion_validity, response_regime
 from ..models.projectiles import projectile_material
 from ..models.validity import range_floor_validity
-from .thresholds import ONSET, check_range, gci_two_meshes, structure, structure_run, threshold_velocity
+from .thresholds import ONSET, check_map, check_range, gci_two_meshes, structure, structure_run, threshold_velocity
 
 __all__ = [
     "RHYMER_THICKNESSES",
@@ -213,6 +214,11 @@ def hail_map(
     memoryless and the quasi-isotropic panels have no bending–extension coupling; on the thinnest panel, 8 × 8 at
     2 µs, w/h 2-3, its peak force is the full plate's within 0.7 %, ``tests/test_rom_maps.py``)."""
     check_range(lo, hi)
+    check_map(indices, diameters, known=(ONSET, "delamination"))
+    if len(thicknesses) != len(layups):  # zip would drop the panels past the shorter list, silently
+        raise InputError(f"thicknesses and layups: one layup per panel thickness, got {len(thicknesses)} thicknesses and {len(layups)} layups", "layups")
+    if kinematics not in ("linear", "von-karman"):
+        raise InputError(f"kinematics: {kinematics!r} is not one of linear, von-karman", "kinematics")
     meshes = meshes or ((4, 4e-6), (8, 2e-6))
     start = {(r.thickness, r.diameter, r.index): r.velocity for r in guesses if math.isfinite(r.velocity)}
     rows = []
@@ -227,12 +233,13 @@ def hail_map(
                 vc = math.nan if vc <= lo else vc  # a coarse onset at the floor is not found: no GCI from it
                 mass = _density(law) * math.pi / 6.0 * d**3
                 peak, validity = math.nan, {"flags": []}
+                ratio = mass / fine.problem.target.mass
+                regime = response_regime(mass, fine.problem.target.mass, wave_below=REGIME_BOUNDS[0], quasi_static_above=REGIME_BOUNDS[1])
                 if math.isfinite(v):
                     problem, result = structure_run(fine, law, d, v)
                     peak = max(c.peak_force for c in result.contacts)
-                    validity = (run_validity(problem, result) + range_floor_validity(v, lo)).summary()
-                ratio = mass / fine.problem.target.mass
-                regime = response_regime(mass, fine.problem.target.mass, wave_below=REGIME_BOUNDS[0], quasi_static_above=REGIME_BOUNDS[1])
+                    # the run's checks, and a quasi-static threshold applied outside its regime (criterion_outside_regime)
+                    validity = (run_validity(problem, result) + range_floor_validity(v, lo) + criterion_validity(regime, (index,))).summary()
                 row = HailRow(
                     h, d, mass, index, v, vc, gci_two_meshes(v, vc), peak, _threshold_force(fine, index), validity, ratio, regime, fine.kinematics, v <= lo
                 )

@@ -92,12 +92,21 @@ import numpy as np
 from ..errors import InputError
 from ..fem.contact import group_outputs
 from ..fem.newmark import SolverSpec
-from ..models.delamination import REGIME_BOUNDS, response_regime
+from ..models.delamination import REGIME_BOUNDS, criterion_validity, response_regime
 from ..models.materials import Material
 from ..models.specimens import Impactor
-from ..models.validity import Validity, coupled_validity, identified_range_validity, range_floor_validity
+from ..models.validity import (
+    Validity,
+    coupled_validity,
+    identified_contact_validity,
+    identified_range_validity,
+    plate_span,
+    plate_thickness_validity,
+    range_floor_validity,
+)
 from ..workflows.coupled import ImpactProblem, impact_kernels, run_impact
 from ..workflows.damage import coupled_damage, delamination_force, olsson_force
+from ..workflows.plate_impact import PlateProblem
 
 __all__ = [
     "INDICES",
@@ -114,6 +123,8 @@ __all__ = [
     "run_validity",
     "stepped_run",
     "structure_run",
+    "check_range",
+    "check_map",
 ]
 
 INDICES = ("tsai_wu", "delamination")  # the damage indices thresholded by default
@@ -321,10 +332,14 @@ def run_validity(problem: ImpactProblem, result, identified=None) -> Validity:
     warns when it reads the law (:func:`~softimpact.models.validity.identified_range_validity`)."""
     dmg = coupled_damage(problem.target, result, impactor_mass=problem.impactor.mass).summary()
     v = coupled_validity(problem, result, dmg["max_strain"])
+    if isinstance(problem.target, PlateProblem):  # plate theory's geometry, as the impact command checks its plate target
+        spec = problem.target.plate
+        v += plate_thickness_validity(spec.total_thickness, plate_span(spec.length_x, spec.length_y, spec.supports))
     if identified is not None:
         i = problem.impactor
         ranges = identified_range_validity(identified.identified_on, i.velocity, i.diameter, i.mass, "the identified law")
         v += Validity({}, ranges.flags, ranges.names)  # its flags (the command's warnings); its ratios stay out of the row
+        v += identified_contact_validity(identified.identified_on, float(np.max(result.approach)), i.diameter, float(np.max(result.contact_radius)))
     return v
 
 
@@ -405,6 +420,27 @@ def check_range(lo: float, hi: float) -> None:
         raise InputError(f"threshold velocity range: need 0 < lo < hi (finite), got lo = {lo!r} m/s, hi = {hi!r} m/s", "lo")
 
 
+def check_map(indices, diameters, known=(*INDICES, ONSET), **scalars) -> None:
+    """Refuse, before any run, a map's arguments it would fail on or silently mis-read: an index not among ``known``
+    (the nearest suggested), no diameter or one not positive and finite [m], and any of ``scalars`` (name → value:
+    ``strength_cov``, ``draws``) not a finite non-negative number (a NaN scatter would give a NaN band)."""
+    import difflib
+
+    if isinstance(indices, str) or not len(indices):
+        raise InputError(f"indices: expected a list of indices of {', '.join(known)}, got {indices!r}", "indices")
+    for index in indices:
+        if index not in known:
+            near = difflib.get_close_matches(str(index), known, n=1, cutoff=0.6)
+            raise InputError(
+                f"indices: {index!r} is not an index of the maps ({f'did you mean {near[0]!r}? ' if near else ''}known: {', '.join(known)})", "indices"
+            )
+    if isinstance(diameters, str) or not len(diameters) or not all(isinstance(d, (int, float)) and math.isfinite(d) and d > 0 for d in diameters):
+        raise InputError(f"diameters: expected positive finite diameters [m], got {diameters!r}", "diameters")
+    for name, value in scalars.items():
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not (math.isfinite(value) and value >= 0):
+            raise InputError(f"{name}: expected a finite number >= 0, got {value!r}", name)
+
+
 def law_draws(law, draws: int, seed: int = 1) -> list:
     """``draws`` copies of the identified ``law`` with its spread parameters drawn (Latin hypercube,
     ``seed``) from its covariance, or its 95 % half-widths /1.96 when it has none; draws outside the
@@ -463,6 +499,7 @@ def threshold_map(
     from scipy.stats import norm
 
     check_range(lo, hi)
+    check_map(indices, diameters, strength_cov=strength_cov, draws=draws, strength_quantiles=strength_quantiles)
     drawn = law_draws(law, draws, seed) if band_from is None else []
     q = norm.ppf((np.arange(strength_quantiles) + 0.5) / strength_quantiles)
     factors = np.maximum(1.0 + strength_cov * q, 0.05)
@@ -494,6 +531,8 @@ def threshold_map(
                 count, reached, (p05, p95, med, law_lo, law_hi) = len(vs), int(np.isfinite(vs).sum()), _drawn_band(vs, beta, factors, widen)
             ratio = mass / s.problem.target.mass
             regime = response_regime(mass, s.problem.target.mass, wave_below=REGIME_BOUNDS[0], quasi_static_above=REGIME_BOUNDS[1])
+            if math.isfinite(nominal):  # a quasi-static threshold's row on a wave-controlled impact says so (criterion_outside_regime)
+                flags += criterion_validity(regime, (index,)).names
             rows.append(
                 MapRow(
                     s.name,

@@ -349,6 +349,10 @@ def identify_series(rod: Rod, reduced, refined: bool = True, progress=_silent, f
     progress(2, 3, "closure")
     cl = closure(law, tests, rod)
     progress(3, 3, "closure")
+    # the law's envelope is what it was identified on: with its tests' velocities and diameters, the range of their largest
+    # approach over diameter (models.validity.identified_contact_validity checks a run's against it)
+    reached = [float(np.max(a.approach[a.main_pulse] if np.any(a.main_pulse) else a.approach)) / t.diameter for a, t in zip(approaches, tests)]
+    law = replace(law, identified_on={**(law.identified_on or {}), "approach_over_diameter": [min(reached), max(reached)]})
     return tests, law, approaches, cl
 
 
