@@ -30,6 +30,13 @@ interfaces' stiffness changes only where a damaged face closes) and its Newton i
 implicit update (the law's damage inside the iterations, with its softening tangent) made the iterations of
 a coarse mesh cycle between loading and unloading points and fail.
 
+Closure within a step: a damaged face in compression carries the undamaged penalty K, open it carries (1 − d)·K, a
+kink at δ_n = 0 between which Newton cycled once much of an interface softened (Turon's strengths: the residual stalled
+at 1e-4 of the step's forces). The one engine therefore freezes each point's closure for a step's Newton iterations
+(:meth:`CohesivePlate.freeze`: the interface is then linear at the held damage), and re-solves the step from its
+answer with the sets updated while any damaged point's converged opening contradicts its set (:meth:`release`): the
+accepted step satisfies the law as it is.
+
 Energies, each from the state: the interfaces store φ(δ, d) (:meth:`CohesivePlate.stored_energy`); within a step
 (damage fixed) their force is the gradient of that potential, and the commit that raises the damage from d_n to
 d_{n+1} at the converged opening δ releases φ(δ, d_n) − φ(δ, d_{n+1}) = ½K(<δ_n>² + |δ_s|²)(d_{n+1} − d_n) per
@@ -254,19 +261,37 @@ class CohesivePlate(NonlinearModel):
     # ---- force, tangent, energies (the model VonKarmanNewmark steps) ----------------------------------
     def _response(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(traction (points, 3) [Pa], its tangent (points, 3, 3) [N/m³]) at ``u`` with the committed damage held
-        fixed (the law's traction at that damage: (1 − d)·K on the active part, K in closure)."""
+        fixed (the law's traction at that damage: (1 − d)·K on the active part, K in closure); while a step's closure
+        sets are frozen (:meth:`freeze`), each point closed or open as its set says instead of by its opening's sign."""
         delta = self.opening(u)
         d = self.damage.ravel()
         K = self.law.K
         dn = delta[:, 0]
-        pos = np.maximum(dn, 0.0)
+        closed = dn < 0.0 if self._closed is None else self._closed
         t = np.empty_like(delta)
-        t[:, 0] = (1 - d) * K * pos + K * (dn - pos)
+        t[:, 0] = np.where(closed, K, (1 - d) * K) * dn
         t[:, 1:] = ((1 - d) * K)[:, None] * delta[:, 1:]
         T = np.zeros(delta.shape + (3,))
-        T[:, 0, 0] = np.where(dn >= 0, (1 - d) * K, K)
+        T[:, 0, 0] = np.where(closed, K, (1 - d) * K)
         T[:, 1, 1] = T[:, 2, 2] = (1 - d) * K
         return t, T
+
+    # ---- the closure sets of a step (the one engine's freeze/release: module docstring) ----------------------
+    def freeze(self, u: np.ndarray) -> None:
+        """Fix each interface point's closure (closed where δ_n < 0 at ``u``) for the step's Newton iterations."""
+        self._closed = self.opening(u)[:, 0] < 0.0
+
+    def release(self, u: np.ndarray) -> int:
+        """The damaged points whose closure at the converged ``u`` differs from the frozen one (their sets updated to
+        ``u``'s): 0 when the step's solution satisfies the law as it stands."""
+        now = self.opening(u)[:, 0] < 0.0
+        flips = int(np.count_nonzero((now != self._closed) & (self.damage.ravel() > 0.0)))
+        self._closed = now
+        return flips
+
+    def thaw(self) -> None:
+        """Back to closure by the opening's sign (outside a step)."""
+        self._closed = None
 
     def nonlinear_force(self, u: np.ndarray) -> np.ndarray:
         """f_c(u) = Gᵀ(a ⊙ t(δ)) [N] at the committed damage."""
@@ -310,6 +335,7 @@ class CohesivePlate(NonlinearModel):
     def reset(self) -> None:
         """Undamaged interfaces (a new run on the same model)."""
         self.damage = self.law.initial_damage((self.interfaces, self.nodes))
+        self._closed = None
         self._dissipated = 0.0
 
     def dissipated_energy(self) -> float:

@@ -81,6 +81,18 @@ class NonlinearModel:
         """The energy dissipated so far [J] (plastic work, fracture energy)."""
         return 0.0
 
+    def freeze(self, u: np.ndarray) -> None:
+        """Fix, for a step's Newton iterations, the piecewise choices of the model (a damaged face open or closed) as
+        they stand at ``u`` (the step's predictor)."""
+
+    def release(self, u: np.ndarray) -> int:
+        """How many frozen choices the converged ``u`` contradicts (updating them to ``u``'s): the step is re-solved
+        while any does."""
+        return 0
+
+    def thaw(self) -> None:
+        """Back to free choices (after a step)."""
+
     def history(self, d: np.ndarray) -> np.ndarray:
         """The scalars of :attr:`history_names` at the committed state ``d``."""
         return np.zeros(0)
@@ -310,11 +322,32 @@ class NonlinearNewmark:
         a1 = self.a0 * (u1 - u) - self.a2 * v - self.a3 * a
         return u1, v + self.dt * ((1 - self.params.gamma) * a + self.params.gamma * a1), a1
 
+    SETS = 8  # re-solves of a step whose frozen piecewise choices its answer contradicts
+
     def step(self, u, v, a, f1, extra=None, contact=None):
-        """(u1, v1, a1, iterations) of one step to the load f1, with ``extra`` and ``contact`` (module docstring)."""
+        """(u1, v1, a1, iterations) of one step to the load f1, with ``extra`` and ``contact`` (module docstring): the
+        model's piecewise choices frozen at the predictor (:meth:`NonlinearModel.freeze`), the step re-solved from its
+        answer while that answer contradicts them (:meth:`NonlinearModel.release`), at most :attr:`SETS` times."""
+        model = self.model
+        start = u + self.dt * v + self.dt * self.dt * (0.5 - self.params.beta) * a
+        model.freeze(start)
+        total = 0
+        try:
+            for _ in range(self.SETS):
+                u1, v1, a1, its = self._solve(u, v, a, f1, extra, contact, start)
+                total += its
+                if model.release(u1) == 0:
+                    break
+                start = u1
+            return u1, v1, a1, total
+        finally:
+            model.thaw()
+
+    def _solve(self, u, v, a, f1, extra, contact, start):
+        """(u1, v1, a1, iterations): Newton on the step from ``start`` with the model's choices as frozen."""
         g, dt = self.params.gamma, self.dt
         M, C, model = self.model.M, self.C, self.model
-        u1 = u + dt * v + dt * dt * (0.5 - self.params.beta) * a  # zero new acceleration: the Newmark predictor
+        u1 = start  # the Newmark predictor (zero new acceleration), or the last solve's answer
         # M a1 + C v1 + K u1 = K_eff u1 − p with p from the step's start (Newmark's a1, v1 are affine in u1)
         ma = M @ a
         p = M @ (self.a0 * u + self.a2 * v) + self.a3 * ma
@@ -367,7 +400,7 @@ class NonlinearNewmark:
             if step < 1.0:
                 if norm <= self.STALL_RTOL * scale:  # damped on a kink, and already small: accept
                     return self._finish(u1, u, v, a) + (it,)
-                last = np.inf  # refactor at the new point: the tangent there has the new states
+                self._lu = None  # refactor at the new point: the tangent there has the new states
             if it > 1 and step == 1.0 and np.linalg.norm(du) <= self.rtol * np.linalg.norm(u1 - u):
                 # a correction at round-off of the step's increment (Bathe's displacement criterion): no further force evaluation
                 return self._finish(u1, u, v, a) + (it,)

@@ -77,6 +77,7 @@ FLAG_LABELS = {
     "contact_past_run_end": "a contact not ended, or one to come, at the run's end",
     "threshold_at_range_floor": "threshold at or below the lowest velocity searched",
     "elastic_past_yield": "an elastic metal past yield",
+    "process_zone_unresolved": "a cohesive process zone over fewer than 3 node spacings",
     "plastic_strain_past_elongation": "plastic strain past the elongation at break (the skin may tear)",
 }
 
@@ -163,6 +164,19 @@ def allowable_flags(where: str, max_strain_index: float, key: str = "max_strain_
             "and the elastic answer past that is not the structure's",
         )
     return Validity({key: max_strain_index}, flags, ("strains_past_allowables",) * len(flags))
+
+
+def zone_flags(where: str, zone: float, spacing: float, floor: int = 3) -> Validity:
+    """A cohesive process zone of length ``zone`` [m] over a node spacing ``spacing`` [m]: spanning fewer than ``floor``
+    spacings, the growth the run shows is the mesh's (a coarse mesh delays onset and growth), not the law's."""
+    r = zone / spacing
+    flags = ()
+    if r < floor:
+        flags = (
+            f"{where}: the process zone ({zone * 1e3:.3g} mm) spans {r:.2g} node spacings of {spacing * 1e3:.3g} mm, fewer than {floor}: the "
+            f"delamination's onset and growth are the mesh's; grade the mesh to {zone / floor * 1e3:.3g} mm (a near field) or use Turon's strengths (turon = true)",
+        )
+    return Validity({"process_zone_spacings": r}, flags, ("process_zone_unresolved",) * len(flags))
 
 
 def yield_flags(where: str, von_mises_over_yield: float) -> Validity:

@@ -156,35 +156,24 @@ class CohesivePlateProblem(PlateProblem):
         near = (np.abs(cx - x0)[:, None] < R) & (np.abs(cy - y0)[None, :] < R)
         return plate, near
 
-    def check(self) -> None:
-        """The resource guard on what is factored (:func:`softimpact.guards.require_resources`): the STACK, not one plate.
-        Every sublaminate keeps its five DOFs a node (u, v, w, φx, φy: a sublaminate of a symmetric laminate is
-        unsymmetric), the stack numbered node by node, so n = 5·S·nodes for S sublaminates and the band 5·S times the
-        single plate's node band (:func:`~softimpact.workflows.plate.problem.check_problem`'s estimate, S-fold in both):
-        memory 16·n·(b + 1) bytes, time n·b·(b + 4·(steps + 1)) flops. 19 interfaces on a 24 × 24 MITC9 quarter plate
-        (20 sublaminates) are refused at once (tens of GB) instead of running out of memory after minutes."""
-        from ...guards import require_resources
-
-        spec = self.plate
-        nx, ny = (int(n) for n in spec.elements)
-        k = 2 if spec.element == "mitc9" else 1
-        layers = len(self.splits) + 1
-        n = 5 * layers * (k * nx + 1) * (k * ny + 1)
-        band = 5 * layers * (k * (k * ny + 1) + k + 1)
-        steps = self.solver.steps
-        what = f"a {nx} x {ny} {spec.element.upper()} plate of {layers} sublaminates tied by {layers - 1} cohesive interfaces over {steps} steps"
-        require_resources(what, 2 * 8.0 * n * (band + 1), n * band * (band + 4.0 * (steps + 1)))
-
     def model(self, patch_radius: float | None = None, damage: bool = False) -> CohesivePlateModel:
         """The :class:`CohesivePlateModel` (``patch_radius`` unused: the disc is the contact's)."""
         return CohesivePlateModel(self, damage=damage)
 
+    def validity(self, max_deflection: float):
+        """The plate's deflection envelope, and the process zone's resolution (:func:`~softimpact.models.validity.zone_flags`)."""
+        from ...models.validity import zone_flags
+
+        res = self.resolution()
+        return super().validity(max_deflection) + zone_flags("the cohesive interfaces", res["process_zone_m"], res["node_spacing_m"])
+
     def check(self) -> None:
-        """Refuse, before anything is built, a stack too big for the machine: the near field's nodes carry 5 DOFs per
-        sublaminate, the far field's 5; the factor of a 2-D grid of N nodes of b DOFs each, ordered by minimum degree,
-        holds about 3·N·log₂N·b² entries (seen: 29 M for 17 775 DOFs of 15 sublaminates, tests' fixture in
-        benchmarks/bench_cohesive_factor.py), a step four solves of it. A refusal names the node spacing the process
-        zone needs and what Turon's strengths would allow."""
+        """Refuse, before anything is built, a stack too big for the machine (the resource guard on what is factored:
+        the STACK, not one plate): the near field's nodes carry 5 DOFs per sublaminate (u, v, w, φx, φy: a sublaminate
+        of a symmetric laminate is unsymmetric), the far field's 5; the factor of a 2-D grid of N nodes of b DOFs each,
+        ordered by minimum degree, holds about 3·N·log₂N·b² entries (seen: 29 M for 17 775 DOFs of 15 sublaminates on
+        a 16 × 16 MITC4 grid), a step four solves of it. A refusal names the node spacing the process zone needs and
+        what Turon's strengths would allow."""
         from ...errors import TooLarge
         from ...guards import require_resources
 
