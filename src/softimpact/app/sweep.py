@@ -16,6 +16,7 @@ from pathlib import Path
 
 from ..cases.sweep import check_scheduler, execute, plan_sweep, sweep_results
 from ..errors import HeldWarnings, InputError
+from ..extras import require
 from ..input.sweep_spec import load_sweep_spec
 from ..output.sweep import sweep_files
 from . import Outcome, Progress, no_progress
@@ -42,6 +43,8 @@ def sweep(
 
     t0 = time.perf_counter()
     check_writable(out_dir)  # the checkpoints' folder: an empty path (Python's out="") would put them in the working folder
+    # before any work (no checkpoints/ yet): runs.parquet needs pyarrow, and Dask runs (workers > 0 or a scheduler) Dask
+    require("sweep", "softimpact sweep", None if scheduler or workers != 0 else ("pyarrow",))
     check_scheduler(scheduler)
     with HeldWarnings() as caught:  # the spec's and the probes' warnings: shown once each, below
         s = load_sweep_spec(spec)
