@@ -66,7 +66,7 @@ def _fails():
 
 
 def _warns():
-    warnings.warn(SoftimpactWarning("a caveat of the run"))
+    warnings.warn(SoftimpactWarning("a caveat of the run"), stacklevel=2)
     return math.pi
 
 
