@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 
 from .. import __version__
 
-__all__ = ["Section", "render_report", "stem", "anchors"]
+__all__ = ["flagged_count", "Section", "render_report", "stem", "anchors"]
 
 
 @dataclass
@@ -21,6 +21,33 @@ class Section:
     tables: list[tuple[str, list[str], list[list[str]]]] = field(default_factory=list)
     figures: list[tuple[str, str]] = field(default_factory=list)  # (path, caption)
     summary: list[str] = field(default_factory=list)
+    # every row of the section's maps outside its models' validity, once per flag it raises: (map, row, flag), listed
+    # grouped by map and flag in the report's "Warnings of the run"
+    flagged: list[tuple[str, str, str]] = field(default_factory=list)
+
+
+def flagged_count(sections: list[Section]) -> tuple[int, int]:
+    """(rows outside validity, maps they are in) over ``sections``' :attr:`Section.flagged` (a row with several flags counted once)."""
+    rows = {(m, r) for s in sections for m, r, _ in s.flagged}
+    return len(rows), len({m for m, _ in rows})
+
+
+def _flagged_html(sections: list[Section]) -> list[str]:
+    """The flagged rows of every map, grouped by map, then by flag: a heading per map, a list per flag."""
+    esc = html.escape
+    groups: dict[str, dict[str, list[str]]] = {}
+    for s in sections:
+        for m, row, flag in s.flagged:
+            groups.setdefault(m, {}).setdefault(flag, []).append(row)
+    out = []
+    for m, by_flag in groups.items():
+        n = len({r for rows in by_flag.values() for r in rows})
+        out.append(f"<h3>{esc(m)}: {n} row{'' if n == 1 else 's'} outside validity</h3><ul>")
+        for flag, rows in by_flag.items():
+            items = "; ".join(f"<span class='flagged-row' data-row='{esc(m + ' | ' + r, quote=True)}'>{esc(r)}</span>" for r in rows)
+            out.append(f"<li>{esc(flag)} ({len(rows)}): {items}</li>")
+        out.append("</ul>")
+    return out
 
 
 def anchors(titles: list[str]) -> list[str]:
@@ -69,7 +96,11 @@ def render_report(
     items = [(line, s.title, i) for s, i in zip(sections, ids, strict=True) for line in s.summary]
     if warnings is not None:
         wid = dict(extra)["Warnings of the run"]
-        items.append((f"{len(warnings)} warning{'' if len(warnings) == 1 else 's'} raised by the run", "Warnings of the run", wid))
+        rows, maps = flagged_count(sections)
+        line = f"{len(warnings)} warning{'' if len(warnings) == 1 else 's'} raised by the run"
+        if rows:
+            line += f"; {rows} row{'' if rows == 1 else 's'} of {maps} map{'' if maps == 1 else 's'} outside the models' validity, listed by map and flag"
+        items.append((line, "Warnings of the run", wid))
     if items:
         out.append("<h2 id='summary'>Summary of results</h2><ul class='summary'>")
         out += [f"<li>{esc(line)} (<a href='#{i}'>{esc(t)}</a>)</li>" for line, t, i in items]
@@ -101,6 +132,12 @@ def render_report(
         out.append(f"<h2 id='{i}'>{esc(t)}</h2>")
         if i == dict(extra).get("Warnings of the run"):
             out.append("<ul>" + "".join(f"<li>{esc(w)}</li>" for w in warnings) + "</ul>" if warnings else "<p>The run raised no warning.</p>")
+            if any(sec.flagged for sec in sections):
+                out.append(
+                    "<p>Every row of the maps whose run lies outside its models' validity envelope, by map and by the flag "
+                    "raised (a row with several flags is listed under each; the maps' CSVs have the ratios).</p>"
+                )
+                out += _flagged_html(sections)
         else:
             out.append("<ul>" + "".join(f"<li>{esc(n)}</li>" for n in notes) + "</ul>")
     out.append("</body></html>")

@@ -111,9 +111,21 @@ def hail_section(figures: bool, files: dict, prefix: str = "hail/") -> Section:
         f"Hail on Rhymer's panels: FTE against h/D linear fit R² = {fits[ONSET].r2:.2f} (published trend: linear; required ≥ {REQUIRED_R2}); "
         f"on von Karman panels R² = {vo.r2:.2f}"
     ]
-    return Section(
+    section = Section(
         "Hail on Rhymer's panels: delamination onset and failure threshold energy", paragraphs, list(_hail_tables(rows, vk_rows, onset)), figs, summary
     )
+    section.flagged = hail_flags("Hail map, linear panels", rows) + hail_flags("Hail map, von Karman panels", vk_rows)
+    return section
+
+
+def hail_flags(name: str, rows) -> list[tuple[str, str, str]]:
+    """(map, row, flag) of every hail-map row whose run at its onset raised a validity flag, once per flag, the flag
+    named by the model whose envelope it leaves (its sentence's words before the first colon)."""
+    return [
+        (name, f"{r.thickness * 1e3:.2f}-mm panel, {INDEX_LABELS.get(r.index, r.index)}, D = {r.diameter * 1e3:.1f} mm", f.split(":", 1)[0])
+        for r in rows
+        for f in r.validity.get("flags", [])
+    ]
 
 
 def _hail_files(rows, vk_rows, figures: bool, files: dict, prefix: str) -> list:

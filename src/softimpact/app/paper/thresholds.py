@@ -27,6 +27,7 @@ from ...studies.paper.thresholds import (
     PAPER_PLATE,
     PAPER_PLATE_MESHES,
     paper_identification,
+    paper_kinematics_maps,
     paper_onset_map,
     paper_plate_case,
     paper_threshold_maps,
@@ -281,7 +282,24 @@ def threshold_section(figures: bool, files: dict, prefix: str = "thresholds/"):
         figs,
     )
     section.summary = [_map_headline(maps, vu), kin_headline]
+    linear, nonlinear = paper_kinematics_maps()
+    section.flagged = (
+        map_flags("Threshold maps (coupled impact, identified law)", maps)
+        + map_flags("Onset map (Olsson's F_d)", onset)
+        + map_flags("The 8-in plate's map, linear kinematics", linear)
+        + map_flags("The 8-in plate's map, von Karman kinematics", nonlinear)
+    )
     return section
+
+
+def map_flags(name: str, rows: list[dict]) -> list[tuple[str, str, str]]:
+    """(map, row, flag) of every row of map ``name`` (threshold-map rows, :meth:`MapRow.as_dict`) whose run at its
+    threshold raised a validity flag, once per flag (:data:`softimpact.models.validity.FLAG_LABELS`' words)."""
+    from ...models.validity import FLAG_LABELS
+
+    return [
+        (name, f"{r['structure']}, {r['index']}, d = {r['diameter_m'] / INCH:.3g} in", FLAG_LABELS.get(f, f)) for r in rows for f in r.get("validity_flags", [])
+    ]
 
 
 def _map_headline(maps: list[dict], vu) -> str:
