@@ -324,6 +324,8 @@ def test_the_report_opens_with_contents_summary_and_has_alt_text(paper_report):
 def test_warnings_section_counts_every_flagged_row_of_the_maps(paper_report):
     """The report's warnings section lists as many rows outside validity as the run's map CSVs flag (threshold maps,
     onset map, the plate's map on both kinematics, the hail map on both), each once per map."""
+    import html
+
     names = ["thresholds/threshold-maps.csv", "thresholds/onset-map.csv", "hail/hail-map.csv", "hail/hail-map-von-karman.csv"]
     flagged = 0
     for name in names:
@@ -333,4 +335,4 @@ def test_warnings_section_counts_every_flagged_row_of_the_maps(paper_report):
         flagged += sum(1 for r in csv.DictReader(fh) if r["validity_flags"] not in ("", "[]"))
     listed = set(re.findall(r"data-row='([^']*)'", paper_report.html))
     assert len(listed) == flagged > 0
-    assert f"{flagged} rows of 6 maps outside the models' validity" in paper_report.html
+    assert f"{flagged} rows of 6 maps outside the models' validity" in html.unescape(paper_report.html)

@@ -173,12 +173,15 @@ def test_paper_command_lists_each_warning_once_in_manifest_and_report(monkeypatc
     import softimpact.app.paper as paper_app
     from softimpact.cli import main
 
-    def step(figures, files):
-        warnings.warn(f"step warning {len(files)}", SoftimpactWarning, stacklevel=1)
-        files[f"x{len(files)}.txt"] = "x"
-        return [Section(f"Step {len(files)}", ["text"])]
+    def step(k):
+        def run(figures, files):
+            warnings.warn(f"step warning {k}", SoftimpactWarning, stacklevel=1)
+            files[f"x{k}.txt"] = "x"
+            return [Section(f"Step {k}", ["text"])]
 
-    monkeypatch.setattr(paper_app, "STEPS", (("one", step), ("two", step)))
+        return run
+
+    monkeypatch.setattr(paper_app, "STEPS", (("one", step(0)), ("two", step(1))))
     result = CliRunner().invoke(main, ["paper", "--out", str(tmp_path / "out"), "--no-figures"])
     assert result.exit_code == 0, result.output
     manifest = json.loads((tmp_path / "out" / "manifest.json").read_text())
@@ -213,6 +216,7 @@ def _map_row(structure, index, d_in, flags):
 def test_warnings_section_lists_every_flagged_row_of_every_map():
     """The report's warnings section and summary count as many rows outside validity as the maps have flagged rows
     (counted here from the rows themselves), each listed under each of its flags, grouped by map."""
+    import html
     import re
 
     from softimpact.app.paper.hail import hail_flags
@@ -236,7 +240,7 @@ def test_warnings_section_lists_every_flagged_row_of_every_map():
     expected = sum(1 for r in maps + onset if r["validity_flags"]) + sum(1 for r in hail if r.validity["flags"])
     listed = set(re.findall(r"data-row='([^']*)'", page))
     assert len(listed) == expected == 6
-    assert f"1 warning raised by the run; {expected} rows of 3 maps outside the models' validity" in page
+    assert f"1 warning raised by the run; {expected} rows of 3 maps outside the models' validity" in html.unescape(page)
     assert page.count("<h3>") == 3  # one group per map
     assert "w/h &gt; 0.5 (3)" in page and "w/h &gt; 0.5 (1)" in page  # per map: the onset map's three rows under one flag
     assert page.count("data-row='Threshold maps | long beam, tsai_wu, d = 0.375 in'") == 2

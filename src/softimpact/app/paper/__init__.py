@@ -75,19 +75,19 @@ def computations(figures: bool) -> tuple:
 _WHAT_IF = (("built-in tests", False), ("tables' alpha3", True))
 _MAPPED = {**dict.fromkeys(threshold_study.PAPER_BEAMS, 4.0), threshold_study.PAPER_PLATE: 14.0}
 
-# each section's task: the computations it comes after, and its own CPU [s] beyond them
+# each section's task (by its label in STEPS): the computations it comes after, and its own CPU [s] beyond them
 _SECTION_NEEDS = {
-    1: (("rubber series",), 4.0),
-    2: ((*(f"beam: {n}" for n in BEAMS), "beams' first zero crossing"), 1.0),
-    3: (("calibration: long beam", "calibration: short beam"), 1.0),
-    4: (("convergence: bar", *(f"convergence: {n}" for n in BEAMS)), 1.0),
-    5: (
+    STEPS[1][0]: (("rubber series",), 4.0),
+    STEPS[2][0]: ((*(f"beam: {n}" for n in BEAMS), "beams' first zero crossing"), 1.0),
+    STEPS[3][0]: (("calibration: long beam", "calibration: short beam"), 1.0),
+    STEPS[4][0]: (("convergence: bar", *(f"convergence: {n}" for n in BEAMS)), 1.0),
+    STEPS[5][0]: (
         (*(f"maps: {n}" for n in _MAPPED), "maps: both kinematics", "beams' kinematics check", "prescribed: beams")
         + tuple(f"prescribed: plate {n}" for n in PAPER_PLATE_MESHES),
         3.0,
     ),
-    6: (("identified law", "predictive intervals", *(f"what-if law, {w}" for w, _ in _WHAT_IF)), 6.0),
-    8: (tuple(f"hail, von Karman: panel {k}" for k in _PANELS), 1.0),
+    STEPS[6][0]: (("identified law", "predictive intervals", *(f"what-if law, {w}" for w, _ in _WHAT_IF)), 6.0),
+    STEPS[8][0]: (tuple(f"hail, von Karman: panel {k}" for k in _PANELS), 1.0),
 }
 
 
@@ -98,12 +98,20 @@ def _section(step, figures: bool) -> tuple[list, dict]:
 
 
 def _tasks(figures: bool) -> list[Task]:
-    """The report's tasks: :data:`COMPUTED`, then one per section of :data:`STEPS` (named by its label)."""
-    tasks = [Task(name, fn, after, cost) for name, fn, after, cost in computations(figures)]
-    for k, (label, step) in enumerate(STEPS):
-        after, cost = _SECTION_NEEDS.get(k, ((), 1.0))
-        tasks.append(Task(label, functools.partial(_section, step, figures), after, cost))
-    return tasks
+    """The report's tasks: one per section of :data:`STEPS` (named by its label), and the :func:`computations` they
+    need, directly or not."""
+    sections = []
+    for label, step in STEPS:
+        after, cost = _SECTION_NEEDS.get(label, ((), 1.0))
+        sections.append(Task(label, functools.partial(_section, step, figures), after, cost))
+    computed = {name: Task(name, fn, after, cost) for name, fn, after, cost in computations(figures)}
+    needed, todo = set(), [a for t in sections for a in t.after]
+    while todo:
+        name = todo.pop()
+        if name not in needed:
+            needed.add(name)
+            todo += computed[name].after
+    return [t for name, t in computed.items() if name in needed] + sections
 
 
 def _needs(task: Task, by_name: dict) -> list[str]:
