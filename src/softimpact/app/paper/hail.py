@@ -9,7 +9,7 @@ import math
 import numpy as np
 
 from ...models.validity import DEFLECTION_OVER_THICKNESS
-from ...output.files import csv_text, figure_bytes
+from ...output.files import REPORT_TEXT_PT, REPORT_WIDTH_IN, csv_text, figure_bytes
 from ...output.plots import _figure
 from ...output.report import Section
 from ...studies.hail import HAIL_INDICES, RHYMER_DIAMETERS, RHYMER_LAYUPS, RHYMER_THICKNESSES, STAND_IN_PLY, fte_fit
@@ -45,9 +45,19 @@ MISSING = (
 def _figure_fte(rows, vk_rows=()):
     """FTE against h/D (each index, its linear fit; Olsson's on the von Kármán panels, open marks) and the onset velocity
     against the diameter, per thickness."""
-    fig, _ = _figure(10.0, 4.2)
-    fig.clf()
-    ax, bx = fig.subplots(1, 2)
+    import matplotlib.pyplot as plt
+
+    with plt.rc_context({"font.size": REPORT_TEXT_PT}):  # as wide as the report shows it: the text keeps its size
+        fig, _ = _figure(REPORT_WIDTH_IN, 8.0)
+        fig.clf()
+        ax, bx = fig.subplots(2, 1)
+        _fte_panels(ax, bx, rows, vk_rows)
+        fig.canvas.draw()
+    return fig
+
+
+def _fte_panels(ax, bx, rows, vk_rows) -> None:
+    """The two panels of :func:`_figure_fte`: FTE against h/D (``ax``) and V* against the diameter (``bx``)."""
     markers = dict(zip(RHYMER_THICKNESSES, ("o", "s", "^")))
     for k, index in enumerate(HAIL_INDICES):
         color = f"C{k}"
@@ -89,13 +99,12 @@ def _figure_fte(rows, vk_rows=()):
         )
     ax.set_xlabel("panel thickness / ice diameter h/D")
     ax.set_ylabel("failure threshold energy ½mV*² [J]")
-    ax.set_title("FTE against h/D (model; published points not retrieved)", fontsize=9)
-    ax.legend(fontsize=7)
+    ax.set_title("FTE against h/D (model; published points not retrieved)")
+    ax.legend()
     bx.set_xlabel("ice diameter [mm]")
     bx.set_ylabel("onset velocity V* [m/s]")
-    bx.set_title("Onset velocity against the ice diameter", fontsize=9)
-    bx.legend(fontsize=6, ncol=2)
-    return fig
+    bx.set_title("Onset velocity against the ice diameter")
+    bx.legend(ncol=3, fontsize=REPORT_TEXT_PT, loc="upper center", bbox_to_anchor=(0.5, -0.18), frameon=False)
 
 
 def hail_section(figures: bool, files: dict, prefix: str = "hail/") -> Section:
