@@ -2,6 +2,7 @@
 gathered from the sections' own ``summary`` lines, alt text on every figure and the run's warnings — on small
 fake sections, without running the paper."""
 
+import html
 import warnings
 from html.parser import HTMLParser
 
@@ -244,3 +245,24 @@ def test_warnings_section_lists_every_flagged_row_of_every_map():
     assert page.count("<h3>") == 3  # one group per map
     assert "w/h &gt; 0.5 (3)" in page and "w/h &gt; 0.5 (1)" in page  # per map: the onset map's three rows under one flag
     assert page.count("data-row='Threshold maps | long beam, tsai_wu, d = 0.375 in'") == 2
+
+
+def test_paper_marks_qualified_results_and_states_each_sections_units(monkeypatch):
+    """A step that raised a warning has its summary line marked qualified, a clean one not; every section states its
+    unit system at its head (the paper's by default, the step's own where it has one)."""
+    import softimpact.app.paper as paper_app
+
+    def warned(figures, files):
+        warnings.warn("the deflection reaches 0.7 times the thickness", SoftimpactWarning, stacklevel=1)
+        return [Section("Warned", ["text"], summary=["peak 1 lbf"])]
+
+    def clean(figures, files):
+        return [Section("Clean", ["text"], summary=["peak 2 lbf"])]
+
+    monkeypatch.setattr(paper_app, "STEPS", (("warned", warned), ("clean", clean)))
+    monkeypatch.setitem(paper_app.SECTION_UNITS, "clean", paper_app.UNITS["SI"])
+    page = paper_app.paper(figures=False, workers=1).files["report.html"]
+    assert "<li class='qualified'>peak 1 lbf [qualified: 1 warning of its runs, see Warnings of the run]" in page
+    assert "<li>peak 2 lbf (" in page
+    assert f"Units in this section: {paper_app.UNITS['in-lbf-s']}." in html.unescape(page)
+    assert f"Units in this section: {paper_app.UNITS['SI']}." in html.unescape(page)

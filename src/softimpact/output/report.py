@@ -24,6 +24,8 @@ class Section:
     # every row of the section's maps outside its models' validity, once per flag it raises: (map, row, flag), listed
     # grouped by map and flag in the report's "Warnings of the run"
     flagged: list[tuple[str, str, str]] = field(default_factory=list)
+    units: str = ""  # the one unit system of its tables and figures, said at its head
+    qualified: str = ""  # why its results hold only with a caveat (its warnings, its rows outside validity): marked in the summary
 
 
 def flagged_count(sections: list[Section]) -> tuple[int, int]:
@@ -88,12 +90,12 @@ def render_report(
         "<style>body{font-family:sans-serif;max-width:1000px;margin:auto;padding:1em;line-height:1.4}"
         "table{border-collapse:collapse;margin:0.5em 0}td,th{border:1px solid #bbb;padding:2px 8px;text-align:left}"
         "th{background:#eee}figure{margin:1em 0}img{max-width:100%}figcaption{font-size:90%;color:#444}"
-        "nav ol{columns:2;font-size:90%}.summary li{margin:0.2em 0}</style>",
+        "nav ol{columns:2;font-size:90%}.summary li{margin:0.2em 0}.summary li.qualified{color:#8a4b00}</style>",
         "</head><body>",
         f"<h1>{esc(title)}</h1>",
         f"<p>softimpact {esc(__version__)}</p>",
     ]
-    items = [(line, s.title, i) for s, i in zip(sections, ids, strict=True) for line in s.summary]
+    items = [(line + (f" [qualified: {s.qualified}]" if s.qualified else ""), s.title, i) for s, i in zip(sections, ids, strict=True) for line in s.summary]
     if warnings is not None:
         wid = dict(extra)["Warnings of the run"]
         rows, maps = flagged_count(sections)
@@ -103,12 +105,17 @@ def render_report(
         items.append((line, "Warnings of the run", wid))
     if items:
         out.append("<h2 id='summary'>Summary of results</h2><ul class='summary'>")
-        out += [f"<li>{esc(line)} (<a href='#{i}'>{esc(t)}</a>)</li>" for line, t, i in items]
+        out += [
+            f"<li{' class=' + chr(39) + 'qualified' + chr(39) if '[qualified: ' in line else ''}>{esc(line)} (<a href='#{i}'>{esc(t)}</a>)</li>"
+            for line, t, i in items
+        ]
         out.append("</ul>")
     toc = [(s.title, i) for s, i in zip(sections, ids, strict=True)] + extra
     out.append("<nav><h2 id='contents'>Contents</h2><ol>" + "".join(f"<li><a href='#{i}'>{esc(t)}</a></li>" for t, i in toc) + "</ol></nav>")
     for s, sid in zip(sections, ids, strict=True):
         out.append(f"<h2 id='{sid}'>{esc(s.title)}</h2>")
+        if s.units:
+            out.append(f"<p class='units'><em>Units in this section: {esc(s.units)}.</em></p>")
         out += [f"<p>{esc(p)}</p>" for p in s.paragraphs]
         for caption, header, rows in s.tables:
             out.append(f"<table><caption>{esc(caption)}</caption><tr>" + "".join(f"<th>{esc(h)}</th>" for h in header) + "</tr>")

@@ -31,7 +31,7 @@ from .question import question_section
 from .rubber_series import rubber_series_sections
 from .thresholds import PAPER_PLATE_MESHES, paper_thresholds, plate_mesh_thresholds, threshold_section
 
-__all__ = ["paper", "NOTES", "SYSTEM", "STEPS", "computations"]
+__all__ = ["paper", "NOTES", "SYSTEM", "STEPS", "UNITS", "SECTION_UNITS", "computations"]
 
 # The report's sections in order: (progress label, function (figures, files) → list of sections).
 STEPS = (
@@ -91,6 +91,29 @@ _SECTION_NEEDS = {
 }
 
 
+# the unit system of each step's sections (said at their heads): the paper's, but where a section says otherwise
+UNITS = {
+    "in-lbf-s": "in, lbf, s (the paper's): lengths in in, forces in lbf, velocities in in/s, times in µs, strains in µε",
+    "SI": "SI: lengths in m (panel thickness and ice diameter in mm), forces in N, velocities in m/s, energies in J",
+}
+SECTION_UNITS = {
+    STEPS[4][0]: "none: errors relative to the Richardson extrapolation (%), time steps in µs",
+    STEPS[8][0]: UNITS["SI"],
+}
+
+
+def _qualified(warnings: list[str], section) -> str:
+    """Why a section's results hold only with a caveat, for the summary: its step's warnings and its map rows outside
+    validity (both listed in the report's "Warnings of the run"); "" when it has neither."""
+    parts = []
+    if warnings:
+        parts.append(f"{len(warnings)} warning{'' if len(warnings) == 1 else 's'} of its runs")
+    rows = {(m, r) for m, r, _ in section.flagged}
+    if rows:
+        parts.append(f"{len(rows)} map rows outside the models' validity")
+    return "; ".join(parts) + (", see Warnings of the run" if parts else "")
+
+
 def _section(step, figures: bool) -> tuple[list, dict]:
     """One step of :data:`STEPS`: (its sections, the files it made)."""
     files: dict[str, bytes | str] = {}
@@ -139,14 +162,19 @@ def paper(*, figures: bool = True, progress: Progress = no_progress, workers: in
     files: dict[str, bytes | str] = {}
     sections, warned, told = [], [], set()
     for label, _ in STEPS:  # the run's warnings, listed in the report and (as the outcome's) shown and in the manifest
+        mine = []
         for name in _needs(by_name[label], by_name):  # a shared computation's warnings once, with the first section using it
             if name not in told:
                 told.add(name)
-                warned += done[name].warnings
+                mine += done[name].warnings
         these, made = done[label].value
+        mine += done[label].warnings
+        for section in these:
+            section.units = section.units or SECTION_UNITS.get(label, UNITS[SYSTEM])
+            section.qualified = section.qualified or _qualified(mine, section)
         sections += these
         files.update(made)
-        warned += done[label].warnings
+        warned += mine
     if not figures:
         for s in sections:
             s.figures = []
