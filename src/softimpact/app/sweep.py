@@ -18,6 +18,7 @@ from ..cases.sweep import check_scheduler, execute, plan_sweep, sweep_results
 from ..errors import HeldWarnings, InputError
 from ..extras import require
 from ..input.sweep_spec import load_sweep_spec
+from ..models.validity import ValidityWarning
 from ..output.sweep import sweep_files
 from . import Outcome, Progress, no_progress
 from .options import display_system
@@ -66,7 +67,7 @@ def sweep(
     if th:
         line = threshold_lines(th, system) + "\n" + line  # the command line ends the last line with the files written
     # validity flags raised here (the probes' reading of their cases) are the runs' own, counted per run
-    found = [str(w.message).strip() for w in caught.held if not getattr(w.message, "flag", "")]
+    found = [str(w.message).strip() for w in caught.held if not (isinstance(w.message, ValidityWarning) and w.message.flag)]
     read = (s.path, s.case_path, *(Path(f) for f, _ in s.inputs))  # every file the runs read: never replaced nor removed
     return Outcome(files, line, read, tuple(sweep_warnings(summary, found)))
 
