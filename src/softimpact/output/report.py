@@ -121,20 +121,7 @@ def render_report(
             out.append(f"<table><caption>{esc(caption)}</caption><tr>" + "".join(f"<th>{esc(h)}</th>" for h in header) + "</tr>")
             out += ["<tr>" + "".join(f"<td>{esc(str(c))}</td>" for c in row) + "</tr>" for row in rows]
             out.append("</table>")
-        for path, caption in s.figures:
-            src, mime = path, "image/png"
-            if files is not None and isinstance(files.get(path), bytes):
-                data = files[path]
-                mime = "application/pdf" if data[:4] == b"%PDF" else "image/svg+xml" if data.lstrip()[:5] in (b"<?xml", b"<svg ") else "image/png"
-                src = f"data:{mime};base64," + base64.b64encode(data).decode("ascii")
-            shown = src if src != path else esc(path)
-            alt = esc(caption or f"figure {path.rsplit('/', 1)[-1]} of the section {s.title}", quote=True)
-            if mime == "application/pdf":  # --figure-format pdf: browsers show a PDF in an embed, not an img
-                out.append(
-                    f"<figure><embed src='{shown}' type='application/pdf' width='100%' height='480' title='{alt}'><figcaption>{esc(caption)}</figcaption></figure>"
-                )
-            else:
-                out.append(f"<figure><img src='{shown}' alt='{alt}'><figcaption>{esc(caption)}</figcaption></figure>")
+        out += [_figure_html(path, caption, files, s.title) for path, caption in s.figures]
     for t, i in extra:
         out.append(f"<h2 id='{i}'>{esc(t)}</h2>")
         if i == dict(extra).get("Warnings of the run"):
@@ -149,6 +136,21 @@ def render_report(
             out.append("<ul>" + "".join(f"<li>{esc(n)}</li>" for n in notes) + "</ul>")
     out.append("</body></html>")
     return "\n".join(out)
+
+
+def _figure_html(path: str, caption: str, files: dict | None, title: str) -> str:
+    """A figure of the section ``title``: embedded (base64) when ``files`` holds its bytes, else linked by ``path``."""
+    esc = html.escape
+    src, mime = path, "image/png"
+    if files is not None and isinstance(files.get(path), bytes):
+        data = files[path]
+        mime = "application/pdf" if data[:4] == b"%PDF" else "image/svg+xml" if data.lstrip()[:5] in (b"<?xml", b"<svg ") else "image/png"
+        src = f"data:{mime};base64," + base64.b64encode(data).decode("ascii")
+    shown = src if src != path else esc(path)
+    alt = esc(caption or f"figure {path.rsplit('/', 1)[-1]} of the section {title}", quote=True)
+    if mime == "application/pdf":  # --figure-format pdf: browsers show a PDF in an embed, not an img
+        return f"<figure><embed src='{shown}' type='application/pdf' width='100%' height='480' title='{alt}'><figcaption>{esc(caption)}</figcaption></figure>"
+    return f"<figure><img src='{shown}' alt='{alt}'><figcaption>{esc(caption)}</figcaption></figure>"
 
 
 def stem(name: str) -> str:
