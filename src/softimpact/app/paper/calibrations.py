@@ -84,7 +84,7 @@ def beam_calibration(beam: str, figures: bool) -> tuple[Section, dict, dict]:
     if note:
         section.paragraphs.insert(0, note)
         count = re.search(r"(\d+ of \d+) tests deflect", note)  # the note's own count
-        section.qualified = f"{count.group(1) if count else 'some'} of its tests past linear theory's w/h = 0.5, see Warnings of the run"
+        section.qualified = f"{count.group(1) if count else 'some'} tests past linear theory's w/h = 0.5, see Warnings of the run"
     groups = {
         f"{beam} beam, calibrated": [r[:4] for r in tables_rows(items)],
         f"{beam} beam, Table {'II' if beam == 'long' else 'III'} (paper)": [r[:4] for r in series.reference],
