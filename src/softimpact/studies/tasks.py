@@ -20,6 +20,7 @@ import inspect
 import multiprocessing
 import os
 import pickle
+import threading
 import time
 import traceback
 from collections.abc import Callable, Sequence
@@ -74,9 +75,10 @@ class Done:
 
 def usable_workers(workers: int | None = None) -> int:
     """The processes :func:`run_tasks` may use: ``workers``, or the cores this process may run on (None); 1 where
-    processes cannot be forked."""
-    if "fork" not in multiprocessing.get_all_start_methods():
-        return 1
+    processes cannot be forked, or where this process runs other threads (forking a threaded process can leave a
+    child waiting on a lock another thread held)."""
+    if "fork" not in multiprocessing.get_all_start_methods() or threading.active_count() > 1:
+        return 1  # no fork, or other threads alive (a notebook's, a test runner's): a forked child could inherit a held lock
     cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
     return max(1, cores if workers is None else workers)
 
