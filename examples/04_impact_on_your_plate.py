@@ -37,11 +37,12 @@ res = si.impact(
     time_step="0.5 us",
     duration="300 us",
     gauges={"centre": ("3.5 in", "3 in")},
+    units="SI",  # the display units of its plots and files' figures, as printed below (default: lbf, in, µs)
 )
 print(f"peak force {res.peak_force:.1f} N, contact {res.contact_duration * 1e6:.1f} us, impulse {res.impulse:.3e} N s")
 
 # %%
-# The contact force (in the display units, lbf and µs by default); ``res.write("out")`` would
+# The contact force, in N as printed above (``units="SI"``); ``res.write("out")`` would
 # write history.csv, summary.json, the figures and manifest.json as ``softimpact impact`` does,
 # and ``res.write_fields("out/plate.xdmf")`` the deflection over time for ParaView.
 ax = res.plot()

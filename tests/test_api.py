@@ -239,7 +239,16 @@ def test_every_public_name_documents_parameters_with_units(name, obj):
                 assert section in doc, (name, section)
 
 
-API_MODULES = ["softimpact.api", "softimpact.api.structures", "softimpact.api.results", "softimpact.api.commands", "softimpact.api.chain"]
+API_MODULES = [
+    "softimpact.api",
+    "softimpact.api.structures",
+    "softimpact.api.results",
+    "softimpact.api.results.runs",
+    "softimpact.api.results.prescribed",
+    "softimpact.api.results.command",
+    "softimpact.api.commands",
+    "softimpact.api.chain",
+]
 SLOW_EXAMPLES = {
     "softimpact.api.chain.identify",  # identifies a law on the 13 tests of the built-in series (minutes)
     "softimpact.api.chain.fit",  # fits the built-in series (seconds)

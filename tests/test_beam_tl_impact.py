@@ -20,7 +20,7 @@ from softimpact.fem.impact import ContactPatch
 from softimpact.fem.plate_vk import VonKarmanNewmark
 from softimpact.input.beam_case import beam_problem
 from softimpact.input.toml import locate
-from softimpact.workflows._beam_tl_model import BeamTLModel
+from softimpact.workflows.beam.nonlinear import BeamTLModel
 
 BEAM = locate("paper-long-beam").read_text()
 # The built-in long-beam impact on its beam made nonlinear, over its first contact (about 106 us at 100 in/s) only.

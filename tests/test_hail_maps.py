@@ -115,8 +115,8 @@ def test_the_report_section_states_the_fit_and_whether_it_meets_the_trend(monkey
 
     rows = _fake_rows(fte_of)
     vk = tuple(dataclasses.replace(r, velocity=0.8 * r.velocity, kinematics="von-karman") for r in rows if r.index == "olsson")
-    monkeypatch.setattr(section, "_rows", lambda: rows)
-    monkeypatch.setattr(section, "_vk_rows", lambda: vk)
+    monkeypatch.setattr(section, "hail_rows", lambda: rows)
+    monkeypatch.setattr(section, "hail_vk_rows", lambda: vk)
     files = {}
     s = section.hail_section(False, files)
     text = " ".join(s.paragraphs)

@@ -319,3 +319,20 @@ def test_the_report_opens_with_contents_summary_and_has_alt_text(paper_report):
     assert page.ids.index("summary") < page.ids.index("contents") < page.ids.index("warnings-of-the-run")
     assert page.hrefs and all(h.removeprefix("#") in page.ids for h in page.hrefs)
     assert page.alts and all(alt and alt.strip() for alt in page.alts)
+
+
+def test_warnings_section_counts_every_flagged_row_of_the_maps(paper_report):
+    """The report's warnings section lists as many rows outside validity as the run's map CSVs flag (threshold maps,
+    onset map, the plate's map on both kinematics, the hail map on both), each once per map."""
+    import html
+
+    names = ["thresholds/threshold-maps.csv", "thresholds/onset-map.csv", "hail/hail-map.csv", "hail/hail-map-von-karman.csv"]
+    flagged = 0
+    for name in names:
+        with open(paper_report.out / name, newline="") as fh:
+            flagged += sum(1 for r in csv.DictReader(fh) if r["validity_flags"] not in ("", "[]"))
+    with open(paper_report.out / "thresholds/plate-kinematics-map.csv", newline="") as fh:  # both kinematics' rows in one file
+        flagged += sum(1 for r in csv.DictReader(fh) if r["validity_flags"] not in ("", "[]"))
+    listed = set(re.findall(r"data-row='([^']*)'", paper_report.html))
+    assert len(listed) == flagged > 0
+    assert f"{flagged} rows of 6 maps outside the models' validity" in html.unescape(paper_report.html)

@@ -2,6 +2,7 @@
 gathered from the sections' own ``summary`` lines, alt text on every figure and the run's warnings — on small
 fake sections, without running the paper."""
 
+import html
 import warnings
 from html.parser import HTMLParser
 
@@ -173,12 +174,15 @@ def test_paper_command_lists_each_warning_once_in_manifest_and_report(monkeypatc
     import softimpact.app.paper as paper_app
     from softimpact.cli import main
 
-    def step(figures, files):
-        warnings.warn(f"step warning {len(files)}", SoftimpactWarning, stacklevel=1)
-        files[f"x{len(files)}.txt"] = "x"
-        return [Section(f"Step {len(files)}", ["text"])]
+    def step(k):
+        def run(figures, files):
+            warnings.warn(f"step warning {k}", SoftimpactWarning, stacklevel=1)
+            files[f"x{k}.txt"] = "x"
+            return [Section(f"Step {k}", ["text"])]
 
-    monkeypatch.setattr(paper_app, "STEPS", (("one", step), ("two", step)))
+        return run
+
+    monkeypatch.setattr(paper_app, "STEPS", (("one", step(0)), ("two", step(1))))
     result = CliRunner().invoke(main, ["paper", "--out", str(tmp_path / "out"), "--no-figures"])
     assert result.exit_code == 0, result.output
     manifest = json.loads((tmp_path / "out" / "manifest.json").read_text())
@@ -203,3 +207,62 @@ def test_calibration_summary_matches_the_built_in_series_to_tables_ii_and_iii():
         items = [NS(test=t, calibration=NS(peak_force=1.0)) for t in series.tests]
         line = f0_summary(items, series, beam)
         assert ", ".join(f"0.2 ({row[1]:.1f})" for row in table) in line  # 1 N = 0.2248 lbf beside each paper F0
+
+
+def _map_row(structure, index, d_in, flags):
+    """A threshold-map row (MapRow.as_dict's keys that the report reads) with its validity flags."""
+    return {"structure": structure, "index": index, "diameter_m": d_in * 0.0254, "validity_flags": list(flags)}
+
+
+def test_warnings_section_lists_every_flagged_row_of_every_map():
+    """The report's warnings section and summary count as many rows outside validity as the maps have flagged rows
+    (counted here from the rows themselves), each listed under each of its flags, grouped by map."""
+    import html
+    import re
+
+    from softimpact.app.paper.hail import hail_flags
+    from softimpact.app.paper.thresholds import map_flags
+    from softimpact.output.report import Section, render_report
+    from softimpact.studies.hail import HailRow
+
+    maps = [
+        _map_row("long beam", "tsai_wu", 0.375, ["deflection_past_linear", "contact_past_projectile_radius"]),
+        _map_row("long beam", "tsai_wu", 0.5, []),
+        _map_row("8-in plate", "delamination", 0.75, ["extrapolated_diameter"]),
+    ]
+    onset = [_map_row("short beam", "olsson", d, ["deflection_past_linear"]) for d in (0.375, 0.5, 0.625)]
+    hail = [
+        HailRow(1.59e-3, d, 1.0, "olsson", 10.0, 10.0, 0.1, 1e3, 1e3, {"flags": ["the crushing strength (Jones 1997): strain rate 400 1/s"] * k}, 0.1, "x")
+        for k, d in enumerate((0.0381, 0.0508))
+    ]
+    section = Section("Thresholds", ["text"])
+    section.flagged = map_flags("Threshold maps", maps) + map_flags("Onset map", onset) + hail_flags("Hail map", hail)
+    page = render_report("t", [section], [], {}, warnings=["one warning"])
+    expected = sum(1 for r in maps + onset if r["validity_flags"]) + sum(1 for r in hail if r.validity["flags"])
+    listed = set(re.findall(r"data-row='([^']*)'", page))
+    assert len(listed) == expected == 6
+    assert f"1 warning raised by the run; {expected} rows of 3 maps outside the models' validity" in html.unescape(page)
+    assert page.count("<h3>") == 3  # one group per map
+    assert "w/h &gt; 0.5 (3)" in page and "w/h &gt; 0.5 (1)" in page  # per map: the onset map's three rows under one flag
+    assert page.count("data-row='Threshold maps | long beam, tsai_wu, d = 0.375 in'") == 2
+
+
+def test_paper_marks_qualified_results_and_states_each_sections_units(monkeypatch):
+    """A step that raised a warning has its summary line marked qualified, a clean one not; every section states its
+    unit system at its head (the paper's by default, the step's own where it has one)."""
+    import softimpact.app.paper as paper_app
+
+    def warned(figures, files):
+        warnings.warn("the deflection reaches 0.7 times the thickness", SoftimpactWarning, stacklevel=1)
+        return [Section("Warned", ["text"], summary=["peak 1 lbf"])]
+
+    def clean(figures, files):
+        return [Section("Clean", ["text"], summary=["peak 2 lbf"])]
+
+    monkeypatch.setattr(paper_app, "STEPS", (("warned", warned), ("clean", clean)))
+    monkeypatch.setitem(paper_app.SECTION_UNITS, "clean", paper_app.UNITS["SI"])
+    page = paper_app.paper(figures=False, workers=1).files["report.html"]
+    assert "<li class='qualified'>peak 1 lbf [qualified: 1 warning of its runs, see Warnings of the run]" in page
+    assert "<li>peak 2 lbf (" in page
+    assert f"Units in this section: {paper_app.UNITS['in-lbf-s']}." in html.unescape(page)
+    assert f"Units in this section: {paper_app.UNITS['SI']}." in html.unescape(page)

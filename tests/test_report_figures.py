@@ -93,3 +93,65 @@ def test_a_transparent_png_is_kept_as_it_is():
     buf = io.BytesIO()
     image.save(buf, format="PNG")
     assert _small_png(buf.getvalue()) == buf.getvalue()
+
+
+def _map_rows(kinematics="linear", scale=1.0):
+    """Threshold-map rows (MapRow.as_dict's keys the figures read) of three structures, two indices, four diameters."""
+    rows = []
+    for s in ("long beam", "short beam", "8-in plate"):
+        for index in ("tsai_wu", "delamination"):
+            for k, d in enumerate((0.375, 0.5, 0.625, 0.75)):
+                v = scale * 120.0 / (1 + k)
+                rows.append(
+                    {
+                        "structure": s,
+                        "index": index,
+                        "diameter_m": d * INCH,
+                        "kinematics": kinematics,
+                        "inside_validity": k % 2 == 0,
+                        **{f"threshold_velocity_{q}_m_s": v * f for q, f in (("median", 1), ("nominal", 1), ("coarse_mesh", 1.02), ("p05", 0.9), ("p95", 1.1))},
+                    }
+                )
+    return rows
+
+
+def _hail_figure():
+    import dataclasses
+
+    from softimpact.app.paper.hail import _figure_fte
+    from softimpact.studies.hail import RHYMER_DIAMETERS, RHYMER_THICKNESSES, HailRow
+
+    rows = tuple(
+        HailRow(h, d, 0.03 * (d / 0.0381) ** 3, index, 10.0 + 1e4 * h, 10.5, 0.05, 1e3, 1e3, {"flags": []}, 0.1, "intermediate")
+        for index in ("olsson", "delamination")
+        for h in RHYMER_THICKNESSES
+        for d in RHYMER_DIAMETERS
+    )
+    return _figure_fte(rows, tuple(dataclasses.replace(r, velocity=0.8 * r.velocity, kinematics="von-karman") for r in rows if r.index == "olsson"))
+
+
+def _figures():
+    from softimpact.output.sweep import kinematics_map_figure, threshold_map_figure
+
+    plate = [r for r in _map_rows() if r["structure"] == "8-in plate"]
+    return {
+        "threshold maps": lambda: threshold_map_figure(_map_rows(), [], "in-lbf-s", "Damage-onset velocity against the ball's diameter " * 3),
+        "onset map": lambda: threshold_map_figure([r for r in _map_rows() if r["index"] == "delamination"], [], "SI", "Onset map"),
+        "two kinematics": lambda: kinematics_map_figure(plate + [dict(r, kinematics="von-karman") for r in plate], "in-lbf-s", "Two kinematics"),
+        "hail": _hail_figure,
+    }
+
+
+@pytest.mark.parametrize("name", list(_figures()))
+def test_map_figures_text_is_9_pt_at_the_reports_width(name):
+    """Every text of the maps' figures (threshold, onset, two kinematics, hail) is at least 9 pt once the 120-dpi PNG
+    is shrunk to the report's width (its drawn size: width and font sizes read from the laid-out figure)."""
+    import matplotlib.pyplot as plt
+
+    fig = _figures()[name]()
+    fig.canvas.draw()
+    width_px = fig.get_tightbbox().width * DPI  # the saved PNG's width (bbox_inches="tight"), in pixels
+    shrink = min(1.0, REPORT_WIDTH_PX / width_px)
+    sizes = [t.get_fontsize() for t in fig.findobj(matplotlib.text.Text) if t.get_text() and t.get_visible()]
+    plt.close(fig)
+    assert sizes and min(sizes) * shrink >= 9.0, (min(sizes), shrink)

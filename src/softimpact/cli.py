@@ -180,7 +180,7 @@ def _finish(outcome, out: str, accept_poor: bool = False) -> None:
 
     for w in outcome.warnings:
         click.echo(f"softimpact: warning: {_one_line(w)}", err=True)
-    gates = tuple(getattr(outcome, "gates", ()))
+    gates = tuple(outcome.gates)
     ctx = click.get_current_context(silent=True)
     manifest = {
         "status": status(gates, accept_poor),

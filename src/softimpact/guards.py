@@ -122,9 +122,11 @@ def contact_rise(law, mass: float, velocity: float, diameter: float, time_step: 
     if not (velocity > 0 and mass > 0 and diameter > 0):
         return None
     try:
-        if time_step is not None and hasattr(law, "for_time_step"):
+        from .models.protocols import HistoryLaw, StepBoundLaw
+
+        if time_step is not None and isinstance(law, StepBoundLaw):
             law = law.for_time_step(time_step)
-        if hasattr(law, "initial_state") and hasattr(law, "branch"):
+        if isinstance(law, HistoryLaw):
             law = law.branch(law.initial_state())
         if type(law).__name__ == "HertzLaw":
             return power_law_rise(float(law.K), float(law.exponent), mass, velocity)

@@ -7,6 +7,7 @@ import time
 import numpy as np
 
 from ..cases.run import execute
+from ..extras import require
 from ..input.beam_case import load_beam_case
 from ..input.sweep_spec import case_files
 from ..input.toml import case_units
@@ -24,6 +25,8 @@ def beam(
 ) -> Outcome:
     """Run a beam case (file or built-in name), optionally with row ``history`` of its [[load.table]];
     ``fields``: also fields.xdmf/.h5, the displacement and strain fields (:mod:`softimpact.output.fields`); ``units``: the display system of the line and figures (None: the case's)."""
+    if fields:  # before any work: the extra's modules, or exit 2 with the install line
+        require("fields", "--fields (fields.xdmf/.h5)")
     problem, path = load_beam_case(case, history)
     system = display_system(units, case_units(path))
     t0 = time.perf_counter()

@@ -16,6 +16,7 @@ from ..units import display
 from ..workflows.identification import identify_series, predict_pulses, unfixed_parameters
 from . import Outcome, Progress, no_progress
 from .options import display_system
+from .series import require_readers
 
 __all__ = ["identify"]
 
@@ -29,6 +30,7 @@ def identify(*, series_name: str, law: str = "soft", units: str | None = None, f
     law.json's ``family`` says "crushing"); ``units``: the display system of the line and figures (None: the series')."""
     series = load_series(series_name)
     series = replace(series, units=display_system(units, series.units))
+    require_readers(series)  # the lab formats' optional readers, before any record is read
     reduced = reduce_series(series, *read_series_records(series), progress=progress)
     warnings = failed_reductions(reduced)
     rod = Rod.of(series.bar)

@@ -9,6 +9,7 @@ import numpy as np
 from ..cases import KINDS
 from ..cases.impact import with_identified_envelope
 from ..cases.run import execute
+from ..extras import require
 from ..input.impact_case import load_impact_case
 from ..input.sweep_spec import case_files
 from ..input.toml import case_units
@@ -43,6 +44,8 @@ def _damage_words(summary: dict, force) -> str:
 def impact(*, case: str, units: str | None = None, figures: bool = True, fields: bool = False, progress: Progress = no_progress) -> Outcome:
     """Run an impact case (file or built-in name) on a beam or plate target; ``fields``: also
     fields.xdmf/.h5, the target's displacement fields (:mod:`softimpact.output.fields`); ``units``: the display system of the line and figures (None: the case's)."""
+    if fields:  # before any work: the extra's modules, or exit 2 with the install line
+        require("fields", "--fields (fields.xdmf/.h5)")
     problem, inputs = load_impact_case(case)
     system = display_system(units, case_units(inputs[0]))
     KINDS["impact"].check(problem)  # the target's mesh and resources, the step against the contact's rise (exit 2)

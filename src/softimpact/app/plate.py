@@ -8,6 +8,7 @@ import numpy as np
 
 from ..cases.run import execute
 from ..errors import InputError
+from ..extras import require
 from ..input.plate_case import load_plate_case
 from ..input.sweep_spec import case_files
 from ..input.toml import case_units
@@ -25,6 +26,8 @@ def plate(
 ) -> Outcome:
     """Run a plate case (file or built-in name), optionally with row ``history`` of its [[load.table]];
     ``fields``: also fields.xdmf/.h5, the displacement fields (:mod:`softimpact.output.fields`); ``units``: the display system of the line and figures (None: the case's)."""
+    if fields:  # before any work: the extra's modules, or exit 2 with the install line
+        require("fields", "--fields (fields.xdmf/.h5)")
     problem, path = load_plate_case(case, history)
     system = display_system(units, case_units(path))
     t0 = time.perf_counter()

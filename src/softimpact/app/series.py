@@ -25,7 +25,21 @@ from ..workflows.scaling import fit_gates
 from . import Outcome, Progress, no_progress
 from .options import display_system
 
-__all__ = ["reduce", "fit"]
+__all__ = ["reduce", "fit", "require_readers"]
+
+
+def require_readers(series) -> None:
+    """Before any record is read: the optional reader of every lab record of ``series`` (its format detected from the
+    file's first bytes, :func:`softimpact.input.records.registry.detect`) installed, or exit 2 with the extra's install line."""
+    from ..extras import FORMAT_EXTRAS, require
+    from ..input.records.registry import detect
+
+    for test in series.tests:
+        for path in (test.record, *(test.second[:1] if test.second else ())):
+            fmt = detect(path) if path.is_file() else None  # (a missing file: the reader names it, as before)
+            if fmt in FORMAT_EXTRAS:
+                extra, modules = FORMAT_EXTRAS[fmt]
+                require(extra, f"{path} ({fmt} record)", modules)
 
 
 def _reduce(name: str, units: str | None, progress: Progress):
@@ -33,6 +47,7 @@ def _reduce(name: str, units: str | None, progress: Progress):
     and the errors of the records that could not be reduced."""
     series = load_series(name)
     series = replace(series, units=display_system(units, series.units))
+    require_readers(series)
     reduced = reduce_series(series, *read_series_records(series), progress=progress)
     return series, reduced, failed_reductions(reduced)
 

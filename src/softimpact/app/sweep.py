@@ -16,7 +16,9 @@ from pathlib import Path
 
 from ..cases.sweep import check_scheduler, execute, plan_sweep, sweep_results
 from ..errors import HeldWarnings, InputError
+from ..extras import require
 from ..input.sweep_spec import load_sweep_spec
+from ..models.validity import ValidityWarning
 from ..output.sweep import sweep_files
 from . import Outcome, Progress, no_progress
 from .options import display_system
@@ -42,6 +44,8 @@ def sweep(
 
     t0 = time.perf_counter()
     check_writable(out_dir)  # the checkpoints' folder: an empty path (Python's out="") would put them in the working folder
+    # before any work (no checkpoints/ yet): runs.parquet needs pyarrow, and Dask runs (workers > 0 or a scheduler) Dask
+    require("sweep", "softimpact sweep", None if scheduler or workers != 0 else ("pyarrow",))
     check_scheduler(scheduler)
     with HeldWarnings() as caught:  # the spec's and the probes' warnings: shown once each, below
         s = load_sweep_spec(spec)
@@ -63,7 +67,7 @@ def sweep(
     if th:
         line = threshold_lines(th, system) + "\n" + line  # the command line ends the last line with the files written
     # validity flags raised here (the probes' reading of their cases) are the runs' own, counted per run
-    found = [str(w.message).strip() for w in caught.held if not getattr(w.message, "flag", "")]
+    found = [str(w.message).strip() for w in caught.held if not (isinstance(w.message, ValidityWarning) and w.message.flag)]
     read = (s.path, s.case_path, *(Path(f) for f, _ in s.inputs))  # every file the runs read: never replaced nor removed
     return Outcome(files, line, read, tuple(sweep_warnings(summary, found)))
 

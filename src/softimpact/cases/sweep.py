@@ -26,6 +26,7 @@ import numpy as np
 
 from ..errors import HeldWarnings, InputError, SoftimpactWarning
 from ..input.sweep_spec import Level, SweepSpec
+from ..models.validity import ValidityWarning
 from ..output.sweep import earlier_inputs, load_checkpoint, save_checkpoint, save_inputs
 from ..workflows import sweep_stats
 from . import KINDS, kind_of
@@ -181,7 +182,7 @@ class _Caught(HeldWarnings):
         self.texts: list[str] = []
         self.flags: list[str] = []
         for w in self.held:
-            if getattr(w.message, "flag", ""):
+            if isinstance(w.message, ValidityWarning) and w.message.flag:
                 if w.message.flag not in self.flags:
                     self.flags.append(w.message.flag)
             else:

@@ -36,6 +36,7 @@ below impact rates (:func:`softimpact.models.validity.ice_strength_validity`).
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -58,6 +59,7 @@ def _phi(u: float) -> float:
     return (1.0 - u) ** 2 * (1.0 + 2.0 * u)
 
 
+@functools.lru_cache(maxsize=256)  # a coupled step asks for the same depth several times (radius, force, stiffness at one α)
 def sphere_crush_depth(x: float) -> float:
     """u = s/d of a sphere whose centre of mass has advanced x = X/d ∈ [0, ½] (the inverse of
     :func:`centre_of_mass_advance`): Newton safeguarded by bisection; 0 for x ≤ 0, 1 for x ≥ ½."""

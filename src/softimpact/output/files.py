@@ -157,7 +157,12 @@ def _cell(v) -> str:
     return "" if math.isnan(f) else repr(f)
 
 
-FIGURE_FORMATS = ("png", "svg", "pdf")  # raster (120 dpi) or vector
+FIGURE_FORMATS = ("png", "svg", "pdf")  # raster (FIGURE_DPI) or vector
+FIGURE_DPI = 120
+# report.html shows a figure at most 968 px wide (body 1000 px less 1 em of padding each side): a figure this wide
+# [in] is shown unshrunk, so its text keeps its size; REPORT_TEXT_PT the least text size of the report's figures
+REPORT_WIDTH_IN = (1000 - 2 * 16) / FIGURE_DPI
+REPORT_TEXT_PT = 9
 # The format figures are drawn in for the command being run (``--figure-format``): the CLI sets it
 # around one command and resets it after; the names stay "*.png" until :func:`with_figure_format`.
 figure_format: contextvars.ContextVar[str] = contextvars.ContextVar("softimpact_figure_format", default="png")
@@ -169,7 +174,7 @@ def figure_bytes(fig, fmt: str | None = None) -> bytes:
 
     buf = io.BytesIO()
     fmt = fmt or figure_format.get()
-    fig.savefig(buf, format=fmt, dpi=120, bbox_inches="tight")
+    fig.savefig(buf, format=fmt, dpi=FIGURE_DPI, bbox_inches="tight")
     plt.close(fig)
     return _small_png(buf.getvalue()) if fmt == "png" else buf.getvalue()
 

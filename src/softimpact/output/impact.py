@@ -119,7 +119,7 @@ def impact_columns(result, target: bool = True, energies: bool = True) -> dict[s
         cols["target_displacement_m"] = result.target_displacement
     for name, eps in zip(result.strain_names, result.strain):
         cols[f"strain_{name}"] = eps
-    for name, values in zip(*(getattr(result, "groups", None) or {}).get("columns", ((), ()))):
+    for name, values in zip(*(result.groups or {}).get("columns", ((), ()))):
         cols[name] = values  # the target's own columns, by their names (cohesive interfaces: delaminated areas, energies)
     if energies:
         E = result.energies

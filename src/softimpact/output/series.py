@@ -66,7 +66,7 @@ def _reduction_values(item, r):
         ("whole_record_peak_force_N", r.whole_fit.peak_force if r.whole_fit is not None else math.nan),
         ("whole_record_time_of_peak_s", r.whole_fit.time_of_peak if r.whole_fit is not None else math.nan),
         ("whole_record_duration_s", r.whole_fit.duration if r.whole_fit is not None else math.nan),
-        *tail_shape_spread(getattr(item, "tail_shapes", ())).items(),
+        *tail_shape_spread(item.tail_shapes).items(),
     )
 
 
@@ -77,18 +77,18 @@ def _test_columns(cols: dict, item, series, corrected: bool) -> None:
     cols["velocity_m_s"].append(t.velocity)
     cols["mass_kg"].append(t.mass)
     cols["diameter_m"].append(t.diameter)
-    cols["status"].append(getattr(item, "status", "ok" if item.reduction is not None else "error"))
-    conditioned = getattr(item, "conditioning", None)
-    cols["rejected_because"].append(_text(getattr(item, "rejected", ())))
-    rejected = getattr(item, "rejected", ())
+    cols["status"].append(item.status)
+    conditioned = item.conditioning
+    cols["rejected_because"].append(_text(item.rejected))
+    rejected = item.rejected
     cols["conditioning_notes"].append(_text([f for f in (conditioned.flags if conditioned is not None else ()) if f not in rejected]))
-    meta = getattr(item, "metadata", {})
+    meta = item.metadata
     for k, m in RECORD_COLUMNS.items():
         v = meta.get(m)
         cols[k].append(v if isinstance(v, (int, float)) and not isinstance(v, bool) else ("" if v is None else _text([str(v)])))
-    cols["dispersion"].append(getattr(series, "dispersion", "none"))
+    cols["dispersion"].append(series.dispersion)
     if corrected:
-        u = getattr(item, "uncorrected", None)
+        u = item.uncorrected
         cols["uncorrected_peak_force_N"].append(u.peak_force if u is not None else math.nan)
 
 
@@ -98,7 +98,7 @@ def reduction_files(series, reduced, figures: bool = True, prefix: str = "") -> 
 
     cols = {k: [] for k in ("record", "velocity_m_s", "mass_kg", "diameter_m", *REDUCTION_COLUMNS, *TAIL_COLUMNS)}
     reduction_cols = list(cols)[4:]
-    corrected = getattr(series, "dispersion", "none") != "none"
+    corrected = series.dispersion != "none"
     for k in ("status", "rejected_because", "conditioning_notes", *RECORD_COLUMNS, "dispersion") + (("uncorrected_peak_force_N",) if corrected else ()):
         cols[k] = []
     files: dict[str, bytes | str] = {}
@@ -114,7 +114,7 @@ def reduction_files(series, reduced, figures: bool = True, prefix: str = "") -> 
         files[f"{prefix}history-{stem(t.name)}.csv"] = csv_text({"time_s": r.time, "force_N": r.force})
         if figures:
             files[f"{prefix}fig07-force-{stem(t.name)}.png"] = figure_bytes(plots.force_history(r, series.units))
-            if corrected and getattr(item, "uncorrected", None) is not None:
+            if corrected and item.uncorrected is not None:
                 files[f"{prefix}dispersion-{stem(t.name)}.png"] = figure_bytes(plots.dispersion_comparison(r, item.uncorrected, series.units))
     files[prefix + "tests.csv"] = csv_text({k: np.array(v, dtype=object) for k, v in cols.items()})
     return files

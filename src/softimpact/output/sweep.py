@@ -10,11 +10,12 @@ from __future__ import annotations
 
 import io
 import json
+import textwrap
 from pathlib import Path
 
 import numpy as np
 
-from .files import csv_text, figure_bytes, json_text, write_outputs
+from .files import REPORT_TEXT_PT, REPORT_WIDTH_IN, csv_text, figure_bytes, json_text, write_outputs
 
 __all__ = [
     "sweep_files",
@@ -175,7 +176,19 @@ def threshold_map_figure(rows: list[dict], prescribed: list[dict], system: str, 
     vu, lu = display(system, "velocity"), display(system, "length")
     structures = list(dict.fromkeys(r["structure"] for r in rows))
     indices = list(dict.fromkeys(r["index"] for r in rows))
-    fig, axes = plt.subplots(1, len(structures), figsize=(4.2 * len(structures), 4), sharey=True, squeeze=False)
+    # as wide as the report shows it (no shrinking), text at REPORT_TEXT_PT: panels side by side, the legend below them
+    with plt.rc_context({"font.size": REPORT_TEXT_PT}):
+        fig, axes = plt.subplots(1, len(structures), figsize=(REPORT_WIDTH_IN, 3.6), sharey=True, squeeze=False, layout="constrained")
+        _threshold_panels(fig, axes, structures, indices, rows, prescribed, vu, lu)
+        fig.suptitle(textwrap.fill(title, 90), fontsize=REPORT_TEXT_PT + 1)
+        fig.canvas.draw()  # laid out (and its text sized) inside the context
+    return fig
+
+
+def _threshold_panels(fig, axes, structures, indices, rows, prescribed, vu, lu) -> None:
+    """The panels of :func:`threshold_map_figure`, one per structure, and one legend below them."""
+    import matplotlib.pyplot as plt
+
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     for ax, name in zip(axes[0], structures):
         for j, index in enumerate(indices):
@@ -198,14 +211,13 @@ def threshold_map_figure(rows: list[dict], prescribed: list[dict], system: str, 
                     capsize=3,
                     label=f"{index}: prescribed force (Table I law)",
                 )
-        ax.set_title(name, fontsize=9)
-        ax.set_xlabel(f"impactor diameter [{lu.label}]")
+        ax.set_title(name)
+        ax.set_xlabel(f"diameter [{lu.label}]")
         ax.grid(alpha=0.3)
     axes[0][0].set_ylabel(f"threshold velocity [{vu.label}]")
-    axes[0][0].legend(fontsize=7, title="open circles: outside validity" if _outside(rows).any() else None, title_fontsize=7)
-    fig.suptitle(title, fontsize=10)
-    fig.tight_layout()
-    return fig
+    handles, labels = axes[0][0].get_legend_handles_labels()
+    title = "open circles: outside validity" if _outside(rows).any() else None
+    fig.legend(handles, labels, loc="outside lower center", ncol=2, title=title, frameon=False)
 
 
 def kinematics_map_figure(rows: list[dict], system: str, title: str):
@@ -221,7 +233,20 @@ def kinematics_map_figure(rows: list[dict], system: str, title: str):
     vu, lu = display(system, "velocity"), display(system, "length")
     indices = list(dict.fromkeys(r["index"] for r in rows))
     kinds = list(dict.fromkeys(r["kinematics"] for r in rows))
-    fig, axes = plt.subplots(2, len(indices), figsize=(4.4 * len(indices), 6.2), sharex=True, squeeze=False, gridspec_kw={"height_ratios": [2, 1]})
+    with plt.rc_context({"font.size": REPORT_TEXT_PT}):  # as wide as the report shows it, text at REPORT_TEXT_PT
+        fig, axes = plt.subplots(
+            2, len(indices), figsize=(REPORT_WIDTH_IN, 6.0), sharex=True, squeeze=False, gridspec_kw={"height_ratios": [2, 1]}, layout="constrained"
+        )
+        _kinematics_panels(fig, axes, indices, kinds, rows, vu, lu)
+        fig.suptitle(textwrap.fill(title, 90), fontsize=REPORT_TEXT_PT + 1)
+        fig.canvas.draw()
+    return fig
+
+
+def _kinematics_panels(fig, axes, indices, kinds, rows, vu, lu) -> None:
+    """The panels of :func:`kinematics_map_figure`: per index, the two maps above and their ratio below."""
+    import matplotlib.pyplot as plt
+
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     for col, index in enumerate(indices):
         ax, below = axes[0][col], axes[1][col]
@@ -245,14 +270,11 @@ def kinematics_map_figure(rows: list[dict], system: str, title: str):
                 if np.isfinite(ratio).any():
                     below.plot(d, ratio, style, color="k", ms=4, label=label)
             below.axhline(1.0, color="0.6", lw=0.8)
-            below.set_ylabel(f"{kinds[1]} / {kinds[0]}", fontsize=8)
-            below.legend(fontsize=7)
-        ax.set_title(index, fontsize=9)
+            below.set_ylabel(f"{kinds[1]} / {kinds[0]}")
+            below.legend()
+        ax.set_title(index)
         below.set_xlabel(f"impactor diameter [{lu.label}]")
         ax.grid(alpha=0.3)
         below.grid(alpha=0.3)
     axes[0][0].set_ylabel(f"threshold velocity [{vu.label}]")
-    axes[0][0].legend(fontsize=7, title="open markers: outside validity" if _outside(rows).any() else None, title_fontsize=7)
-    fig.suptitle(title, fontsize=10)
-    fig.tight_layout()
-    return fig
+    axes[0][0].legend(title="open markers: outside validity" if _outside(rows).any() else None)

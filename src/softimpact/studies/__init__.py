@@ -7,4 +7,7 @@ whose modules import no other workflow; beside :mod:`softimpact.input` and :mod:
   of refined models (beam_impact + refinement + calibration + convergence + scaling).
 - :mod:`softimpact.studies.references`: what the paper's references can tell: the beams' first zero
   crossing against the free length and clamp compliance, and bar series made with another α3.
+- :mod:`softimpact.studies.tasks`: a multi-part study's parts run as tasks on the machine's cores, what they share
+  computed once.
+- :mod:`softimpact.studies.paper`: the paper report's computations (the identified law, threshold maps, hail map).
 """

@@ -503,64 +503,45 @@ def threshold_map(
     drawn = law_draws(law, draws, seed) if band_from is None else []
     q = norm.ppf((np.arange(strength_quantiles) + 0.5) / strength_quantiles)
     factors = np.maximum(1.0 + strength_cov * q, 0.05)
-    rows = []
     runs: dict = {}  # every coupled run of the map, for all its indices (the scans from lo are the same runs)
-    for index in indices:
-        for d in diameters:
-            mass = s.density * math.pi / 6.0 * d**3
-            ref = None if band_from is None else _row_of(band_from, index, d)
-            evaluated: list = []
-            guess = dict(guess=ref.nominal, beta=ref.beta) if ref is not None else {}
-            nominal = threshold_velocity(s, law, d, index, lo, hi, runs=runs, evaluated=evaluated, **guess)
-            beta, ratios, flags = (math.nan if ref is None else ref.beta), {}, ()
-            if math.isfinite(nominal):
-                if ref is None:  # (a carried band carries its β too: two runs fewer a threshold)
-                    i1, i2 = (index_at(s, law, d, nominal * f, index, runs=runs) for f in (0.98, 1.02))
-                    beta = math.log(i2 / i1) / math.log(1.02 / 0.98)
-                validity = run_validity(*_cached_run(s, law, d, nominal, runs), law) + range_floor_validity(nominal, lo)
-                ratios, flags = dict(validity.values), tuple(validity.names)
-            coarse_v = threshold_velocity(coarse, law, d, index, lo, hi, guess=nominal, beta=beta, runs=runs) if coarse is not None else math.nan
-            coarse_v = math.nan if coarse_v <= lo else coarse_v  # a coarse threshold at the floor is not found: no GCI from it
-            gci = gci_two_meshes(nominal, coarse_v)
-            widen = gci if math.isfinite(gci) else 0.0
-            if ref is not None:
-                count, reached = ref.draws, ref.reached if math.isfinite(nominal) else 0
-                p05, p95, med, law_lo, law_hi = _carried_band(ref, nominal, widen)
-            else:
-                vs = np.array([threshold_velocity(s, lw, d, index, lo, hi, guess=nominal, beta=beta, runs=runs) for lw in drawn] or [nominal], float)
-                count, reached, (p05, p95, med, law_lo, law_hi) = len(vs), int(np.isfinite(vs).sum()), _drawn_band(vs, beta, factors, widen)
-            ratio = mass / s.problem.target.mass
-            regime = response_regime(mass, s.problem.target.mass, wave_below=REGIME_BOUNDS[0], quasi_static_above=REGIME_BOUNDS[1])
-            if math.isfinite(nominal):  # a quasi-static threshold's row on a wave-controlled impact says so (criterion_outside_regime)
-                flags += criterion_validity(regime, (index,)).names
-            rows.append(
-                MapRow(
-                    s.name,
-                    index,
-                    d,
-                    mass,
-                    nominal,
-                    med,
-                    p05,
-                    p95,
-                    law_lo,
-                    law_hi,
-                    beta,
-                    gci,
-                    coarse_v,
-                    count,
-                    reached,
-                    ratio,
-                    regime,
-                    ratios,
-                    flags,
-                    s.kinematics,
-                    "own draws" if ref is None else "linear map",
-                    len(evaluated),
-                    _method(s, "kernels"),
-                )
-            )
-    return rows
+    return [_map_row(s, law, index, d, (lo, hi), coarse, drawn, factors, runs, band_from) for index in indices for d in diameters]
+
+
+def _map_row(s: ThresholdStructure, law, index: str, d: float, bounds, coarse, drawn: list, factors, runs: dict, band_from) -> MapRow:
+    """One row of :func:`threshold_map`: ``index`` at diameter ``d`` [m], velocities in ``bounds`` (lo, hi) [m/s], the
+    law's ``drawn`` copies and the strength ``factors`` for its band (or the row of ``band_from`` carried over),
+    ``runs`` the map's coupled runs (shared by its rows)."""
+    lo, hi = bounds
+    mass = s.density * math.pi / 6.0 * d**3
+    ref = None if band_from is None else _row_of(band_from, index, d)
+    evaluated: list = []
+    guess = dict(guess=ref.nominal, beta=ref.beta) if ref is not None else {}
+    nominal = threshold_velocity(s, law, d, index, lo, hi, runs=runs, evaluated=evaluated, **guess)
+    beta, ratios, flags = (math.nan if ref is None else ref.beta), {}, ()
+    if math.isfinite(nominal):
+        if ref is None:  # (a carried band carries its β too: two runs fewer a threshold)
+            i1, i2 = (index_at(s, law, d, nominal * f, index, runs=runs) for f in (0.98, 1.02))
+            beta = math.log(i2 / i1) / math.log(1.02 / 0.98)
+        validity = run_validity(*_cached_run(s, law, d, nominal, runs), law) + range_floor_validity(nominal, lo)
+        ratios, flags = dict(validity.values), tuple(validity.names)
+    coarse_v = threshold_velocity(coarse, law, d, index, lo, hi, guess=nominal, beta=beta, runs=runs) if coarse is not None else math.nan
+    coarse_v = math.nan if coarse_v <= lo else coarse_v  # a coarse threshold at the floor is not found: no GCI from it
+    gci = gci_two_meshes(nominal, coarse_v)
+    widen = gci if math.isfinite(gci) else 0.0
+    if ref is not None:
+        count, reached = ref.draws, ref.reached if math.isfinite(nominal) else 0
+        p05, p95, med, law_lo, law_hi = _carried_band(ref, nominal, widen)
+    else:
+        vs = np.array([threshold_velocity(s, lw, d, index, lo, hi, guess=nominal, beta=beta, runs=runs) for lw in drawn] or [nominal], float)
+        count, reached, (p05, p95, med, law_lo, law_hi) = len(vs), int(np.isfinite(vs).sum()), _drawn_band(vs, beta, factors, widen)
+    target = s.problem.target.mass
+    regime = response_regime(mass, target, wave_below=REGIME_BOUNDS[0], quasi_static_above=REGIME_BOUNDS[1])
+    if math.isfinite(nominal):  # a quasi-static threshold's row on a wave-controlled impact says so (criterion_outside_regime)
+        flags += criterion_validity(regime, (index,)).names
+    return MapRow(
+        s.name, index, d, mass, nominal, med, p05, p95, law_lo, law_hi, beta, gci, coarse_v, count, reached, mass / target, regime, ratios, flags,
+        s.kinematics, "own draws" if ref is None else "linear map", len(evaluated), _method(s, "kernels"),
+    )  # fmt: skip
 
 
 def _drawn_band(vs: np.ndarray, beta: float, factors: np.ndarray, widen: float) -> tuple[float, ...]:

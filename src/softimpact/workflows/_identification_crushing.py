@@ -156,6 +156,15 @@ def crushing_force(values, reference_rate: float, geometry, diameter: float) -> 
     return np.where(live, area * (sigma + rho * sdot * sdot), 0.0)
 
 
+def _at_bounds(x) -> tuple[str, ...]:
+    """The crushing law's parameters (values ``x``) within 1 % of a bound of the search (their names)."""
+    return tuple(
+        name
+        for name, xi, lo, hi in zip(CRUSHING_PARAMETERS, x, CRUSHING_LOWER, CRUSHING_UPPER)
+        if abs(xi - lo) <= 0.01 * max(abs(lo), 1e-2) or abs(xi - hi) <= 0.01 * abs(hi)
+    )
+
+
 def identify_crushing(tests, rod: Rod) -> tuple[CrushingIdentifiedLaw, tuple[Approach, ...]]:
     """Fit one crushing strength law, and each test's first contact, to all tests (module docstring); returns the
     law and the approaches, their α from the fitted first contact, with their ``fitted_force``."""
@@ -229,11 +238,6 @@ def identify_crushing(tests, rod: Rod) -> tuple[CrushingIdentifiedLaw, tuple[App
     v, d = [float(t.velocity) for t in tests], [float(t.diameter) for t in tests]
     ranges = {"velocity_m_s": [min(v), max(v)], "diameter_m": [min(d), max(d)], "strain_rate_1_s": [min(rates), max(rates)]}
     x = sol.x[:2]
-    at_bounds = tuple(
-        name
-        for name, xi, lo, hi in zip(CRUSHING_PARAMETERS, x, CRUSHING_LOWER, CRUSHING_UPPER)
-        if abs(xi - lo) <= 0.01 * max(abs(lo), 1e-2) or abs(xi - hi) <= 0.01 * abs(hi)
-    )
     shifts = sol.x[2:].copy()
-    law = CrushingIdentifiedLaw(CRUSHING_PARAMETERS, x.copy(), half, reference, max(d), rms, float(sol.cost), ranges, cov, at_bounds, shifts)
+    law = CrushingIdentifiedLaw(CRUSHING_PARAMETERS, x.copy(), half, reference, max(d), rms, float(sol.cost), ranges, cov, _at_bounds(x), shifts)
     return law, tuple(replace(shifted(i, shifts[i]), fitted_force=f) for i, f in zip(every, fits))

@@ -23,6 +23,7 @@ from ...studies.references import (
     lead_lobes,
     match_crossing,
 )
+from ...studies.tasks import once
 from ...units import INCH
 
 __all__ = ["beam_sections", "crossing_section"]
@@ -38,13 +39,21 @@ def beam_sections(figures: bool, files: dict) -> list[Section]:
     their first zero crossing of gauge 1 (:func:`crossing_section`)."""
     sections = []
     for name in BEAMS:
-        problem, _ = load_beam_case(name, 1)
-        run = execute(problem, figures=True)  # the whole displacement kept, as the paper always ran it (its deformed beam)
-        prefix = name.removeprefix("paper-") + "/"
-        files.update(beam_files(run.model, run.result, figures, prefix=prefix, summary=run.summary))
-        sections.append(beam_section(run.model, run.result, prefix, run.summary))
+        section, made = beam_run_section(name, figures)
+        files.update(made)
+        sections.append(section)
     sections.append(crossing_section())
     return sections
+
+
+@once
+def beam_run_section(name: str, figures: bool) -> tuple[Section, dict]:
+    """The built-in beam ``name`` under row 1 of its [[load.table]], once per run (a task of the report): its section
+    and its files."""
+    problem, _ = load_beam_case(name, 1)
+    run = execute(problem, figures=True)  # the whole displacement kept, as the paper always ran it (its deformed beam)
+    prefix = name.removeprefix("paper-") + "/"
+    return beam_section(run.model, run.result, prefix, run.summary), beam_files(run.model, run.result, figures, prefix=prefix, summary=run.summary)
 
 
 def _refined(problem):
@@ -60,6 +69,7 @@ def _us(t: float) -> str:
     return "none within the window" if not math.isfinite(t) else f"{t * 1e6:.0f}"
 
 
+@once
 def crossing_section() -> Section:
     """Each beam's first zero crossing of gauge 1's bending strain under history 1 (the paper's model:
     200 × 6 mesh, 1 µs) against the paper's ≈ 450 µs, with its discretisation error, and the free length

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from dataclasses import replace
 
 import numpy as np
@@ -18,6 +19,7 @@ from ...output.calibration import SeriesComparison, calibration_section, series_
 from ...output.files import figure_bytes
 from ...output.report import Section
 from ...studies.calibration import CalibratedTest, calibrate_tests, calibration_model, scaling_points, series_fits
+from ...studies.tasks import once
 from ...workflows.beam_impact import BeamLoad, BeamModel
 from ...workflows.calibration import Measured, calibrate
 from ...workflows.scaling import fit_groups
@@ -32,32 +34,10 @@ def calibration_sections(figures: bool, files: dict) -> list[Section]:
     sections = []
     groups = {}
     for beam in ("long", "short"):
-        series = load_calibration_series(f"paper-{beam}-calibration")
-        problem, _ = load_beam_case(series.case)
-        models = calibration_model(problem, [t.contact_radius or problem.load.contact_radius for t in series.tests], False)
-        items = calibrate_tests(models, series.tests, series.projectile, series.constants, "least-squares")
-        truths = [SkewedPulse(r[1], r[2], r[3]) for r in series.reference] if len(series.reference) == len(items) else None
-        prefix = f"calibration-{beam}/"
-        fits = series_fits(series, items)
-        files.update(series_calibration_files(models, series, items, fits, figures, prefix, truths))
-        paper_method = None
-        if beam == "long":
-            # The paper's procedure on history 1, from the bar model with the Table's tF0/T (see NOTES).
-            test = series.tests[0]
-            bar = start_pulse(series.projectile, series.constants, test.velocity)
-            ref = series.reference[0]
-            start = SkewedPulse(bar.peak_force, ref[2] / ref[3] * bar.duration, bar.duration)
-            t, strains = read_strains(test.measured)
-            paper_method = calibrate(models(0), Measured(test.measured.name, t, strains), start, "paper", radius=test.contact_radius)
-        compared = comparison(models.finest(), series, items, fits)
-        section = calibration_section(models, series, items, compared, prefix, figures, paper_method)
-        section.summary = [f0_summary(items, series, beam)]
-        note = linear_theory_note(problem, items, beam)
-        if note:
-            section.paragraphs.insert(0, note)
+        section, made, rows = beam_calibration(beam, figures)
+        files.update(made)
         sections.append(section)
-        groups[f"{beam} beam, calibrated"] = [r[:4] for r in tables_rows(items)]
-        groups[f"{beam} beam, Table {'II' if beam == 'long' else 'III'} (paper)"] = [r[:4] for r in series.reference]
+        groups.update(rows)
     if figures:
         files["calibration-fig23-25.png"] = figure_bytes(plots.beam_force_scaling(groups, SYSTEM))
         sections.append(
@@ -73,6 +53,43 @@ def calibration_sections(figures: bool, files: dict) -> list[Section]:
             )
         )
     return sections
+
+
+@once
+def beam_calibration(beam: str, figures: bool) -> tuple[Section, dict, dict]:
+    """One beam's calibration series ("long" or "short"), once per run (a task of the report): its section, its files
+    and its rows of Figs 23-25 (calibrated and the paper's)."""
+    files: dict = {}
+    series = load_calibration_series(f"paper-{beam}-calibration")
+    problem, _ = load_beam_case(series.case)
+    models = calibration_model(problem, [t.contact_radius or problem.load.contact_radius for t in series.tests], False)
+    items = calibrate_tests(models, series.tests, series.projectile, series.constants, "least-squares")
+    truths = [SkewedPulse(r[1], r[2], r[3]) for r in series.reference] if len(series.reference) == len(items) else None
+    prefix = f"calibration-{beam}/"
+    fits = series_fits(series, items)
+    files.update(series_calibration_files(models, series, items, fits, figures, prefix, truths))
+    paper_method = None
+    if beam == "long":
+        # The paper's procedure on history 1, from the bar model with the Table's tF0/T (see NOTES).
+        test = series.tests[0]
+        bar = start_pulse(series.projectile, series.constants, test.velocity)
+        ref = series.reference[0]
+        start = SkewedPulse(bar.peak_force, ref[2] / ref[3] * bar.duration, bar.duration)
+        t, strains = read_strains(test.measured)
+        paper_method = calibrate(models(0), Measured(test.measured.name, t, strains), start, "paper", radius=test.contact_radius)
+    compared = comparison(models.finest(), series, items, fits)
+    section = calibration_section(models, series, items, compared, prefix, figures, paper_method)
+    section.summary = [f0_summary(items, series, beam)]
+    note = linear_theory_note(problem, items, beam)
+    if note:
+        section.paragraphs.insert(0, note)
+        count = re.search(r"(\d+ of \d+) tests deflect", note)  # the note's own count
+        section.qualified = f"{count.group(1) if count else 'some'} tests past linear theory's w/h = 0.5, see Warnings of the run"
+    groups = {
+        f"{beam} beam, calibrated": [r[:4] for r in tables_rows(items)],
+        f"{beam} beam, Table {'II' if beam == 'long' else 'III'} (paper)": [r[:4] for r in series.reference],
+    }
+    return section, files, groups
 
 
 def f0_summary(items: list[CalibratedTest], series: CalibrationSeries, beam: str) -> str:

@@ -11,6 +11,7 @@ from ...input.beam_case import load_beam_case
 from ...models.pulses import SkewedPulse
 from ...output.converge import converge_files, converge_section
 from ...output.report import Section
+from ...studies.tasks import once
 from ...workflows.convergence import study_case
 from ...workflows.refinement import coarsen_beam
 
@@ -22,14 +23,11 @@ MAX_HISTORIES = 8  # rows of a beam case's [[load.table]] studied (Tables II and
 def discretisation_sections(figures: bool, files: dict) -> list[Section]:
     """Richardson studies of the bar case and of both beams, the paper's mesh in the middle of three levels."""
     sections, first = [], {}
-    problem, _ = load_bar_case("paper-calibration")
-    result, sizes = study_case(KINDS["bar"], problem, 3, 2)
+    result, sizes, problem = bar_study()
     files.update(converge_files(result, sizes, problem, "bar", figures, prefix="convergence/bar/"))
     sections.append(converge_section(result, sizes, "Discretisation error: the bar (paper-calibration)", "convergence/bar/", figures))
     for name in ("paper-long-beam", "paper-short-beam"):
-        problem, _ = load_beam_case(name, 1)
-        base = coarsen_beam(problem, 2)  # levels ½, 1, 2: the paper's mesh in the middle
-        result, sizes = study_case(KINDS["beam"], base, 3, 2, case_level=1)
+        result, sizes, base, _ = history_study(name, 1)
         first[name] = result  # history 1: also the first row of the per-history section
         prefix = f"convergence/{name.removeprefix('paper-')}/"
         files.update(converge_files(result, sizes, base, "beam", figures, prefix=prefix, case_level=1))
@@ -37,6 +35,33 @@ def discretisation_sections(figures: bool, files: dict) -> list[Section]:
         sections.append(converge_section(result, sizes, title, prefix, figures, case_level=1))
     sections.append(_per_history_section(first))
     return sections
+
+
+@once
+def bar_study() -> tuple:
+    """The bar case's Richardson study on three levels (result, sizes, problem), once per run (a task of the report)."""
+    problem, _ = load_bar_case("paper-calibration")
+    return (*study_case(KINDS["bar"], problem, 3, 2), problem)
+
+
+@once
+def history_study(name: str, history: int):
+    """The Richardson study of beam ``name`` under row ``history`` of its table on levels ½, 1, 2 of its mesh (the paper's
+    mesh in the middle): (result, sizes, base problem, problem), or None when the table has no such row; once per run."""
+    try:
+        problem, _ = load_beam_case(name, history)
+    except InputError:
+        return None
+    base = coarsen_beam(problem, 2)  # levels ½, 1, 2: the paper's mesh in the middle
+    return (*study_case(KINDS["beam"], base, 3, 2, case_level=1), base, problem)
+
+
+def beam_studies(name: str) -> int:
+    """Every history's study of beam ``name`` (:func:`history_study`, up to MAX_HISTORIES): how many there are."""
+    history = 1
+    while history <= MAX_HISTORIES and history_study(name, history) is not None:
+        history += 1
+    return history - 1
 
 
 def _per_history_section(first: dict | None = None) -> Section:
@@ -48,11 +73,11 @@ def _per_history_section(first: dict | None = None) -> Section:
     for name in ("paper-long-beam", "paper-short-beam"):
         history = 1
         while True:
-            try:
-                problem, _ = load_beam_case(name, history)
-            except InputError:
+            study = history_study(name, history)
+            if study is None:
                 break
-            result = first[name] if history == 1 and name in first else study_case(KINDS["beam"], coarsen_beam(problem, 2), 3, 2, case_level=1)[0]
+            result, _, _, problem = study
+            result = first.get(name, result) if history == 1 else result
             gauges = [o for o in result.outputs if o.kind == "history"]
             pulse = problem.load.history  # a Pulse; Tables II and III give eq-15 pulses (t_F0 and T)
             shape = f"{pulse.time_of_peak * 1e6:.0f} / {pulse.duration * 1e6:.0f}" if isinstance(pulse, SkewedPulse) else f"– / {pulse.duration * 1e6:.0f}"

@@ -6,24 +6,10 @@ paragraphs of the thresholds section (:mod:`softimpact.app.paper.thresholds`).
 
 from __future__ import annotations
 
-import functools
 import math
 
-import numpy as np
-
+from ...studies.paper.thresholds import MAP_RANGE_IN_S, VK_PLATE_MESHES, beam_kinematics_check, paper_kinematics_maps
 from ...units import INCH
-from .thresholds import (
-    MAP_DIAMETERS_IN,
-    MAP_DRAWS,
-    MAP_RANGE_IN_S,
-    MAP_STRENGTH_COV,
-    PAPER_BEAMS,
-    VK_PLATE_MESHES,
-    VK_STRUCTURES,
-    _map_structures,
-    _paper_maps,
-    paper_identification,
-)
 
 __all__ = ["paper_kinematics_maps", "kinematics_parts"]
 
@@ -36,68 +22,6 @@ def kinematics_parts(maps: list[dict], figures: bool, files: dict, prefix: str, 
     table, pairs = _kinematics_table(linear, nonlinear, vu)
     text = _kinematics_text(pairs, linear, nonlinear) + [_beams_text(maps, vu)]
     return figs, table, text, _kinematics_headline(linear, nonlinear, maps)
-
-
-@functools.lru_cache(maxsize=1)
-def _kinematics_maps(draws: int) -> tuple[tuple[dict, ...], tuple[dict, ...]]:
-    """(linear, von Kármán) threshold-map rows of the plate's quarter on :data:`VK_PLATE_MESHES`: the linear map with its
-    own draws (kernel runs), the von Kármán map stepped directly from the linear thresholds, its band carried over."""
-    from ...studies.thresholds import INDICES, threshold_map
-
-    law = paper_identification()[2]
-    lo, hi = (v * INCH for v in MAP_RANGE_IN_S)
-    diameters = [d * INCH for d in MAP_DIAMETERS_IN]
-    linear, nonlinear = [], []
-    for name in VK_STRUCTURES:
-        fine, coarse = _map_structures(name, law, "linear-vk-meshes")
-        rows = threshold_map(fine, law, diameters, lo, hi, draws, MAP_STRENGTH_COV, coarse=coarse, indices=INDICES)
-        fine, coarse = _map_structures(name, law, "von-karman")
-        vk = threshold_map(fine, law, diameters, lo, hi, draws, MAP_STRENGTH_COV, coarse=coarse, indices=INDICES, band_from=rows)
-        linear += [r.as_dict() for r in rows]
-        nonlinear += [r.as_dict() for r in vk]
-    return tuple(linear), tuple(nonlinear)
-
-
-BEAM_CHECK_DIAMETER_IN = 0.5  # the ball of the beams' kinematics check (the law's own diameter)
-
-
-@functools.lru_cache(maxsize=1)
-def _beam_kinematics_check() -> tuple[tuple, ...]:
-    """The beams' large-deflection check at one threshold each: the 1/2-in ball at the linear map's delamination threshold
-    on the map's mesh, run once linear (direct stepping) and once with the beam's total Lagrangian form
-    (``[beam] kinematics = "von-karman"``, :mod:`softimpact.fem.plane_tl`): (structure, V* [m/s], linear peak force [N],
-    nonlinear peak force [N], linear w/h, nonlinear w/h) per beam."""
-    import dataclasses
-
-    from ...studies.thresholds import stepped_run
-
-    law = paper_identification()[2]
-    maps = _paper_maps(MAP_DRAWS)[0]
-    d = BEAM_CHECK_DIAMETER_IN * INCH
-    out = []
-    for name in PAPER_BEAMS:
-        vk, _ = _map_structures(name, law, "von-karman")
-        row = next(r for r in maps if r["structure"] == vk.name and r["index"] == "delamination" and math.isclose(r["diameter_m"], d))
-        v = row["threshold_velocity_nominal_m_s"]
-        if not math.isfinite(v):
-            continue
-        problem = vk.problem_at(law, d, v)
-        target = problem.target
-        linear = dataclasses.replace(problem, target=dataclasses.replace(target, beam=dataclasses.replace(target.beam, kinematics="linear")))
-        h = target.thickness
-        runs = [stepped_run(p) for p in (linear, problem)]
-        f = [float(np.max(r.force)) for r in runs]
-        wh = [float(np.max(np.abs(r.target_displacement))) / h for r in runs]
-        out.append((vk.name, v, f[0], f[1], wh[0], wh[1]))
-    return tuple(out)
-
-
-def paper_kinematics_maps(draws: int = MAP_DRAWS) -> tuple[list[dict], list[dict]]:
-    """The 8-in plate's threshold maps on the quarter of :data:`VK_PLATE_MESHES`, linear and von Kármán (immovable edges),
-    same law, balls and indices (:func:`softimpact.studies.thresholds.threshold_map`; the von Kármán band carried over from
-    the linear map's relative band, ``band_from``): (linear rows, von Kármán rows) as dicts (SI)."""
-    linear, nonlinear = _kinematics_maps(draws)
-    return [dict(r) for r in linear], [dict(r) for r in nonlinear]
 
 
 def _kinematics_headline(linear: list[dict], nonlinear: list[dict], maps: list[dict]) -> str:
@@ -239,7 +163,7 @@ def _kinematics_text(pairs: list, linear: list[dict], nonlinear: list[dict]) -> 
 
 def _beams_text(maps: list[dict], vu) -> str:
     """The paragraph on the beams' maps: linear and flagged, and the large-deflection check at one threshold
-    (:func:`_beam_kinematics_check`) that bounds what crossing the linear limit moves."""
+    (:func:`beam_kinematics_check`) that bounds what crossing the linear limit moves."""
     checked = [r for r in maps if r.get("inside_validity") is not None and "beam" in r["structure"]]
     beams = {n: [r["deflection_over_thickness"] for r in checked if r["structure"] == n] for n in dict.fromkeys(r["structure"] for r in checked)}
     return (
@@ -250,7 +174,7 @@ def _beams_text(maps: list[dict], vu) -> str:
         '([beam] kinematics = "von-karman") against the linear run at the same velocity: '
         + "; ".join(
             f"{n}, {v * vu.factor:.0f} {vu.label}: peak force {100 * (fn / fl - 1):+.4f} %, w/h {wl:.2f} linear, {wn:.2f} nonlinear"
-            for n, v, fl, fn, wl, wn in _beam_kinematics_check()
+            for n, v, fl, fn, wl, wn in beam_kinematics_check()
         )
         + ". The beams' maps are therefore not recomputed nonlinear (a total Lagrangian run costs several linear ones and the "
         "maps run on contact kernels): their deflection flag marks the linear theory's limit, and the check above bounds what "

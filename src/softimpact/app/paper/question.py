@@ -7,36 +7,31 @@ from dataclasses import replace
 import numpy as np
 
 from ...cases.run import execute
-from ...fem.bar import Rod
 from ...fem.newmark import SolverSpec
 from ...input.beam_case import load_beam_case
 from ...input.scaling_constants import start_pulse
 from ...input.series import load_calibration_series, load_series
-from ...input.series_records import read_series_records
-from ...models.empirical import PRESETS, PROJECTILES
+from ...models.empirical import PROJECTILES
 from ...models.materials import lookup
 from ...models.pulses import SkewedPulse
 from ...output.files import figure_bytes
 from ...output.identify import identify_files
 from ...output.plots import _figure
 from ...output.report import Section
-from ...studies.references import synthetic_series_records
-from ...studies.series import reduce_series
+from ...studies.paper.question import TABLES, WHAT_IF_PROJECTILE, paper_predictions, tables_alpha3, what_if_law
 from ...units import INCH, display
 from ...workflows.beam_impact import BeamLoad, BeamModel
 from ...workflows.coupled import Impactor, ImpactProblem
-from ...workflows.identification import identify_series, predict_pulses, pulse_figures, unfixed_parameters
+from ...workflows.identification import pulse_figures, unfixed_parameters
 from .thresholds import paper_identification
 
-__all__ = ["question_section"]
+__all__ = ["question_section", "tables_alpha3"]
 
 QUESTION_STEP = 1e-6  # s: the step of the paper's beam analyses (its calibration runs at 1 µs)
 QUESTION_WINDOW = 500e-6  # s: the longest Table II/III pulse is 355 µs
 QUESTION_AFTER = 20e-6  # s: a beam run ends this long after the ball has left for good
 SYSTEM = "in-lbf-s"  # the paper's units
 SHEAR_SPEED = (5.5e9 / 1580.0) ** 0.5  # m/s: √(G13/ρ) of the T300/934 ply (the notes' values), the fastest flexural wave
-TABLES = (("long", "paper-long-calibration", "II"), ("short", "paper-short-calibration", "III"))
-WHAT_IF_PROJECTILE = "rubber-1/2in"  # the beams' ball: the what-if's bar tests are its tests of the built-in series
 
 
 def question_section(figures: bool, files: dict, prefix: str = "question/") -> Section:
@@ -93,7 +88,7 @@ def _identified_law(figures: bool, files: dict, prefix: str):
     ``prefix``. Returns (law, bar tests, closure, predictions)."""
     series = load_series("paper-rubber-series")
     rod, tests, law, approaches, cl = paper_identification()  # computed once, shared with the threshold maps
-    predictions = predict_pulses(law, tests, rod, cl)
+    predictions = paper_predictions()
     files.update(identify_files(series, tests, law, approaches, cl, figures, prefix, predictions=predictions))
     return law, tests, cl, predictions
 
@@ -283,15 +278,6 @@ def _paragraphs(law, tests, cl, predictions) -> list[str]:
     ]
 
 
-def tables_alpha3() -> float:
-    """The α3 for which Table I's bar law of the 1/2-in ball gives the tables' t_F0: t_F0 = α3·α2·d/V (eqs 5-6)
-    solved for α3 on each row of Tables II and III (t_F0·V nearly constant there), averaged."""
-    P = PROJECTILES[WHAT_IF_PROJECTILE]
-    a2 = PRESETS[P.law].alpha2
-    rows = np.concatenate([np.array(load_calibration_series(name).reference) for _, name, _ in TABLES])
-    return float(np.mean(rows[:, 2] * rows[:, 0] / (a2 * P.diameter)))
-
-
 def _coupled_figures(law, models) -> list[np.ndarray]:
     """(F0 [N], t_F0 [s], T [s]) of the coupled impact of the 1/2-in ball with ``law`` at each row of each table,
     on the models of :func:`_what_if` (as :func:`_predicted_rows` runs them, the pulse only); one array (rows, 3) per table."""
@@ -321,12 +307,6 @@ def _what_if(all_tests: float | None = None, n_all: int = 0):
     Returns (table, paragraphs) with each figure's error against the tables."""
     fu, tu = display(SYSTEM, "force"), display(SYSTEM, "time")
     a3 = tables_alpha3()
-    series = load_series("paper-rubber-series")
-    P = PROJECTILES[WHAT_IF_PROJECTILE]
-    half = replace(series, tests=tuple(t for t in series.tests if abs(t.diameter - P.diameter) < 1e-9))
-    builtin, _ = read_series_records(half)
-    made = synthetic_series_records(half, [replace(PRESETS[P.law], alpha3=a3)] * len(half.tests))
-    rod = Rod.of(series.bar)
     models = []  # (series, beam problem, model of row 1's r0), shared by both laws
     for _, name, _ in TABLES:
         cs = load_calibration_series(name)
@@ -334,10 +314,10 @@ def _what_if(all_tests: float | None = None, n_all: int = 0):
         row1 = BeamLoad(problem.load.position, cs.reference[0][4], None)
         models.append((cs, problem, BeamModel(replace(problem, load=row1, solver=SolverSpec(QUESTION_STEP, QUESTION_WINDOW, problem.solver.newmark)))))
     results, closures = [], []
-    for records in (builtin, made):
-        _, law, _, cl = identify_series(rod, reduce_series(half, records))
+    for made in (False, True):  # the built-in tests' law and the remade tests' (each identified once per run, a task)
+        law, worst = what_if_law(made)
         results.append(_coupled_figures(law, models))
-        closures.append(float(np.max(np.abs(cl.peak_time_errors))))
+        closures.append(worst)
     rows, errors = [], []
     for k, ((beam, _, table), (cs, _, _)) in enumerate(zip(TABLES, models)):
         for i, (V, F0p, tFp, Tp, _) in enumerate(cs.reference):

@@ -2,30 +2,12 @@
 
 from __future__ import annotations
 
-import functools
-
-from ...input.series import load_series
-from ...input.series_records import read_series_records
 from ...output.report import Section
 from ...output.series import TABLE_I, reduction_files, scaling_files, scaling_section
-from ...studies.series import fit_series, reduce_series
+from ...studies.paper.series import rubber_series, rubber_series_fits
 from .comparison import comparison_section
 
 __all__ = ["rubber_series_sections", "rubber_series", "rubber_series_fits"]
-
-
-@functools.lru_cache(maxsize=1)
-def rubber_series():
-    """The built-in rubber series and its reduced tests, read and reduced once per process (this section,
-    the thresholds' α covariance and the identification share them; not to be changed): (series, reduced)."""
-    series = load_series("paper-rubber-series")
-    return series, reduce_series(series, *read_series_records(series))
-
-
-@functools.lru_cache(maxsize=1)
-def rubber_series_fits():
-    """The scaling fits (Table I) of :func:`rubber_series`, once per process (not to be changed)."""
-    return fit_series(rubber_series()[1])
 
 
 def rubber_series_sections(figures: bool, files: dict) -> list[Section]:

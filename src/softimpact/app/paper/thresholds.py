@@ -9,7 +9,6 @@ CSVs and figures.
 
 from __future__ import annotations
 
-import functools
 import math
 from pathlib import Path
 
@@ -17,81 +16,41 @@ import numpy as np
 
 from ... import units
 from ...cases.sweep import plan_sweep, plan_thresholds, prepare_group, run_chunk, run_table
+from ...studies.paper.thresholds import (
+    MAP_BEAM_MESHES,
+    MAP_DRAWS,
+    MAP_DURATION,
+    MAP_PLATE_MESHES,
+    MAP_RANGE_IN_S,
+    MAP_STRENGTH_COV,
+    PAPER_BEAMS,
+    PAPER_PLATE,
+    PAPER_PLATE_MESHES,
+    paper_identification,
+    paper_kinematics_maps,
+    paper_onset_map,
+    paper_plate_case,
+    paper_threshold_maps,
+)
+from ...studies.tasks import once
 from ...units import INCH
 
 __all__ = [
     "threshold_section",
     "paper_thresholds",
     "paper_plate_thresholds",
+    "plate_mesh_thresholds",
     "paper_plate_case",
     "paper_identification",
     "paper_threshold_maps",
     "paper_onset_map",
+    "PAPER_PLATE",
+    "MAP_RANGE_IN_S",
 ]
 
-
-PAPER_BEAMS = ("paper-long-beam", "paper-short-beam")
 PAPER_PROJECTILES = {"rubber-3/8in": "0.375 in", "rubber-1/2in": "0.5 in"}  # projectile → its group in the fit
-
-
-PAPER_PLATE = "plate-ss-8in"
-PAPER_PLATE_ELEMENTS = 32  # per side of the quarter: 1/8-in elements (discretisation error in paper_plate_case)
-PAPER_PLATE_MESHES = (16, 32, 64)  # the report's plate thresholds: on the finest, with the error over the three
 PAPER_DRAWS = 16  # α draws (Latin hypercube) per ball for the report's thresholds
-PAPER_PLATE_DURATION = "400 us"  # the index peaks under the load by 250 us at 1000 in/s, by 80 us at 3000 in/s
 PAPER_DAMAGE = ["damage.max_strain", "damage.tsai_wu", "damage.hashin", "damage.delamination"]
-
-# The threshold maps (coupled impact, identified law): rubber balls of the paper's family (mass ∝ d³,
-# the paper's 1.1 g at 1/2 in), the layered laminate on the beams, both meshes' steps and the draws
-# chosen so the maps cost about 30 s (paper_threshold_maps).
-MAP_DIAMETERS_IN = (0.375, 0.5, 0.625, 0.75)  # the law was identified on 3/8 and 1/2 in: 5/8 and 3/4 in extrapolate it
-MAP_DRAWS = 8  # law-parameter draws (Latin hypercube) per diameter and index
-MAP_STRENGTH_COV = 0.10  # 1σ of a common factor on every ply strength and on √G_IIc (stated material scatter)
-MAP_DURATION = 400e-6  # s: the pulses at the thresholds last under 250 µs
-MAP_BEAM_MESHES = (((100, 3), 2e-6), ((200, 6), 1e-6))  # (nx, nz), step: coarse, fine (the paper's mesh: the map's)
-MAP_PLATE_MESHES = ((32, 2e-6), (64, 1e-6))  # quarter elements a side, step: coarse, fine (the map's)
-MAP_RANGE_IN_S = (200.0, 20000.0)  # in/s: the velocities searched
-# The plate's map inside validity: von Kármán kinematics (immovable edges; every run stepped directly, no kernels)
-# beside the linear map on the SAME meshes and steps (kernel runs), both coarser than the linear map's above (a
-# nonlinear run costs several linear ones): quarter elements a side, step: coarse, fine. The beams join when the beam
-# case takes kinematics = "von-karman" (:data:`VK_STRUCTURES`).
-VK_PLATE_MESHES = ((8, 4e-6), (16, 2e-6))
-VK_STRUCTURES = (PAPER_PLATE,)
-
-
-def paper_plate_case(elements: int = PAPER_PLATE_ELEMENTS, duration: str = PAPER_PLATE_DURATION) -> dict:
-    """The built-in 8 × 8 in simply supported [90/0]5s plate as the quarter x, y ≤ 4 in with
-    symmetry edges on the centre lines, struck at the centre (the quarter's corner) by a ball
-    whose contact disc (r0 0.25 in, as the beams') grows with the force by eq (10); no gauges
-    (damage under the impact point only, where it peaks: the case's gauges 1 and 2 in away
-    see under half of it).
-
-    Discretisation error (measured on :func:`paper_plate_thresholds`, quarter meshes of 16,
-    24, 32, 48 and 64 elements a side): the Tsai–Wu threshold of the 3/8-in ball is 6349,
-    5801, 5570, 5396 and 5336 in/s, converging at order ≈ 2 in the element size from 32
-    on toward ≈ 5260 in/s; the 32-element quarter's first-ply thresholds are 5–6 % high
-    (its indices ≈ 9 % low: Tsai–Wu at 4000 in/s, 1/2-in ball, 1.097, 1.150 and 1.170 on
-    32, 48 and 64 elements, extrapolating to ≈ 1.20; the index grows about like V^1.6). Halving the
-    1 µs step moves no threshold by 1 in/s. The delamination threshold depends on the
-    force alone: no mesh error.
-
-    The element is MITC4, named in the case: its thresholds converge monotonically (the three
-    meshes give a Richardson estimate). MITC9, the default element, converges faster in
-    the gauge strains of the Navier check but not in the point strain at the corner node
-    under the load that the damage indices use: its quarters of 8, 16 and 32 elements give
-    5287, 5091 and 5169 in/s (oscillating, ≈ 2 % below MITC4's extrapolation).
-    """
-    from ...input.toml import load_toml, locate
-
-    data = load_toml(locate(PAPER_PLATE))
-    half_x, half_y = (f"{units.parse(data['plate'][k], 'length', k) / 2 / INCH!r} in" for k in ("length", "width"))
-    data["title"] = "Quarter of " + data.get("title", PAPER_PLATE)
-    data["plate"].update(length=half_x, width=half_y, elements=[elements, elements], element="mitc4")
-    data["plate"]["support"] = dict(data["plate"]["support"], x1="symmetry", y1="symmetry")
-    data["load"].update(position=[half_x, half_y], contact_radius="0.25 in", grow=True)
-    data["solver"]["duration"] = duration
-    data.pop("gauges", None)
-    return data
 
 
 def paper_plate_thresholds(draws: int = PAPER_DRAWS, levels: int = 10, meshes: tuple[int, ...] = PAPER_PLATE_MESHES) -> list[dict]:
@@ -109,7 +68,7 @@ def paper_plate_thresholds(draws: int = PAPER_DRAWS, levels: int = 10, meshes: t
     """
     from ...workflows.convergence import richardson
 
-    per_mesh = [_ball_thresholds(PAPER_PLATE, "8-in plate", draws, levels, paper_plate_case(elements)) for elements in meshes]
+    per_mesh = [plate_mesh_thresholds(elements, draws, levels) for elements in meshes]
     out = []
     for i, row in enumerate(per_mesh[-1]):
         values = np.array([rows[i]["threshold_velocity_median_m_s"] for rows in per_mesh], dtype=float)
@@ -133,86 +92,18 @@ def paper_plate_thresholds(draws: int = PAPER_DRAWS, levels: int = 10, meshes: t
     return out
 
 
-@functools.lru_cache(maxsize=1)
-def paper_identification():
-    """The contact law identified from the built-in rubber series by ``softimpact identify``'s function
-    (:func:`~softimpact.workflows.identification.identify_series`), once per process (about 20 s; the
-    question section and the threshold maps share it): (rod, bar tests, law, approaches, closure)."""
-    from ...fem.bar import Rod
-    from ...workflows.identification import identify_series
-    from .rubber_series import rubber_series
-
-    series, reduced = rubber_series()
-    rod = Rod.of(series.bar)
-    return (rod, *identify_series(rod, reduced))
+@once
+def plate_mesh_thresholds(elements: int, draws: int = PAPER_DRAWS, levels: int = 10) -> tuple[dict, ...]:
+    """The prescribed-force thresholds of :func:`paper_plate_case` on ``elements`` a side of the quarter, both balls
+    (:func:`paper_plate_thresholds`' rows of one mesh), once per run."""
+    return tuple(_ball_thresholds(PAPER_PLATE, "8-in plate", draws, levels, paper_plate_case(elements)))
 
 
-def _map_structures(name: str, law, kinematics: str = "linear"):
-    """(map mesh, coarse mesh) :class:`~softimpact.studies.thresholds.ThresholdStructure` of a paper beam
-    (layered laminate) or of the plate's quarter (:func:`paper_plate_case`, MITC4); with ``kinematics`` other than
-    "linear" the plate on :data:`VK_PLATE_MESHES` with that kinematics (and the linear plate there with "linear-vk-meshes"),
-    a beam on the linear map's meshes with ``[beam] kinematics`` set (for a build whose beam case takes the key)."""
-    from ...input.beam_case import beam_problem
-    from ...input.plate_case import plate_problem
-    from ...input.toml import load_toml, locate
-    from ...models.materials import lookup
-    from ...studies.thresholds import structure
-
-    rho = lookup("silicone rubber").density
-    widest = max(MAP_DIAMETERS_IN) * INCH
-    out = []
-    if name == PAPER_PLATE:
-        meshes = MAP_PLATE_MESHES if kinematics == "linear" else VK_PLATE_MESHES
-        for n, dt in meshes:
-            data = paper_plate_case(n, f"{MAP_DURATION / 1e-6:g} us")
-            data["plate"]["kinematics"] = kinematics.removesuffix("-vk-meshes")
-            target = plate_problem(data, locate(PAPER_PLATE).parent)
-            out.append(structure("8-in plate", target, widest, rho, dt, MAP_DURATION, law))
-    else:
-        for (nx, nz), dt in MAP_BEAM_MESHES:
-            data = load_toml(locate(name))
-            data["beam"]["elements"] = [nx, nz]
-            data["beam"]["laminate"]["model"] = "layered"
-            if kinematics.removesuffix("-vk-meshes") != "linear":  # a beam case that takes kinematics (the maps' meshes)
-                data["beam"]["kinematics"] = kinematics
-            label = f"{name.removeprefix('paper-').removesuffix('-beam')} beam"
-            out.append(structure(label, beam_problem(data, locate(name).parent), widest, rho, dt, MAP_DURATION, law))
-    return out[1], out[0]
-
-
-@functools.lru_cache(maxsize=1)
-def _paper_maps(draws: int) -> tuple[tuple[dict, ...], tuple[dict, ...]]:
-    """(threshold maps, onset map) rows of the three structures, on one build of each structure's kernels."""
-    from ...studies.thresholds import INDICES, ONSET, threshold_map
-
-    law = paper_identification()[2]
-    lo, hi = (v * INCH for v in MAP_RANGE_IN_S)
-    diameters = [d * INCH for d in MAP_DIAMETERS_IN]
-    maps, onset = [], []
-    for name in (*PAPER_BEAMS, PAPER_PLATE):
-        fine, coarse = _map_structures(name, law)
-        maps += [r.as_dict() for r in threshold_map(fine, law, diameters, lo, hi, draws, MAP_STRENGTH_COV, coarse=coarse, indices=INDICES)]
-        onset += [r.as_dict() for r in threshold_map(fine, law, diameters, lo, hi, draws, MAP_STRENGTH_COV, coarse=coarse, indices=(ONSET,))]
-    return tuple(maps), tuple(onset)
-
-
-def paper_threshold_maps(draws: int = MAP_DRAWS) -> list[dict]:
-    """Threshold maps of the long beam, the short beam and the 8-in plate from coupled impact with the
-    identified law (:func:`softimpact.studies.thresholds.threshold_map`): rows as dicts (SI)."""
-    return [dict(r) for r in _paper_maps(draws)[0]]
-
-
-def paper_onset_map(draws: int = MAP_DRAWS) -> list[dict]:
-    """The onset map of the same structures and balls: the velocity at which the coupled peak force reaches Olsson's
-    quasi-static threshold F_d (:data:`softimpact.studies.thresholds.ONSET`), each row with its regime: rows as dicts (SI)."""
-    return [dict(r) for r in _paper_maps(draws)[1]]
-
-
-@functools.lru_cache(maxsize=1)
+@once
 def _paper_fit() -> dict:
     """The scaling.json contents of the built-in rubber series' fit (computed once per process; not to be changed)."""
     from ...formats.scaling_json import scaling_summary
-    from .rubber_series import rubber_series_fits
+    from ...studies.paper.series import rubber_series_fits
 
     return scaling_summary(rubber_series_fits())
 
@@ -233,6 +124,7 @@ def _paper_spec(case: str, projectile: str, draws: int, levels: int) -> dict:
     }
 
 
+@once
 def paper_thresholds(draws: int = PAPER_DRAWS, levels: int = 10) -> list[dict]:
     """Threshold velocities of the paper's beams for both balls: the α's drawn from the
     covariance of the built-in rubber series' fit, velocity 1000–8000 in/s (a plain loop)."""
@@ -390,7 +282,24 @@ def threshold_section(figures: bool, files: dict, prefix: str = "thresholds/"):
         figs,
     )
     section.summary = [_map_headline(maps, vu), kin_headline]
+    linear, nonlinear = paper_kinematics_maps()
+    section.flagged = (
+        map_flags("Threshold maps (coupled impact, identified law)", maps)
+        + map_flags("Onset map (Olsson's F_d)", onset)
+        + map_flags("The 8-in plate's map, linear kinematics", linear)
+        + map_flags("The 8-in plate's map, von Karman kinematics", nonlinear)
+    )
     return section
+
+
+def map_flags(name: str, rows: list[dict]) -> list[tuple[str, str, str]]:
+    """(map, row, flag) of every row of map ``name`` (threshold-map rows, :meth:`MapRow.as_dict`) whose run at its
+    threshold raised a validity flag, once per flag (:data:`softimpact.models.validity.FLAG_LABELS`' words)."""
+    from ...models.validity import FLAG_LABELS
+
+    return [
+        (name, f"{r['structure']}, {r['index']}, d = {r['diameter_m'] / INCH:.3g} in", FLAG_LABELS.get(f, f)) for r in rows for f in r.get("validity_flags", [])
+    ]
 
 
 def _map_headline(maps: list[dict], vu) -> str:

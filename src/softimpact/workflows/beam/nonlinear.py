@@ -1,14 +1,14 @@
-"""The plane beam with large-deflection kinematics as a structure model (:class:`BeamTLModel`): a private part of
-:mod:`softimpact.workflows.beam_impact` (its :meth:`BeamProblem.model` builds it when ``beam.kinematics =
-"von-karman"``), kept apart so that module stays one concern: the linear beam problem, its Target and its model."""
+"""The plane beam with large-deflection kinematics as a structure model (:class:`BeamTLModel`): the beam package's
+nonlinear model (:meth:`~softimpact.workflows.beam.problem.BeamProblem.model` builds it when ``beam.kinematics =
+"von-karman"``), beside the linear one (:mod:`~softimpact.workflows.beam.linear`)."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..errors import InputError
-from ..fem.energies import Energies
-from .beam_impact import BeamModel, BeamResult
+from ...errors import InputError
+from ...fem.energies import Energies
+from .linear import BeamModel, BeamResult
 
 __all__ = ["BeamTLModel", "GreenLagrangeMesh"]
 
@@ -38,8 +38,8 @@ class BeamTLModel(BeamModel):
         return y
 
     def _structure_stepper(self, C):
-        from ..fem.plane_tl import PlaneTL
-        from ..fem.plate_vk import VonKarmanNewmark
+        from ...fem.plane_tl import PlaneTL
+        from ...fem.plate_vk import VonKarmanNewmark
 
         self.tl = PlaneTL(self.plane)
         self._C = None if C is None else C.tocsr()
