@@ -321,6 +321,7 @@ class CohesivePlate(NonlinearModel):
         return 0.5 * float(u @ (self.K @ u)) + self.stored_energy(u)
 
     LAGGED_STATE = True  # the damage is held within a step and raised after it (module docstring)
+    LINEAR_WITHIN_STEP = True  # damage held and closure frozen: the interfaces (and the linear sublaminates) are linear in a step
 
     def commit(self, u: np.ndarray, dt: float | None = None) -> None:
         """Store the damage of the converged state ``u`` (irreversible: it never decreases) and count the fracture
