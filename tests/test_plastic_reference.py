@@ -342,3 +342,76 @@ def test_energy_balance_of_a_transient(shape, load):
     result = run(load, **size, thickness=THICK, elements=8, layers=4, dt=2e-6, duration=3e-4, springback_steps=2)
     assert result.plastic_work[-1] > 0.05 * result.work_in
     assert result.energy_error < 1e-3
+
+
+# --------------------------------------------------------------------------------------------------------------
+# convergence of the reference dents (slow)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(
+    ("knob", "rungs", "tolerance"),
+    [("elements", (32, 64, 128), 5e-3), ("layers", (8, 16, 32), 1e-3), ("steps", (20, 40, 80), 5e-4)],
+)
+def test_static_dent_converges(knob, rungs, tolerance):
+    """The clamped plate loaded to 4 p_y and unloaded (the benchmark's case): along each ladder (elements, layers, load
+    steps; the others at 64, 16, 40) the permanent deflection's changes shrink and the last is below the tolerance."""
+    p = 4 * pr.first_yield_pressure_clamped_circular(RADIUS, THICK, AL)
+    base = {"elements": 64, "layers": 16, "steps": 40}
+
+    def dent(value):
+        k = {**base, knob: value}
+        return pr.circular_plate(pr.Pressure(p, steps=k["steps"]), radius=RADIUS, thickness=THICK, elements=k["elements"], layers=k["layers"])
+
+    runs = [dent(v) for v in rungs]
+    dents = np.array([r.permanent_centre_deflection for r in runs])
+    assert dents[-1] > 0.5 * THICK
+    assert abs(dents[2] - dents[1]) < abs(dents[1] - dents[0])
+    assert abs(dents[2] - dents[1]) < tolerance * dents[2]
+    assert max(r.energy_error for r in runs) < 1e-3
+
+
+@pytest.mark.slow
+def test_impulsive_strip_dent_converges_in_mesh_and_time():
+    """The clamped strip at 80 m/s (plastic work ≥ 95 % of the work in: the normal regime): halving the element size or
+    the time step moves the peak and the permanent deflection by less than 1 %, the run ends at rest without crossing
+    to the other side, and the energy balance closes within 1e-3."""
+
+    def run(elements, dt):
+        return pr.strip(pr.Impulse(80.0), length=SPAN, thickness=THICK, elements=elements, layers=8, dt=dt)
+
+    base, finer, shorter = run(16, 2e-6), run(32, 2e-6), run(16, 1e-6)
+    for r in (base, finer, shorter):
+        assert r.settled and not r.snapped_through
+        assert r.plastic_work[-1] > 0.95 * r.work_in
+        assert r.energy_error < 1e-3
+    for r in (finer, shorter):
+        assert r.peak_centre_deflection == pytest.approx(base.peak_centre_deflection, rel=1e-2)
+        assert r.permanent_centre_deflection == pytest.approx(base.permanent_centre_deflection, rel=1e-2)
+
+
+@pytest.mark.slow
+def test_mass_impact_dent_is_independent_of_the_penalty():
+    """The clamped plate struck by 0.1 kg at 30 m/s on a 5-mm disc: a contact spring 4 times stiffer than the default
+    (100× the plate's static stiffness under the disc) moves the dent by less than 1 % and the peak by less than
+    0.5 %; the energy balance, the mass's kinetic energy included, closes within 1e-3."""
+
+    def run(stiffness=None):
+        return pr.circular_plate(pr.MassImpact(0.1, 30.0, 0.005, stiffness), radius=RADIUS, thickness=THICK, elements=16, layers=8, dt=2e-6)
+
+    default = run()
+    runs = [default, run(4 * default.contact_stiffness)]
+    assert runs[1].permanent_centre_deflection == pytest.approx(runs[0].permanent_centre_deflection, rel=1e-2)
+    assert runs[1].peak_centre_deflection == pytest.approx(runs[0].peak_centre_deflection, rel=5e-3)
+    assert all(r.energy_error < 1e-3 and r.settled for r in runs)
+
+
+@pytest.mark.slow
+def test_slow_strip_is_in_the_anomalous_regime():
+    """The clamped strip at 20 m/s (the brief's case): the elastic energy at the peak is large, the strip swings through
+    to the other side (the response Symonds & Yu 1985 describe, permanent deflections sensitive to everything), which
+    the result flags; its springback from the peak and from the end differ by more than 10 %."""
+    r = pr.strip(pr.Impulse(20.0), length=SPAN, thickness=THICK, elements=16, layers=8, dt=2e-6)
+    assert r.snapped_through
+    assert r.plastic_work[-1] < 0.9 * r.work_in
+    assert abs(r.peak_springback_centre_deflection - r.permanent_centre_deflection) > 0.1 * r.peak_springback_centre_deflection

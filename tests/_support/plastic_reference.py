@@ -31,6 +31,7 @@ Units SI: m, Pa, kg/m³, s; the strip's loads, energies and masses are per metre
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -55,6 +56,7 @@ __all__ = [
 
 GAUSS_POINTS = 4  # per element along s: Hermite w'² is quartic, ρh·φφ of degree 6 (7 with the plate's r): exact
 NEWTON_TOL = 1e-8  # relative residual at which an equilibrium iteration stops (round-off stalls near 1e-9 on fine meshes)
+GROSS_FRACTION = 1e-3  # of the internal forces' gross size: a floor of the residual's scale (round-off where they cancel)
 NEWTON_MAX = 40  # iterations before a step is cut (static) or the run fails (dynamic)
 YIELD_TOL = 1e-12  # relative overstress below which a trial state counts as elastic (no flip-flop at f = 0)
 
@@ -154,19 +156,19 @@ def return_map(strain, plastic_strain, eqps, metal: Metal):
     new_plastic = plastic_strain + x[..., None] * p_sigma
     sy = sy_n / (1 - H * x)
     new_eqps = eqps + x * sy
-    # tangent in the (s, d) components, then back to (1, 2) with Q = [[1, 1], [1, −1]]/√2 (Q = Q⁻¹)
-    D = np.zeros(s_tr.shape + (2, 2))
-    D[..., 0, 0], D[..., 1, 1] = a_s * lam_s, a_d * lam_d
-    if np.any(plastic):
-        q = sy[plastic]
-        xs, ass, ad, ss, sd = x[plastic], a_s[plastic], a_d[plastic], sig_s[plastic], sig_d[plastic]
-        u = np.stack([-c_s * ass * ss, -c_d * ad * sd], axis=-1)  # ∂σ/∂x at fixed σ_tr
-        grad = (1 - H * xs)[:, None] * np.stack([0.5 * ass * ss, 1.5 * ad * sd], axis=-1) / q[:, None]
-        dq = -(0.5 * c_s * ass * ss**2 + 1.5 * c_d * ad * sd**2) / q
-        dphi = dq * (1 - H * xs) - H * q
-        D[plastic] -= u[:, :, None] * (grad * np.array([lam_s, lam_d]))[:, None, :] / dphi[:, None, None]
-    Q = np.array([[1.0, 1.0], [1.0, -1.0]]) / r2
-    return stress, new_plastic, new_eqps, Q @ D @ Q
+    # tangent in the (s, d) components, then back to (1, 2) with Q = [[1, 1], [1, −1]]/√2 (Q = Q⁻¹), entry by entry
+    u_s, u_d = -c_s * a_s * sig_s, -c_d * a_d * sig_d  # ∂σ/∂x at fixed σ_tr
+    g_s, g_d = (1 - H * x) * 0.5 * a_s * sig_s / sy * lam_s, (1 - H * x) * 1.5 * a_d * sig_d / sy * lam_d  # ∂φ/∂ε (s, d)
+    dphi = -(0.5 * c_s * a_s * sig_s**2 + 1.5 * c_d * a_d * sig_d**2) / sy * (1 - H * x) - H * sy
+    k = np.divide(-1.0, dphi, out=np.zeros(np.shape(dphi)), where=plastic)
+    dss, dsd, dds, ddd = a_s * lam_s + k * u_s * g_s, k * u_s * g_d, k * u_d * g_s, a_d * lam_d + k * u_d * g_d
+    tangent = 0.5 * np.stack([np.stack([dss + dsd + dds + ddd, dss - dsd + dds - ddd], -1), np.stack([dss + dsd - dds - ddd, dss - dsd - dds + ddd], -1)], -2)
+    return stress, new_plastic, new_eqps, tangent
+
+
+@functools.lru_cache(maxsize=16)
+def _through_thickness(thickness: float, layers: int):
+    return through_thickness(thickness, layers)
 
 
 def through_thickness(thickness: float, layers: int):
@@ -190,7 +192,7 @@ def section_response(membrane, curvature, plastic_strain, eqps, metal: Metal, th
     ``plastic_strain`` (..., nz, 2), ``eqps`` (..., nz) the committed state at the nz = 2·layers points.
     Returns (resultants (..., 4) = (N₁, N₂ [N/m], M₁, M₂ [N·m/m]), tangent ∂(N, M)/∂(ε̄, κ) (..., 4, 4),
     stress (..., nz, 2), plastic_strain, eqps) — the last three the trial state at these strains."""
-    z, wz = through_thickness(thickness, layers)
+    z, wz = _through_thickness(thickness, layers)
     strain = np.asarray(membrane)[..., None, :] + z[:, None] * np.asarray(curvature)[..., None, :]
     stress, plastic, eqps_new, D = return_map(strain, plastic_strain, eqps, metal)
     res = np.concatenate([np.einsum("...zi,z->...i", stress, wz), np.einsum("...zi,z->...i", stress, z * wz)], axis=-1)
@@ -406,8 +408,8 @@ class _Model:
         return g / (math.pi * radius**2 if self.axisymmetric else 2 * radius)
 
     def assemble(self, d, state):
-        """Internal force (ndof,), tangent (ndof, ndof), the trial state from the committed ``state`` at d, and the
-        elastic energy Ψ = ∫∫ ½ σ·C⁻¹σ dz dA of that trial state."""
+        """Internal force (ndof,), tangent (ndof, ndof), the trial state from the committed ``state`` at d, the elastic
+        energy Ψ = ∫∫ ½ σ·C⁻¹σ dz dA of that trial state, and the gross size of the force (for convergence tests)."""
         de = d[self.dofs]
         u, du, th, k = de @ self.U.T, de @ self.dU.T, de @ self.dW.T, de @ self.ddW.T
         zero = np.zeros_like(u)
@@ -428,7 +430,10 @@ class _Model:
         E, nu = self.metal.youngs_modulus, self.metal.poisson_ratio
         density = (stress[..., 0] ** 2 - 2 * nu * stress[..., 0] * stress[..., 1] + stress[..., 1] ** 2) / (2 * E)
         psi = float(np.einsum("eg,egz,z->", self.weight, density, self.wz))
-        return self._scatter_vector(fe), self._scatter_matrix(Ke), (stress, plastic, eqps), psi
+        # the gross size of the internal forces (their terms without cancellation): where they cancel to zero, as under
+        # residual stresses at rest, a residual is round-off below a small fraction of it
+        gross = float(np.linalg.norm(self._scatter_vector(np.einsum("eg,egai,ega->ei", self.weight, np.abs(B), np.abs(res)))[self.free]))
+        return self._scatter_vector(fe), self._scatter_matrix(Ke), (stress, plastic, eqps), psi, gross
 
     def plastic_increment(self, old, new):
         """Trapezoidal plastic work of a step, Σ ½(σₙ + σₙ₊₁)·(ε_p,ₙ₊₁ − ε_p,ₙ) over the points [J, or J/m]."""
@@ -480,11 +485,11 @@ def _static_solve(model, d, state, load, *, factor=0.0, centre=None, guess=None)
     def evaluate(x):
         y, lam = d.copy(), (factor if centre is None else x[-1])
         y[unknown] = x[: unknown.size]
-        f, K, trial, psi = model.assemble(y, state)
+        f, K, trial, psi, gross = model.assemble(y, state)
         J = K[np.ix_(free, unknown)]
         if centre is not None:
             J = np.concatenate([J, -load[free][:, None]], axis=1)
-        return (f - lam * load)[free], J, np.linalg.norm(f[free]), (y, lam, trial, psi)
+        return (f - lam * load)[free], J, max(np.linalg.norm(f[free]), GROSS_FRACTION * gross), (y, lam, trial, psi)
 
     x0 = d[unknown] if centre is None else np.append(d[unknown], factor)
     return _newton(evaluate, x0, model.force_scale)[1]
@@ -493,7 +498,7 @@ def _static_solve(model, d, state, load, *, factor=0.0, centre=None, guess=None)
 def _tangent_predictor(model, d, state, load, lam, step, control):
     """d + Δd from the tangent at the committed state (elastic where a point is not flowing): K Δd = Δλ·load, or with
     the centre's Δw = ``step`` prescribed and Δλ unknown. Starts a path, or a reversal, where no secant is known."""
-    f, K, _, _ = model.assemble(d, state)
+    f, K = model.assemble(d, state)[:2]
     free = model.free
     if not control:
         rhs = (lam + step) * load - f
@@ -641,17 +646,18 @@ def _transient(model, load, dt, duration):
         def evaluate(y):
             x = pred.copy()
             x[act] = y
-            f, K, trial, psi = model.assemble(x[:n], state)
+            f, K, trial, psi, gross = model.assemble(x[:n], state)
             F, Kf = np.zeros(n + 1), np.zeros((n + 1, n + 1))
             F[:n], Kf[:n, :n] = f, K
             fc = kc * max(x[n] - g @ x[:n], 0.0) if impact else 0.0
             if fc > 0:  # the mass pushes the structure along +g, the structure pushes the mass back
                 F, Kf = F - fc * gg, Kf + kc * np.outer(gg, gg)
             inertia = (M @ (4 / dt**2 * (x - pred)))[act]
-            return inertia + F[act], 4 / dt**2 * Mf + Kf[np.ix_(act, act)], max(np.linalg.norm(F[act]), np.linalg.norm(inertia)), (x, trial, psi, fc)
+            scale = max(np.linalg.norm(F[act]), np.linalg.norm(inertia), GROSS_FRACTION * gross)
+            return inertia + F[act], 4 / dt**2 * Mf + Kf[np.ix_(act, act)], scale, (x, trial, psi, fc)
 
         try:
-            x, trial, psi, fc = _newton(evaluate, pred[act], model.force_scale)[1]
+            x, trial, psi, fc = _newton(evaluate, (pred + dt**2 / 4 * a)[act], model.force_scale)[1]  # start: aₙ₊₁ = aₙ
         except _NoConvergence:
             raise RuntimeError(f"Newmark–Newton did not converge at t = {t + dt!r} s") from None
         a_new = 4 / dt**2 * (x - pred)
