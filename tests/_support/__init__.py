@@ -10,5 +10,6 @@ Importable as ``_support`` because pyproject's pytest options put ``tests/`` on 
 - :mod:`_support.coupled`    the paper's long beam model and an independent explicit coupled integration.
 - :mod:`_support.contract`   the output contract (golden master): commands, fingerprints, comparison.
 - :mod:`_support.paper`      the paper report, computed once per test run and read back from disk.
+- :mod:`_support.plastic_reference`  independent elastic–plastic strip and axisymmetric plate (the dent's references).
 - :mod:`_support.small_cases`  a small beam case and a small plate case (TOML text) for the field-output and API tests.
 """
