@@ -21,10 +21,15 @@ elastic section and, with an even number of layers, for the fully plastic one; s
 The internal virtual work ∫ (N·δε̄ + M·δκ) dA, dA = 2 ds (the whole strip, per unit width) or 2πr ds (the plate),
 gives the internal force and its tangent (material part BᵀCB plus the geometric part N₁ δw' w').
 
+Inertia: the consistent mass ρh ∫ (δu u + δw w) dA; the rotary inertia ρh³/12 of the Kirchhoff section is left out
+(a fraction of order (h/L)², 4·10⁻⁴ for the benchmark's plates), as is transverse shear (the FSDT plate's deflection
+differs by a fraction of the same order).
+
 Time integration: Newmark's average acceleration (β = ¼, γ = ½) with Newton iterations; for it the discrete
 kinetic-energy change equals the trapezoidal work of the forces, so with the trapezoidal plastic work
 W_p = Σ ½(σₙ + σₙ₊₁)·Δε_p and the elastic energy Ψ = ½ σ·C⁻¹σ the balance KE + Ψ + W_p (+ contact) = work in
-closes to the second order in Δt (the only defect is the von Kármán term ¼ Δw'·Δσ·Δw' of each step).
+closes to the second order in Δt (its defects: the von Kármán term ¼ ΔN₁(Δw')² of each step and point, and the
+steps where a contact switches on or off).
 
 Units SI: m, Pa, kg/m³, s; the strip's loads, energies and masses are per metre of width.
 """
