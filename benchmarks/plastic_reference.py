@@ -42,14 +42,17 @@ def static(k):
             "loaded centre deflection [mm]": 1e3 * r.peak_centre_deflection,
             "permanent centre deflection [mm]": 1e3 * r.permanent_centre_deflection,
             "plastic work [J]": r.plastic_work[-1],
+            "plastic zone area [mm²]": 1e6 * r.plastic_zone_area,
+            "largest ε̄_p": r.max_plastic_strain,
             "energy error": r.energy_error,
         }
 
     return run, (64, 16, 40), ((32, 64, 128), (8, 16, 32), (20, 40, 80)), "load steps"
 
 
-def dynamic(make):
-    """A transient; the ladder's third knob is Δt [µs]."""
+def dynamic(make, strip=False):
+    """A transient; the ladder's third knob is Δt [µs]. The strip's plastic zone is a band's width per metre [mm]."""
+    zone_name, zone_scale = ("yielded band width [mm]", 1e3) if strip else ("plastic zone area [mm²]", 1e6)
 
     def run(elements, layers, dt_us):
         r = make(elements, layers, dt_us * 1e-6)
@@ -60,6 +63,8 @@ def dynamic(make):
             "permanent, springback from the end [mm]": 1e3 * r.permanent_centre_deflection,
             "late mean deflection [mm]": 1e3 * r.late_mean_centre_deflection,
             "plastic work / work in": r.plastic_work[-1] / r.work_in,
+            zone_name: zone_scale * r.plastic_zone_area,
+            "largest ε̄_p": r.max_plastic_strain,
             "work in [J or J/m]": r.work_in,
             "energy error": r.energy_error,
             "snapped through (1 = yes)": float(r.snapped_through),
@@ -71,8 +76,8 @@ def dynamic(make):
 
 CASES = {
     **{f"plate-static-{k}py": static(k) for k in (2, 4, 8)},
-    "strip-impulse-20": dynamic(lambda n, z, dt: pr.strip(pr.Impulse(20.0), length=L, thickness=H, elements=n, layers=z, dt=dt)),
-    "strip-impulse-80": dynamic(lambda n, z, dt: pr.strip(pr.Impulse(80.0), length=L, thickness=H, elements=n, layers=z, dt=dt)),
+    "strip-impulse-20": dynamic(lambda n, z, dt: pr.strip(pr.Impulse(20.0), length=L, thickness=H, elements=n, layers=z, dt=dt), strip=True),
+    "strip-impulse-80": dynamic(lambda n, z, dt: pr.strip(pr.Impulse(80.0), length=L, thickness=H, elements=n, layers=z, dt=dt), strip=True),
     "plate-mass": dynamic(lambda n, z, dt: pr.circular_plate(pr.MassImpact(0.1, 30.0, 0.005), radius=R, thickness=H, elements=n, layers=z, dt=dt)),
 }
 

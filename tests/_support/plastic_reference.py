@@ -263,7 +263,8 @@ class StaticResult:
     ``work_in`` (trapezoidal ∫p dV), ``elastic_energy`` and ``plastic_work`` [J, or J/m for the strip]. Profiles at the
     nodes (nodes,): ``position`` [m] from the centre, ``deflection_loaded`` (at the peak) and ``deflection_permanent``.
     ``first_yield_pressure`` brackets the onset of plastic flow on the path (last elastic, first plastic) [Pa];
-    ``energy_error`` = max |work_in − Ψ − W_p| / max work_in."""
+    ``energy_error`` = max |work_in − Ψ − W_p| / max work_in; ``plastic_zone_area`` [m², or m for the strip] and
+    ``max_plastic_strain`` (ε̄_p) of the final state (see ``_Model.plastic_zone``)."""
 
     pressure: np.ndarray
     centre_deflection: np.ndarray
@@ -278,6 +279,8 @@ class StaticResult:
     permanent_centre_deflection: float
     first_yield_pressure: tuple[float, float]
     energy_error: float
+    plastic_zone_area: float
+    max_plastic_strain: float
 
 
 @dataclass(frozen=True)
@@ -295,7 +298,8 @@ class DynamicResult:
     anomalous response in which "the permanent deflection is predicted ... to be in the direction opposite that of
     the load" and codes "exhibit a wide spread in the predicted final deflections" (Symonds & Yu 1985, J. Appl. Mech.
     52:517, abstract): then only the peak and the peak's springback are references. ``late_mean_centre_deflection``
-    the mean over the run's last ``time_of_peak``; ``springback_plastic_work`` the end springback's plastic work."""
+    the mean over the run's last ``time_of_peak``; ``springback_plastic_work`` the end springback's plastic work;
+    ``plastic_zone_area`` [m², or m for the strip] and ``max_plastic_strain`` (ε̄_p) after it."""
 
     time: np.ndarray
     centre_deflection: np.ndarray
@@ -320,6 +324,8 @@ class DynamicResult:
     deflection_permanent: np.ndarray
     time_step: float
     contact_stiffness: float
+    plastic_zone_area: float
+    max_plastic_strain: float
 
 
 # ---------------------------------------------------------------------------------------------------------------
@@ -442,6 +448,12 @@ class _Model:
         # residual stresses at rest, a residual is round-off below a small fraction of it
         gross = float(np.linalg.norm(self._scatter_vector(np.einsum("eg,egai,ega->ei", self.weight, np.abs(B), np.abs(res)))[self.free]))
         return self._scatter_vector(fe), self._scatter_matrix(Ke), (stress, plastic, eqps), psi, gross
+
+    def plastic_zone(self, state):
+        """(area [m², or m per metre of width for the strip], largest ε̄_p) of a state: the area of the mid-surface whose
+        section has yielded anywhere through the thickness, each Gauss point standing for its weight (first order in
+        the element size)."""
+        return float(self.weight[state[2].max(axis=-1) > 0].sum()), float(state[2].max())
 
     def plastic_increment(self, old, new):
         """Trapezoidal plastic work of a step, Σ ½(σₙ + σₙ₊₁)·(ε_p,ₙ₊₁ − ε_p,ₙ) over the points [J, or J/m]."""
@@ -569,7 +581,7 @@ def _static(model, load):
         d, lam, state, _, wp, win = path[-1]
         back = _static_path(model, [p_peak * (1 - k / load.steps) for k in range(1, load.steps + 1)], [False] * load.steps, start=(d, state, lam))
         path += [(b[0], b[1], b[2], b[3], b[4] + wp, b[5] + win) for b in back]
-    d_end = path[-1][0]
+    d_end, zone = path[-1][0], model.plastic_zone(path[-1][2])
     p = np.array([0.0] + [q[1] for q in path])
     wc = np.array([0.0] + [q[0][model.centre] for q in path])
     psi, wp, win = (np.array([0.0] + [q[k] for q in path]) for k in (3, 4, 5))
@@ -594,6 +606,8 @@ def _static(model, load):
         permanent_centre_deflection=float(wc[-1]) if load.unload else math.nan,
         first_yield_pressure=first,
         energy_error=float(np.max(np.abs(win - psi - wp)) / max(np.max(np.abs(win)), 1e-300)),
+        plastic_zone_area=zone[0],
+        max_plastic_strain=zone[1],
     )
 
 
@@ -609,14 +623,14 @@ def _fundamental_period(model):
 
 def _springback(model, d, state, steps):
     """Static springback from (d, state): f_int(d) = (1 − λ) f_int(d*) with λ from 0 to 1 in ``steps`` (the inertia and
-    contact forces that held d* removed), plasticity active. Returns (d at rest, its plastic work), or (None, nan) where
-    the unloading meets a limit point (the dent would snap through: then it is no reference)."""
+    contact forces that held d* removed), plasticity active. Returns (d at rest, its plastic work, the state at rest), or
+    (None, nan, the state at d*) where the unloading meets a limit point (the dent would snap through: no reference)."""
     f_star = model.assemble(d, state)[0]
     try:
         back = _static_path(model, [1 - k / steps for k in range(1, steps + 1)], [False] * steps, load=f_star, start=(d, state, 1.0))
     except _NoConvergence:  # a limit point on the way down: the dent snaps (oil-cans); no quasi-static rest state
-        return None, math.nan
-    return back[-1][0], back[-1][4]
+        return None, math.nan, state
+    return back[-1][0], back[-1][4], back[-1][2]
 
 
 def _transient(model, load, dt, duration):
@@ -689,8 +703,9 @@ def _transient(model, load, dt, duration):
 def _dynamic(model, load, dt, duration, springback_steps):
     """The transient (:func:`_transient`), then the static springbacks from the end and from the peak."""
     H, (d_peak, s_peak), (d_end, s_end), t_peak, settled, dt, kc = _transient(model, load, dt, duration)
-    rest, sb_work = _springback(model, d_end, s_end, springback_steps)
+    rest, sb_work, s_rest = _springback(model, d_end, s_end, springback_steps)
     rest_peak = _springback(model, d_peak, s_peak, springback_steps)[0]
+    zone = model.plastic_zone(s_rest)
     nan = np.full(model.ndof, math.nan)
     rest, rest_peak = (nan if x is None else x for x in (rest, rest_peak))
     work_in = H["ke"][0]
@@ -720,6 +735,8 @@ def _dynamic(model, load, dt, duration, springback_steps):
         deflection_permanent=rest[1 : 3 * model.nodes.size : 3].copy(),
         time_step=float(dt),
         contact_stiffness=float(kc),
+        plastic_zone_area=zone[0],
+        max_plastic_strain=zone[1],
     )
 
 
