@@ -61,6 +61,7 @@ NEWTON_TOL = 1e-9  # residual norm relative to the largest of the load and the i
 STEP_TOL = 1e-12  # a full Newton correction below this fraction of |u|: converged (the penalty's round-off floor)
 MAX_PASSES = 400  # damage passes of one increment before it is halved
 MIN_STEP_FRACTION = 1.0 / 1024  # of a requested increment: below it the solver gives up
+FALLBACK_BELOW = 1.0 / 4  # an increment Newton fails at this fraction of the requested one (two halvings) goes to the staggered passes
 FD_STEP = 1e-9  # the finite difference of the damage along v: ε·|v| = FD_STEP·|u| (the law's d(δ) is smooth between its kinks)
 KRYLOV_TOL = 1e-10  # GMRES's relative residual of a Newton correction
 KRYLOV_MAX = 400  # GMRES iterations of one correction (about the points whose damage grows, at most)
@@ -334,16 +335,16 @@ class QuasiStatic:
         self.rows: list[tuple] = []
         self.fallbacks = 0
 
-    def _try(self, trial: float):
-        """One increment (converged, uf, λ, iterations, Krylov iterations, damage change). Under ``"newton"``, an
-        increment whose Newton iterations fail is taken again from its start by the staggered passes, which converge
-        from any state (monotonically in the damage) where Newton's can cycle across the kinks of the law, and which
-        also pass a local snap-back of the discrete front under a global control (the damage grows until equilibrium
-        is found again, the quasi-static picture of a jump); ``fallbacks`` counts them."""
+    def _try(self, trial: float, fallback: bool):
+        """One increment (converged, uf, λ, iterations, Krylov iterations, damage change). Under ``"newton"``, when
+        ``fallback``, an increment whose Newton iterations fail is taken again from its start by the staggered passes,
+        which converge from any state (monotonically in the damage) where Newton's can cycle across the kinks of the law,
+        and which also pass a local snap-back of the discrete front under a global control (the damage grows until
+        equilibrium is found again, the quasi-static picture of a jump); ``fallbacks`` counts them."""
         if self.mode == "newton":
             saved = self.model.damage.copy()
             out = _consistent(self.system, self.state, trial, self.damage_tol)
-            if out[0]:
+            if out[0] or not fallback:
                 return out
             self.model.damage = saved
             self.fallbacks += 1
@@ -363,7 +364,9 @@ class QuasiStatic:
         while abs(target - state.cbar) > 1e-14 * max(abs(target), abs(requested), 1e-300):
             trial = state.cbar + step if abs(step) < abs(target - state.cbar) else float(target)
             saved = model.damage.copy()
-            ok, uf, lam, its, krylov, change = self._try(trial)
+            # Newton first halves an increment it cannot converge (cheaper than the staggered passes, and often enough);
+            # an increment already FALLBACK_BELOW of the requested one goes to the passes
+            ok, uf, lam, its, krylov, change = self._try(trial, abs(trial - state.cbar) <= FALLBACK_BELOW * abs(requested) * (1 + 1e-12))
             spent[0] += its
             spent[1] += krylov
             if not ok:
