@@ -30,7 +30,7 @@ from dataclasses import dataclass
 
 from .laminate import Ply
 
-__all__ = ["DCB_SPECIMEN", "MMB_SPECIMEN", "MMB_HALF_SPAN", "T300_1076", "IM7_8552_MMB", "DCB_CRITICAL", "MMB_CRITICAL", "Specimen"]
+__all__ = ["DCB_SPECIMEN", "MMB_SPECIMEN", "MMB_HALF_SPAN", "T300_1076", "IM7_8552_MMB", "DCB_CRITICAL", "DCB_OPENING", "MMB_CRITICAL", "Specimen"]
 
 T300_1076 = Ply(
     "T300/1076 (Krueger 2008)",
@@ -106,6 +106,18 @@ DCB_CRITICAL = {
     40e-3: 46.7,
 }
 """Krueger 2008's DCB critical loads [N] (mid-width onset, ±1 N as digitised) against the crack length a [m]."""
+
+DCB_OPENING = {
+    30e-3: 1.500e-3,
+    31e-3: 1.588e-3,
+    32e-3: 1.684e-3,
+    33e-3: 1.780e-3,
+    34e-3: 1.884e-3,
+    35e-3: 2.002e-3,
+    40e-3: 2.548e-3,
+}
+"""Krueger 2008's DCB load-point openings at the critical points [m]: twice the per-arm δ_crit/2 the report plots
+(0.750 mm at a0 = 30 mm, stated in its Section 5.2.1), against the crack length a [m]."""
 
 MMB_CRITICAL = {
     0.2: (92.9e-3, 1.64e-3, 128.5),
