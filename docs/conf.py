@@ -71,8 +71,16 @@ copybutton_only_copy_prompt_lines = False
 # Examples executed by the docs build: about a second each. Measured one at a time, each in a fresh
 # process after `import softimpact` (2 cores, load 3): 01 0.7 s, 04 1.0 s, 03 1.5 s; not executed:
 # 06 5.2 s (it imports Dask), 02 5.6 s, 05 20 s (about twice that under the test suite's load).
-# 08 executed although slower (3 s of CPU: a static Newton and two coupled plate runs), for its figure.
-QUICK_EXAMPLES = ("01_bar_test", "03_beam_table_history", "04_impact_on_your_plate", "07_hail_on_a_plate", "08_hail_on_a_thin_skin", "09_your_own_bars")
+# 08 executed although slower (3 s of CPU: a static Newton and two coupled plate runs), for its figure; 10 likewise (6 s of CPU).
+QUICK_EXAMPLES = (
+    "01_bar_test",
+    "03_beam_table_history",
+    "04_impact_on_your_plate",
+    "07_hail_on_a_plate",
+    "08_hail_on_a_thin_skin",
+    "09_your_own_bars",
+    "10_delamination_benchmarks",
+)
 run_examples = os.environ.get("SOFTIMPACT_DOCS_RUN_EXAMPLES", "quick").strip().lower()
 if run_examples in ("all", "1"):
     executed = r"/\d\d_[^/]*\.py$"

@@ -149,8 +149,8 @@ def test_half_width_dcb_is_the_full_width_dcb_and_its_supports_carry_nothing():
     """The half-width DCB (symmetry edge v = φy = 0) has the full-width model's compliance to 1e-9, and the point constraints
     that remove the rigid motions carry no reaction (a self-equilibrated load): the internal force at the held DOFs is
     round-off against the load."""
-    half = dcb_specimen(30e-3, 1e-3, coarse=10e-3)
-    full = dcb_specimen(30e-3, 1e-3, coarse=10e-3, ny=4, half=False)
+    half = dcb_specimen(30e-3, 2e-3, coarse=10e-3, ny=1)
+    full = dcb_specimen(30e-3, 2e-3, coarse=10e-3, ny=2, half=False)
     u_half, u_full = (linear_response(s.model, s.load, s.fixed) for s in (half, full))
     assert half.displacement(u_half) == pytest.approx(full.displacement(u_full), rel=1e-9)
     for spec, u in ((half, u_half), (full, u_full)):
@@ -177,7 +177,7 @@ def _dcb_closure(a_mm: int, element: float = 0.125e-3, extension: float = 1e-3, 
     return release_rates(spec, extension)
 
 
-@pytest.mark.parametrize("a_mm", [pytest.param(a, marks=() if a in (30, 40) else pytest.mark.slow) for a in DCB_BENCHMARK])
+@pytest.mark.parametrize("a_mm", [pytest.param(a, marks=() if a == 30 else pytest.mark.slow) for a in DCB_BENCHMARK])
 def test_dcb_crack_closure_at_mid_width_meets_krueger(a_mm):
     """Krueger 2008 (NASA/TM-2008-215123, Figs. 11, 13): the critical load is where G at mid-width reaches G_Ic; the plate's
     crack closure over a 1-mm extension (0.125-mm elements) gives it within 3 % at every crack length (measured +0.1 to
@@ -190,7 +190,7 @@ def test_dcb_crack_closure_at_mid_width_meets_krueger(a_mm):
     assert r.mean_II + r.mean_III < 1e-9 * r.mean_I  # mode I by symmetry
 
 
-@pytest.mark.parametrize("ratio", list(MMB_BENCHMARK))
+@pytest.mark.parametrize("ratio", [pytest.param(r, marks=() if r == 0.5 else pytest.mark.slow) for r in MMB_BENCHMARK])
 def test_mmb_crack_closure_meets_krueger(ratio):
     """Krueger 2012 (NASA/CR-2012-217562): with the lever lengths c of the report, the plate's crack closure gives the
     report's mode ratio G_II/G_T within 0.03 (measured 0.185, 0.472, 0.778) and, by the B-K criterion (η = 2.1), its
