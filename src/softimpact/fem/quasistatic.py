@@ -257,7 +257,7 @@ def _corrections(system: _Bordered, uf, D, damage_at, r, residual_c):
     return z, counter[0]
 
 
-def _consistent(system: _Bordered, state: _State, target: float, damage_tol: float):
+def _consistent(system: _Bordered, state: _State, target: float, damage_tol: float, trial_damage=None):
     """One increment to ``target`` by Newton on the damage and the equilibrium together (module docstring, "newton"):
     (converged, uf, λ, Newton iterations, Krylov iterations, damage change of the last iteration). The damage of a
     state u is the model's commit of u from the increment's committed damage d_c, D(u); the force F(u) = f(u; D(u));
@@ -270,8 +270,11 @@ def _consistent(system: _Bordered, state: _State, target: float, damage_tol: flo
     m = system.idx.size
 
     def damage_at(uf):
-        model.damage = d_c
-        model.commit(system.full(uf))
+        if trial_damage is not None:
+            model.damage = trial_damage(system.full(uf), d_c)
+        else:
+            model.damage = d_c
+            model.commit(system.full(uf))
         return model.damage.copy()
 
     def residual(uf, lam):
@@ -302,6 +305,9 @@ def _consistent(system: _Bordered, state: _State, target: float, damage_tol: flo
         # floor, K·|u|·ε, can sit above NEWTON_TOL of the force at small loads)
         small = np.linalg.norm(r) <= NEWTON_TOL * scale or (alpha == 1.0 and np.linalg.norm(step[:m]) <= STEP_TOL * np.linalg.norm(uf))
         if small and change <= damage_tol:
+            if trial_damage is not None:  # the one commit of the increment, from its start: the model's own bookkeeping
+                model.damage = d_c
+                model.commit(system.full(uf))
             return True, uf, lam, it, krylov, change
     return False, uf, lam, NEWTON_MAX, krylov, change
 
@@ -319,14 +325,17 @@ class QuasiStatic:
     runs a list of values). ``load`` g and ``control`` c (default g: load-point displacement control) are DOF
     vectors (n,), ``fixed`` the DOFs held at zero; ``damage`` one of :data:`DAMAGE_MODES`, ``damage_tol`` the
     largest change of the damage [-] in a converged increment's last pass or iteration. The model must carry its
-    initial damage (e.g. a pre-crack); the path commits the damage on it as it goes."""
+    initial damage (e.g. a pre-crack); the path commits the damage on it as it goes. ``trial_damage(u, d)``, when
+    given, returns the damage ``commit`` would store at u from d without storing it: Newton's trial states then leave
+    the model's commits (and whatever it counts in them, such as the energy a commit releases) to the converged
+    state of each increment; without it they are commits, set back after each trial."""
 
-    def __init__(self, model, *, load, control=None, fixed=(), damage: str = "newton", damage_tol: float = 1e-4):
+    def __init__(self, model, *, load, control=None, fixed=(), damage: str = "newton", damage_tol: float = 1e-4, trial_damage=None):
         if damage not in DAMAGE_MODES:
             raise InputError(f"damage must be one of {', '.join(DAMAGE_MODES)}, got {damage!r}", "damage")
         if not (np.isfinite(damage_tol) and damage_tol > 0):
             raise InputError(f"damage_tol must be positive, got {damage_tol!r}", "damage_tol")
-        self.model, self.mode, self.damage_tol = model, damage, float(damage_tol)
+        self.model, self.mode, self.damage_tol, self.trial_damage = model, damage, float(damage_tol), trial_damage
         self.system = _Bordered(model, load, load if control is None else control, fixed)
         self.system.orient()
         self.energies = hasattr(model, "K") and hasattr(model, "stored_energy")
@@ -343,7 +352,7 @@ class QuasiStatic:
         equilibrium is found again, the quasi-static picture of a jump); ``fallbacks`` counts them."""
         if self.mode == "newton":
             saved = self.model.damage.copy()
-            out = _consistent(self.system, self.state, trial, self.damage_tol)
+            out = _consistent(self.system, self.state, trial, self.damage_tol, self.trial_damage)
             if out[0] or not fallback:
                 return out
             self.model.damage = saved
@@ -413,13 +422,13 @@ class QuasiStatic:
         )
 
 
-def quasistatic_path(model, targets, *, load, control=None, fixed=(), damage: str = "newton", damage_tol: float = 1e-4) -> QuasiStaticPath:
+def quasistatic_path(model, targets, *, load, control=None, fixed=(), damage: str = "newton", damage_tol: float = 1e-4, trial_damage=None) -> QuasiStaticPath:
     """Raise the control cᵀu to each of ``targets`` in turn on ``model`` (:class:`QuasiStatic`, whose arguments these
     are); returns the :class:`QuasiStaticPath` at the targets."""
     targets = np.asarray(targets, float)
     if targets.ndim != 1 or targets.size == 0 or not np.all(np.isfinite(targets)):
         raise InputError("targets must be a non-empty 1-D array of finite control values", "targets")
-    path = QuasiStatic(model, load=load, control=control, fixed=fixed, damage=damage, damage_tol=damage_tol)
+    path = QuasiStatic(model, load=load, control=control, fixed=fixed, damage=damage, damage_tol=damage_tol, trial_damage=trial_damage)
     for target in targets:
         path.advance(target)
     return path.result()
