@@ -28,7 +28,11 @@ def test_example_speaks_the_notebook_api(path):
     assert "CliRunner" not in text and "softimpact.cli" not in text
 
 
-SLOW_EXAMPLES = {"05_calibrate_force_history", "09_your_own_bars", "10_delamination_benchmarks"}  # 16 s, 6 s and 6 s of one core: run in the slow tier (the quick one keeps 3 minutes)
+SLOW_EXAMPLES = {
+    "05_calibrate_force_history",
+    "09_your_own_bars",
+    "10_delamination_benchmarks",
+}  # 16 s, 6 s and 6 s of one core: run in the slow tier (the quick one keeps 3 minutes)
 
 
 @pytest.mark.parametrize("path", [pytest.param(p, marks=pytest.mark.slow) if p.stem in SLOW_EXAMPLES else p for p in EXAMPLES], ids=lambda p: p.stem)

@@ -273,11 +273,11 @@ def run(spec: PlateSpecimen, displacements, *, damage: str = "newton", damage_to
         fixed=spec.fixed,
         damage=damage,
         damage_tol=damage_tol,
-        trial_damage=_trial_damage(spec.model),
+        trial_damage=trial_damage(spec.model),
     )
 
 
-def _trial_damage(model: CohesivePlate):
+def trial_damage(model: CohesivePlate):
     """The damage ``model.commit(u)`` would store from ``d``, without storing it (its law at its openings)."""
 
     def trial(u: np.ndarray, d: np.ndarray) -> np.ndarray:
@@ -345,7 +345,7 @@ def critical_load(
     increment = step * start if increment is None else float(increment)
     if not increment > 0:
         raise InputError(f"increment must be positive, got {increment!r}", "increment")
-    path = QuasiStatic(spec.model, load=spec.load, control=spec.control, fixed=spec.fixed, damage=damage, trial_damage=_trial_damage(spec.model))
+    path = QuasiStatic(spec.model, load=spec.load, control=spec.control, fixed=spec.fixed, damage=damage, trial_damage=trial_damage(spec.model))
     path.advance(first)
     forces = [path.advance(v) for v in np.linspace(first, start, approach + 1)[1:]]
     scale = spec.share if spec.control is spec.load else 1.0  # ``until`` in the path's control units
