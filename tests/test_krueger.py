@@ -42,7 +42,8 @@ def dcb_law(N: float = DCB_STRENGTH) -> BilinearCohesive:
 
 
 def mmb_law(N: float = MMB_STRENGTH) -> BilinearCohesive:
-    """The MMB's law, the shear strength N·sqrt(G_IIc/G_Ic) (Turon et al.'s onset consistent with B-K)."""
+    """The MMB's law, the shear strength N·sqrt(G_IIc/G_Ic) (Turon et al. 2010's consistency, not retrieved: a choice, as in
+    the beam MMB test of tests/test_delamination.py)."""
     return BilinearCohesive(K=penalty(M), N=N, S=N * math.sqrt(M.GIIc / M.GIc), GIc=M.GIc, GIIc=M.GIIc, eta=M.eta)
 
 
