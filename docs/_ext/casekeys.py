@@ -195,6 +195,7 @@ def _variants() -> dict[str, list]:
         + [(_set(impact, contact=c),) for c in contact_laws]
         + [(_set(impact, impactor__material=m["material"], contact=c),) for m, c in flow_laws]
         + [(_set(impact, impactor=threat),)]
+        + [(_set(impact, impactor={"striker": True, "material": "steel", "diameter": "16 mm", "mass": "5.5 kg", "energy": "30 J"}),)]
         + [(_data("plate-ss-8in-impact-cohesive"),)]
         + [(_set(_data("plate-ss-8in-impact-cohesive"), damage__cohesive="dissimilar", damage__near_field="20 mm", damage__element_size="2 mm", damage__turon=True),)]
         + [(_set(_data("plate-ss-8in-impact-cohesive"), damage__near_field="whole"),)],
@@ -299,6 +300,7 @@ RAW_VALUES = {
     "transmitted": "as `incident`: the transmitted bar's record, on the same clock",
     "channel": "a channel name (`group/channel` or a unique `channel`) or an index",
     "accept_flagged": "true or false: fit this test even if flagged",
+    "striker": "true or false: a drop weight's hemispherical striker of `diameter` on a carriage of `mass` (required), named by its `velocity` or its `energy` (v = sqrt(2E/m)); no solid-sphere mass check",
     "constants": "a scaling.json path (of `softimpact fit`) or a preset name",
     "outputs": "a list of output keys (`peak_force_N`, `strain_<g>.peak`, `damage.<index>`, …)",
     "value": "any value the key takes (a whole table replaces the table)",
@@ -385,7 +387,9 @@ _EITHER_OR = {
     "bar:projectile.velocity": "required unless `projectile.threat` (then its velocity)",
     "impact:impactor.material": "required unless `impactor.threat`",
     "impact:impactor.diameter": "required unless `impactor.threat`",
-    "impact:impactor.velocity": "required unless `impactor.threat` (then its velocity)",
+    "impact:impactor.velocity": "required unless `impactor.threat` (then its velocity) or a striker's `impactor.energy`",
+    "impact:impactor.energy": "a striker's (`impactor.striker = true`) velocity as its kinetic energy, in place of `impactor.velocity`",
+    "impact:impactor.mass": "from density and diameter; required for a striker (`impactor.striker = true`)",
 }
 
 

@@ -42,8 +42,23 @@ class Sphere:
 
 def read_sphere(tbl: Table) -> Sphere:
     """The sphere of ``tbl`` (``[projectile]`` or ``[impactor]``), directly or by ``threat`` (module docstring);
-    the table's other keys are left to the caller (it calls ``tbl.done()``)."""
+    the table's other keys are left to the caller (it calls ``tbl.done()``). ``striker = true``: a drop weight's
+    hemispherical striker (tup) of ``diameter`` on a carriage of ``mass`` (required; no solid-sphere check), which may
+    be dropped with an ``energy`` in place of its ``velocity`` (v = sqrt(2E/m), ASTM D7136's way of naming an impact)."""
     threat = tbl.table("threat", optional=True)
+    striker = tbl.raw("striker", False)
+    if not isinstance(striker, bool):
+        raise InputError(f"{tbl.key('striker')}: expected true or false, got {striker!r}")
+    if striker:
+        if threat is not None:
+            raise InputError(f"{tbl.key('striker')}: a drop weight's striker is not a threat ({tbl.key('threat')}): give one or the other")
+        material = read_material(tbl)
+        diameter = tbl.quantity("diameter", "length")
+        mass = tbl.quantity("mass", "mass")
+        if ("velocity" in tbl) == ("energy" in tbl):
+            raise InputError(f"{tbl.key('velocity')}: a striker needs its velocity or its energy ({tbl.key('energy')}), one of them")
+        velocity = tbl.quantity("velocity", "velocity") if "velocity" in tbl else math.sqrt(2 * tbl.quantity("energy", "energy") / mass)
+        return Sphere(material, diameter, velocity, mass)
     if threat is None:
         material = read_material(tbl)
         diameter = tbl.quantity("diameter", "length")
