@@ -190,8 +190,10 @@ def test_command_writes_the_area_history_and_the_verdict(tmp_path):
     (tmp_path / "case.toml").write_text(case)
     run = CliRunner().invoke(main, ["impact", str(tmp_path / "case.toml"), "--out", str(tmp_path / "out"), "--fields"])
     assert run.exit_code == 0, run.output
-    assert all((tmp_path / "out" / f).stat().st_size > 0 for f in ("delamination-area.png", "delamination-map.png", "fields.xdmf"))
+    assert all((tmp_path / "out" / f).stat().st_size > 0 for f in ("delamination-area.png", "delamination-map.png", "delamination-cscan.png", "fields.xdmf"))
     header = (tmp_path / "out" / "history.csv").read_text().splitlines()[0].split(",")
     assert {"delaminated_area_m2", "process_zone_area_m2", "fracture_energy_dissipated_J", "delaminated_area_m2_plies_9_10"} <= set(header)
     summary = json.loads((tmp_path / "out" / "summary.json").read_text())
     assert summary["damage"]["delaminated_area_m2"] == 0.0 and "cohesive" in summary["damage"]["verdict"]
+    assert summary["damage"]["projected_delamination_area_m2"] == 0.0
+    assert set(summary["damage"]["delamination_shapes"]) == {k.removeprefix("delaminated_area_m2_") for k in header if k.startswith("delaminated_area_m2_")}

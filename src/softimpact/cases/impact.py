@@ -345,7 +345,7 @@ class ImpactKind:
         from ..fem.contact import group_outputs
         from ..models.metals import Metal
         from ..output.impact import impact_summary
-        from ..workflows.damage import coupled_damage, damage_refusal, delamination_growth, metal_damage
+        from ..workflows.damage import coupled_damage, damage_refusal, delamination_growth, delamination_shapes, metal_damage
         from .run import Run, impact_validity
 
         target = problem.target
@@ -355,6 +355,8 @@ class ImpactKind:
         else:
             dmg = coupled_damage(target, result, impactor_mass=problem.impactor.mass).summary() if damage else None
             dmg = delamination_growth(dmg, result)  # cohesive interfaces: the delaminated area, in the verdict
+            if target.coupled_stepper == "cohesive":
+                dmg = delamination_shapes(dmg, model.cscan())
         note = None if dmg is not None else damage_refusal(target, "target.case: ")
         validity = impact_validity(problem, result, dmg) + _criterion_validity(dmg)
         summary = impact_summary(problem, result, validity, dmg, note, target.summary_extras(model, result))

@@ -54,4 +54,48 @@ def delamination_figures(problem, model, result, prefix: str = "", units: str = 
         ax.set_ylabel(f"y [{lu.label}]")
     fig.colorbar(mesh, ax=axes[0].tolist(), label="damage d at the end of the run (1: delaminated)")
     out[prefix + "delamination-map.png"] = figure_bytes(fig)
+    out[prefix + "delamination-cscan.png"] = cscan_figure(model.cscan(), lu)
     return out
+
+
+def cscan_figure(scan, lu) -> bytes:
+    """delamination-cscan.png: the whole plate seen from the struck face as a C-scan shows it, each interface's
+    delaminated region (d = 1) in its colour (deeper interfaces darker, the shallower drawn over the deeper), the
+    projected envelope outlined in black and each region's major axis (the equal-moment ellipse's) drawn through its
+    centroid; ``lu`` the display length unit."""
+    import matplotlib.pyplot as plt
+    from matplotlib.patches import Patch
+
+    n = len(scan.interfaces)
+    colours = plt.get_cmap("viridis_r")(np.linspace(0.1, 0.95, max(n, 1)))
+    x, y = scan.xs * lu.factor, scan.ys * lu.factor
+    fig, ax = plt.subplots(figsize=(7.2, 5.2), layout="constrained")
+    handles = []
+    for k in reversed(range(n)):  # the deepest first: a shallower delamination hides what lies below it
+        i, d = scan.interfaces[k], scan.damage[k]
+        if i.area <= 0.0:
+            continue
+        ax.contourf(x, y, d.T, levels=[1.0 - 1e-9, 2.0], colors=[colours[k]], alpha=0.9)
+        if np.isfinite(i.orientation_deg):
+            t = np.radians(i.orientation_deg)
+            h = 0.5 * i.major_axis * lu.factor
+            cx, cy = (c * lu.factor for c in i.centroid)
+            ax.plot([cx - h * np.cos(t), cx + h * np.cos(t)], [cy - h * np.sin(t), cy + h * np.sin(t)], color=colours[k], lw=1.2, ls=":")
+        name = i.label.removeprefix("plies_").replace("_", "/")
+        axis = "round" if not np.isfinite(i.orientation_deg) else f"axis {i.major_axis * lu.factor:.3g} {lu.label} at {i.orientation_deg:.0f}°"
+        handles.insert(0, Patch(color=colours[k], label=f"plies {name} (lower ply {i.lower_ply_deg:g}°): {i.area * lu.factor**2:.3g} {lu.label}², {axis}"))
+    cracked = (scan.damage >= 1.0).any(axis=0).astype(float)
+    if cracked.any():
+        ax.contour(x, y, cracked.T, levels=[0.5], colors="k", linewidths=1.5)
+        handles.insert(0, Patch(facecolor="none", edgecolor="k", label=f"projected envelope: {scan.projected_area * lu.factor**2:.3g} {lu.label}²"))
+    else:
+        ax.text(0.5, 0.5, "no delamination (no interface reached d = 1)", transform=ax.transAxes, ha="center", va="center")
+    ax.set_xlim(x[0], x[-1])
+    ax.set_ylim(y[0], y[-1])
+    ax.set_aspect("equal")
+    ax.set_xlabel(f"x [{lu.label}]")
+    ax.set_ylabel(f"y [{lu.label}]")
+    ax.set_title("Delaminations as a C-scan shows them (seen from the struck face)", fontsize=10)
+    if handles:
+        ax.legend(handles=handles, fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    return figure_bytes(fig)

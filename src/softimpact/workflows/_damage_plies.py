@@ -134,3 +134,24 @@ def delamination_growth(damage: dict | None, result) -> dict | None:
         words = f"no cohesive damage at the {len(per)} interface(s)"
     out["verdict"] = f"{damage['verdict']}; {words}" if damage and damage.get("verdict") else words
     return out
+
+
+def delamination_shapes(damage: dict, scan) -> dict:
+    """``damage`` (of :func:`delamination_growth`) with what a C-scan shows (``scan``, a
+    :class:`~softimpact.workflows.plate.cscan.CScan`): the projected area and each interface's shape; the verdict gains
+    the projected area and the largest delamination's major axis against the fibres of the ply below it."""
+    out = {**damage, **scan.summary()}
+    grown = [i for i in scan.interfaces if i.area > 0.0]
+    if grown:
+        big = max(grown, key=lambda i: i.area)
+        angle = (
+            "no major axis (round)"
+            if np.isnan(big.orientation_deg)
+            else f"at {big.orientation_deg:.0f}° from x, {big.misalignment_deg:.0f}° from the {big.lower_ply_deg:g}° ply below"
+        )
+        words = (
+            f"projected delamination {scan.projected_area * 1e6:.4g} mm²; largest at interface {big.label.replace('_', ' ', 1).replace('_', '/')}: "
+            f"{big.major_axis * 1e3:.3g} × {big.minor_axis * 1e3:.3g} mm, major axis {angle}"
+        )
+        out["verdict"] = f"{out['verdict']}; {words}" if out.get("verdict") else words
+    return out

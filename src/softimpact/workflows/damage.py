@@ -41,7 +41,7 @@ from ..models.failure import (
     ply_stresses,
 )
 from ..models.laminate import Stack, abd, engineering_constants
-from ._damage_plies import PlyFailure, delamination_growth, plies_failed, ply_faces, residual_bending
+from ._damage_plies import PlyFailure, delamination_growth, delamination_shapes, plies_failed, ply_faces, residual_bending
 
 __all__ = [
     "DamageResult",
@@ -69,6 +69,7 @@ __all__ = [
     "face_points",
     "coupled_damage",
     "delamination_growth",
+    "delamination_shapes",
 ]
 
 

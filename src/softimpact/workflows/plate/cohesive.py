@@ -280,6 +280,25 @@ class CohesivePlateModel:
         """The committed damage (interfaces, nodes) of the last run (node numbering of ``fe``)."""
         return self.stack.damage
 
+    def cscan(self):
+        """What a C-scan of the last run shows (:func:`~softimpact.workflows.plate.cscan.cscan`): each interface's
+        delaminated region, its area and shape beside the fibre angle of the ply below it, and the projected envelope,
+        of the whole plate (symmetry edges mirrored)."""
+        from .cscan import cscan
+
+        fe, st, p = self.fe, self.stack, self.problem
+        angles = p.plate.stack.angles
+        return cscan(
+            st.damage,
+            fe.node_xs,
+            fe.node_ys,
+            fe.grid_node,
+            st.area,
+            tuple(p.plate.supports),
+            tuple(interface_label(k) for k in p.splits),
+            tuple(float(angles[k]) for k in p.splits),  # split k: below ply k (1 = top), the lower ply is angles[k]
+        )
+
     def direct(self, *args, **kwargs):
         raise InputError("a plate with cohesive interfaces runs as the target of a coupled impact only (softimpact impact)")
 
