@@ -22,7 +22,7 @@ import scipy.sparse.linalg
 
 from ..errors import InputError
 
-__all__ = ["NewmarkParameters", "NewmarkStepper", "BandedCholesky", "MinimumDegreeLU", "SolverSpec", "spd_factor"]
+__all__ = ["NewmarkParameters", "NewmarkStepper", "BandedCholesky", "MinimumDegreeLU", "PardisoCholesky", "SolverSpec", "spd_factor"]
 
 # Systems up to this many DOFs are factored densely: a dense triangular solve
 # beats the sparse machinery's per-call overhead at this size.
@@ -32,6 +32,12 @@ BAND_TRY_SPARSE = 1_000_000
 # A stored entry of SuperLU's factor costs this much more per solve than one of the band
 # (measured on the 48 × 48 MITC9 plate, 27 455 DOF: 2.5 against 2.0 ns an entry).
 SPARSE_ENTRY_COST = 1.25
+# From this many unknowns a sparse SPD matrix is factored by MKL PARDISO when pypardiso is installed (the ``fast``
+# extra): on the stacked sublaminates of a cohesive run, a graph like a 3-D solid's, SuperLU's minimum degree
+# factors 85 863 DOF (14 interfaces) in 136 s and its factor does not fit the band it is weighed against, PARDISO's
+# nested dissection in 5.5 s (BENCHMARKS.md, "Factorising the cohesive stack"). Below it the band and SuperLU
+# are as fast and the runs keep their bits.
+PARDISO_MIN_DOF = 20_000
 
 
 def _pbtrs_without_gil():
@@ -173,13 +179,56 @@ class MinimumDegreeLU:
         return self.lu.solve(rhs)
 
 
+class PardisoCholesky:
+    """A sparse SPD matrix factored by MKL PARDISO (pypardiso; real symmetric positive definite, ``mtype`` 2, the
+    upper triangle, its default nested-dissection ordering and parallel factorisation). Raises
+    ``np.linalg.LinAlgError`` when PARDISO reports the matrix not positive definite (or any error), as
+    :class:`BandedCholesky` does."""
+
+    def __init__(self, A):
+        import pypardiso
+
+        upper = scipy.sparse.triu(scipy.sparse.csr_matrix(A, dtype=float)).tocsr()
+        upper.sort_indices()
+        self._upper = upper
+        self._solver = pypardiso.PyPardisoSolver(mtype=2)
+        try:
+            self._solver.factorize(upper)
+        except (pypardiso.pardiso_wrapper.PyPardisoError, ValueError) as exc:
+            raise np.linalg.LinAlgError(f"PARDISO factorisation failed: {exc}") from exc
+        self.stored = int(self._solver.get_iparm(18) or upper.nnz)  # iparm(18): the factor's nonzeros
+
+    def solve_flops(self) -> float:
+        return 2.0 * self.stored
+
+    def solve(self, rhs: np.ndarray) -> np.ndarray:
+        return self._solver.solve(self._upper, np.asarray(rhs, dtype=float))
+
+    def __del__(self):
+        solver = getattr(self, "_solver", None)
+        if solver is not None:
+            solver.free_memory(everything=True)
+
+
+def _pardiso():
+    """pypardiso's module when it is installed and MKL loads, else None."""
+    try:
+        import pypardiso
+    except (ImportError, OSError):
+        return None
+    return pypardiso
+
+
 def spd_factor(A):
     """The cheaper-to-solve factor of a sparse SPD matrix: :class:`BandedCholesky`, or
     :class:`MinimumDegreeLU` when the band is wide and the sparse factor, weighted by its
     higher cost per stored entry (``SPARSE_ENTRY_COST``), is smaller. Beams and small
-    plates keep the band (its storage is under ``BAND_TRY_SPARSE``)."""
-    plan = BandedCholesky.plan(A)
+    plates keep the band (its storage is under ``BAND_TRY_SPARSE``). From ``PARDISO_MIN_DOF`` unknowns,
+    :class:`PardisoCholesky` when pypardiso is installed (the ``fast`` extra)."""
     n = A.shape[0]
+    if n >= PARDISO_MIN_DOF and _pardiso() is not None:
+        return PardisoCholesky(A)
+    plan = BandedCholesky.plan(A)
     band = n * (plan[3] + 1)
     if band > BAND_TRY_SPARSE:
         from threadpoolctl import threadpool_limits
