@@ -11,11 +11,13 @@ from softimpact.models.contact_laws import CONTACT_LAWS
 from softimpact.models.empirical import PRESETS, PROJECTILES
 from softimpact.models.laminate import PLIES
 from softimpact.models.materials import CATALOGUE
+from softimpact.models.metals import METALS
 from softimpact.models.projectiles import PROJECTILES as PROJECTILE_MATERIALS
 
 # The models' own tables, read here independently of softimpact.app.catalogue: (catalogue table, names).
 SOURCES = {
     "materials": tuple(CATALOGUE),
+    "metals": tuple(METALS),
     "plies": tuple(PLIES),
     "projectiles": tuple(PROJECTILES),
     "projectile_materials": tuple(PROJECTILE_MATERIALS),

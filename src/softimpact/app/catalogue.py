@@ -1,7 +1,7 @@
 """The catalogue: every named material, ply, projectile, scaling-constant set, contact law and built-in case.
 
 One function, :func:`catalogue`, reads the tables of the models (:data:`softimpact.models.materials.CATALOGUE`,
-:data:`softimpact.models.laminate.PLIES`, :data:`softimpact.models.empirical.PROJECTILES` and ``PRESETS``,
+:data:`softimpact.models.metals.METALS`, :data:`softimpact.models.laminate.PLIES`, :data:`softimpact.models.empirical.PROJECTILES` and ``PRESETS``,
 :data:`softimpact.models.projectiles.PROJECTILES`, :data:`softimpact.models.contact_laws.CONTACT_LAWS`) and
 the built-in cases (:func:`softimpact.cases.builtin_listing`) into frozen :class:`Table` s: the same rows
 feed ``softimpact catalogue``, ``si.catalogue()`` and the docs page (docs/_ext/catalogue_page.py). Values are
@@ -43,6 +43,7 @@ class Catalogue:
     """Every catalogue table (:class:`Table`), one attribute each."""
 
     materials: Table
+    metals: Table
     plies: Table
     projectiles: Table
     projectile_materials: Table
@@ -53,7 +54,7 @@ class Catalogue:
     @property
     def tables(self) -> tuple[Table, ...]:
         """The tables in the order they are shown."""
-        return (self.materials, self.plies, self.projectiles, self.projectile_materials, self.scaling_constants, self.contact_laws, self.cases)
+        return (self.materials, self.metals, self.plies, self.projectiles, self.projectile_materials, self.scaling_constants, self.contact_laws, self.cases)
 
     def to_frame(self, table: str):
         """The DataFrame of the table named ``table`` (``"materials"``, ``"plies"``…; needs pandas); an InputError naming
@@ -89,6 +90,7 @@ def catalogue() -> Catalogue:
     from ..models.empirical import PRESETS, PROJECTILES
     from ..models.laminate import PLIES
     from ..models.materials import CATALOGUE
+    from ..models.metals import METALS
     from ..models.projectiles import PROJECTILES as PROJECTILE_MATERIALS
 
     materials = Table(
@@ -97,6 +99,16 @@ def catalogue() -> Catalogue:
         ("name", "E", "nu", "density", "bar wave speed", "source"),
         ("", "Pa", "-", "kg/m^3", "m/s", ""),
         tuple((m.name, m.youngs_modulus, m.poisson_ratio, m.density, m.wave_speed, m.source) for m in CATALOGUE.values()),
+    )
+    metals = Table(
+        "metals",
+        "Metals (elastic-plastic skins: plate.material; J2 plasticity with the hardening named)",
+        ("name", "E", "nu", "density", "yield stress", "ultimate strength", "elongation", "hardening", "strain rate", "source"),
+        ("", "Pa", "-", "kg/m^3", "Pa", "Pa", "-", "", "", ""),
+        tuple(
+            (m.name, m.youngs_modulus, m.poisson_ratio, m.density, m.yield_stress, m.ultimate, m.elongation, m.hardening_source, m.rate_source, m.source)
+            for m in METALS.values()
+        ),
     )
     plies = Table(
         "plies",
@@ -151,7 +163,7 @@ def catalogue() -> Catalogue:
         ("", "", "", ""),
         tuple((name, kind, title, f"softimpact/data/{paths[name].parent.name}/{paths[name].name}") for name, kind, title in builtin_listing()),
     )
-    return Catalogue(materials, plies, projectiles, projectile_materials, scaling_constants, contact_laws, cases)
+    return Catalogue(materials, metals, plies, projectiles, projectile_materials, scaling_constants, contact_laws, cases)
 
 
 def _cell(value) -> str:
