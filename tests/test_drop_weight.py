@@ -46,3 +46,12 @@ def test_a_velocity_gives_the_same_striker_as_its_energy():
 def test_a_striker_that_cannot_be_built_is_refused_naming_the_key(impactor, named):
     with pytest.raises(InputError, match=named.replace(".", r"\.")):
         impact_problem(_data(**impactor))
+
+
+def test_a_near_field_narrower_than_the_contact_is_refused_at_once():
+    """The contact may reach the striker's diameter (16 mm) from the impact point: a near field of 16 mm half-width is
+    refused when the case is read, naming the key and the default, not after the model is built."""
+    data = load_toml(locate("d7136-drop-weight"))
+    data["damage"]["near_field"] = "16 mm"
+    with pytest.raises(InputError, match=r"damage\.near_field.*16 mm"):
+        impact_problem(data)

@@ -191,6 +191,12 @@ def read_cohesive(d: Table | None, target, diameter: float | None = None) -> tup
     else:
         default = None if diameter is None else NEAR_FIELD_DIAMETERS * diameter
         near = d.quantity("near_field", "length", default=default)
+        if diameter is not None and near is not None and near <= diameter:
+            raise InputError(
+                f"{d.key('near_field')}: a near field of half-width {near * 1e3:.4g} mm does not hold the contact, which may reach the "
+                f"impactor's diameter ({diameter * 1e3:.4g} mm) from the impact point: give more than that (the default, "
+                f"{NEAR_FIELD_DIAMETERS:g} diameters, {NEAR_FIELD_DIAMETERS * diameter * 1e3:.4g} mm)"
+            )
     zone = {"near_field": near, "element_size": d.quantity("element_size", "length", default=None), "turon": d.raw("turon", False)}
     if not isinstance(zone["turon"], bool):
         raise InputError(f"{d.key('turon')}: expected true or false, got {zone['turon']!r}")
