@@ -139,35 +139,46 @@ class SphereFlowLaw:
         """ρ = m/(π·d³/6) [kg/m³]."""
         return self.mass / (math.pi / 6.0 * self.diameter**3)
 
+    @property
+    def extent(self) -> float:
+        """The body's length along the impact [m]: the sphere's diameter (a longer body's own length); the centre of
+        mass has advanced half of it when the whole body is deposited."""
+        return self.diameter
+
+    def geometry(self, alpha: float) -> tuple[float, float, float, float, float]:
+        """(s [m], φ, dφ/ds [1/m], A [m²], dA/ds [m]) at the centre-of-mass approach α > 0 [m]: the depth crushed, the
+        remaining fraction of the mass and the section at the front (module docstring); φ = 0 once the body is
+        consumed. A body of another shape overrides this (and :attr:`density`, :attr:`extent`)."""
+        d = self.diameter
+        u = sphere_crush_depth(alpha / d)
+        if u >= CONSUMED:
+            return d, 0.0, 0.0, 0.0, 0.0
+        s = u * d
+        return s, _phi(u), -6.0 * u * (1.0 - u) / d, math.pi * s * (d - s), math.pi * (d - 2.0 * s)
+
     def pressure_terms(self, s: float, rate: float) -> tuple[float, float, float]:  # pragma: no cover - abstract
         raise NotImplementedError
 
     def state(self, alpha: float, rate: float) -> tuple[float, float, float]:
         """(s [m], ṡ [m/s], φ) of the centre-of-mass approach α [m] and its rate α̇ [m/s]."""
-        d = self.diameter
-        u = sphere_crush_depth(alpha / d)
-        phi = _phi(u)
-        return u * d, (rate / phi if phi > 0.0 else math.inf), phi
+        s, phi = self.geometry(alpha)[:2] if alpha > 0.0 else (0.0, 1.0)
+        return s, (rate / phi if phi > 0.0 else math.inf), phi
 
     def response(self, alpha: float, rate: float = 0.0) -> tuple[float, float, float]:
-        """(F [N], ∂F/∂α [N/m], ∂F/∂α̇ [N·s/m]) at once. F = A(s)·p(s, ṡ) with s(α), ṡ = α̇/φ(s/d):
-        ∂s/∂α = 1/φ, ∂ṡ/∂α̇ = 1/φ, ∂ṡ/∂α = −ṡ·φ'/(d·φ²), φ' = −6u(1 − u)."""
-        d = self.diameter
+        """(F [N], ∂F/∂α [N/m], ∂F/∂α̇ [N·s/m]) at once. F = A(s)·p(s, ṡ) with s(α), ṡ = α̇/φ(s):
+        ∂s/∂α = 1/φ, ∂ṡ/∂α̇ = 1/φ, ∂ṡ/∂α = −ṡ·(dφ/ds)/φ² (for the sphere dφ/ds = −6u(1 − u)/d)."""
         if alpha <= 0.0 or rate <= 0.0:
             return 0.0, 0.0, 0.0
-        u = sphere_crush_depth(alpha / d)
-        if u >= CONSUMED:
+        s, phi, dphi, area, darea = self.geometry(alpha)
+        if phi <= 0.0:
             return 0.0, 0.0, 0.0
-        phi = _phi(u)
-        s, sdot = u * d, rate / phi
-        area = crushed_area(s, d)
+        sdot = rate / phi
         p, dp_ds, dp_dv = self.pressure_terms(s, sdot)
         if p <= 0.0:
             return 0.0, 0.0, 0.0
-        dphi = -6.0 * u * (1.0 - u)
         ds_da = 1.0 / phi
-        dv_da = -sdot * dphi / (d * phi * phi)
-        stiffness = math.pi * (d - 2.0 * s) * ds_da * p + area * (dp_ds * ds_da + dp_dv * dv_da)
+        dv_da = -sdot * dphi / (phi * phi)
+        stiffness = darea * ds_da * p + area * (dp_ds * ds_da + dp_dv * dv_da)
         return area * p, stiffness, area * dp_dv / phi
 
     def force(self, alpha: float, rate: float = 0.0) -> float:
@@ -180,11 +191,10 @@ class SphereFlowLaw:
         return self.response(alpha, rate)[2]
 
     def radius(self, alpha: float) -> float:
-        """The crushed section's radius a = sqrt(s·(d − s)) [m]."""
+        """The crushed section's radius a = sqrt(A/π) [m] (the sphere's sqrt(s·(d − s)))."""
         if alpha <= 0.0:
             return 0.0
-        s = sphere_crush_depth(alpha / self.diameter) * self.diameter
-        return math.sqrt(max(s * (self.diameter - s), 0.0))
+        return math.sqrt(max(self.geometry(alpha)[3], 0.0) / math.pi)
 
     def energy(self, alpha: float) -> float:
         """Nothing is stored: crushed or flowing material does not spring back [J]."""
@@ -195,7 +205,7 @@ class SphereFlowLaw:
         if alpha <= 0.0 or rate <= 0.0:
             return 0.0
         s, sdot, phi = self.state(alpha, rate)
-        if phi <= 0.0 or s >= CONSUMED * self.diameter:
+        if phi <= 0.0:
             return 0.0
         return max(self.pressure_terms(s, sdot)[0], 0.0)
 
@@ -249,7 +259,7 @@ def rigid_target_pulse(law: SphereFlowLaw, mass: float, velocity: float, samples
 
     from .pulses import TabulatedPulse
 
-    d = law.diameter
+    d = law.extent  # the body's length: the sphere's diameter
     T = d / velocity
 
     def rhs(t, y):

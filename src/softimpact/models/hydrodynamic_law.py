@@ -30,6 +30,11 @@ shock's excess over the momentum flux). The mean pressure on the section is
 V is the impact velocity the law is built for (the length scales); P_H and ρ·ṡ² follow the current ṡ. Nothing
 is stored (``energy`` = 0), nothing rebounds; the impulse is m·V (all the momentum is brought to rest) and the
 duration about d/V. Validity: :func:`softimpact.models.validity.hydrodynamic_validity`.
+
+The substitute bird is not a sphere but a hemispherical-ended cylinder (:class:`HydrodynamicCapsuleLaw`, its geometry in
+:mod:`softimpact.models.capsule`): the same pressure on its own section, A = π·d²/4 along the cylinder, for the
+time L/V the body takes to flow (Wilbeck's steady force ρ·A·V² and "squash-up" time L/V); the shock and its release
+are those of its hemispherical nose, the sphere's of the same diameter (s_c ≪ d/2).
 """
 
 from __future__ import annotations
@@ -38,10 +43,11 @@ import math
 from dataclasses import dataclass
 
 from ..errors import InputError
-from .crushing_law import SphereFlowLaw
+from .capsule import capsule_advance, capsule_depth, capsule_section, capsule_volume
+from .crushing_law import CONSUMED, SphereFlowLaw
 from .projectiles import WILBECK_GELATIN, LinearHugoniot, projectile_material
 
-__all__ = ["HydrodynamicLaw"]
+__all__ = ["HydrodynamicLaw", "HydrodynamicCapsuleLaw"]
 
 
 @dataclass(frozen=True)
@@ -63,13 +69,16 @@ class HydrodynamicLaw(SphereFlowLaw):
             raise InputError(f"contact: velocity must be positive, got {self.velocity!r}", "velocity")
 
     @classmethod
-    def of(cls, material, diameter: float, mass: float, velocity: float) -> HydrodynamicLaw:
+    def of(cls, material, diameter: float, mass: float, velocity: float, length: float | None = None) -> HydrodynamicLaw:
         """The law of a sphere of ``material`` (a catalogue name, Material or ProjectileMaterial with a Hugoniot:
-        gelatin), ``diameter`` [m], ``mass`` [kg], striking at ``velocity`` [m/s]."""
+        gelatin), ``diameter`` [m], ``mass`` [kg], striking at ``velocity`` [m/s]; with ``length`` [m] (> diameter),
+        that of a hemispherical-ended cylinder of that length striking nose first (:class:`HydrodynamicCapsuleLaw`)."""
         record = projectile_material(material)
         if record.hugoniot is None:
             raise InputError(f"material {record.name!r} has no Hugoniot: the hydrodynamic law is for gelatin", "material")
-        return cls(mass, diameter, velocity, record.hugoniot)
+        if length is None or length == diameter:
+            return cls(mass, diameter, velocity, record.hugoniot)
+        return HydrodynamicCapsuleLaw(mass, diameter, velocity, record.hugoniot, length)
 
     def validity(self, velocity: float | None = None):
         """The shock phase's envelope (:func:`~softimpact.models.validity.hydrodynamic_validity`) at the law's own
@@ -117,3 +126,42 @@ class HydrodynamicLaw(SphereFlowLaw):
         w, dw = self.shock_share(s)
         dflux, dshock = 2.0 * rho * rate, rho * (h.c0 + 2.0 * h.k * rate)
         return flux + (shock - flux) * w, (shock - flux) * dw, dflux + (dshock - dflux) * w
+
+
+@dataclass(frozen=True)
+class HydrodynamicCapsuleLaw(HydrodynamicLaw):
+    """Wilbeck's shock, release and steady flow for a hemispherical-ended cylinder striking nose first (module
+    docstring; its geometry: :mod:`softimpact.models.capsule`).
+
+    ``length`` L [m] ≥ ``diameter`` d, the overall length; the density is m/V with V = π·d²/4·(L − d) + π·d³/6.
+    """
+
+    source = "Wilbeck 1978 (AFML-TR-77-134) shock, release and steady flow of a hemispherical-ended cylinder; constants via saullocastro/birdpressure"  # where the law comes from (softimpact catalogue); a class attribute, not a field
+
+    length: float = 0.0
+
+    def __post_init__(self):
+        super().__post_init__()
+        if not (math.isfinite(self.length) and self.length >= self.diameter):
+            raise InputError(f"contact: length must be at least the diameter ({self.diameter!r} m), got {self.length!r}", "length")
+
+    @property
+    def density(self) -> float:
+        """ρ = m/V [kg/m³], V the capsule's volume."""
+        return self.mass / capsule_volume(self.diameter, self.length)
+
+    @property
+    def extent(self) -> float:
+        """L [m]: the centre of mass has advanced L/2 when the whole body is deposited."""
+        return self.length
+
+    def geometry(self, alpha: float) -> tuple[float, float, float, float, float]:
+        """(s, φ, dφ/ds = −A/V, A, dA/ds) of the capsule at the centre-of-mass approach α [m]
+        (:func:`~softimpact.models.capsule.capsule_depth`); φ = 0 once consumed."""
+        d, L = self.diameter, self.length
+        s = capsule_depth(alpha, d, L)
+        if s >= CONSUMED * L:
+            return L, 0.0, 0.0, 0.0, 0.0
+        phi = capsule_advance(s, d, L)[1]
+        area, darea = capsule_section(s, d, L)
+        return s, phi, -area / capsule_volume(d, L), area, darea
