@@ -169,6 +169,7 @@ def _variants() -> dict[str, list]:
         ({"material": "gelatin"}, {"law": "hydrodynamic", "sound_speed": "1500 m/s", "hugoniot_slope": 2.0}),
     ]
     threat = {"threat": {"hail": "38.1 mm", "airspeed": "100 m/s"}, "velocity": "30 m/s", "mass": "20 g"}
+    bird = {"threat": {"bird": "4 lb", "density": "938 kg/m^3"}, "velocity": "150 m/s"}  # a bird: the substitute of that mass, velocity required
     history = [
         {"shape": "skewed", "peak_force": "100 lbf", "time_of_peak": "50 us", "duration": "200 us"},
         {"shape": "table", "file": "force.csv"},
@@ -179,7 +180,8 @@ def _variants() -> dict[str, list]:
         "bar": [(bar,), (_set(bar, bar__file="bar.toml"),), (_set(bar, bar__material=_INLINE_MATERIAL, bar__end_cap={"material": "steel", "diameter": "1 in", "length": "0.25 in"}, output={"snapshots": ["10 us"]}),)]
         + [(_set(bar, contact=c),) for c in contact_laws]
         + [(_set(bar, projectile__material=m["material"], contact=c),) for m, c in flow_laws]
-        + [(_set(bar, projectile={**threat, "velocity": "30 m/s"}),)],
+        + [(_set(bar, projectile={**threat, "velocity": "30 m/s"}),)]
+        + [(_set(bar, projectile=bird, contact={"law": "hydrodynamic"}),)],
         "beam": [(beam,), (beam, P("."), 1)]
         + [(_set(beam, load__history=h, load__table=[row]), P("."), 1) for h in history]
         + [
@@ -195,6 +197,7 @@ def _variants() -> dict[str, list]:
         + [(_set(impact, contact=c),) for c in contact_laws]
         + [(_set(impact, impactor__material=m["material"], contact=c),) for m, c in flow_laws]
         + [(_set(impact, impactor=threat),)]
+        + [(_set(impact, impactor=bird, contact={"law": "hydrodynamic"}),)]
         + [(_set(impact, impactor={"striker": True, "material": "steel", "diameter": "16 mm", "mass": "5.5 kg", "energy": "30 J"}),)]
         + [(_data("plate-ss-8in-impact-cohesive"),)]
         + [(_set(_data("plate-ss-8in-impact-cohesive"), damage__cohesive="dissimilar", damage__near_field="20 mm", damage__element_size="2 mm", damage__turon=True),)]
@@ -384,12 +387,19 @@ _EITHER_OR = {
     "beam:beam.material": "one of `beam.laminate` and `beam.material`",
     "bar:projectile.material": "required unless `projectile.threat`",
     "bar:projectile.diameter": "required unless `projectile.threat`",
-    "bar:projectile.velocity": "required unless `projectile.threat` (then its velocity)",
+    "bar:projectile.velocity": "required unless a hail `projectile.threat` (then its velocity); required with a bird threat (a bird has no speed of its own)",
     "impact:impactor.material": "required unless `impactor.threat`",
     "impact:impactor.diameter": "required unless `impactor.threat`",
-    "impact:impactor.velocity": "required unless `impactor.threat` (then its velocity) or a striker's `impactor.energy`",
+    "impact:impactor.velocity": "required unless a hail `impactor.threat` (then its velocity) or a striker's `impactor.energy`; "
+    "required with a bird threat (a bird has no speed of its own)",
+    "bar:projectile.threat.hail": "one of `projectile.threat.hail` (a hailstone's diameter) and `projectile.threat.bird`",
+    "bar:projectile.threat.bird": "one of `projectile.threat.hail` and `projectile.threat.bird` (a bird's mass: its gelatin substitute, "
+    "a hemispherical-ended cylinder of L/D = 2)",
+    "impact:impactor.threat.hail": "one of `impactor.threat.hail` (a hailstone's diameter) and `impactor.threat.bird`",
+    "impact:impactor.threat.bird": "one of `impactor.threat.hail` and `impactor.threat.bird` (a bird's mass: its gelatin substitute, "
+    "a hemispherical-ended cylinder of L/D = 2)",
     "impact:impactor.energy": "a striker's (`impactor.striker = true`) velocity as its kinetic energy, in place of `impactor.velocity`",
-    "impact:impactor.mass": "from density and diameter; required for a striker (`impactor.striker = true`)",
+    "impact:impactor.mass": "from density and diameter; required for a striker (`impactor.striker = true`); refused with a bird threat (the bird is the mass)",
 }
 
 

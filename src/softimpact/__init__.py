@@ -13,7 +13,7 @@ quantities, converted to SI once::
                     law="hertz", time_step="0.5 us", duration="400 us", gauges={"g1": "2 in", "g2": "0.5 in"})
     res.peak_force, res.strain["g1"]; res.plot(); res.write("out/")
 
-Structures and impactors: :class:`Beam`, :class:`Plate`, :class:`Laminate`, :class:`Sphere`.
+Structures and impactors: :class:`Beam`, :class:`Plate`, :class:`Laminate`, :class:`Sphere`, :func:`bird`.
 Runs: :func:`impact`, :func:`press` (a static uniform pressure on a plate), :func:`load` and :func:`run` (any case
 file or built-in name).
 The chain of the paper: :func:`reduce`, :func:`fit`, :func:`predict`, :func:`identify`,
@@ -48,6 +48,7 @@ _LAZY = {
     "Bar": "api",
     "Laminate": "api",
     "Sphere": "api",
+    "bird": "api",
     "impact": "api",
     "press": "api",
     "load": "api",

@@ -9,7 +9,7 @@ A plain number is refused where a unit is needed: ``6`` could be inches or metre
 The index (every name is also ``si.NAME``):
 
 - structures and the impactor (:mod:`softimpact.api.structures`): :class:`Laminate`, :class:`Beam`,
-  :class:`Plate`, :class:`Bar`, :class:`Sphere`;
+  :class:`Plate`, :class:`Bar`, :class:`Sphere`; :func:`bird` (a bird threat as its gelatin substitute, a :class:`Sphere`);
 - runs (:mod:`softimpact.api.commands`): :func:`impact` (the one coupled stepper,
   :func:`softimpact.workflows.coupled.run_impact`), :func:`load` (a :class:`Case`) and :func:`run`
   for any case file or built-in name (through :data:`softimpact.cases.KINDS`);
@@ -43,7 +43,7 @@ imported explicitly.
 from .chain import calibrate, calibrate_bar, catalogue, converge, fit, identify, predict, read_record, reduce, shpb, sweep
 from .commands import Case, impact, load, press, run
 from .results import BarResult, BeamResult, CommandResult, ImpactResult, PlateResult, Record, StaticPlateResult
-from .structures import Bar, Beam, Laminate, Plate, Sphere
+from .structures import Bar, Beam, Laminate, Plate, Sphere, bird
 
 __all__ = [
     "Laminate",
@@ -51,6 +51,7 @@ __all__ = [
     "Plate",
     "Bar",
     "Sphere",
+    "bird",
     "impact",
     "press",
     "load",

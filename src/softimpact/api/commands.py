@@ -66,8 +66,8 @@ def _law(law, hertz, sphere: Sphere):
         check_family(identified, sphere.material, sphere.mass, sphere.diameter, f"law ({path.name})", "the Sphere's material")
         warn_outside(identified.identified_on, sphere.velocity, sphere.diameter, path, sphere.mass)
         return "identified", identified.law(sphere.mass, sphere.diameter, sphere.velocity), path
-    if isinstance(law, str) and law in MATERIAL_LAWS:  # ice's crushing, gelatin's flow: the sphere's own law
-        return law, CONTACT_LAWS[law].of(sphere.material, sphere.diameter, sphere.mass, sphere.velocity), None
+    if isinstance(law, str) and law in MATERIAL_LAWS:  # ice's crushing, gelatin's flow: the sphere's own law (a bird's its cylinder's)
+        return law, sphere.law(law), None
     resolved = resolve_law(law, hertz)
     return law_name(law), resolved, None  # a law object by its CONTACT_LAWS name, as a case file names it
 
@@ -195,7 +195,7 @@ def _impact(structure, at, impactor, law, time_step, duration, gauges, target_mo
     from ..cases import KINDS
     from ..workflows.coupled import ImpactProblem
 
-    problem = ImpactProblem(target, "(Python API)", impactor.impactor, impactor.material, name, resolved, title)
+    problem = ImpactProblem(target, "(Python API)", impactor.impactor, impactor.material, name, resolved, title, impactor.threat)
     KINDS["impact"].check(problem)  # the resource guards of the command, before anything is built
     return _run(Case("impact", problem, () if law_file is None else (law_file,), units=units))
 

@@ -340,6 +340,11 @@ class Sphere:
         [m/s]
     mass : float
         [kg]
+    length : float or None
+        [m] a bird substitute's overall length (:func:`bird`: a hemispherical-ended cylinder of this ``diameter``,
+        striking nose first); None for a sphere
+    threat : SubstituteBird or None
+        the bird threat it was built from (:func:`bird`), written to summary.json's ``threat``
 
     Raises
     ------
@@ -361,6 +366,8 @@ class Sphere:
     diameter: float
     velocity: float
     mass: float
+    length: float | None
+    threat: object
 
     @keywords("si.Sphere")
     def __init__(self, material, diameter, *, velocity, mass=None):
@@ -378,7 +385,7 @@ class Sphere:
 
             check_mass(mat, d, m, "mass", mass)
         Impactor(m, d, v)  # the same checks as every other path
-        for k, value in (("material", mat), ("diameter", d), ("velocity", v), ("mass", m)):
+        for k, value in (("material", mat), ("diameter", d), ("velocity", v), ("mass", m), ("length", None), ("threat", None)):
             object.__setattr__(self, k, value)
 
     def law(self, name: str):
@@ -390,6 +397,8 @@ class Sphere:
 
         if name not in MATERIAL_LAWS:
             raise InputError(f"law: {name!r} is not a law of the sphere's material (known: {', '.join(MATERIAL_LAWS)})", "law")
+        if self.length is not None:  # a bird substitute: the hydrodynamic law of its hemispherical-ended cylinder
+            return CONTACT_LAWS[name].of(self.material, self.diameter, self.mass, self.velocity, length=self.length)
         return CONTACT_LAWS[name].of(self.material, self.diameter, self.mass, self.velocity)
 
     @property
@@ -398,3 +407,52 @@ class Sphere:
         from ..models.specimens import Impactor
 
         return Impactor(self.mass, self.diameter, self.velocity)
+
+
+@keywords("si.bird")
+def bird(mass, *, velocity, density=None) -> Sphere:
+    """A bird threat as its gelatin substitute: the impactor of a bird of ``mass`` at ``velocity``, as a case file's
+    ``threat = { bird = ... }`` builds it (:func:`softimpact.models.threats.substitute_bird`).
+
+    A hemispherical-ended cylinder of gelatin, L/D = 2, of ``density`` (default 950 kg/m³, Wilbeck's), of diameter
+    D = (12·m/(5·π·ρ))^(1/3) and length 2·D, striking nose first; its law is ``law="hydrodynamic"``, which acts on
+    the cylinder's section for the time L/V the bird takes to flow.
+
+    Parameters
+    ----------
+    mass : str or pint.Quantity
+        The bird's mass [mass], e.g. ``"1.8 kg"`` or ``"4 lb"``.
+    velocity : str or pint.Quantity
+        Impact velocity toward the target [velocity], required: a bird has no speed of its own.
+    density : str or pint.Quantity, optional
+        The substitute's density [density]; default 950 kg/m³.
+
+    Examples
+    --------
+    >>> import softimpact as si
+    >>> b = si.bird("1.8 kg", velocity="150 m/s")
+    >>> round(b.diameter * 1e3, 1), round(b.length * 1e3, 1)
+    (113.1, 226.2)
+    >>> type(b.law("hydrodynamic")).__name__
+    'HydrodynamicCapsuleLaw'
+    """
+    from ..models.materials import CATALOGUE
+    from ..models.specimens import Impactor
+    from ..models.threats import BIRD_SUBSTITUTE_DENSITY, substitute_bird
+
+    m = _si(mass, "mass", "mass")
+    rho = BIRD_SUBSTITUTE_DENSITY if density is None else _si(density, "density", "density")
+    v = _si(velocity, "velocity", "velocity")
+    threat = substitute_bird(m, rho)
+    Impactor(threat.mass, threat.diameter, v)  # the same checks as every other path
+    sphere = object.__new__(Sphere)
+    for k, value in (
+        ("material", CATALOGUE["gelatin"]),
+        ("diameter", threat.diameter),
+        ("velocity", v),
+        ("mass", threat.mass),
+        ("length", threat.length),
+        ("threat", threat),
+    ):
+        object.__setattr__(sphere, k, value)
+    return sphere

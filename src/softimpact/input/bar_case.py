@@ -83,7 +83,9 @@ def bar_problem(data: dict, base: Path = Path(".")) -> BarImpactProblem:
             def hertz():
                 return HertzLaw.sphere_on_flat(diameter / 2, material, flat)
 
-            law, _ = read_contact_law(contact_tbl, name, hertz, projectile.mass, diameter, projectile.velocity, base, material, p.key("material"))
+            law, _ = read_contact_law(
+                contact_tbl, name, hertz, projectile.mass, diameter, projectile.velocity, base, material, p.key("material"), sphere.length
+            )
         contact_tbl.done()
     solver = read_solver(top.table("solver"))
     gauges = read_gauges(top, bar.length)

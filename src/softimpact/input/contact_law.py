@@ -53,13 +53,14 @@ def read_contact_law(
     base: Path,
     material: Material | None = None,
     where: str = "material",
+    length: float | None = None,
 ):
     """The law ``name`` of table ``c`` for an impactor (mass [kg], diameter [m], velocity [m/s], ``material``
-    the projectile's, read from the key ``where``); ``hertz()`` gives the pair's Hertz law. Returns (law, the
-    law file read or None)."""
+    the projectile's, read from the key ``where``; ``length`` [m] a bird substitute's, None for a sphere);
+    ``hertz()`` gives the pair's Hertz law. Returns (law, the law file read or None)."""
     note_law_keys(c)
     if name in MATERIAL_LAWS:
-        return _flow_law(c, name, material, mass, diameter, velocity, where), None
+        return _flow_law(c, name, material, mass, diameter, velocity, where, length), None
     if name == "identified":
         file = c.string("law_file")
         path = Path(file) if Path(file).is_absolute() else base / file
@@ -85,14 +86,14 @@ def note_law_keys(c: Table) -> None:
     c.read_with({k: f'{c.key("law")} = "{law}"' for law, keys in LAW_KEYS.items() for k in keys})
 
 
-def _flow_law(c: Table, name: str, material: Material | None, mass: float, diameter: float, velocity: float, where: str):
+def _flow_law(c: Table, name: str, material: Material | None, mass: float, diameter: float, velocity: float, where: str, length: float | None = None):
     """The crushing (ice) or hydrodynamic (gelatin) law of the projectile's ``material``, its strength law's or
     Hugoniot's constants replaced by the table's optional keys."""
     import dataclasses
 
     try:
         record = projectile_material(material if material is not None else "")
-        law = CONTACT_LAWS[name].of(record, diameter, mass, velocity)
+        law = CONTACT_LAWS[name].of(record, diameter, mass, velocity, **({} if length is None else {"length": length}))
     except InputError as exc:
         raise InputError(f"{c.key('law')} = {name!r} with {where}: {exc}") from None
     if name == "crushing":

@@ -101,7 +101,7 @@ def impact_problem(data: dict, base: Path = Path(".")) -> tuple[ImpactProblem, t
     c = top.table("contact")
     name = c.string("law", choices=CONTACT_LAWS)
     law, law_path = read_contact_law(
-        c, name, lambda: _hertz(c, target, diameter / 2, material), impactor.mass, diameter, velocity, base, material, i.key("material")
+        c, name, lambda: _hertz(c, target, diameter / 2, material), impactor.mass, diameter, velocity, base, material, i.key("material"), sphere.length
     )
     c.done()
     solver = read_solver(top.table("solver"))
@@ -119,7 +119,7 @@ def impact_problem(data: dict, base: Path = Path(".")) -> tuple[ImpactProblem, t
         with naming(names):
             resolved = CohesivePlateProblem.of(resolved, splits, interface_law, **zone)
     files = (target_path,) if law_path is None else (target_path, law_path)
-    return ImpactProblem(resolved, str(target_path), impactor, material, name, law, title), files
+    return ImpactProblem(resolved, str(target_path), impactor, material, name, law, title, sphere.threat), files
 
 
 NEAR_FIELD_DIAMETERS = 1.5  # the stacked near field's default half-width, in impactor diameters (a drop weight's delaminations reach ~1-2 d)

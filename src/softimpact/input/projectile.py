@@ -9,6 +9,14 @@ level at that speed (:func:`softimpact.models.threats.flight_hail_velocity`); th
 velocity toward the target, e.g. its normal component on an inclined skin) and ``mass`` (natural hail is
 lighter than ice) may still be given and replace the threat's. ``material`` and ``diameter`` may not: the threat
 sets them.
+
+A bird, ``threat = { bird = "1.8 kg" }`` (or ``"4 lb"``): a bird of that mass as its gelatin substitute
+(:func:`softimpact.models.threats.substitute_bird`), a hemispherical-ended cylinder of L/D = 2 and density 950 kg/m³
+(``density`` in the threat table replaces it), striking nose first. A bird has no speed of its own: the table's
+``velocity`` is required (the rule's speed, e.g. V_C at sea level), and ``material``, ``diameter`` and ``mass`` are the
+threat's. The sphere read keeps the bird's mass and takes the cylinder's diameter; its ``length`` reaches the
+hydrodynamic law (:class:`softimpact.models.hydrodynamic_law.HydrodynamicCapsuleLaw`), whose force acts on the
+cylinder's section for the time L/V the bird takes to flow.
 """
 
 from __future__ import annotations
@@ -18,7 +26,7 @@ from dataclasses import dataclass
 
 from ..errors import InputError
 from ..models.materials import CATALOGUE, Material, sphere_mass
-from ..models.threats import flight_hail_velocity, hail_terminal_velocity
+from ..models.threats import BIRD_SUBSTITUTE_DENSITY, SubstituteBird, flight_hail_velocity, hail_terminal_velocity, substitute_bird
 from .toml import Table, read_material
 
 __all__ = ["Sphere", "read_sphere", "check_mass", "MASS_DENSITY_FACTOR"]
@@ -32,12 +40,15 @@ MASS_DENSITY_FACTOR = 2.0
 @dataclass(frozen=True)
 class Sphere:
     """A projectile sphere as read: ``material``, ``diameter`` [m], ``velocity`` [m/s] toward the target,
-    ``mass`` [kg]."""
+    ``mass`` [kg]; a bird threat's ``length`` [m] (its hemispherical-ended cylinder's; None: a sphere) and its
+    ``threat`` (:class:`~softimpact.models.threats.SubstituteBird`)."""
 
     material: Material
     diameter: float
     velocity: float
     mass: float
+    length: float | None = None
+    threat: SubstituteBird | None = None
 
 
 def read_sphere(tbl: Table) -> Sphere:
@@ -67,6 +78,12 @@ def read_sphere(tbl: Table) -> Sphere:
         for key in ("material", "diameter"):
             if key in tbl:
                 raise InputError(f"{tbl.key(key)}: the threat ({tbl.key('threat')}) sets it: give one or the other")
+        if ("hail" in threat) == ("bird" in threat):
+            raise InputError(f"{tbl.key('threat')}: a hailstone ({threat.key('hail')}) or a bird ({threat.key('bird')}), one of them")
+        if "bird" in threat:
+            threat.read_with({"airspeed": f"{threat.key('hail')} (a hailstone)"})
+            return _bird(tbl, threat)
+        threat.read_with({"density": f"{threat.key('bird')} (a bird)"})
         material = CATALOGUE["ice"]
         diameter = threat.quantity("hail", "length")
         airspeed = threat.quantity("airspeed", "velocity", default=None)
@@ -77,6 +94,20 @@ def read_sphere(tbl: Table) -> Sphere:
     if mass is not None:
         check_mass(material, diameter, mass, tbl.key("mass"), tbl.raw("mass"))
     return Sphere(material, diameter, velocity, sphere_mass(material, diameter) if mass is None else mass)
+
+
+def _bird(tbl: Table, threat: Table) -> Sphere:
+    """The substitute bird of ``threat = { bird = ... }`` at the table's required ``velocity`` (module docstring)."""
+    if "mass" in tbl:
+        raise InputError(f"{tbl.key('mass')}: the bird threat ({threat.key('bird')}) is the mass: give one or the other")
+    bird = substitute_bird(threat.quantity("bird", "mass"), threat.quantity("density", "density", default=BIRD_SUBSTITUTE_DENSITY))
+    threat.done()
+    if "velocity" not in tbl:
+        raise InputError(
+            f"{tbl.key('velocity')}: required with a bird threat ({threat.key('bird')}): a bird has no speed of its own; "
+            "give the impact speed toward the target (e.g. the rule's V_C at sea level)"
+        )
+    return Sphere(CATALOGUE["gelatin"], bird.diameter, tbl.quantity("velocity", "velocity"), bird.mass, bird.length, bird)
 
 
 def check_mass(material: Material, diameter: float, mass: float, key: str, given) -> None:

@@ -61,8 +61,10 @@ def impact_summary(problem, result, validity, damage: dict | None = None, damage
     # after the first contact: KE0 = rebound KE + structure energy + contact work, short by the mismatch
     k_sep = int(np.searchsorted(result.time, first.end)) if math.isfinite(first.end) else None
     after = float(E.surface_mismatch[k_sep] / KE0) if k_sep is not None and k_sep < result.time.size else None
+    threat = getattr(problem, "threat", None)
     return {
         "title": problem.title,
+        **({"threat": threat.summary()} if threat is not None else {}),
         "contact_law": problem.law_name,
         "peak_force_N": result.peak_force,
         "time_of_peak_s": result.time_of_peak,

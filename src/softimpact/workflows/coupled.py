@@ -61,6 +61,7 @@ class ImpactProblem:
     law_name: str
     law: object
     title: str = ""
+    threat: object = None  # the bird threat's substitute (models.threats.SubstituteBird), None for any other impactor
 
     @property
     def solver(self) -> SolverSpec:
