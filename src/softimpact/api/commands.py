@@ -55,7 +55,7 @@ def _law(law, hertz, sphere: Sphere):
     a law object, or a law.json path read by the one reader (:func:`softimpact.formats.law_json.read_law`,
     its errors naming ``law``) with the warnings a case file's ``law_file`` gets when the sphere lies outside
     what the law was identified on (:func:`softimpact.input.contact_law.warn_outside`)."""
-    from ..models.contact_laws import CONTACT_LAWS, MATERIAL_LAWS, law_name, resolve_law
+    from ..models.contact_laws import MATERIAL_LAWS, law_name, resolve_law
 
     if _is_law_file(law):
         from ..formats.law_json import read_law
