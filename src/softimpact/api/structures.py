@@ -427,6 +427,17 @@ def bird(mass, *, velocity, density=None) -> Sphere:
     density : str or pint.Quantity, optional
         The substitute's density [density]; default 950 kg/m³.
 
+    Returns
+    -------
+    Sphere
+        The impactor: ``material`` gelatin, the bird's ``mass`` [kg], the cylinder's ``diameter`` and ``length`` [m],
+        ``velocity`` [m/s] and the ``threat`` (:class:`~softimpact.models.threats.SubstituteBird`).
+
+    Raises
+    ------
+    softimpact.errors.InputError
+        A missing unit, a non-positive mass, density or velocity.
+
     Examples
     --------
     >>> import softimpact as si
