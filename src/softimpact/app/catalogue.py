@@ -82,25 +82,11 @@ def _first_line(doc: str | None) -> str:
     return lines[0].strip() if lines else ""
 
 
-def catalogue() -> Catalogue:
-    """The catalogue read from the models' own tables (nothing copied: a new entry there shows here)."""
-    from ..cases import builtin_listing
-    from ..input.toml import builtin_cases
-    from ..models.contact_laws import CONTACT_LAWS
-    from ..models.empirical import PRESETS, PROJECTILES
-    from ..models.laminate import PLIES
-    from ..models.materials import CATALOGUE
+def _metals() -> Table:
+    """The metals' table (:data:`softimpact.models.metals.METALS`)."""
     from ..models.metals import METALS
-    from ..models.projectiles import PROJECTILES as PROJECTILE_MATERIALS
 
-    materials = Table(
-        "materials",
-        "Materials (isotropic, linear elastic)",
-        ("name", "E", "nu", "density", "bar wave speed", "source"),
-        ("", "Pa", "-", "kg/m^3", "m/s", ""),
-        tuple((m.name, m.youngs_modulus, m.poisson_ratio, m.density, m.wave_speed, m.source) for m in CATALOGUE.values()),
-    )
-    metals = Table(
+    return Table(
         "metals",
         "Metals (elastic-plastic skins: plate.material; J2 plasticity with the hardening named)",
         ("name", "E", "nu", "density", "yield stress", "ultimate strength", "elongation", "hardening", "strain rate", "source"),
@@ -110,6 +96,26 @@ def catalogue() -> Catalogue:
             for m in METALS.values()
         ),
     )
+
+
+def catalogue() -> Catalogue:
+    """The catalogue read from the models' own tables (nothing copied: a new entry there shows here)."""
+    from ..cases import builtin_listing
+    from ..input.toml import builtin_cases
+    from ..models.contact_laws import CONTACT_LAWS
+    from ..models.empirical import PRESETS, PROJECTILES
+    from ..models.laminate import PLIES
+    from ..models.materials import CATALOGUE
+    from ..models.projectiles import PROJECTILES as PROJECTILE_MATERIALS
+
+    materials = Table(
+        "materials",
+        "Materials (isotropic, linear elastic)",
+        ("name", "E", "nu", "density", "bar wave speed", "source"),
+        ("", "Pa", "-", "kg/m^3", "m/s", ""),
+        tuple((m.name, m.youngs_modulus, m.poisson_ratio, m.density, m.wave_speed, m.source) for m in CATALOGUE.values()),
+    )
+    metals = _metals()
     plies = Table(
         "plies",
         "Plies (laminate materials, in their material axes)",
