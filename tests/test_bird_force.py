@@ -1,10 +1,10 @@
-"""A 1.8-kg gelatin bird (153.5 mm, hydrodynamic law) on a single-degree-of-freedom target (issue 40 item 5).
+"""A 1.8-kg gelatin bird (153.5 mm, hydrodynamic law) on a single-degree-of-freedom target.
 
 The coupled stepper's force on a spring-mass target against an independent integration of the same equations
 (scipy's solve_ivp: m·Ẍ = −F(X − w, Ẋ − ẇ), m_p·ẅ + k·w = F), and its convergence with the time step. On this
 target the coupling is smooth and converges; the step-to-step noise of the same bird on the 4-mm plate comes from
 the plate's unresolved modes (undamped by the trapezoidal rule) read through the law's rate ṡ = α̇/φ, whose
-sensitivity to the target's velocity grows as 1/φ = m/m_r at the end of the crush (the report of issue 40).
+sensitivity to the target's velocity grows as 1/φ = m/m_r at the end of the crush.
 """
 
 import numpy as np
@@ -15,7 +15,7 @@ from scipy.integrate import solve_ivp
 from softimpact.fem.impact import ContactStructure, integrate_impact
 from softimpact.models.hydrodynamic_law import HydrodynamicLaw
 
-MASS, DIAMETER, VELOCITY = 1.8, 0.1535, 150.0  # the bird of issue 40 item 5 [kg, m, m/s]
+MASS, DIAMETER, VELOCITY = 1.8, 0.1535, 150.0  # the 1.8-kg bird as a 153.5-mm sphere at 150 m/s [kg, m, m/s]
 # The target: a plate's first mode stiffened to the 4-mm Al 2024-T3 plate's secant (about 20 mm under 400 kN);
 # its period, 2π·sqrt(m_p/k) = 0.47 ms, is shorter than the crush (d/V = 1.0 ms): the target moves during it.
 PLATE_MASS, PLATE_STIFFNESS = 0.11, 2.0e7  # [kg, N/m]
