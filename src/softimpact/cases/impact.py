@@ -329,7 +329,7 @@ class ImpactKind:
         if progress is not None:
             progress(0)
         try:
-            model, result = run_impact(problem, model, energy, stop_after, snaps, method=method, kernels=kernels)
+            model, result = run_impact(problem, model, energy, stop_after, snaps, method=method, kernels=kernels, progress=progress)
         except SolverFailed as exc:  # the stepper knows its residual, not the case: say what in the case may cause it
             cause = _penalty_cause(problem.target) if own == "cohesive" else ""
             if not cause:

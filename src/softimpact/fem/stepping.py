@@ -72,6 +72,8 @@ class CoupledStepper:
     """
 
     TAKE_TOP = False  # a zero force at α̃ is the root without a Newton solve (module docstring)
+    progress = None  # a callable told the step reached, every PROGRESS_STRIDE steps (a long run's progress bar), or None
+    PROGRESS_STRIDE = 16
     params: NewmarkParameters
     compliance: object
 
@@ -174,6 +176,7 @@ class CoupledStepper:
         free_approach, apply, responds = self.free_approach, self.apply, caps.responds
         ala, xa, state, branch = self.ala, self.xa, self.state, self.branch  # (kept on self across a coast only)
         N, k, last = self.steps, 0, self.steps
+        report, stride = self.progress, self.PROGRESS_STRIDE
         while k < N:
             if k > 0 and F[k] == 0.0 and al[k] <= 0.0:  # apart: no force now, none pressing
                 flight = self.flight(k)
@@ -200,6 +203,8 @@ class CoupledStepper:
                 self.newton_iterations += its
             apply(k, f, r)
             k += 1
+            if report is not None and k % stride == 0:
+                report(k)
             xa1 = -f / mass
             x[k] = x_pred - hm * f
             xv[k] = xv[k - 1] + dt * ((1.0 - gamma) * xa + gamma * xa1)

@@ -132,6 +132,7 @@ def run_impact(
     method: str = "auto",
     kernels=None,
     engine=None,
+    progress=None,
 ) -> tuple[StructureModel, CoupledResult]:
     """The coupled run of an impact problem on a beam or plate; ``model``: a BeamModel or PlateModel
     of the same structure and step to reuse; ``energy``: keep the energy histories; ``stop_after``:
@@ -146,6 +147,7 @@ def run_impact(
     single run costs less stepped directly than building kernels). ``engine``: a stepping engine built once for
     ``method`` and reused (the plate's :class:`~softimpact.fem.vk_rom.PlateVKROM` for "von-karman-rom",
     :func:`softimpact.fem.vk_rom.reduced_plate`); None: the model's stepper (the reduced plate then built for this run).
+    ``progress``: a callable told the step reached every few steps (a long run's progress bar), or None.
 
     Loadable nodes reach one impactor diameter from the impact point: a Hertz radius
     sqrt(R·α) and a flattened sphere's sqrt(d·α) stay within it while α < d (on a plate,
@@ -182,6 +184,7 @@ def run_impact(
         energy=energy,
         snapshots=snapshots,
     )
+    stepper.progress = progress
     try:
         history = stepper.run()
     except ContactOutgrewRoom as exc:
