@@ -81,9 +81,8 @@ def cscan_figure(scan, lu) -> bytes:
             h = 0.5 * i.major_axis * lu.factor
             cx, cy = (c * lu.factor for c in i.centroid)
             ax.plot([cx - h * np.cos(t), cx + h * np.cos(t)], [cy - h * np.sin(t), cy + h * np.sin(t)], color=colours[k], lw=1.2, ls=":")
-        name = i.label.removeprefix("plies_").replace("_", "/")
         axis = "round" if not np.isfinite(i.orientation_deg) else f"axis {i.major_axis * lu.factor:.3g} {lu.label} at {i.orientation_deg:.0f}°"
-        handles.insert(0, Patch(color=colours[k], label=f"plies {name} (lower ply {i.lower_ply_deg:g}°): {i.area * lu.factor**2:.3g} {lu.label}², {axis}"))
+        handles.insert(0, Patch(color=colours[k], label=f"{i.words} (lower ply {i.lower_ply_deg:g}°): {i.area * lu.factor**2:.3g} {lu.label}², {axis}"))
     cracked = (scan.damage >= 1.0).any(axis=0).astype(float)
     if cracked.any():
         ax.contour(x, y, cracked.T, levels=[0.5], colors="k", linewidths=1.5)

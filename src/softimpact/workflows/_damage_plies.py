@@ -150,7 +150,7 @@ def delamination_shapes(damage: dict, scan) -> dict:
             else f"at {big.orientation_deg:.0f}° from x, {big.misalignment_deg:.0f}° from the {big.lower_ply_deg:g}° ply below"
         )
         words = (
-            f"projected delamination {scan.projected_area * 1e6:.4g} mm²; largest at interface {big.label.replace('_', ' ', 1).replace('_', '/')}: "
+            f"projected delamination {scan.projected_area * 1e6:.4g} mm²; largest at interface {big.words}: "
             f"{big.major_axis * 1e3:.3g} × {big.minor_axis * 1e3:.3g} mm, major axis {angle}"
         )
         out["verdict"] = f"{out['verdict']}; {words}" if out.get("verdict") else words

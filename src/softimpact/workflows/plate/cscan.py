@@ -41,6 +41,11 @@ class Delamination:
     lower_ply_deg: float
 
     @property
+    def words(self) -> str:
+        """The interface in words: ``plies_3_4`` → ``plies 3/4``."""
+        return self.label.replace("_", " ", 1).replace("_", "/")
+
+    @property
     def misalignment_deg(self) -> float:
         """The angle between the major axis and the lower ply's fibres, in [0°, 90°] (nan without an area)."""
         if self.area <= 0.0:
