@@ -339,3 +339,17 @@ def test_mmb_against_benzeggagh_kenane(mmb_curve):
     assert c.min_separated_opening > -1e-9  # the lever held the crack open: no contact was needed
     err = c.force[growing] / ref[growing] - 1
     assert np.max(np.abs(err)) < 0.03
+
+
+@pytest.mark.parametrize("spacing", [0.4e-3, 1.25e-3, 2.0e-3])
+def test_turon_strengths_resolve_their_zone_without_a_flag(spacing):
+    """Turon's strength τ̄ = sqrt(9π·E·G_c/(32·N_e·l_e)) puts the zone l_cz = (9π/32)·E·G_c/τ̄² at exactly N_e = 3
+    spacings (substituting one into the other); the resolution check must not flag that as "fewer than 3" by
+    round-off (it did: 3.75/1.25 mm), and must flag a zone one spacing short."""
+    from softimpact.models.validity import zone_flags
+
+    law = BilinearCohesive(K=1e15, N=60e6, S=90e6, GIc=277.0, GIIc=788.0, eta=1.634).adjusted(9e9, spacing)
+    zone = law.process_zone(9e9)
+    assert zone / spacing == pytest.approx(3.0, rel=1e-12)
+    assert zone_flags("x", zone, spacing).flags == ()
+    assert zone_flags("x", zone, 1.5 * spacing).flags != ()

@@ -58,6 +58,7 @@ import numpy as np
 
 from ..errors import InputError, SolverFailed
 from .newmark import NewmarkParameters, spd_factor
+from .rank_update import RankUpdate
 
 
 class _KrylovFailed(Exception):
@@ -76,6 +77,7 @@ class NonlinearModel:
     history_names: tuple[str, ...] = ()
     LINEAR_WITHIN_STEP = False  # with its choices frozen and its state held, the model's force is linear in a step (no tangent change within it)
     LAGGED_STATE = False  # the state a commit stores changes the force at the committed point (damage held within a step, raised after it)
+    row_operator = None  # G (rows, n) where the tangent is K + Gᵀ diag(row_stiffness(u)) G with G fixed: the engine updates a kept factor on the rows that changed (softimpact.fem.rank_update)
 
     def commit(self, d: np.ndarray, dt: float | None = None) -> None:
         """Store the internal state of the converged state ``d`` (``dt``: the step that reached it, None in statics)."""
@@ -122,6 +124,14 @@ def _factor(A):
 def _factor_solve(A, b):
     """A⁻¹ b (see :func:`_factor`)."""
     return _factor(A).solve(b)
+
+
+def _pair(solve, r: np.ndarray, shape: np.ndarray | None) -> tuple[np.ndarray, np.ndarray | None]:
+    """(J⁻¹ r, J⁻¹ shape) in one block solve (a large factor is read once for both), or (J⁻¹ r, None) without a contact."""
+    if shape is None:
+        return solve(r), None
+    both = solve(np.column_stack([r, shape]))
+    return both[:, 0], both[:, 1]
 
 
 @dataclass(frozen=True)
@@ -289,6 +299,8 @@ class NonlinearNewmark:
         self.a0, self.a1, self.a2, self.a3 = 1.0 / (b * dt * dt), g / (b * dt), 1.0 / (b * dt), 1.0 / (2.0 * b) - 1.0
         self.rtol, self.max_iterations, self.tangent_kind = rtol, max_iterations, tangent
         self._lu = None
+        self._update = None  # the kept factor's rank update (models with a row_operator)
+        self.rank_updates = 0  # preconditioners built by it
         self._mass = None  # a factor of M, for re-equilibrating a lagged state's commit
         self.factorisations = 0
         self.krylov_solves = 0  # solves by the kept factor's preconditioned conjugate gradients (LINEAR_WITHIN_STEP models)
@@ -304,28 +316,64 @@ class NonlinearNewmark:
             J = J + extra_k
         return J
 
+    def _operator(self, u, extra_k):
+        """J as the conjugate gradients use it (products only): K_eff + Gᵀ diag(s) G (+ the extra stiffness) for a model
+        with a ``row_operator`` (no assembly), the assembled :meth:`_matrix` otherwise."""
+        G = getattr(self.model, "row_operator", None)
+        if G is None:
+            return self._matrix(u, extra_k)
+        import scipy.sparse.linalg as spl
+
+        s, keff = self.model.row_stiffness(u), self._keff
+
+        def product(x):
+            y = keff @ x + G.T @ (s * (G @ x))
+            return y if extra_k is None else y + extra_k @ x
+
+        return spl.LinearOperator(keff.shape, matvec=product, dtype=float)
+
     def _jacobian(self, u, extra_k):
         self.factorisations += 1
         self._lu = _factor(self._matrix(u, extra_k))
+        rows = getattr(self.model, "row_operator", None)
+        self._update = None if (rows is None or extra_k is not None) else RankUpdate(self._lu, rows, self.model.row_stiffness(u))
 
-    def _krylov(self, J):
-        """A solver of J x = b by conjugate gradients preconditioned with the factor kept (of an earlier J): for a model
-        linear within a step whose stiffness changed at a few points since that factor (the interfaces' damage and
-        closure), a handful of back-substitutions instead of a new factor; None where they do not converge (then
+    def _preconditioner(self, u, extra_k):
+        """The solve the conjugate gradients are preconditioned with: the kept factor updated on the rows whose stiffness
+        changed since it (:class:`~softimpact.fem.rank_update.RankUpdate`) for a model with a ``row_operator``, the kept
+        factor alone otherwise; None when too many rows changed (then refactor)."""
+        if self._update is None or extra_k is not None:
+            return self._lu.solve
+        solve = self._update.solver(self.model.row_stiffness(u))
+        self.rank_updates += solve is not None and self._update.active > 0
+        return solve
+
+    def _krylov(self, J, pre_solve):
+        """A solver of J x = b by conjugate gradients preconditioned with ``pre_solve`` (the factor kept, of an earlier
+        J, updated where the model's rows changed: :meth:`_preconditioner`): for a model linear within a step whose
+        stiffness changed at a few points since that factor (the interfaces' damage and closure), a handful of
+        back-substitutions instead of a new factor; raises :class:`_KrylovFailed` where they do not converge (then
         refactor). Conjugate gradients need J symmetric positive definite: the held-damage tangent plus a0·M is."""
         import scipy.sparse.linalg as spl
 
-        lu = self._lu
-        pre = spl.LinearOperator(J.shape, matvec=lu.solve, dtype=float)
+        pre = spl.LinearOperator(J.shape, matvec=pre_solve, dtype=float)
 
-        def solve(b):
+        def column(b, x0):
             if not np.any(b):
                 return np.zeros_like(b)
-            x, info = spl.cg(J, b, x0=lu.solve(b), rtol=self.KRYLOV_RTOL, atol=0.0, maxiter=self.KRYLOV_ITERATIONS, M=pre)
+            x, info = spl.cg(J, b, x0=x0, rtol=self.KRYLOV_RTOL, atol=0.0, maxiter=self.KRYLOV_ITERATIONS, M=pre)
             if info != 0:
                 raise _KrylovFailed
             self.krylov_solves += 1
             return x
+
+        def solve(b):
+            """J⁻¹ b for b (n,) or (n, k): the columns' first guesses in one block solve (the factor read once), then
+            each column's conjugate gradients (none where the guess is already within the tolerance)."""
+            x0 = pre_solve(b)
+            if np.ndim(b) == 1:
+                return column(b, x0)
+            return np.column_stack([column(b[:, j], x0[:, j]) for j in range(b.shape[1])])
 
         return solve
 
@@ -409,18 +457,20 @@ class NonlinearNewmark:
             if it > 1 and norm <= self.rtol * scale:
                 return self._finish(u1, u, v, a) + (it - 1,)
             solve = None
+            pre = None
             if self._lu is not None and self.tangent_kind == "modified" and model.LINEAR_WITHIN_STEP:
-                solve = self._krylov(self._matrix(u1, ek))  # the exact Jacobian, the kept factor its preconditioner
+                pre = self._preconditioner(u1, ek)
+            if pre is not None:
+                solve = self._krylov(self._operator(u1, ek), pre)  # the exact Jacobian, the kept factor (updated) its preconditioner
+            elif self._lu is not None and self.tangent_kind == "modified" and model.LINEAR_WITHIN_STEP:
+                self._jacobian(u1, ek)  # too many rows changed since the kept factor
             elif self._lu is None or self.tangent_kind == "newton" or norm > self.MODIFIED_RATE * last:
                 self._jacobian(u1, ek)
             try:
-                solve = solve or self._lu.solve
-                du = solve(r)
-                z = solve(load[1]) if contact is not None else None
+                du, z = _pair(solve or self._lu.solve, r, load[1] if contact is not None else None)
             except _KrylovFailed:
                 self._jacobian(u1, ek)
-                du = self._lu.solve(r)
-                z = self._lu.solve(load[1]) if contact is not None else None
+                du, z = _pair(self._lu.solve, r, load[1] if contact is not None else None)
             if contact is not None:  # the contact condensed on the linearised structure: u + d + F'·z
                 fc, shape = load
                 free = u1 + du - fc * z

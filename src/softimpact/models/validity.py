@@ -171,7 +171,7 @@ def zone_flags(where: str, zone: float, spacing: float, floor: int = 3) -> Valid
     spacings, the growth the run shows is the mesh's (a coarse mesh delays onset and growth), not the law's."""
     r = zone / spacing
     flags = ()
-    if r < floor:
+    if r < floor * (1.0 - 1e-9):  # Turon's strengths set the zone to exactly ``floor`` spacings: round-off is not a shortfall
         flags = (
             f"{where}: the process zone ({zone * 1e3:.3g} mm) spans {r:.2g} node spacings of {spacing * 1e3:.3g} mm, fewer than {floor}: the "
             f"delamination's onset and growth are the mesh's; grade the mesh to {zone / floor * 1e3:.3g} mm (a near field) or use Turon's strengths (turon = true)",
