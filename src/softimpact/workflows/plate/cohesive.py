@@ -172,7 +172,8 @@ class CohesivePlateProblem(PlateProblem):
         the STACK, not one plate): the near field's nodes carry 5 DOFs per sublaminate (u, v, w, φx, φy: a sublaminate
         of a symmetric laminate is unsymmetric), the far field's 5; the factor of a 2-D grid of N nodes of b DOFs each,
         ordered by minimum degree, holds about 3·N·log₂N·b² entries (seen: 29 M for 17 775 DOFs of 15 sublaminates on
-        a 16 × 16 MITC4 grid), a step four solves of it. A refusal names the node spacing the process zone needs and
+        a 16 × 16 MITC4 grid), a step four solves of it, and the columns the engine keeps to update that factor where the
+interfaces change (:data:`~softimpact.fem.rank_update.COLUMN_BYTES` at most). A refusal names the node spacing the process zone needs and
         what Turon's strengths would allow."""
         from ...errors import TooLarge
         from ...guards import require_resources
@@ -189,8 +190,11 @@ class CohesivePlateProblem(PlateProblem):
         fill = 3.0 * (n_near * math.log2(max(n_near, 2)) * (5 * layers) ** 2 + n_far * math.log2(max(n_far, 2)) * 25)
         steps = self.solver.steps if self.solver is not None else 1
         what = f"a stack of {layers} sublaminates ({dofs} DOF, {near.sum()} near-field elements of {self.node_spacing() * order * 1e3:.3g} mm)"
+        from ...fem.rank_update import COLUMN_BYTES
+
+        columns = min(COLUMN_BYTES, 8.0 * dofs * 3 * n_near * (layers - 1))  # the kept factor's update (fem.rank_update)
         try:
-            require_resources(what, 2 * 8.0 * fill, 4 * 2 * fill * steps)
+            require_resources(what, 2 * 8.0 * fill + columns, 4 * 2 * fill * steps)
         except TooLarge as exc:
             res = self.resolution()
             advice = "" if self.turon else "; Turon's strengths (turon = true) resolve it on a coarser near field (element_size, e.g. 2 mm)"
