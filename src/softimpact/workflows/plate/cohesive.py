@@ -169,12 +169,12 @@ class CohesivePlateProblem(PlateProblem):
 
     def check(self) -> None:
         """Refuse, before anything is built, a stack too big for the machine (the resource guard on what is factored:
-        the STACK, not one plate): the near field's nodes carry 5 DOFs per sublaminate (u, v, w, φx, φy: a sublaminate
-        of a symmetric laminate is unsymmetric), the far field's 5; the factor of a 2-D grid of N nodes of b DOFs each,
-        ordered by minimum degree, holds about 3·N·log₂N·b² entries (seen: 29 M for 17 775 DOFs of 15 sublaminates on
-        a 16 × 16 MITC4 grid), a step four solves of it, and the columns the engine keeps to update that factor where the
-interfaces change (:data:`~softimpact.fem.rank_update.COLUMN_BYTES` at most). A refusal names the node spacing the process zone needs and
-        what Turon's strengths would allow."""
+                the STACK, not one plate): the near field's nodes carry 5 DOFs per sublaminate (u, v, w, φx, φy: a sublaminate
+                of a symmetric laminate is unsymmetric), the far field's 5; the factor of a 2-D grid of N nodes of b DOFs each,
+                ordered by minimum degree, holds about 3·N·log₂N·b² entries (seen: 29 M for 17 775 DOFs of 15 sublaminates on
+                a 16 × 16 MITC4 grid), a step four solves of it, and the columns the engine keeps to update that factor where the
+        interfaces change (:data:`~softimpact.fem.rank_update.COLUMN_BYTES` at most). A refusal names the node spacing the process zone needs and
+                what Turon's strengths would allow."""
         from ...errors import TooLarge
         from ...guards import require_resources
 
