@@ -255,3 +255,22 @@ def test_a_hand_edited_law_whose_contact_radius_outgrows_the_ball_is_warned(tmp_
     assert v["contact_radius_over_projectile_radius"] > 1
     assert v["contact_radius_over_projectile_radius"] == pytest.approx(math.sqrt(4 * v["approach_over_diameter"]), rel=1e-9)
     assert any(f"{v['contact_radius_over_projectile_radius']:.3g} times the projectile's radius" in x for x in _warnings(r.output))
+
+
+def test_a_force_the_step_resolves_is_not_flagged_and_a_zigzag_is():
+    """A half-sine pulse of 100 steps (second differences 1e-3 of the peak) and one with a single kink (a crush's end)
+    raise nothing; the same pulse with a period-2 oscillation of ±10 % of the peak over its middle third (the
+    unresolved modes of a plate read through a rate-dependent law) raises force_unresolved_in_time."""
+    import numpy as np
+
+    from softimpact.models.validity import force_step_validity
+
+    t = np.linspace(0.0, 1.0, 101)
+    pulse = np.sin(np.pi * t)
+    assert force_step_validity(pulse, 1e-6).flags == ()
+    kinked = pulse.copy()
+    kinked[60:] *= 0.5
+    assert force_step_validity(kinked, 1e-6).flags == ()
+    noisy = pulse + np.where((t > 1 / 3) & (t < 2 / 3), 0.1 * (-1.0) ** np.arange(t.size), 0.0)
+    v = force_step_validity(noisy, 1e-6)
+    assert v.names == ("force_unresolved_in_time",) and "zigzags" in v.flags[0]
