@@ -52,6 +52,7 @@ equilibrium at zero load reached from a deformed state: the rest shape after an 
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass
 
 import numpy as np
@@ -334,9 +335,11 @@ class NonlinearNewmark:
 
     def _jacobian(self, u, extra_k):
         self.factorisations += 1
+        start = time.process_time()
         self._lu = _factor(self._matrix(u, extra_k))
         rows = getattr(self.model, "row_operator", None)
-        self._update = None if (rows is None or extra_k is not None) else RankUpdate(self._lu, rows, self.model.row_stiffness(u))
+        cost = time.process_time() - start
+        self._update = None if (rows is None or extra_k is not None) else RankUpdate(self._lu, rows, self.model.row_stiffness(u), cost)
 
     def _preconditioner(self, u, extra_k):
         """The solve the conjugate gradients are preconditioned with: the kept factor updated on the rows whose stiffness

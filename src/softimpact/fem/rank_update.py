@@ -15,8 +15,11 @@ factor; the capacitance matrix is refactored when Δ_S changes (once a step: wit
 
 Every row whose stiffness changed beyond round-off (:data:`RELATIVE_CHANGE` of the largest) joins S, so the update is
 exact and the conjugate gradients it preconditions (:meth:`softimpact.fem.nonlinear.NonlinearNewmark._krylov`) stop at
-their first residual check, where the stale factor alone took up to sixteen back-substitutions a solve. Past
-``max_rows`` rows (the columns' memory, :data:`COLUMN_BYTES`) the caller refactors.
+their first residual check, where the stale factor alone took up to sixteen back-substitutions a solve. The caller refactors
+once the update has cost more CPU than the factor it updates (``factor_seconds``: the rule of renting skis until the
+rent reaches the price, within twice the cost of the best choice made knowing the future — damage that spreads over
+many points every step is refactored, damage that creeps is updated) or past ``max_rows`` rows (the columns' memory,
+:data:`COLUMN_BYTES`).
 
 Cancellation: a row that lost its whole stiffness has 1/Δ = −1/s₀ and (G W)_ii ≈ 1/s₀ − 1/k (k the structure's own
 stiffness at that point), a loss of about log₁₀(s₀/k) digits (3–4 for a stiff penalty): the conjugate gradients
@@ -24,6 +27,9 @@ polish it.
 """
 
 from __future__ import annotations
+
+import math
+import time
 
 import numpy as np
 import scipy.linalg
@@ -38,8 +44,10 @@ class RankUpdate:
     """The solve of J = J₀ + Gᵀ diag(s − s₀) G from ``factor`` (of J₀, with a ``solve`` taking a block of right-hand
     sides) kept at the row stiffness ``s0`` (module docstring). ``G``: the (rows, n) sparse operator."""
 
-    def __init__(self, factor, G, s0: np.ndarray):
+    def __init__(self, factor, G, s0: np.ndarray, factor_seconds: float = math.inf):
         self.factor, self.G, self.s0 = factor, G.tocsr(), np.asarray(s0, float).copy()
+        self.factor_seconds = factor_seconds  # the CPU the factor cost: the update is worth keeping while it cost less
+        self.spent = 0.0  # CPU spent on the update (its columns and capacitance factors)
         n = G.shape[1]
         self.max_rows = int(max(COLUMN_BYTES // (8 * n), 0))
         self.floor = RELATIVE_CHANGE * float(np.max(np.abs(self.s0), initial=0.0))
@@ -59,8 +67,9 @@ class RankUpdate:
         if changed.size == 0:
             return self.factor.solve
         new = np.array([r for r in changed if r not in self._where], int)
-        if self.rows.size + new.size > self.max_rows:
+        if self.rows.size + new.size > self.max_rows or self.spent > self.factor_seconds:
             return None
+        start = time.process_time()
         self._extend(new)
         cols = np.array([self._where[r] for r in changed])
         order = np.argsort(cols)
@@ -72,6 +81,7 @@ class RankUpdate:
             contiguous = np.array_equal(cols, np.arange(cols.size))
             self._Wact = self._W[:, : cols.size] if contiguous else self._W[:, cols]  # a view while every kept row is changed
             self._Gact, self._key = self.G[changed], key
+        self.spent += time.process_time() - start
         cap, G_rows, W = self._cap, self._Gact, self._Wact
 
         def solve(b):
