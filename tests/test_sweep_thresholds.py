@@ -4,7 +4,6 @@ the engine end to end."""
 
 from __future__ import annotations
 
-import csv
 import json
 import math
 
@@ -221,35 +220,36 @@ values = ["0.2 in", "0.35 in", "0.5 in"]
 
 
 def test_a_sweep_gives_the_diameter_where_the_peak_force_reaches_a_limit(tmp_path):
-    """A diameter grid of a steel ball on the coarse long beam with a 1000-lbf limit on the peak force: thresholds.csv and
-    summary.json give the diameter where the straight line between the two bracketing runs' peak forces (from the run
-    table) reaches 1000 lbf, under threshold_diameter_median_m, with the limit as written; the printed line shows it in
-    the case's display units (in) with the limit; the row counts the two runs it rests on that are outside validity."""
+    """si.sweep of a diameter grid of a steel ball on the coarse long beam with a 1000-lbf limit on the peak force: the
+    result's thresholds.csv and summary give the diameter where the straight line between the two bracketing runs' peak
+    forces (from the run table) reaches 1000 lbf, under threshold_diameter_median_m, with the limit as written; its line
+    (the command's) shows it in the case's display units (in) with the limit; the row counts the two runs it rests on
+    that are outside validity."""
+    import io
+
     import pyarrow.parquet as pq
+
+    import softimpact as si
 
     (tmp_path / "beam.toml").write_text(COARSE_LONG_BEAM)
     case = LONG_BEAM_IMPACT.format(velocity="2000 in/s").replace('"paper-long-beam"', '"beam.toml"').replace('"300 us"', '"150 us"')
     (tmp_path / "impact.toml").write_text(case)
     (tmp_path / "spec.toml").write_text(E2E.format(limit="1000 lbf"))
-    out = tmp_path / "out"
-    r = CliRunner().invoke(main, ["sweep", str(tmp_path / "spec.toml"), "--out", str(out), "--no-figures", "--workers", "0"])
-    assert r.exit_code == 0, r.output
-    table = pq.read_table(out / "runs.parquet").to_pydict()
+    res = si.sweep(tmp_path / "spec.toml", out=tmp_path / "out", workers=0, figures=False)
+    table = pq.read_table(io.BytesIO(res.outcome.files["runs.parquet"])).to_pydict()
     d, f = np.array(table["impactor.diameter"]), np.array(table["peak_force_N"]) / (1000 * 4.4482216152605)
     j = int(np.flatnonzero(f >= 1.0)[0])
     assert j > 0  # the premise: the limit is bracketed by the swept diameters
     expected = d[j - 1] + (1.0 - f[j - 1]) * (d[j] - d[j - 1]) / (f[j] - f[j - 1])
-    rows = json.loads((out / "summary.json").read_text())["thresholds"]
-    row = next(t for t in rows if t["index"] == "peak_force_N")
+    row = next(t for t in res.summary()["thresholds"] if t["index"] == "peak_force_N")
     assert row["threshold_diameter_median_m"] == pytest.approx(expected, rel=1e-12)
     assert (row["against"], row["quantity"], row["unit"], row["limit"]) == ("impactor.diameter", "diameter", "m", "1000 lbf")
     flagged = [table["validity_flags"][k] for k in (j - 1, j)]  # the runs it rests on, and their flags
     assert row["runs_used"] == 2 and row["runs_outside_validity"] == sum(bool(x) for x in flagged)
     assert set(row["validity_flags"]) == {n for x in flagged for n in x.split(", ") if n}
-    with open(out / "thresholds.csv", newline="") as fh:
-        csv_rows = list(csv.DictReader(fh))
-    assert float(next(c for c in csv_rows if c["index"] == "peak_force_N")["threshold_diameter_median_m"]) == pytest.approx(expected, rel=1e-9)
-    assert f"threshold diameter peak_force_N reaching 1000 lbf: median {expected / 0.0254:.4g} in" in r.output
+    csv_row = res.table("thresholds.csv").set_index("index").loc["peak_force_N"]
+    assert csv_row["threshold_diameter_median_m"] == pytest.approx(expected, rel=1e-9) and csv_row["limit"] == "1000 lbf"
+    assert f"threshold diameter peak_force_N reaching 1000 lbf: median {expected / 0.0254:.4g} in" in res.line
 
 
 METAL_PLATE = """
@@ -326,3 +326,46 @@ def test_a_metal_skin_sweep_gives_the_diameter_of_a_visible_dent_and_the_dents_o
     assert (onset["dent_depth_m"]["onset_diameter_last_zero_m"], onset["dent_depth_m"]["onset_diameter_first_positive_m"]) == (d[0], d[1])
     assert "plastic_zone_area_m2" in onset and (out / "onsets.csv").is_file()
     assert "threshold diameter dent_depth_m reaching 0.05 mm" in r.output and "onset diameter dent_depth_m" in r.output
+
+
+@pytest.mark.parametrize(
+    "outputs, refused",
+    [
+        (["damage.dent_depth_m", "damage.plastic_zone_area_m2", "damage.plastic_work_J"], None),
+        (["damage.tsai_wu"], "need a laminate"),
+    ],
+)
+def test_a_metal_skin_sweep_takes_its_dent_and_refuses_a_ply_index(tmp_path, outputs, refused):
+    """An impact on a plastic metal plate sweeps its damage outputs (the dent, the plastic zone and work its runs write);
+    a ply's failure index is refused before any run (a metal has no ply strengths)."""
+    from softimpact.cases.sweep import plan_sweep
+    from softimpact.input.sweep_spec import load_sweep_spec
+
+    (tmp_path / "plate.toml").write_text(METAL_PLATE)
+    (tmp_path / "impact.toml").write_text(METAL_IMPACT)
+    (tmp_path / "spec.toml").write_text(
+        DENT_SPEC.replace('["damage.dent_depth_m", "damage.plastic_zone_area_m2"]', json.dumps(outputs)).replace('"damage.dent_depth_m" = "0.05 mm"', "")
+    )
+    spec = load_sweep_spec(str(tmp_path / "spec.toml"))
+    if refused is None:
+        assert len(plan_sweep(spec).runs) == 3
+    else:
+        with pytest.raises(InputError, match=refused):
+            plan_sweep(spec)
+
+
+def test_the_threshold_figure_and_lines_name_the_level_in_display_units():
+    """Rows against an energy are drawn and printed as energies in the display system's unit (SI: mJ, 35.5 J →
+    35500 mJ), a limit as written and the runs outside validity counted."""
+    from softimpact.app.sweep import threshold_lines
+    from softimpact.output.sweep import threshold_figure
+
+    level, draws, s = _grid([E0])
+    flags = [[], [], [], ["contact_past_run_end"], []]
+    th = sweep_stats.thresholds(level, [""] * 5, draws, {"damage.dent_depth_m": s / 25e-6}, quantity="energy", unit="J", flags=flags)
+    th = [{**t, "against": "impactor.energy", "quantity": "energy", "unit": "J", "limit": "25 um"} for t in th]
+    ax = threshold_figure(th, "SI").axes[0]
+    assert ax.get_ylabel() == "threshold energy [mJ]" and ax.lines[0].get_ydata()[0] == pytest.approx(35500.0)
+    line = threshold_lines(th, "SI")
+    assert line.startswith("threshold energy dent_depth_m reaching 25 um: median 3.55e+04 mJ")
+    assert "1 of its 2 runs outside validity (contact_past_run_end)" in line

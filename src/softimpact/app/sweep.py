@@ -5,6 +5,8 @@ planned, grouped by structure and run, resuming from ``OUT/checkpoints``
 (:mod:`softimpact.cases.sweep`), their statistics computed
 (:mod:`softimpact.workflows.sweep_stats`) and the files made
 (:mod:`softimpact.output.sweep`). Any kind of case sweeps: bar, beam, plate and impact.
+Thresholds (an index reaching 1, an output its ``[sweep.limits]`` limit) and onsets of sizes are printed
+against the spec's ``threshold_against`` level (the velocity level by default) in the display units.
 """
 
 from __future__ import annotations
