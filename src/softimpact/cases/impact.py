@@ -12,10 +12,21 @@ from ._common import GAUGE_FIELDS, magnitude_and_history, without
 
 __all__ = ["ImpactKind", "SharedModel", "bar_target", "KERNEL_MIN_RUNS", "with_identified_envelope"]
 
-# Keys of an impact case that leave the target's model (mesh, step, factorisation) unchanged: the
-# impactor's velocity (or a drop weight's energy), mass, material and diameter and the contact law. The diameter sets
-# only the contact's reach (the loadable nodes, per run): a group's kernels load the widest of its runs'.
-NOT_STRUCTURE = ("impactor.velocity", "impactor.energy", "impactor.mass", "impactor.material", "impactor.diameter", "contact", "title", "units")
+# Keys of an impact case that leave the target's model (mesh, step, factorisation) unchanged: the impactor's velocity
+# (or a drop weight's energy), threat (a hailstone's size, a bird's mass), mass, material and diameter and the contact
+# law. The diameter sets only the contact's reach (the loadable nodes, per run): a group's kernels load the widest of
+# its runs' (a wider run than the kernels were built for builds them again, SharedModel.kernels).
+NOT_STRUCTURE = (
+    "impactor.velocity",
+    "impactor.energy",
+    "impactor.threat",
+    "impactor.mass",
+    "impactor.material",
+    "impactor.diameter",
+    "contact",
+    "title",
+    "units",
+)
 # The sweep outputs of a metal plate's damage (workflows.damage.metal_damage): a plastic plate's dent and plastic
 # state at rest, an elastic one's stresses against yield; and of cohesive interfaces (delamination_growth, the C-scan's
 # projected area). Scalars only: a sweep keeps floats (yield_onset_time_s is None when it never yields).
@@ -100,7 +111,9 @@ class SharedModel:
         from ..errors import InputError
 
         for data in cases:
-            d = data.get("impactor", {}).get("diameter") if isinstance(data.get("impactor"), dict) else None
+            impactor = data.get("impactor") if isinstance(data.get("impactor"), dict) else {}
+            threat = impactor.get("threat") if isinstance(impactor.get("threat"), dict) else {}
+            d = impactor.get("diameter", threat.get("hail"))  # a hailstone's diameter (a bird's is its mass's: left to its run)
             try:
                 self.widest = max(self.widest, units.parse(d, "length", "impactor.diameter"))
             except (InputError, TypeError, ValueError):
