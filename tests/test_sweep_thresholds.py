@@ -369,3 +369,19 @@ def test_the_threshold_figure_and_lines_name_the_level_in_display_units():
     line = threshold_lines(th, "SI")
     assert line.startswith("threshold energy dent_depth_m reaching 25 um: median 3.55e+04 mJ")
     assert "1 of its 2 runs outside validity (contact_past_run_end)" in line
+
+
+@pytest.mark.parametrize(
+    "sweep, words",
+    [
+        ({"threshold_against": "impactor.diameter", "outputs": ["peak_force_N"]}, "no output has a threshold"),
+        ({"limits": {"peak_force_N": "1 kN"}, "parameter": [{"key": "impactor.diameter", "values": ["0.25 in", "0.5 in"]}]}, "sweep.limits: a threshold"),
+    ],
+)
+def test_threshold_keys_that_would_give_nothing_are_refused(sweep, words):
+    """threshold_against with no output to find a threshold or onset of, and a limit with no level to find it against
+    (no velocity level, no threshold_against), are refused before any run rather than silently giving no rows."""
+    from softimpact.cases.sweep import plan_sweep
+
+    with pytest.raises(InputError, match=words):
+        plan_sweep(_read(**sweep))

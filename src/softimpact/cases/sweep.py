@@ -96,6 +96,7 @@ class SweepPlan:
 def plan_sweep(spec: SweepSpec) -> SweepPlan:
     """Runs, grouped by structure and cut into chunks; checks the first run's case and the outputs."""
     kind = kind_of(spec.case_data, f"sweep.case ({spec.case_path.name})")
+    _check_threshold_keys(spec)
     runs = spec.runs()
     cases = [spec.case_for(r, kind.expand) for r in runs]
     base = spec.case_path.parent
@@ -146,6 +147,18 @@ def plan_sweep(spec: SweepSpec) -> SweepPlan:
     if "validity.max_strain_index" in known and not any(o.startswith("damage.") or o == "validity.max_strain_index" for o in spec.outputs):
         unchecked = ("strains against the ply allowables (ask for validity.max_strain_index or a damage.* output)",)
     return SweepPlan(spec, kind.name, tuple(runs), tuple(chunks), len(groups), unchecked)
+
+
+def _check_threshold_keys(spec: SweepSpec) -> None:
+    """Limits and onsets need a level to be found against, and threshold_against something to find: refused, not ignored."""
+    if threshold_axis(spec) is None and (spec.limits or spec.onset):
+        key = "sweep.limits" if spec.limits else "sweep.onset"
+        raise InputError(f"{key}: a threshold or onset is found against a level: give a velocity level or sweep.threshold_against (levels of a quantity)")
+    if spec.threshold_against and not threshold_outputs(spec) and not onset_outputs(spec):
+        raise InputError(
+            f"sweep.threshold_against = {spec.threshold_against!r}: no output has a threshold or an onset "
+            "(a damage.* index, an output with a limit in [sweep.limits], or a damage.* size)"
+        )
 
 
 def _one_line(exc: BaseException) -> str:
