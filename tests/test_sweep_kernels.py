@@ -194,6 +194,27 @@ def test_impactors_of_several_diameters_share_one_kernel_build(tmp_path, kernel_
         assert t["gauges.g1.peak_tensile_strain"][k] == pytest.approx(s["gauges"]["g1"]["peak_tensile_strain"], rel=1e-9)
 
 
+def test_hailstones_of_several_sizes_share_one_kernel_build(tmp_path, kernel_builds):
+    """Hail threats of 3/8 and 1/2 in (``impactor.threat.hail``, the crushing law) crossed with two velocities on the
+    long beam form one group: the kernels are built once, for the widest stone, and each run equals `softimpact impact`
+    alone (direct stepping) to 1e-9."""
+    text = BEAM_CASE.replace('law = "hertz"\ntarget_modulus = "7.9 GPa"', 'law = "crushing"').replace('"300 us"', '"100 us"')
+    case = lambda v, d: text.format(velocity=f"{v} in/s").replace('material = "steel"\ndiameter = "0.5 in"', f'threat = {{ hail = "{d} in" }}')  # noqa: E731
+    (tmp_path / "impact.toml").write_text(case(1000, 0.5))
+    spec = SPEC.format(method="grid", runs="", values='["600 in/s", "1400 in/s"]')
+    spec += '[[sweep.parameter]]\nkey = "impactor.threat.hail"\nvalues = ["0.375 in", "0.5 in"]\n'
+    (tmp_path / "spec.toml").write_text(spec)
+    r = CliRunner().invoke(main, ["sweep", str(tmp_path / "spec.toml"), "--out", str(tmp_path / "out"), "--workers", "0", "--no-figures"])
+    assert r.exit_code == 0, r.output
+    assert len(kernel_builds) == 1
+    t = _table(tmp_path / "out")
+    assert t["error"] == [""] * 4
+    for k in range(4):
+        v, d = round(t["impactor.velocity"][k] / INCH), t["impactor.threat.hail"][k] / INCH
+        s = _single(tmp_path, case(v, f"{d:g}"), f"hail-{k}")
+        assert t["peak_force_N"][k] == pytest.approx(s["peak_force_N"], rel=1e-9)
+
+
 @pytest.mark.parametrize("with_covariance", [False, True])
 def test_law_parameter_draws_follow_the_law_json(tmp_path, with_covariance):
     """Draws of a law.json's parameters have its values as mean and, per parameter, σ = half-width/1.96 (no

@@ -227,6 +227,8 @@ def _variants() -> dict[str, list]:
                 {"key": "load.history.duration", "range": ["1 us", "2 us", 3]},
                 {"key": "load.history.time_of_peak", "distribution": {"uniform": ["1 us", "2 us"]}},
                 {"key": "load.history.velocity", "from": "scaling.json", "group": "0.5 in"}]}},),
+            ({"sweep": {"case": "paper-long-beam", "method": "grid", "outputs": ["peak_force_N", "damage.max_strain"], "threshold_against": "load.history.peak_force",
+                        "limits": {"damage.max_strain": 0.8}, "onset": [], "parameter": [{"key": "load.history.peak_force", "values": ["1 lbf", "2 lbf"]}]}},),
         ],
     }  # fmt: skip
 
@@ -309,6 +311,9 @@ RAW_VALUES = {
     "value": "any value the key takes (a whole table replaces the table)",
     "parameters": "a table of the identified law's parameters by name (`k_ref`, `p`, `kappa_ref`, …): numbers used in place of law.json's (a sweep draws them)",
     "values": "a list of levels (quantities or values)",
+    "threshold_against": "the dotted case key of a level of quantities (`impactor.energy`, `impactor.diameter`, `impactor.threat.hail`): thresholds and onsets are found against it (default: the velocity level)",
+    "limits": 'a table of output = limit in the output\'s unit (`"damage.dent_depth_m" = "0.25 mm"`, `"peak_force_N" = "5 kN"`; a plain number for an index): the threshold where the output first reaches it',
+    "onset": "a list of outputs whose onset (first positive level, extrapolated to zero) is reported (default: every `damage.*` size in m, m², m³)",
     "range": "`[low, high, n]`: n levels evenly spaced",
     "between": "`[k, k + 1]`: two consecutive ply numbers (1 = the top ply), the interface between them tied by the cohesive law",
     "distribution": "`{ uniform = [lo, hi] }`, `{ normal = [mean, sd] }` or `{ lognormal = [median, sigma of ln] }`",

@@ -251,7 +251,12 @@ def sweep(spec, *, out, **options) -> CommandResult:
     Returns
     -------
     CommandResult
-        ``outcome.files["runs.parquet"]`` (a row per run) and ``summary()`` (statistics).
+        ``outcome.files["runs.parquet"]`` (a row per run) and ``summary()`` (statistics). With a threshold
+        (a level ``threshold_against`` names, or the velocity level, and a damage index or an output with a limit
+        in ``[sweep.limits]``): ``table("thresholds.csv")`` and ``summary()["thresholds"]``
+        (``threshold_<quantity>_median_<unit>``, its 5-95 % band, ``limit``, ``runs_outside_validity``); with a
+        ``damage.*`` size (or the spec's ``onset`` list): ``table("onsets.csv")`` and ``summary()["onsets"]``
+        (``onset_<quantity>_median_<unit>`` and its bracket).
 
     Raises
     ------

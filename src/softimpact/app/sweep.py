@@ -5,6 +5,8 @@ planned, grouped by structure and run, resuming from ``OUT/checkpoints``
 (:mod:`softimpact.cases.sweep`), their statistics computed
 (:mod:`softimpact.workflows.sweep_stats`) and the files made
 (:mod:`softimpact.output.sweep`). Any kind of case sweeps: bar, beam, plate and impact.
+Thresholds (an index reaching 1, an output its ``[sweep.limits]`` limit) and onsets of sizes are printed
+against the spec's ``threshold_against`` level (the velocity level by default) in the display units.
 """
 
 from __future__ import annotations
@@ -64,8 +66,8 @@ def sweep(
         f"{summary['runs']} runs in {summary['groups']} structure group(s): {summary['succeeded']} done, {summary['failed']} failed, "
         f"{summary['from_checkpoints']} from checkpoints ({dt:.1f} s, {_rate(summary['computed_now'] / dt)} runs/s)"
     )
-    if th:
-        line = threshold_lines(th, system) + "\n" + line  # the command line ends the last line with the files written
+    if th or summary.get("onsets"):
+        line = threshold_lines(th, system, summary.get("onsets", [])) + "\n" + line  # the command line ends the last line with the files written
     # validity flags raised here (the probes' reading of their cases) are the runs' own, counted per run
     found = [str(w.message).strip() for w in caught.held if not (isinstance(w.message, ValidityWarning) and w.message.flag)]
     read = (s.path, s.case_path, *(Path(f) for f, _ in s.inputs))  # every file the runs read: never replaced nor removed
@@ -75,31 +77,69 @@ def sweep(
 MAX_THRESHOLDS = 6  # threshold rows printed (all of them in thresholds.csv and summary.json)
 
 
-def _velocity_text(t: dict, q: str, vu) -> str:
-    """A threshold quantile in display units, or its bound in words with the level it is beyond."""
-    bound = t.get(f"threshold_velocity_{q}_bound", "")
+_KIND_OF_SUFFIX = {"m_s": "velocity", "J": "energy", "m": "length", "kg": "mass", "N": "force", "Pa": "stress", "s": "time", "N_s": "impulse"}
+
+
+def _shown(t: dict, system: str):
+    """(quantity, SI suffix of its columns, display unit or None) of a threshold or onset row (velocity when the row
+    does not say: a paper's or an older row)."""
+    from ..units import display
+
+    quantity, suffix = t.get("quantity", "velocity"), t.get("unit", "m_s")
+    kind = _KIND_OF_SUFFIX.get(suffix)
+    return quantity, suffix, None if kind is None else display(system, kind)
+
+
+def _level_text(x: float, du) -> str:
+    return f"{x:.4g}" if du is None else f"{x * du.factor:.4g} {du.label}"
+
+
+def _quantile_text(t: dict, prefix: str, q: str, suffix: str, du) -> str:
+    """A quantile in display units, or its bound in words with the level it is beyond."""
+    tail = f"_{suffix}" if suffix else ""
+    bound = t.get(f"{prefix}_{q}_bound", "")
     if not bound:
-        return f"{t[f'threshold_velocity_{q}_m_s'] * vu.factor:.4g} {vu.label}"
+        return _level_text(t[f"{prefix}_{q}{tail}"], du)
     if bound.startswith("below") and "others" not in bound:
-        return f"{bound} ({t['lowest_level_m_s'] * vu.factor:.4g} {vu.label})"
+        return f"{bound} ({_level_text(t[f'lowest_level{tail}'], du)})"
     if bound.startswith("above"):
-        return f"{bound} ({t['highest_level_m_s'] * vu.factor:.4g} {vu.label})"
+        return f"{bound} ({_level_text(t[f'highest_level{tail}'], du)})"
     return bound
 
 
-def threshold_lines(th: list[dict], system: str) -> str:
-    """The thresholds as printed lines: per index and level combination, the median and 5-95 % band in display
-    units, a quantile outside the swept velocities as its bound in words (never a bare value)."""
-    from ..units import display
+def _validity_text(t: dict) -> str:
+    n = t.get("runs_outside_validity", 0)
+    return f"; {n} of its {t['runs_used']} runs outside validity ({', '.join(t['validity_flags'])})" if n else ""
 
-    vu = display(system, "velocity")
+
+def threshold_lines(th: list[dict], system: str, onsets: list[dict] = ()) -> str:
+    """The thresholds (and the onsets of sizes) as printed lines: per output and level combination, the median and
+    5-95 % band of the level they are against (velocity, energy, diameter, ...) in display units, a quantile outside
+    the swept levels as its bound in words (never a bare value), a limit as written, the runs outside validity."""
     lines = []
     for t in th[:MAX_THRESHOLDS]:
+        quantity, suffix, du = _shown(t, system)
+        prefix = f"threshold_{quantity}"
         where = f" ({t['levels']})" if t["levels"] else ""
-        band = f"{_velocity_text(t, 'p05', vu)} to {_velocity_text(t, 'p95', vu)}"
-        lines.append(f"threshold velocity {t['index']}{where}: median {_velocity_text(t, 'median', vu)}, 5-95 % {band}")
+        what = f"{t['index']} reaching {t['limit']}" if t.get("limit") else t["index"]
+        band = f"{_quantile_text(t, prefix, 'p05', suffix, du)} to {_quantile_text(t, prefix, 'p95', suffix, du)}"
+        lines.append(
+            f"threshold {quantity.replace('_', ' ')} {what}{where}: median {_quantile_text(t, prefix, 'median', suffix, du)}, 5-95 % {band}{_validity_text(t)}"
+        )
     if len(th) > MAX_THRESHOLDS:
         lines.append(f"... and {len(th) - MAX_THRESHOLDS} more in thresholds.csv")
+    for t in onsets[:MAX_THRESHOLDS]:
+        quantity, suffix, du = _shown(t, system)
+        prefix = f"onset_{quantity}"
+        tail = f"_{suffix}" if suffix else ""
+        where = f" ({t['levels']})" if t["levels"] else ""
+        lo, hi = t[f"{prefix}_last_zero{tail}"], t[f"{prefix}_first_positive{tail}"]
+        bracket = f" (zero at {_level_text(lo, du)}, positive at {_level_text(hi, du)})" if math.isfinite(lo) and math.isfinite(hi) else ""
+        lines.append(
+            f"onset {quantity.replace('_', ' ')} {t['index']}{where}: median {_quantile_text(t, prefix, 'median', suffix, du)}{bracket}{_validity_text(t)}"
+        )
+    if len(onsets) > MAX_THRESHOLDS:
+        lines.append(f"... and {len(onsets) - MAX_THRESHOLDS} more in onsets.csv")
     return "\n".join(lines)
 
 

@@ -12,10 +12,39 @@ from ._common import GAUGE_FIELDS, magnitude_and_history, without
 
 __all__ = ["ImpactKind", "SharedModel", "bar_target", "KERNEL_MIN_RUNS", "with_identified_envelope"]
 
-# Keys of an impact case that leave the target's model (mesh, step, factorisation) unchanged: the
-# impactor's velocity, mass, material and diameter and the contact law. The diameter sets only the
-# contact's reach (the loadable nodes, per run): a group's kernels load the widest of its runs'.
-NOT_STRUCTURE = ("impactor.velocity", "impactor.mass", "impactor.material", "impactor.diameter", "contact", "title", "units")
+# Keys of an impact case that leave the target's model (mesh, step, factorisation) unchanged: the impactor's velocity
+# (or a drop weight's energy), threat (a hailstone's size, a bird's mass), mass, material and diameter and the contact
+# law. The diameter sets only the contact's reach (the loadable nodes, per run): a group's kernels load the widest of
+# its runs' (a wider run than the kernels were built for builds them again, SharedModel.kernels).
+NOT_STRUCTURE = (
+    "impactor.velocity",
+    "impactor.energy",
+    "impactor.threat",
+    "impactor.mass",
+    "impactor.material",
+    "impactor.diameter",
+    "contact",
+    "title",
+    "units",
+)
+# The sweep outputs of a metal plate's damage (workflows.damage.metal_damage): a plastic plate's dent and plastic
+# state at rest, an elastic one's stresses against yield; and of cohesive interfaces (delamination_growth, the C-scan's
+# projected area). Scalars only: a sweep keeps floats (yield_onset_time_s is None when it never yields).
+METAL_PLASTIC_KEYS = tuple(
+    f"damage.{k}" for k in ("dent_depth_m", "permanent_deflection_max_m", "plastic_work_J", "plastic_zone_area_m2", "max_equivalent_plastic_strain")
+)
+METAL_ELASTIC_KEYS = ("damage.max_von_mises_Pa", "damage.max_von_mises_over_yield")
+COHESIVE_KEYS = tuple(
+    f"damage.{k}"
+    for k in (
+        "delaminated_area_m2",
+        "projected_delamination_area_m2",
+        "process_zone_area_max_m2",
+        "process_zone_area_final_m2",
+        "fracture_energy_dissipated_J",
+        "cohesive_stored_energy_J",
+    )
+)
 
 
 # A group of at least this many runs builds the target's contact kernels once (about 1.5-4 direct
@@ -82,7 +111,9 @@ class SharedModel:
         from ..errors import InputError
 
         for data in cases:
-            d = data.get("impactor", {}).get("diameter") if isinstance(data.get("impactor"), dict) else None
+            impactor = data.get("impactor") if isinstance(data.get("impactor"), dict) else {}
+            threat = impactor.get("threat") if isinstance(impactor.get("threat"), dict) else {}
+            d = impactor.get("diameter", threat.get("hail"))  # a hailstone's diameter (a bird's is its mass's: left to its run)
             try:
                 self.widest = max(self.widest, units.parse(d, "length", "impactor.diameter"))
             except (InputError, TypeError, ValueError):
@@ -439,8 +470,15 @@ class ImpactKind:
 
         # the envelopes' ratios (summary.json's validity, models.validity): a sweep may keep them per run
         keys += [f"validity.{k}" for k in VALIDITY_RATIOS]
-        damage = damage_keys(problem.target.damage_points()) if problem.target.has_damage_outputs else ()
-        return tuple(keys) + damage + (("validity.max_strain_index",) if damage else ())
+        target = problem.target
+        from ..models.metals import Metal
+
+        if isinstance(target.material, Metal) and target.stack is None:  # a metal plate: its dent (plastic) or its stresses (elastic), _finish
+            return tuple(keys) + (METAL_PLASTIC_KEYS if target.plastic else METAL_ELASTIC_KEYS)
+        damage = damage_keys(target.damage_points()) if target.has_damage_outputs else ()
+        if target.coupled_stepper == "cohesive":  # the delaminated areas of its interfaces (workflows.damage.delamination_growth, shapes)
+            damage += COHESIVE_KEYS
+        return tuple(keys) + damage + (("validity.max_strain_index",) if target.has_damage_outputs else ())
 
     def expand(self, data, key):
         pass

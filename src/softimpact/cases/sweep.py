@@ -16,6 +16,7 @@ computed once. Nothing here parses arguments or writes the sweep's files.
 from __future__ import annotations
 
 import hashlib
+import math
 import re
 import warnings
 from collections.abc import Callable
@@ -25,7 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import HeldWarnings, InputError, SoftimpactWarning
-from ..input.sweep_spec import Level, SweepSpec
+from ..input.sweep_spec import SIZES, Level, SweepSpec, output_unit
 from ..models.validity import ValidityWarning
 from ..output.sweep import earlier_inputs, load_checkpoint, save_checkpoint, save_inputs
 from ..workflows import sweep_stats
@@ -42,6 +43,11 @@ __all__ = [
     "check_scheduler",
     "run_table",
     "plan_thresholds",
+    "plan_onsets",
+    "threshold_axis",
+    "threshold_outputs",
+    "onset_outputs",
+    "Axis",
     "sweep_results",
     "CHECKPOINTS",
     "FLAG_COLUMN",
@@ -90,6 +96,7 @@ class SweepPlan:
 def plan_sweep(spec: SweepSpec) -> SweepPlan:
     """Runs, grouped by structure and cut into chunks; checks the first run's case and the outputs."""
     kind = kind_of(spec.case_data, f"sweep.case ({spec.case_path.name})")
+    _check_threshold_keys(spec)
     runs = spec.runs()
     cases = [spec.case_for(r, kind.expand) for r in runs]
     base = spec.case_path.parent
@@ -140,6 +147,18 @@ def plan_sweep(spec: SweepSpec) -> SweepPlan:
     if "validity.max_strain_index" in known and not any(o.startswith("damage.") or o == "validity.max_strain_index" for o in spec.outputs):
         unchecked = ("strains against the ply allowables (ask for validity.max_strain_index or a damage.* output)",)
     return SweepPlan(spec, kind.name, tuple(runs), tuple(chunks), len(groups), unchecked)
+
+
+def _check_threshold_keys(spec: SweepSpec) -> None:
+    """Limits and onsets need a level to be found against, and threshold_against something to find: refused, not ignored."""
+    if threshold_axis(spec) is None and (spec.limits or spec.onset):
+        key = "sweep.limits" if spec.limits else "sweep.onset"
+        raise InputError(f"{key}: a threshold or onset is found against a level: give a velocity level or sweep.threshold_against (levels of a quantity)")
+    if spec.threshold_against and not threshold_outputs(spec) and not onset_outputs(spec):
+        raise InputError(
+            f"sweep.threshold_against = {spec.threshold_against!r}: no output has a threshold or an onset "
+            "(a damage.* index, an output with a limit in [sweep.limits], or a damage.* size)"
+        )
 
 
 def _one_line(exc: BaseException) -> str:
@@ -413,25 +432,120 @@ def _velocity_key(spec: SweepSpec) -> str | None:
     return keys[0] if keys else None
 
 
-def plan_thresholds(plan: SweepPlan, cols: dict) -> list[dict]:
-    """Threshold velocities of the plan's damage outputs against its velocity level
-    (:func:`softimpact.workflows.sweep_stats.thresholds`), per combination of the other levels;
-    [] without a velocity level or a damage output."""
+_QUANTITY_OF = {"hail": "diameter", "bird": "mass"}  # a threat's key names the threat; its value is its size
+_UNIT_SUFFIX = {"m/s": "m_s", "N*s": "N_s", "kg/m^3": "kg_m3", "J/m^2": "J_m2", "N*m": "N_m", "N/m^3": "N_m3"}  # others: as written
+
+
+@dataclass(frozen=True)
+class Axis:
+    """The level thresholds and onsets are found against: its case ``key``, the ``quantity`` it names (the key's last
+    part: ``velocity``, ``energy``, ``diameter``; a hail threat's ``diameter``, a bird's ``mass``), its SI ``unit`` and
+    the ``suffix`` of its columns (``m_s``, ``J``, ``m``)."""
+
+    key: str
+    quantity: str
+    unit: str
+    suffix: str
+
+    def columns(self) -> dict:
+        """The names a threshold row carries to say what it is against (summary.json, thresholds.csv)."""
+        return {"against": self.key, "quantity": self.quantity, "unit": self.suffix}
+
+
+def threshold_axis(spec: SweepSpec) -> Axis | None:
+    """The spec's ``threshold_against`` level, else its velocity level (None: neither)."""
+    key = spec.threshold_against or _velocity_key(spec)
+    if key is None:
+        return None
+    level = next(p for p in spec.parameters if isinstance(p, Level) and p.key == key)
+    last = key.split(".")[-1]
+    quantity = re.sub(r"[^a-z0-9]+", "_", _QUANTITY_OF.get(last, last).lower()).strip("_") or "level"
+    unit = level.unit or ""
+    if key.endswith("velocity") and not unit:
+        unit = "m/s"  # levels given as case values written back in SI
+    return Axis(key, quantity, unit, _UNIT_SUFFIX.get(unit, unit.replace("^", "").replace("/", "_").replace("*", "_")))
+
+
+def threshold_outputs(spec: SweepSpec) -> dict[str, float]:
+    """The outputs with a threshold, each with the value its index divides by: every ``damage.*`` index (no unit
+    suffix, :func:`~softimpact.input.sweep_spec.output_unit`: 1 at onset) by 1, and every output with a limit
+    (``[sweep.limits]``) by its limit [SI], in the order of ``outputs``. Forces, stresses and sizes have a threshold
+    only with a limit (a force of 1 N, a dent of 1 m mean nothing)."""
+    limits = {lim.output: lim.value for lim in spec.limits}
+    return {o: limits.get(o, 1.0) for o in spec.outputs if o in limits or (o.startswith("damage.") and not output_unit(o))}
+
+
+def onset_outputs(spec: SweepSpec) -> tuple[str, ...]:
+    """The outputs whose onset is reported: ``[sweep] onset`` when given, else every ``damage.*`` size (a length,
+    area or volume: zero until the damage starts, as a dent's depth or a delaminated area)."""
+    if spec.onset is not None:
+        return spec.onset
+    return tuple(o for o in spec.outputs if o.startswith("damage.") and output_unit(o) in SIZES)
+
+
+def _against(plan: SweepPlan, cols: dict) -> tuple[Axis, list[str], np.ndarray, list] | None:
+    """The axis, each run's label of the other levels, each run's draw and each run's validity flags."""
     spec = plan.spec
-    vkey = _velocity_key(spec)
-    # indices only (1 = onset): not the forces and stresses beside them (threshold_force_N, interlaminar_shear_max_Pa)
-    damage = [o for o in spec.outputs if o.startswith("damage.") and not o.endswith(("_N", "_Pa"))]
-    if vkey is None or not damage:
-        return []
-    others = [p.key for p in spec.parameters if isinstance(p, Level) and p.key != vkey]
+    axis = threshold_axis(spec)
+    if axis is None:
+        return None
+    others = [p.key for p in spec.parameters if isinstance(p, Level) and p.key != axis.key]
     labels = [" ".join(str(cols[k][i]) for k in others) for i in range(len(plan.runs))]
     draws = np.array([r.draw for r in plan.runs])
-    return sweep_stats.thresholds(np.asarray(cols[vkey], float), labels, draws, {o: cols[o] for o in damage})
+    flags = [[f for f in text.split(", ") if f] for text in cols.get("validity_flags", [""] * len(plan.runs))]
+    return axis, labels, draws, flags
+
+
+def plan_thresholds(plan: SweepPlan, cols: dict) -> list[dict]:
+    """Thresholds of the plan's damage indices and limited outputs (:func:`threshold_outputs`) against its
+    ``threshold_against`` level, else its velocity level (:func:`threshold_axis`;
+    :func:`softimpact.workflows.sweep_stats.thresholds`), per combination of the other levels; each row says what it is
+    against (``against``, ``quantity``, ``unit``), its limit (``limit`` as written, ``limit_si``; empty for an index)
+    and the validity of the runs it rests on. [] without such a level or such an output."""
+    spec = plan.spec
+    found = _against(plan, cols)
+    outputs = threshold_outputs(spec)
+    if found is None or not outputs:
+        return []
+    axis, labels, draws, flags = found
+    given = {lim.output: lim for lim in spec.limits}
+    rows = sweep_stats.thresholds(
+        np.asarray(cols[axis.key], float),
+        labels,
+        draws,
+        {o: np.asarray(cols[o], float) / by for o, by in outputs.items()},
+        quantity=axis.quantity,
+        unit=axis.suffix,
+        flags=flags,
+    )
+    names = list(outputs)
+    for k, row in enumerate(rows):  # the rows run over the outputs, in order, for each combination of the other levels
+        lim = given.get(names[k % len(names)])
+        row.update(axis.columns())
+        row.update({"limit": "" if lim is None else str(lim.given), "limit_si": math.nan if lim is None else lim.value})
+    return rows
+
+
+def plan_onsets(plan: SweepPlan, cols: dict) -> list[dict]:
+    """Onsets of the plan's sizes (:func:`onset_outputs`) against the same level as its thresholds
+    (:func:`softimpact.workflows.sweep_stats.onsets`), per combination of the other levels; [] without them."""
+    found = _against(plan, cols)
+    sizes = onset_outputs(plan.spec)
+    if found is None or not sizes:
+        return []
+    axis, labels, draws, flags = found
+    rows = sweep_stats.onsets(
+        np.asarray(cols[axis.key], float), labels, draws, {o: cols[o] for o in sizes}, quantity=axis.quantity, unit=axis.suffix, flags=flags
+    )
+    for row in rows:
+        row.update(axis.columns())
+    return rows
 
 
 def sweep_results(plan: SweepPlan, rows: dict, computed: int) -> tuple[dict, dict, list[dict]]:
     """The run table (columns), the summary (counts, failures, statistics, Spearman and Sobol
-    sensitivities per output) and the thresholds of finished ``rows``; ``computed``: runs computed now."""
+    sensitivities per output; ``thresholds`` and ``onsets`` when there are any) and the thresholds of finished
+    ``rows``; ``computed``: runs computed now."""
     from .. import __version__
 
     spec = plan.spec
@@ -461,4 +575,7 @@ def sweep_results(plan: SweepPlan, rows: dict, computed: int) -> tuple[dict, dic
     th = plan_thresholds(plan, cols)
     if th:
         summary["thresholds"] = th
+    onsets = plan_onsets(plan, cols)
+    if onsets:
+        summary["onsets"] = onsets
     return cols, summary, th

@@ -30,6 +30,21 @@ smooth). ``distribution`` is ``normal = [mean, sd]``, ``uniform = [lo, hi]`` or
 table may be followed by keys inside it, but a key set twice, or a table listed after a
 key inside it (which it would silently replace), is refused. Quantities keep their units in the spec
 and are written back to the case in SI; the run table holds SI numbers.
+
+Thresholds and onsets (:func:`softimpact.cases.sweep.plan_thresholds`, :func:`~softimpact.cases.sweep.plan_onsets`)
+are found against one level, the velocity level by default, or the one ``threshold_against`` names::
+
+    [sweep]
+    threshold_against = "impactor.energy"   # any level of quantities: a velocity, energy, diameter, mass, ...
+    onset = ["damage.dent_depth_m"]          # sizes whose onset (first positive level) is reported; default:
+                                             # every damage.* output in m, m^2 or m^3 (a depth, a length, an area)
+    [sweep.limits]                           # an output reaching the user's limit: the index output/limit
+    "damage.dent_depth_m" = "0.25 mm"
+    "damage.projected_delamination_area_m2" = "100 mm^2"
+
+The threshold of an index (a ``damage.*`` output without a unit: 1 at onset) is the level where it first
+reaches 1; an output with a limit (any output: a force, a stress, a size) has the threshold where it first
+reaches the limit, in the output's own unit (its SI suffix: ``_m``, ``_m2``, ``_J``, ``_N``, ``_Pa``, ...).
 """
 
 from __future__ import annotations
@@ -65,6 +80,10 @@ __all__ = [
     "set_dotted",
     "get_dotted",
     "quantity",
+    "Limit",
+    "OUTPUT_UNITS",
+    "SIZES",
+    "output_unit",
 ]
 
 METHODS = ("grid", "monte-carlo", "latin-hypercube")
@@ -126,11 +145,13 @@ class Fixed:
 
 @dataclass(frozen=True)
 class Level:
-    """A key taking each of ``values`` (case values) in turn; ``si`` for the run table."""
+    """A key taking each of ``values`` (case values) in turn; ``si`` for the run table; ``unit`` the SI unit of its
+    quantities ("" plain numbers or names; None values of different kinds)."""
 
     key: str
     values: tuple
     si: tuple
+    unit: str | None = ""
 
     @property
     def columns(self):
@@ -237,6 +258,121 @@ class LawDraw:
         return np.asarray(self.mean) + norm.ppf(u) @ L.T
 
 
+# An output's SI unit from its key's suffix (docs/naming.md), longest suffix first; a size is a length, area or volume.
+OUTPUT_UNITS = (
+    ("_m_s", "m/s"),
+    ("_N_s", "N*s"),
+    ("_J_m2", "J/m^2"),
+    ("_kg_m3", "kg/m^3"),
+    ("_m2", "m^2"),
+    ("_m3", "m^3"),
+    ("_m", "m"),
+    ("_J", "J"),
+    ("_N", "N"),
+    ("_Pa", "Pa"),
+    ("_kg", "kg"),
+    ("_s", "s"),
+    ("_Hz", "Hz"),
+)
+SIZES = ("m", "m^2", "m^3")
+
+
+def output_unit(output: str) -> str:
+    """The SI unit of a summary key by its suffix (:data:`OUTPUT_UNITS`): "m" for ``damage.dent_depth_m``, "m^2" for
+    ``damage.projected_delamination_area_m2``; "" for a key without one (an index, a strain, a ratio)."""
+    return next((unit for suffix, unit in OUTPUT_UNITS if output.endswith(suffix)), "")
+
+
+@dataclass(frozen=True)
+class Limit:
+    """A user's limit on an output (``[sweep.limits]``): ``value`` in the output's SI ``unit`` ("" a plain number),
+    ``given`` as written."""
+
+    output: str
+    value: float
+    unit: str
+    given: object
+
+
+def _limit(output: str, value, key: str) -> Limit:
+    """``value`` (a quantity with a unit, or a plain number for an output without one) in the unit of ``output``'s
+    suffix (:func:`output_unit`), positive and finite; pint's dimensionality decides."""
+    unit = output_unit(output)
+    if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+        raise InputError(f"{key}: expected a quantity with a unit{f' of {unit}' if unit else ''}, got {value!r}")
+    if not unit:
+        if not isinstance(value, (int, float)):
+            raise InputError(f"{key}: {output!r} has no unit (no SI suffix: an index or a ratio), so its limit is a plain number, got {value!r}")
+        x = float(value)
+    else:
+        if not isinstance(value, str):
+            raise InputError(f'{key}: missing unit in {value!r} (the output {output!r} is in {unit}, e.g. "0.25 mm" for a length)')
+        ureg = units.registry()
+        try:
+            q = ureg.Quantity(value.strip())
+        except Exception:  # pint raises several unrelated types for unknown names
+            raise InputError(f"{key}: cannot read {value!r} as a number and a unit (the output {output!r} is in {unit})") from None
+        want = ureg.Quantity(1.0, unit)
+        if not hasattr(q, "dimensionality") or q.dimensionality != want.dimensionality:
+            dim = getattr(q, "dimensionality", "dimensionless")
+            raise InputError(f"{key}: {value!r} is not in the unit of {output!r} ({unit}, {want.dimensionality}; {value!r} is {dim})")
+        x = float(q.to(unit).magnitude)
+    if not (math.isfinite(x) and x > 0):
+        raise InputError(f"{key}: a limit must be positive and finite, got {value!r}")
+    return Limit(output, x, unit, value)
+
+
+def _dotted_items(node: dict, prefix: str = ""):
+    """(dotted key, value) of a table whose keys may be quoted dotted keys or nested tables (TOML's bare dotted keys)."""
+    for k, v in node.items():
+        if isinstance(v, dict):
+            yield from _dotted_items(v, f"{prefix}{k}.")
+        else:
+            yield f"{prefix}{k}", v
+
+
+def _near(name: str, known) -> str:
+    import difflib
+
+    near = difflib.get_close_matches(name, list(known), n=1, cutoff=0.6)
+    return f"did you mean {near[0]!r}? " if near else ""
+
+
+def _threshold_reading(s: Table, outputs: list, params) -> tuple[str | None, tuple[Limit, ...], tuple[str, ...] | None]:
+    """``threshold_against``, ``limits`` and ``onset`` of ``[sweep]``, checked against the outputs and the levels."""
+    against = s.raw("threshold_against", None)
+    if against is not None:
+        levels = {p.key: p for p in params if isinstance(p, Level)}
+        if not isinstance(against, str):
+            raise InputError(f"{s.key('threshold_against')}: expected a dotted case key of a level, got {against!r}")
+        if against not in levels:
+            drawn = any(isinstance(p, Drawn) and p.key == against for p in params)
+            why = "is drawn, not swept by levels (give it values or a range)" if drawn else "is not a level of the sweep"
+            raise InputError(f"{s.key('threshold_against')}: {against!r} {why} ({_near(against, levels)}levels: {', '.join(levels) or 'none'})")
+        p = levels[against]
+        if p.unit is None or not all(isinstance(v, float) for v in p.si):
+            raise InputError(f"{s.key('threshold_against')}: {against!r} takes {list(p.values)!r}: a threshold needs levels of one quantity (numbers)")
+    limits = s.raw("limits", None)
+    found = []
+    if limits is not None:
+        if not isinstance(limits, dict):
+            raise InputError(f'{s.key("limits")}: expected a table of output = limit, e.g. "damage.dent_depth_m" = "0.25 mm", got {limits!r}')
+        for output, value in _dotted_items(limits):
+            key = f"{s.key('limits')}.{output}"
+            if output not in outputs:
+                raise InputError(f"{key}: {output!r} is not one of sweep.outputs ({_near(output, outputs)}outputs: {', '.join(outputs)})")
+            found.append(_limit(output, value, key))
+    onset = s.raw("onset", None)
+    if onset is not None:
+        if not (isinstance(onset, list) and all(isinstance(o, str) for o in onset)):
+            raise InputError(f"{s.key('onset')}: expected a list of outputs, got {onset!r}")
+        for o in onset:
+            if o not in outputs:
+                raise InputError(f"{s.key('onset')}: {o!r} is not one of sweep.outputs ({_near(o, outputs)}outputs: {', '.join(outputs)})")
+        onset = tuple(dict.fromkeys(onset))
+    return against, tuple(found), onset
+
+
 @dataclass(frozen=True)
 class Run:
     """One run: its number, the case keys it sets (in order) and its row of varied values (SI)."""
@@ -262,6 +398,9 @@ class SweepSpec:
     chunk: int
     fingerprint: str
     inputs: tuple[tuple[str, str], ...] = ()  # (file, sha256) of every file the runs read: the fingerprint covers their content
+    threshold_against: str | None = None  # the level thresholds and onsets are found against (None: the velocity level)
+    limits: tuple[Limit, ...] = ()  # outputs' limits: the threshold where the output first reaches its limit
+    onset: tuple[str, ...] | None = None  # outputs whose onset is reported (None: every damage.* size, OUTPUT_UNITS)
 
     def runs(self, central: bool = False) -> list[Run]:
         """The runs; with ``central``, one per level combination with every draw at its median."""
@@ -331,15 +470,17 @@ def _levels(p: Table, key: str) -> Level:
         vals = p.raw("values")
         if not isinstance(vals, list) or not vals:
             raise InputError(f"{p.key('values')}: expected a non-empty list, got {vals!r}")
-        si = []
+        si, kinds = [], set()
         for i, v in enumerate(vals):
             if isinstance(v, dict):
                 si.append(json.dumps(v, sort_keys=True))  # a whole table: its text in the run table
             elif isinstance(v, str) and not _is_quantity(v):
                 si.append(v)  # a name (projectile, ply, shape)
             else:
-                si.append(quantity(v, f"{p.key('values')}[{i}]")[0])
-        return Level(key, tuple(vals), tuple(si))
+                x, unit = quantity(v, f"{p.key('values')}[{i}]")
+                si.append(x)
+                kinds.add(unit)
+        return Level(key, tuple(vals), tuple(si), kinds.pop() if len(kinds) == 1 else "" if not kinds else None)
     r = p.raw("range")
     if not (isinstance(r, list) and len(r) == 3 and isinstance(r[2], int) and not isinstance(r[2], bool) and r[2] >= 2):
         raise InputError(f"{p.key('range')}: expected [low, high, count >= 2], got {r!r}")
@@ -347,7 +488,7 @@ def _levels(p: Table, key: str) -> Level:
     if ulo != uhi:
         raise InputError(f"{p.key('range')}: low and high differ in kind ({r[0]!r}, {r[1]!r})")
     xs = np.linspace(lo, hi, r[2])
-    return Level(key, tuple(_written(x, ulo) for x in xs), tuple(float(x) for x in xs))
+    return Level(key, tuple(_written(x, ulo) for x in xs), tuple(float(x) for x in xs), ulo)
 
 
 def _is_quantity(v) -> bool:
@@ -541,6 +682,7 @@ def read_sweep_spec(data: dict, base: Path, path: Path | None = None, text: byte
         raise InputError("sweep.runs: only for the random methods (the grid's size is its levels')")
     if not any(isinstance(p, (Level, Drawn, Scaling, LawDraw)) for p in params):
         raise InputError("sweep.parameter: nothing varies (give values, range, distribution or from)")
+    against, limits, onset = _threshold_reading(s, outputs, params)
     s.done()
     top.done()
     case_data = load_toml(case_path)
@@ -552,7 +694,7 @@ def read_sweep_spec(data: dict, base: Path, path: Path | None = None, text: byte
         if isinstance(p, (Scaling, LawDraw)):
             h.update(repr(p.mean + p.covariance).encode())
     spec_path = path or base / "spec"
-    return SweepSpec(spec_path, case_path, case_data, method, draws, seed, tuple(outputs), params, chunk, h.hexdigest()[:16], inputs)
+    return SweepSpec(spec_path, case_path, case_data, method, draws, seed, tuple(outputs), params, chunk, h.hexdigest()[:16], inputs, against, limits, onset)
 
 
 def _strings(node, key: str = ""):

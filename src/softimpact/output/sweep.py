@@ -87,7 +87,21 @@ def threshold_csv(th: list[dict]) -> str:
     """Threshold rows (:func:`softimpact.workflows.sweep_stats.thresholds`, or a threshold map's rows,
     :meth:`softimpact.studies.thresholds.MapRow.as_dict`) as CSV text: a map row's ``validity_flags`` (a list of names)
     joined by ", " (as runs.parquet's), ``inside_validity`` true/false (empty: not checked, no threshold)."""
-    text = ("levels", "index", "structure", "regime", "kinematics", "stepping", "band_from", "validity_flags", "inside_validity")
+    text = (
+        "levels",
+        "index",
+        "structure",
+        "regime",
+        "kinematics",
+        "stepping",
+        "band_from",
+        "validity_flags",
+        "inside_validity",
+        "against",
+        "quantity",
+        "unit",
+        "limit",
+    )
 
     def cell(t, k):
         v = t.get(k, np.nan)
@@ -103,22 +117,35 @@ def threshold_csv(th: list[dict]) -> str:
 
 
 def sweep_files(cols: dict, summary: dict, th: list[dict], figures: bool, system: str = "in-lbf-s") -> dict:
-    """runs.parquet, summary.json and, with thresholds, thresholds.csv (+ thresholds.png)."""
+    """runs.parquet, summary.json, with thresholds thresholds.csv (+ thresholds.png), with onsets (summary.json's
+    ``onsets``) onsets.csv."""
     files = {"runs.parquet": parquet_bytes(cols)}
     if th:
         files["thresholds.csv"] = threshold_csv(th)
         if figures:
             files["thresholds.png"] = figure_bytes(threshold_figure(th, system))
+    if summary.get("onsets"):
+        files["onsets.csv"] = threshold_csv(summary["onsets"])
     files["summary.json"] = json_text(summary)
     return files
 
 
-def threshold_figure(th: list[dict], system: str, title: str = "Threshold velocity (index reaches 1): median and 5-95 % band"):
+_KIND_OF_SUFFIX = {"m_s": "velocity", "J": "energy", "m": "length", "kg": "mass", "N": "force", "Pa": "stress", "s": "time", "N_s": "impulse"}
+
+
+def threshold_figure(th: list[dict], system: str, title: str | None = None):
+    """The rows' thresholds (median and 5-95 % band) per level combination and output, against the level the rows
+    say (``quantity`` and ``unit``; velocity when they do not), in display units."""
     import matplotlib.pyplot as plt
 
-    from ..units import display
+    from ..units import DisplayUnit, display
 
-    vu = display(system, "velocity")
+    quantity, suffix = th[0].get("quantity", "velocity"), th[0].get("unit", "m_s")
+    kind = _KIND_OF_SUFFIX.get(suffix)
+    vu = display(system, kind) if kind else DisplayUnit(1.0, suffix.replace("_", "/") or "-")
+    words = quantity.replace("_", " ")
+    tail = f"_{suffix}" if suffix else ""
+    title = title or f"Threshold {words} (index reaches 1, or the output its limit): median and 5-95 % band"
     fig, ax = plt.subplots(figsize=(7, 4))
     labels = list(dict.fromkeys(t["levels"] for t in th))
     indices = list(dict.fromkeys(t["index"] for t in th))
@@ -128,19 +155,19 @@ def threshold_figure(th: list[dict], system: str, title: str = "Threshold veloci
         for i, lab in enumerate(labels):
             t = next(t for t in th if t["levels"] == lab and t["index"] == name)
             xs.append(i + (j - (len(indices) - 1) / 2) * width)
-            ys.append(t["threshold_velocity_median_m_s"] * vu.factor)
-            lo.append(ys[-1] - t["threshold_velocity_p05_m_s"] * vu.factor)
-            hi.append(t["threshold_velocity_p95_m_s"] * vu.factor - ys[-1])
+            ys.append(t[f"threshold_{quantity}_median{tail}"] * vu.factor)
+            lo.append(ys[-1] - t[f"threshold_{quantity}_p05{tail}"] * vu.factor)
+            hi.append(t[f"threshold_{quantity}_p95{tail}"] * vu.factor - ys[-1])
         ax.errorbar(xs, ys, yerr=[np.nan_to_num(lo), np.nan_to_num(hi)], fmt="o", capsize=3, label=name)
         for x, y, lab in zip(xs, ys, labels):
             if not np.isfinite(y):  # the median is outside the swept velocities: its bound in words
                 t = next(t for t in th if t["levels"] == lab and t["index"] == name)
-                words = t.get("threshold_velocity_median_bound") or "not reached"
-                ax.annotate(words, (x, 0.02), xycoords=("data", "axes fraction"), rotation=90, fontsize=7, ha="center")
+                bound = t.get(f"threshold_{quantity}_median_bound") or "not reached"
+                ax.annotate(bound, (x, 0.02), xycoords=("data", "axes fraction"), rotation=90, fontsize=7, ha="center")
     ax.set_xlim(-0.5, len(labels) - 0.5)
     ax.set_xticks(range(len(labels)), [lab or "all runs" for lab in labels], fontsize=8)
-    ax.set_xlabel("levels of the swept parameters (besides velocity)")
-    ax.set_ylabel(f"threshold velocity [{vu.label}]")
+    ax.set_xlabel(f"levels of the swept parameters (besides {words})")
+    ax.set_ylabel(f"threshold {words} [{vu.label}]")
     ax.set_title(title, fontsize=10)
     ax.legend(fontsize=8)
     fig.tight_layout()
