@@ -1,6 +1,6 @@
 """The elastic–plastic plate (fem/plate_plastic.py, stepped by fem/nonlinear.py) loaded impulsively and struck by a
 heavy mass, far past elastic, against the rigid-plastic string (tests/_support/rigid_plastic.py: closed forms derived
-there; N. Jones's, which issue 40 names, were sought and not retrieved, so none of his equations, ranges or stated
+there; N. Jones's, which issue 40 asks for, were sought and not retrieved, so none of his equations, ranges or stated
 agreement with tests is used).
 
 The case: a strip of span L = 200 mm and thickness h = 2 mm clamped at both ends, the ends immovable in their plane, in
@@ -34,9 +34,9 @@ The independent elastic–plastic code (tests/_support/plastic_reference.py, Kir
 Seen, not asserted: the energy balance of the impulsive runs closes to only 1–2 % of the initial kinetic energy at
 2 µs and 2.5 % at 3 µs (at 120 m/s the plastic work counted exceeds the kinetic energy by 0.2 %; the mass run's
 balance closes within 0.3 %), where the coupled impacts of tests/test_metal_impact.py close within 1e-3: an impulse
-strains the whole strip plastically within a few steps, and the backward-Euler plastic work σ_{n+1}·Δεᵖ errs at first
-order in the step. At 3 µs the 80-m/s run failed a Newton step; the springback (relax) from the end of the same run on
-the catalogue's hardening Al 2024-T3 failed (a line-search trial the J2 return map could not follow).
+strains the whole strip plastically within a few steps; the error falls with the step, its source not pinned down.
+At 3 µs the 80-m/s run failed a Newton step; the springback (relax) from the end of a 120-m/s run (3 µs) on the
+catalogue's hardening Al 2024-T3 failed (a line-search trial the J2 return map could not follow).
 """
 
 from __future__ import annotations
