@@ -165,3 +165,32 @@ def test_static_result_frame_plot_and_files(tmp_path):
     assert res.plot() is not None
     written = res.write(tmp_path / "out", figures=False)
     assert {p.name for p in written} == {"summary.json"}
+
+
+def test_a_metal_skin_from_python_is_the_case_file_s():
+    """si.Plate(material=..., thickness=...) builds the plate a case file's [plate] material/thickness builds (the
+    built-in al-skin-2mm: Al 2024-T3, 2 mm), and its refusals name the user's keyword."""
+    import softimpact as si
+    from softimpact.errors import InputError
+    from softimpact.input.plate_case import load_plate_case
+
+    case = load_plate_case("al-skin-2mm")[0]
+    skin = si.Plate(
+        length="125 mm",
+        width="125 mm",
+        material="Al 2024-T3",
+        thickness="2 mm",
+        elements=case.plate.elements,
+        support=dict(zip(("x0", "x1", "y0", "y1"), case.plate.supports)),
+        kinematics=case.kinematics,
+    )
+    assert skin.spec == case.plate and skin.plasticity is None
+    for bad, named in (
+        (dict(material="Al 2024-T3"), "thickness"),
+        (dict(material="Al 9999", thickness="2 mm"), "material"),
+        (dict(material="Al 2024-T3", thickness="2 mm", plasticity="yes"), "plasticity"),
+        (dict(laminate=si.Laminate("T300/934", "[0/90]s"), thickness="2 mm"), "thickness"),
+        (dict(laminate=si.Laminate("T300/934", "[0/90]s"), material="Al 2024-T3", thickness="2 mm"), "material"),
+    ):
+        with pytest.raises(InputError, match=f"^{named}"):
+            si.Plate(length="125 mm", width="125 mm", **bad)

@@ -191,7 +191,16 @@ def _impact(structure, at, impactor, law, time_step, duration, gauges, target_mo
 
         with _naming():
             load = PlateLoad(_point(at, "at"), radius, None, grow=True)
-            target = PlateProblem(spec, load, solver, _plate_gauges(gauges), title=title, kinematics=structure.kinematics, in_plane=structure.in_plane)
+            target = PlateProblem(
+                spec,
+                load,
+                solver,
+                _plate_gauges(gauges),
+                title=title,
+                kinematics=structure.kinematics,
+                in_plane=structure.in_plane,
+                plasticity=structure.plasticity,
+            )
     from ..cases import KINDS
     from ..workflows.coupled import ImpactProblem
 
@@ -250,7 +259,16 @@ def press(plate: Plate, *, pressure, load_steps: int = 10, units: str = "in-lbf-
     with _Heard() as heard, python_terms():
         with _naming():
             problem = PlateProblem(
-                plate.spec, None, None, title=title, kinematics=plate.kinematics, in_plane=plate.in_plane, analysis="static", pressure=q, load_steps=load_steps
+                plate.spec,
+                None,
+                None,
+                title=title,
+                kinematics=plate.kinematics,
+                in_plane=plate.in_plane,
+                analysis="static",
+                pressure=q,
+                load_steps=load_steps,
+                plasticity=plate.plasticity,
             )
         from ..cases import KINDS
 

@@ -177,7 +177,15 @@ class Plate:
     width : str or pint.Quantity
         Length along y [length].
     laminate : Laminate
-        The laminate.
+        The laminate (or, for a metal skin, ``material`` and ``thickness`` instead).
+    material : str or softimpact.models.metals.Metal, optional
+        A metal skin: a catalogue metal by name (``softimpact catalogue``'s metals table, e.g. ``"Al 2024-T3"``) or a
+        :class:`~softimpact.models.metals.Metal`, as ``[plate] material`` of a case file.
+    thickness : str or pint.Quantity, optional
+        The metal skin's thickness [length], e.g. ``"2 mm"``.
+    plasticity : bool, optional
+        A metal skin elastic–plastic (True, the default for a metal: J2 plasticity through the thickness, its dent
+        computed) or elastic (False: checked against yield), as ``[plate] plasticity``.
     elements : (int, int)
         Elements along x and y; default (48, 48).
     support : str or dict
@@ -198,6 +206,8 @@ class Plate:
         The plate in SI.
     kinematics, in_plane : str
         As given.
+    plasticity : bool or None
+        As given (None: the default of the plate's material).
 
     Raises
     ------
@@ -210,11 +220,15 @@ class Plate:
     >>> plate = si.Plate(length="8 in", width="8 in", laminate=si.Laminate("T300/934", "[90/0]5s"), elements=(8, 8))
     >>> plate.spec.supports
     ('simply-supported', 'simply-supported', 'simply-supported', 'simply-supported')
+    >>> skin = si.Plate(length="125 mm", width="125 mm", material="Al 2024-T3", thickness="2 mm", elements=(4, 4))
+    >>> round(skin.spec.material.yield_stress / 1e6)
+    345
     """
 
     spec: object
     kinematics: str = "linear"
     in_plane: str = "immovable"
+    plasticity: bool | None = None
 
     @keywords("si.Plate")
     def __init__(
@@ -222,7 +236,10 @@ class Plate:
         *,
         length,
         width,
-        laminate: Laminate,
+        laminate: Laminate | None = None,
+        material=None,
+        thickness=None,
+        plasticity: bool | None = None,
         elements=(48, 48),
         support="simply-supported",
         element: str = "mitc9",
@@ -244,18 +261,49 @@ class Plate:
             if s not in PLATE_SUPPORTS:
                 raise InputError(f"support: {s!r} is not one of {', '.join(PLATE_SUPPORTS)}")
         check_supports(supports)
-        if not isinstance(laminate, Laminate):
-            raise InputError(f"laminate: expected a si.Laminate, got {type(laminate).__name__}")
+        stack, metal_, h = _skin(laminate, material, thickness, plasticity)
         if kinematics not in KINEMATICS:
             raise InputError(f"kinematics: {kinematics!r} is not one of {', '.join(KINEMATICS)}")
         if in_plane not in IN_PLANE:
             raise InputError(f"in_plane: {in_plane!r} is not one of {', '.join(IN_PLANE)}")
         spec = PlateSpec(
-            _si(length, "length", "length"), _si(width, "length", "width"), _elements(elements, 2, "elements"), laminate.stack, supports, element=element
+            _si(length, "length", "length"),
+            _si(width, "length", "width"),
+            _elements(elements, 2, "elements"),
+            stack,
+            supports,
+            element=element,
+            material=metal_,
+            thickness=h,
         )
         object.__setattr__(self, "spec", spec)
         object.__setattr__(self, "kinematics", kinematics)
         object.__setattr__(self, "in_plane", in_plane)
+        object.__setattr__(self, "plasticity", plasticity)
+
+
+def _skin(laminate, material, thickness, plasticity):
+    """(stack, metal, thickness [m]) of si.Plate's laminate or metal skin, each refusal naming the user's keyword."""
+    from ..models.metals import METALS, Metal, metal
+
+    if material is None:
+        if thickness is not None or plasticity is not None:
+            which = "thickness" if thickness is not None else "plasticity"
+            raise InputError(f"{which}: goes with a metal skin's material (a laminate's thickness is its plies', and it is elastic)")
+        if not isinstance(laminate, Laminate):
+            raise InputError(f"laminate: expected a si.Laminate (or material and thickness for a metal skin), got {type(laminate).__name__}")
+        return laminate.stack, None, None
+    if laminate is not None:
+        raise InputError("material: a plate is a laminate or a metal skin (material and thickness), not both")
+    if isinstance(material, str):
+        material = metal(material, "material")
+    elif not isinstance(material, Metal):
+        raise InputError(f"material: expected a metal's name ({', '.join(METALS)}) or a Metal, got {type(material).__name__}")
+    if thickness is None:
+        raise InputError('thickness: a metal skin needs its thickness, e.g. thickness="2 mm"')
+    if plasticity is not None and not isinstance(plasticity, bool):
+        raise InputError(f"plasticity: expected True or False, got {plasticity!r}")
+    return None, material, _si(thickness, "length", "thickness")
 
 
 @dataclass(frozen=True, init=False)
