@@ -339,7 +339,8 @@ class NonlinearNewmark:
         self._lu = _factor(self._matrix(u, extra_k))
         rows = getattr(self.model, "row_operator", None)
         cost = time.process_time() - start
-        self._update = None if (rows is None or extra_k is not None) else RankUpdate(self._lu, rows, self.model.row_stiffness(u), cost)
+        known = None if self._update is None else self._update.column_seconds  # the same pattern: a column costs what it did
+        self._update = None if (rows is None or extra_k is not None) else RankUpdate(self._lu, rows, self.model.row_stiffness(u), cost, known)
 
     def _preconditioner(self, u, extra_k):
         """The solve the conjugate gradients are preconditioned with: the kept factor updated on the rows whose stiffness

@@ -15,11 +15,13 @@ factor; the capacitance matrix is refactored when Δ_S changes (once a step: wit
 
 Every row whose stiffness changed beyond round-off (:data:`RELATIVE_CHANGE` of the largest) joins S, so the update is
 exact and the conjugate gradients it preconditions (:meth:`softimpact.fem.nonlinear.NonlinearNewmark._krylov`) stop at
-their first residual check, where the stale factor alone took up to sixteen back-substitutions a solve. The caller refactors
-once the update has cost more CPU than the factor it updates (``factor_seconds``: the rule of renting skis until the
-rent reaches the price, within twice the cost of the best choice made knowing the future — damage that spreads over
-many points every step is refactored, damage that creeps is updated) or past ``max_rows`` rows (the columns' memory,
-:data:`COLUMN_BYTES`).
+their first residual check, where the stale factor alone took up to sixteen back-substitutions a solve.
+
+The caller refactors when the columns a solve needs would take the update's CPU past that of the factor it updates
+(``factor_seconds``; a column's cost measured on the last block, a fresh update building at most :data:`PROBE` before
+it knows): the rule of renting skis until the rent would pass the price, within twice the cost of the best choice
+made knowing the future. Damage that spreads over many points in a step is refactored, damage that creeps and faces
+that close or open are updated. Past ``max_rows`` rows (the columns' memory, :data:`COLUMN_BYTES`) it refactors too.
 
 Cancellation: a row that lost its whole stiffness has 1/Δ = −1/s₀ and (G W)_ii ≈ 1/s₀ − 1/k (k the structure's own
 stiffness at that point), a loss of about log₁₀(s₀/k) digits (3–4 for a stiff penalty): the conjugate gradients
@@ -36,6 +38,7 @@ import scipy.linalg
 
 __all__ = ["RankUpdate", "RELATIVE_CHANGE", "COLUMN_BYTES"]
 
+PROBE = 16  # columns a fresh update may build before it knows what a column costs
 RELATIVE_CHANGE = 1e-9  # a row joins the update when its stiffness moved by more than this fraction of the largest (every change but round-off)
 COLUMN_BYTES = 1.0e9  # the kept columns W_S at most (8·n bytes each): past it, refactor
 
@@ -44,10 +47,11 @@ class RankUpdate:
     """The solve of J = J₀ + Gᵀ diag(s − s₀) G from ``factor`` (of J₀, with a ``solve`` taking a block of right-hand
     sides) kept at the row stiffness ``s0`` (module docstring). ``G``: the (rows, n) sparse operator."""
 
-    def __init__(self, factor, G, s0: np.ndarray, factor_seconds: float = math.inf):
+    def __init__(self, factor, G, s0: np.ndarray, factor_seconds: float = math.inf, column_seconds: float | None = None):
         self.factor, self.G, self.s0 = factor, G.tocsr(), np.asarray(s0, float).copy()
         self.factor_seconds = factor_seconds  # the CPU the factor cost: the update is worth keeping while it cost less
         self.spent = 0.0  # CPU spent on the update (its columns and capacitance factors)
+        self.column_seconds = column_seconds  # CPU a column cost, measured on the last block (of this or the last factor)
         n = G.shape[1]
         self.max_rows = int(max(COLUMN_BYTES // (8 * n), 0))
         self.floor = RELATIVE_CHANGE * float(np.max(np.abs(self.s0), initial=0.0))
@@ -60,17 +64,22 @@ class RankUpdate:
         self._cap = self._Wact = self._Gact = None
 
     def solver(self, s: np.ndarray):
-        """A solve of J(s) b, or None when more rows changed than the kept columns may hold (then refactor)."""
+        """A solve of J(s) b, or None when a new factor is the cheaper (module docstring): then refactor."""
         delta = np.asarray(s, float) - self.s0
         changed = np.flatnonzero(np.abs(delta) > self.floor)
         self.active = int(changed.size)
         if changed.size == 0:
             return self.factor.solve
         new = np.array([r for r in changed if r not in self._where], int)
-        if self.rows.size + new.size > self.max_rows or self.spent > self.factor_seconds:
-            return None
+        if new.size:
+            # the columns' cost foreseen from the last block's (a first block of at most PROBE columns measures it)
+            foreseen = (0.0 if new.size <= PROBE else math.inf) if self.column_seconds is None else new.size * self.column_seconds
+            if self.rows.size + new.size > self.max_rows or self.spent + foreseen > self.factor_seconds:
+                return None
+            start = time.process_time()
+            self._extend(new)
+            self.column_seconds = max(time.process_time() - start, 1e-9) / new.size
         start = time.process_time()
-        self._extend(new)
         cols = np.array([self._where[r] for r in changed])
         order = np.argsort(cols)
         changed, cols = changed[order], cols[order]
@@ -81,7 +90,7 @@ class RankUpdate:
             contiguous = np.array_equal(cols, np.arange(cols.size))
             self._Wact = self._W[:, : cols.size] if contiguous else self._W[:, cols]  # a view while every kept row is changed
             self._Gact, self._key = self.G[changed], key
-        self.spent += time.process_time() - start
+        self.spent += time.process_time() - start + (0.0 if not new.size else self.column_seconds * new.size)
         cap, G_rows, W = self._cap, self._Gact, self._Wact
 
         def solve(b):
