@@ -77,7 +77,7 @@ def draw_cscan(scan, lu, *, window: tuple[float, float, float, float] | None = N
     n = len(scan.interfaces)
     colours = plt.get_cmap("viridis_r")(np.linspace(0.1, 0.95, max(n, 1)))
     x, y = scan.xs * lu.factor, scan.ys * lu.factor
-    fig, ax = plt.subplots(figsize=(9.0, 5.0), layout="constrained")
+    fig, ax = plt.subplots(figsize=(8.0, 5.0), layout="constrained")
     handles = []
     for k in reversed(range(n)):  # the deepest first: a shallower delamination hides what lies below it
         i, d = scan.interfaces[k], scan.damage[k]
@@ -97,7 +97,7 @@ def draw_cscan(scan, lu, *, window: tuple[float, float, float, float] | None = N
                 path_effects=[patheffects.Stroke(linewidth=3.0, foreground="k"), patheffects.Normal()],  # seen over its own fill
             )
         axis = "round" if not np.isfinite(i.orientation_deg) else f"axis {i.major_axis * lu.factor:.3g} {lu.label} at {i.orientation_deg:.0f}°"
-        handles.insert(0, Patch(color=colours[k], label=f"{i.words} (lower ply {i.lower_ply_deg:g}°): {i.area * lu.factor**2:.3g} {lu.label}², {axis}"))
+        handles.insert(0, Patch(color=colours[k], label=f"{i.words} (lower ply {i.lower_ply_deg:g}°):\n{i.area * lu.factor**2:.3g} {lu.label}², {axis}"))
     cracked = (scan.damage >= 1.0).any(axis=0).astype(float)
     if cracked.any():
         ax.contour(x, y, cracked.T, levels=[0.5], colors="k", linewidths=1.5)
@@ -111,7 +111,7 @@ def draw_cscan(scan, lu, *, window: tuple[float, float, float, float] | None = N
     ax.set_xlabel(f"x [{lu.label}]", fontsize=10)
     ax.set_ylabel(f"y [{lu.label}]", fontsize=10)
     ax.tick_params(labelsize=9)
-    ax.set_title("Delaminations as a C-scan shows them (seen from the struck face)", fontsize=11)
+    fig.suptitle("C-scan: the delaminations seen from the struck face", fontsize=11)
     if handles:
-        ax.legend(handles=handles, fontsize=9, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+        fig.legend(handles=handles, fontsize=9, loc="outside right center")  # outside the axes, in the constrained layout's room
     return fig
