@@ -15,9 +15,9 @@ GETTING_STARTED = ROOT / "docs" / "getting-started.md"
 
 
 def test_every_task_has_an_example():
-    """The ten tasks of the gallery are there (bar test, reduce and fit, beam, own plate, calibration, sweep, hail and bird, large deflection,
-    a lab's own bars, the delamination benchmarks)."""
-    assert len(EXAMPLES) == 10
+    """The eleven tasks of the gallery are there (bar test, reduce and fit, beam, own plate, calibration, sweep, hail and bird, large deflection,
+    a lab's own bars, the delamination benchmarks, the C-scan of a struck plate)."""
+    assert len(EXAMPLES) == 11
 
 
 @pytest.mark.parametrize("path", EXAMPLES, ids=lambda p: p.stem)
@@ -32,7 +32,8 @@ SLOW_EXAMPLES = {
     "05_calibrate_force_history",
     "09_your_own_bars",
     "10_delamination_benchmarks",
-}  # 16 s, 6 s and 6 s of one core: run in the slow tier (the quick one keeps 3 minutes)
+    "11_delamination_cscan",
+}  # 16 s, 6 s, 6 s and about 2 min of one core: run in the slow tier (the quick one keeps 3 minutes)
 
 
 @pytest.mark.parametrize("path", [pytest.param(p, marks=pytest.mark.slow) if p.stem in SLOW_EXAMPLES else p for p in EXAMPLES], ids=lambda p: p.stem)
