@@ -9,7 +9,7 @@ import numpy as np
 from ..units import display
 from .files import figure_bytes
 
-__all__ = ["delamination_figures"]
+__all__ = ["delamination_figures", "cscan_figure", "draw_cscan"]
 
 
 def delamination_figures(problem, model, result, prefix: str = "", units: str = "in-lbf-s") -> dict[str, bytes]:
@@ -59,17 +59,25 @@ def delamination_figures(problem, model, result, prefix: str = "", units: str = 
 
 
 def cscan_figure(scan, lu) -> bytes:
-    """delamination-cscan.png: the whole plate seen from the struck face as a C-scan shows it, each interface's
-    delaminated region (d = 1) in its colour (deeper interfaces darker, the shallower drawn over the deeper), the
-    projected envelope outlined in black and each region's major axis (the equal-moment ellipse's) drawn through its
-    centroid; ``lu`` the display length unit."""
+    """delamination-cscan.png (:func:`draw_cscan` of the whole plate), ``lu`` the display length unit."""
+    return figure_bytes(draw_cscan(scan, lu))
+
+
+def draw_cscan(scan, lu, *, window: tuple[float, float, float, float] | None = None):
+    """The whole plate of ``scan`` (:class:`~softimpact.workflows.plate.cscan.CScan`) seen from the struck face as a
+    C-scan shows it, each interface's delaminated region (d = 1) in its colour (deeper interfaces darker, the
+    shallower drawn over the deeper), the projected envelope outlined in black and each region's major axis (the
+    equal-moment ellipse's) dashed through its centroid; ``lu`` the display length unit
+    (:func:`softimpact.units.display`), ``window`` (x0, x1, y0, y1) [m] the part of the plate drawn (default the
+    whole). Returns the open matplotlib Figure (a notebook shows it; :func:`cscan_figure` renders and closes it)."""
     import matplotlib.pyplot as plt
+    from matplotlib import patheffects
     from matplotlib.patches import Patch
 
     n = len(scan.interfaces)
     colours = plt.get_cmap("viridis_r")(np.linspace(0.1, 0.95, max(n, 1)))
     x, y = scan.xs * lu.factor, scan.ys * lu.factor
-    fig, ax = plt.subplots(figsize=(7.2, 5.2), layout="constrained")
+    fig, ax = plt.subplots(figsize=(8.0, 5.0), layout="constrained")
     handles = []
     for k in reversed(range(n)):  # the deepest first: a shallower delamination hides what lies below it
         i, d = scan.interfaces[k], scan.damage[k]
@@ -80,21 +88,30 @@ def cscan_figure(scan, lu) -> bytes:
             t = np.radians(i.orientation_deg)
             h = 0.5 * i.major_axis * lu.factor
             cx, cy = (c * lu.factor for c in i.centroid)
-            ax.plot([cx - h * np.cos(t), cx + h * np.cos(t)], [cy - h * np.sin(t), cy + h * np.sin(t)], color=colours[k], lw=1.2, ls=":")
+            ax.plot(
+                [cx - h * np.cos(t), cx + h * np.cos(t)],
+                [cy - h * np.sin(t), cy + h * np.sin(t)],
+                color=colours[k],
+                lw=1.5,
+                ls="--",
+                path_effects=[patheffects.Stroke(linewidth=3.0, foreground="k"), patheffects.Normal()],  # seen over its own fill
+            )
         axis = "round" if not np.isfinite(i.orientation_deg) else f"axis {i.major_axis * lu.factor:.3g} {lu.label} at {i.orientation_deg:.0f}°"
-        handles.insert(0, Patch(color=colours[k], label=f"{i.words} (lower ply {i.lower_ply_deg:g}°): {i.area * lu.factor**2:.3g} {lu.label}², {axis}"))
+        handles.insert(0, Patch(color=colours[k], label=f"{i.words} (lower ply {i.lower_ply_deg:g}°):\n{i.area * lu.factor**2:.3g} {lu.label}², {axis}"))
     cracked = (scan.damage >= 1.0).any(axis=0).astype(float)
     if cracked.any():
         ax.contour(x, y, cracked.T, levels=[0.5], colors="k", linewidths=1.5)
         handles.insert(0, Patch(facecolor="none", edgecolor="k", label=f"projected envelope: {scan.projected_area * lu.factor**2:.3g} {lu.label}²"))
     else:
         ax.text(0.5, 0.5, "no delamination (no interface reached d = 1)", transform=ax.transAxes, ha="center", va="center")
-    ax.set_xlim(x[0], x[-1])
-    ax.set_ylim(y[0], y[-1])
+    x0, x1, y0, y1 = (x[0], x[-1], y[0], y[-1]) if window is None else (c * lu.factor for c in window)
+    ax.set_xlim(x0, x1)
+    ax.set_ylim(y0, y1)
     ax.set_aspect("equal")
-    ax.set_xlabel(f"x [{lu.label}]")
-    ax.set_ylabel(f"y [{lu.label}]")
-    ax.set_title("Delaminations as a C-scan shows them (seen from the struck face)", fontsize=10)
+    ax.set_xlabel(f"x [{lu.label}]", fontsize=10)
+    ax.set_ylabel(f"y [{lu.label}]", fontsize=10)
+    ax.tick_params(labelsize=9)
+    fig.suptitle("C-scan: the delaminations seen from the struck face", fontsize=11)
     if handles:
-        ax.legend(handles=handles, fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
-    return figure_bytes(fig)
+        fig.legend(handles=handles, fontsize=9, loc="outside right center")  # outside the axes, in the constrained layout's room
+    return fig
