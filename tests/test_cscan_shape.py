@@ -101,3 +101,11 @@ def test_each_delamination_is_elongated_along_the_lower_ply(struck):
     for i in shaped:
         assert i.major_axis / i.minor_axis > MIN_ASPECT, (i.label, i.major_axis / i.minor_axis)
         assert i.misalignment_deg <= MAX_MISALIGNMENT_DEG, (i.label, i.orientation_deg, i.lower_ply_deg)
+
+
+def test_the_run_says_its_front_outran_the_step(struck):
+    """The run is not converged in its step (the area nearly doubles at half the step: module docstring), and says so:
+    its delamination front crossed more than one node spacing in a step (cohesive_front_unresolved_in_time)."""
+    res, _ = struck
+    flags = res.summary["validity"]["flags"]
+    assert any("delamination front" in f and "does not resolve its growth" in f for f in flags), flags

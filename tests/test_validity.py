@@ -274,3 +274,21 @@ def test_a_force_the_step_resolves_is_not_flagged_and_a_zigzag_is():
     noisy = pulse + np.where((t > 1 / 3) & (t < 2 / 3), 0.1 * (-1.0) ** np.arange(t.size), 0.0)
     v = force_step_validity(noisy, 1e-6)
     assert v.names == ("force_unresolved_in_time",) and "zigzags" in v.flags[0]
+
+
+@pytest.mark.parametrize("per_step, flagged", [(0.5, False), (2.0, True)])
+def test_a_delamination_front_faster_than_a_node_a_step_is_flagged(per_step, flagged):
+    """A disc delamination whose radius grows by ``per_step`` node spacings a step advances its front by
+    ΔA/(2πr) = Δr(1 + Δr/2r) spacings (r after the step): about 0.5 (resolved) or 2 (flagged) here, the value within
+    the geometric excess of a disc's annulus."""
+    import numpy as np
+
+    from softimpact.models.validity import front_step_validity
+
+    h = 1e-3
+    r = np.r_[0.0, 0.0, h * (1 + per_step * np.arange(20))]
+    v = front_step_validity({"plies 2/3": np.pi * r**2, "plies 5/6": np.zeros_like(r)}, np.arange(r.size) * 1e-6, h)
+    assert v.values["front_spacings_per_step"] == pytest.approx(per_step, rel=0.35)
+    assert (v.names == ("cohesive_front_unresolved_in_time",)) is flagged
+    if flagged:
+        assert "plies 2/3" in v.flags[0]

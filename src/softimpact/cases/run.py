@@ -110,7 +110,8 @@ def impact_validity(problem, result, damage: dict | None = None) -> Validity:
     against the ply allowables (none when ``damage`` holds no indices: a cohesive run's growth alone, without the damage group),
     a metal target's yield or tearing, and on a plate target the plate's thickness against its span
     (:func:`softimpact.cases.plate.geometry_validity`)."""
-    from ..models.validity import coupled_validity, tearing_flags, yield_flags
+    from ..models.validity import coupled_validity, front_step_validity, tearing_flags, yield_flags
+    from ..workflows.plate.cohesive import CohesivePlateProblem
     from ..workflows.plate_impact import PlateProblem
 
     v = coupled_validity(problem, result, None if damage is None else damage.get("max_strain"))
@@ -122,4 +123,13 @@ def impact_validity(problem, result, damage: dict | None = None) -> Validity:
         from .plate import geometry_validity
 
         v += geometry_validity(problem.target)
+    if isinstance(problem.target, CohesivePlateProblem):  # the delamination fronts against the step
+        v += front_step_validity(_interface_areas(result), result.time, problem.target.node_spacing())
     return v
+
+
+def _interface_areas(result) -> dict:
+    """The delaminated area per interface per time [m²] of a cohesive run's "columns" group (name → history)."""
+    names, rows = result.groups["columns"]
+    prefix = "delaminated_area_m2_"
+    return {n[len(prefix) :]: r for n, r in zip(names, rows) if n.startswith(prefix)}
