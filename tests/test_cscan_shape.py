@@ -103,9 +103,12 @@ def test_each_delamination_is_elongated_along_the_lower_ply(struck):
         assert i.misalignment_deg <= MAX_MISALIGNMENT_DEG, (i.label, i.orientation_deg, i.lower_ply_deg)
 
 
-def test_the_run_says_its_front_outran_the_step(struck):
-    """The run is not converged in its step (the area nearly doubles at half the step: module docstring), and says so:
-    its delamination front crossed more than one node spacing in a step (cohesive_front_unresolved_in_time)."""
+def test_the_run_says_it_is_not_resolved_in_its_step(struck):
+    """The run is not converged in its step (the area nearly doubles at half the step: module docstring), and says so
+    where it reports: its contact force zigzags from step to step (force_unresolved_in_time: 8 steps, up to 0.12 of the
+    peak). Its delamination fronts' largest advance a step is reported beside (validity.front_spacings_per_step, 0.46:
+    below the one spacing that would raise cohesive_front_unresolved_in_time)."""
     res, _ = struck
-    flags = res.summary["validity"]["flags"]
-    assert any("delamination front" in f and "does not resolve its growth" in f for f in flags), flags
+    validity = res.summary()["validity"]
+    assert "front_spacings_per_step" in validity
+    assert any("zigzags from step to step" in f or "delamination front" in f for f in validity["flags"]), validity["flags"]
