@@ -317,15 +317,19 @@ class NonlinearNewmark:
             J = J + extra_k
         return J
 
-    def _operator(self, u, extra_k):
+    def _row_stiffness(self, u):
+        """The model's ``row_stiffness(u)`` where it has a ``row_operator`` (computed once an iteration, for both the
+        preconditioner and the product), else None."""
+        return None if getattr(self.model, "row_operator", None) is None else self.model.row_stiffness(u)
+
+    def _operator(self, u, extra_k, s):
         """J as the conjugate gradients use it (products only): K_eff + Gᵀ diag(s) G (+ the extra stiffness) for a model
-        with a ``row_operator`` (no assembly), the assembled :meth:`_matrix` otherwise."""
-        G = getattr(self.model, "row_operator", None)
-        if G is None:
+        with a ``row_operator`` (``s`` its row stiffness at ``u``; no assembly), the assembled :meth:`_matrix` otherwise."""
+        if s is None:
             return self._matrix(u, extra_k)
         import scipy.sparse.linalg as spl
 
-        s, keff = self.model.row_stiffness(u), self._keff
+        G, keff = self.model.row_operator, self._keff
 
         def product(x):
             y = keff @ x + G.T @ (s * (G @ x))
@@ -342,13 +346,13 @@ class NonlinearNewmark:
         known = None if self._update is None else self._update.column_seconds  # the same pattern: a column costs what it did
         self._update = None if (rows is None or extra_k is not None) else RankUpdate(self._lu, rows, self.model.row_stiffness(u), cost, known)
 
-    def _preconditioner(self, u, extra_k):
+    def _preconditioner(self, extra_k, s):
         """The solve the conjugate gradients are preconditioned with: the kept factor updated on the rows whose stiffness
         changed since it (:class:`~softimpact.fem.rank_update.RankUpdate`) for a model with a ``row_operator``, the kept
         factor alone otherwise; None when too many rows changed (then refactor)."""
         if self._update is None or extra_k is not None:
             return self._lu.solve
-        solve = self._update.solver(self.model.row_stiffness(u))
+        solve = self._update.solver(s)
         self.rank_updates += solve is not None and self._update.active > 0
         return solve
 
@@ -461,11 +465,12 @@ class NonlinearNewmark:
             if it > 1 and norm <= self.rtol * scale:
                 return self._finish(u1, u, v, a) + (it - 1,)
             solve = None
-            pre = None
+            pre = rows = None
             if self._lu is not None and self.tangent_kind == "modified" and model.LINEAR_WITHIN_STEP:
-                pre = self._preconditioner(u1, ek)
+                rows = self._row_stiffness(u1)
+                pre = self._preconditioner(ek, rows)
             if pre is not None:
-                solve = self._krylov(self._operator(u1, ek), pre)  # the exact Jacobian, the kept factor (updated) its preconditioner
+                solve = self._krylov(self._operator(u1, ek, rows), pre)  # the exact Jacobian, the kept factor (updated) its preconditioner
             elif self._lu is not None and self.tangent_kind == "modified" and model.LINEAR_WITHIN_STEP:
                 self._jacobian(u1, ek)  # too many rows changed since the kept factor
             elif self._lu is None or self.tangent_kind == "newton" or norm > self.MODIFIED_RATE * last:
